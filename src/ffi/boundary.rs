@@ -1,0 +1,134 @@
+//! The one boundary every export goes through: panics are caught, errors
+//! become result codes, and the message is kept per thread for
+//! `gls_last_error_message()`.
+
+use std::cell::RefCell;
+use std::ffi::CString;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use crate::error::{Error, Result};
+use crate::ffi::types::{GLS_OK, gls_result};
+
+thread_local! {
+    /// The message of the most recent failing call on this thread.
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+/// Records `err` as this thread's last error, prefixed by the function name.
+pub(crate) fn set_last_error(function: &str, err: &Error) {
+    let text = format!("{function}: {err}");
+    // Interior NULs cannot occur in our messages, but a user-supplied string
+    // (a path, a mode name) could carry one: replace rather than lose the message.
+    let c = CString::new(text.replace('\0', "\\0")).unwrap_or_default();
+    LAST_ERROR.with(|slot| *slot.borrow_mut() = c);
+}
+
+/// A pointer to this thread's last error message. Valid until the next
+/// failing call on this thread; an empty string before any failure.
+pub(crate) fn last_error_ptr() -> *const std::ffi::c_char {
+    LAST_ERROR.with(|slot| slot.borrow().as_ptr())
+}
+
+fn panic_message(payload: Box<dyn std::any::Any + Send>) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_owned()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "a panic with a non-string payload".to_owned()
+    }
+}
+
+/// Runs the body of a `gls_result`-returning export.
+pub(crate) fn run(function: &'static str, body: impl FnOnce() -> Result<()>) -> gls_result {
+    match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(Ok(())) => GLS_OK,
+        Ok(Err(e)) => {
+            set_last_error(function, &e);
+            e.code()
+        }
+        Err(payload) => {
+            let e = Error::Panic(panic_message(payload));
+            set_last_error(function, &e);
+            e.code()
+        }
+    }
+}
+
+/// Runs the body of an export that returns a plain value; on failure the
+/// error is recorded and `on_error` is returned.
+pub(crate) fn run_value<T>(
+    function: &'static str,
+    on_error: T,
+    body: impl FnOnce() -> Result<T>,
+) -> T {
+    match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => {
+            set_last_error(function, &e);
+            on_error
+        }
+        Err(payload) => {
+            set_last_error(function, &Error::Panic(panic_message(payload)));
+            on_error
+        }
+    }
+}
+
+/// Wraps the body of every export. `ffi_boundary!("name", { ... Ok(()) })`
+/// for calls returning `gls_result`; `ffi_boundary!("name", default => { ... Ok(v) })`
+/// for calls returning a value (`default` on failure).
+macro_rules! ffi_boundary {
+    ($name:literal, $body:block) => {
+        $crate::ffi::boundary::run($name, || -> $crate::error::Result<()> { $body })
+    };
+    ($name:literal, $default:expr => $body:block) => {
+        $crate::ffi::boundary::run_value($name, $default, || $body)
+    };
+}
+pub(crate) use ffi_boundary;
+
+/// Borrows a required input pointer.
+///
+/// # Safety
+/// `ptr` must be NULL or point to a valid, initialised `T` that outlives `'a`.
+pub(crate) unsafe fn arg_ref<'a, T>(ptr: *const T, name: &'static str) -> Result<&'a T> {
+    // SAFETY: the caller guarantees validity when non-NULL.
+    unsafe { ptr.as_ref() }.ok_or(Error::NullPointer(name))
+}
+
+/// Checks a required output pointer; the value is written later, on success only.
+pub(crate) fn arg_out<T>(ptr: *mut T, name: &'static str) -> Result<*mut T> {
+    if ptr.is_null() {
+        Err(Error::NullPointer(name))
+    } else {
+        Ok(ptr)
+    }
+}
+
+/// Writes an output value through a pointer checked by [`arg_out`].
+///
+/// # Safety
+/// `ptr` must be valid for a write of `T` (it may be uninitialised).
+pub(crate) unsafe fn write_out<T>(ptr: *mut T, value: T) {
+    // SAFETY: the caller guarantees `ptr` is valid for writes.
+    unsafe { ptr.write(value) }
+}
+
+/// Reads a C string argument as UTF-8.
+#[allow(dead_code)] // first used by the capture exports
+///
+/// # Safety
+/// `ptr` must be NULL or point to a NUL-terminated string.
+pub(crate) unsafe fn arg_str<'a>(
+    ptr: *const std::ffi::c_char,
+    name: &'static str,
+) -> Result<&'a str> {
+    if ptr.is_null() {
+        return Err(Error::NullPointer(name));
+    }
+    // SAFETY: non-NULL and NUL-terminated by the caller's contract.
+    unsafe { std::ffi::CStr::from_ptr(ptr) }
+        .to_str()
+        .map_err(|_| Error::invalid_value(format!("{name} is not valid UTF-8")))
+}

@@ -1,0 +1,16 @@
+//! C programs compiled with the strict flags against the generated header
+//! and the cdylib, run, and their checks required to pass.
+
+mod common;
+
+use std::process::Command;
+
+#[test]
+fn c_math_program_reproduces_the_seed_and_gets_documented_codes() {
+    let dir = common::scratch("math_abi");
+    let exe = dir.join("math_abi");
+    common::compile_c(&[common::root().join("tests/c/math_abi.c")], &exe, &[]);
+    let out = common::run_ok(&mut Command::new(&exe));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains(" passed, 0 failed"), "{stdout}");
+}
