@@ -10,12 +10,14 @@
 //!
 //! Modules, from the inside out (dependencies point inward):
 //! - [`math`]: pure projection and parallax math (f64, no GL);
+//! - [`image`]: RGBA8 images, rows top first;
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]
 
 pub mod error;
 pub mod ffi;
+pub mod image;
 pub mod math;
 
 pub use error::{Error, Result};

@@ -1,0 +1,181 @@
+//! RGBA8 images in memory, rows top first: what captures, the CPU reference
+//! of the output formats and the tests exchange.
+
+use crate::error::{Error, Result};
+
+/// Largest width or height the library accepts for any image or surface.
+/// 16384 is the largest texture llvmpipe and most drivers support.
+pub const MAX_DIMENSION: u32 = 16384;
+
+/// An RGBA8 image, 4 bytes a pixel, rows top first, no padding.
+#[derive(Clone, PartialEq, Eq)]
+pub struct Image {
+    width: u32,
+    height: u32,
+    pixels: Vec<u8>,
+}
+
+impl std::fmt::Debug for Image {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Image({}x{})", self.width, self.height)
+    }
+}
+
+/// Checks a width and height: each 1…MAX_DIMENSION.
+pub fn check_size(width: u32, height: u32) -> Result<()> {
+    if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
+        return Err(Error::invalid_value(format!(
+            "size {width}x{height} is out of range: width and height must each be 1…{MAX_DIMENSION}"
+        )));
+    }
+    Ok(())
+}
+
+impl Image {
+    /// A black, fully transparent image. Panics on a size outside
+    /// 1…MAX_DIMENSION (check with [`check_size`] first for user input).
+    pub fn new(width: u32, height: u32) -> Image {
+        check_size(width, height).expect("image size");
+        Image {
+            width,
+            height,
+            pixels: vec![0; width as usize * height as usize * 4],
+        }
+    }
+
+    /// An image of the given pixels (rows top first, 4 bytes a pixel).
+    pub fn from_pixels(width: u32, height: u32, pixels: Vec<u8>) -> Result<Image> {
+        check_size(width, height)?;
+        if pixels.len() != width as usize * height as usize * 4 {
+            return Err(Error::invalid_value(format!(
+                "{} bytes cannot be a {width}x{height} RGBA8 image ({} bytes)",
+                pixels.len(),
+                width as usize * height as usize * 4
+            )));
+        }
+        Ok(Image {
+            width,
+            height,
+            pixels,
+        })
+    }
+
+    /// An image whose pixel (x, y) (y = 0 at the top) is `f(x, y)`.
+    pub fn from_fn(width: u32, height: u32, mut f: impl FnMut(u32, u32) -> [u8; 4]) -> Image {
+        let mut img = Image::new(width, height);
+        for y in 0..height {
+            for x in 0..width {
+                img.set(x, y, f(x, y));
+            }
+        }
+        img
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The pixel bytes, rows top first.
+    pub fn pixels(&self) -> &[u8] {
+        &self.pixels
+    }
+
+    /// The pixel bytes, mutable.
+    pub fn pixels_mut(&mut self) -> &mut [u8] {
+        &mut self.pixels
+    }
+
+    /// Takes the pixel bytes.
+    pub fn into_pixels(self) -> Vec<u8> {
+        self.pixels
+    }
+
+    /// One row (y = 0 at the top).
+    pub fn row(&self, y: u32) -> &[u8] {
+        let stride = self.width as usize * 4;
+        &self.pixels[y as usize * stride..(y as usize + 1) * stride]
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        assert!(
+            x < self.width && y < self.height,
+            "pixel ({x}, {y}) outside {self:?}"
+        );
+        (y as usize * self.width as usize + x as usize) * 4
+    }
+
+    /// The pixel at (x, y), y = 0 at the top.
+    pub fn get(&self, x: u32, y: u32) -> [u8; 4] {
+        let i = self.index(x, y);
+        self.pixels[i..i + 4].try_into().unwrap()
+    }
+
+    /// Sets the pixel at (x, y), y = 0 at the top.
+    pub fn set(&mut self, x: u32, y: u32, rgba: [u8; 4]) {
+        let i = self.index(x, y);
+        self.pixels[i..i + 4].copy_from_slice(&rgba);
+    }
+
+    /// Reverses the row order in place (GL reads rows bottom first).
+    pub fn flip_vertical(&mut self) {
+        let stride = self.width as usize * 4;
+        let h = self.height as usize;
+        for y in 0..h / 2 {
+            let (top, bottom) = self.pixels.split_at_mut((h - 1 - y) * stride);
+            top[y * stride..(y + 1) * stride].swap_with_slice(&mut bottom[..stride]);
+        }
+    }
+
+    /// The largest per-channel difference to another image of the same size,
+    /// and where it is (x, y, channel); None when sizes differ.
+    pub fn max_difference(&self, other: &Image) -> Option<(u8, u32, u32, usize)> {
+        if self.width != other.width || self.height != other.height {
+            return None;
+        }
+        let mut worst = (0u8, 0, 0, 0);
+        for (i, (a, b)) in self.pixels.iter().zip(&other.pixels).enumerate() {
+            let d = a.abs_diff(*b);
+            if d > worst.0 {
+                let p = i / 4;
+                worst = (
+                    d,
+                    (p % self.width as usize) as u32,
+                    (p / self.width as usize) as u32,
+                    i % 4,
+                );
+            }
+        }
+        Some(worst)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flip_vertical_reverses_rows() {
+        let mut img = Image::from_fn(3, 5, |x, y| [x as u8, y as u8, 0, 255]);
+        img.flip_vertical();
+        assert_eq!(img.get(2, 0), [2, 4, 0, 255]);
+        assert_eq!(img.get(1, 2), [1, 2, 0, 255]);
+        assert_eq!(img.get(0, 4), [0, 0, 0, 255]);
+    }
+
+    #[test]
+    fn sizes_are_checked() {
+        assert!(check_size(0, 10).is_err());
+        assert!(check_size(100_000, 100_000).is_err());
+        assert!(Image::from_pixels(2, 2, vec![0; 15]).is_err());
+        let a = Image::from_fn(4, 4, |x, _| [x as u8; 4]);
+        let mut b = a.clone();
+        b.set(3, 1, [9, 9, 0, 9]);
+        assert_eq!(a.max_difference(&b), Some((6, 3, 1, 0)));
+    }
+}
