@@ -20,6 +20,43 @@
 
 
 /**
+ * The automatic choice: the GLSTEREO_BACKEND environment variable if set,
+ * else GLX when $DISPLAY works, else EGL surfaceless, else OSMesa; a
+ * program whose own gl* calls go to libOSMesa always gets OSMesa.
+ */
+#define GLS_BACKEND_AUTO 0
+
+/**
+ * GLX on the X server named by $DISPLAY: real windows.
+ */
+#define GLS_BACKEND_GLX 1
+
+/**
+ * EGL on Mesa's surfaceless platform: headless.
+ */
+#define GLS_BACKEND_EGL 2
+
+/**
+ * OSMesa: headless software rendering (link the program with -lOSMesa).
+ */
+#define GLS_BACKEND_OSMESA 3
+
+/**
+ * The configuration is mono.
+ */
+#define GLS_STEREO_NONE 0
+
+/**
+ * The configuration uses the driver's own quad buffer.
+ */
+#define GLS_STEREO_NATIVE 1
+
+/**
+ * The configuration uses glstereo's emulated quad buffer.
+ */
+#define GLS_STEREO_EMULATED 2
+
+/**
  * Seed 000 Eq 1, mono: x' = x·d/(d−z).
  */
 #define GLS_EQUATION_MONO 1
@@ -60,6 +97,21 @@
 #define GLS_ADJUSTMENT_MAX 2.0
 
 /**
+ * The left eye's front buffer, as displayed.
+ */
+#define GLS_IMAGE_LEFT 0
+
+/**
+ * The right eye's front buffer, as displayed (the left one on a mono surface).
+ */
+#define GLS_IMAGE_RIGHT 1
+
+/**
+ * Both eyes composed in the surface's output mode, as a viewer sees them.
+ */
+#define GLS_IMAGE_COMPOSITE 2
+
+/**
  * The left eye.
  */
 #define GLS_EYE_LEFT 0
@@ -68,6 +120,21 @@
  * The right eye.
  */
 #define GLS_EYE_RIGHT 1
+
+/**
+ * A chosen framebuffer configuration (opaque).
+ */
+typedef struct gls_config gls_config;
+
+/**
+ * An open backend connection (opaque).
+ */
+typedef struct gls_display gls_display;
+
+/**
+ * A stereo (or mono) drawing surface with its own GL context (opaque).
+ */
+typedef struct gls_surface gls_surface;
 
 /**
  * Result code of every fallible call. `GLS_OK` (0) is success; every other
@@ -245,6 +312,88 @@ const char *gls_result_string(gls_result result);
  * @return GLS_ERROR_PANIC, always.
  */
 gls_result gls_debug_force_panic(void);
+
+/**
+ * Opens a GL backend.
+ *
+ * With GLS_BACKEND_AUTO the environment decides (GLSTEREO_BACKEND=auto|glx|
+ * egl|osmesa), so one program runs in a window or headless unchanged.
+ *
+ * @param backend GLS_BACKEND_AUTO, GLS_BACKEND_GLX, GLS_BACKEND_EGL or GLS_BACKEND_OSMESA.
+ * @param display_out receives the display; must not be NULL. Close it with gls_display_close().
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_ENUM (backend);
+ * GLS_ERROR_INVALID_VALUE (a bad GLSTEREO_BACKEND); GLS_ERROR_BACKEND_UNAVAILABLE
+ * when the library cannot be loaded (the message names the package to install).
+ * Thread-safe.
+ */
+gls_result gls_display_open(uint32_t backend, struct gls_display **display_out);
+
+/**
+ * Closes a display. Surfaces made on it stay usable until destroyed (they
+ * keep the backend alive). NULL is a no-op; a handle that is not live is
+ * ignored (and reported by gls_last_error_message()). Thread-safe.
+ */
+void gls_display_close(struct gls_display *display);
+
+/**
+ * Which backend a display uses.
+ *
+ * @param display a live display. @param backend_out receives
+ * GLS_BACKEND_GLX, GLS_BACKEND_EGL or GLS_BACKEND_OSMESA; must not be NULL.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Thread-safe.
+ */
+gls_result gls_display_get_backend(const struct gls_display *display, uint32_t *backend_out);
+
+/**
+ * Chooses a configuration as glXChooseVisual does, from the same attribute
+ * list: GLX_RGBA, GLX_DOUBLEBUFFER, GLX_STEREO, GLX_RED_SIZE … GLX_STENCIL_SIZE
+ * (each size followed by its value), terminated by None (0).
+ *
+ * With GLX_STEREO: native stereo when the backend has it, else emulated
+ * (gls_config_stereo() says which); with GLSTEREO_EMULATION=off and no
+ * native stereo it fails as glXChooseVisual returns NULL, so a program's
+ * own fallback (retry without GLX_STEREO) runs.
+ *
+ * @param display a live display.
+ * @param glx_attribs the attribute list; must not be NULL; at most 512 entries.
+ * @param config_out receives the configuration; must not be NULL. Free it with gls_config_free().
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM for an unknown attribute (named in the message);
+ * GLS_ERROR_INVALID_VALUE for a missing terminator or a bad value or a bad
+ * GLSTEREO_EMULATION; GLS_ERROR_NO_MATCHING_CONFIG (the message says which
+ * request cannot be met). Thread-safe.
+ */
+gls_result gls_config_choose(struct gls_display *display,
+                             const int32_t *glx_attribs,
+                             struct gls_config **config_out);
+
+/**
+ * How a configuration provides stereo.
+ *
+ * @return GLS_STEREO_NONE, GLS_STEREO_NATIVE or GLS_STEREO_EMULATED;
+ * GLS_STEREO_NONE for NULL or a handle that is not live (with a message
+ * for gls_last_error_message()). Thread-safe.
+ */
+uint32_t gls_config_stereo(const struct gls_config *config);
+
+/**
+ * A configuration attribute as glXGetConfig reports it (GLX_STEREO is 1 for
+ * native and emulated stereo; GLX_DOUBLEBUFFER; GLX_DEPTH_SIZE; …).
+ *
+ * @param config a live configuration. @param attrib a GLX attribute.
+ * @param value_out must not be NULL.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+ * GLS_ERROR_INVALID_ENUM (not a visual attribute). Thread-safe.
+ */
+gls_result gls_config_get_attrib(const struct gls_config *config,
+                                 int32_t attrib,
+                                 int32_t *value_out);
+
+/**
+ * Frees a configuration. Surfaces made from it are unaffected. NULL is a
+ * no-op. Thread-safe.
+ */
+void gls_config_free(struct gls_config *config);
 
 /**
  * One eye's frustum and camera offset by HP's method (seed 000 §6–7).
@@ -470,6 +619,199 @@ gls_result gls_nv_stereo_matrix(const double *projection,
                                 double convergence,
                                 uint32_t eye,
                                 double *column_major_out);
+
+/**
+ * Creates a surface: an emulated default framebuffer of `width` × `height`
+ * pixels per eye (left/right, front/back as the configuration says, one
+ * depth/stencil buffer shared by both eyes) and its own GL context
+ * (compatibility profile, 4.5 on Mesa).
+ *
+ * @param display a live display. @param config a live configuration from it.
+ * @param width, height 1…16384 (and within the driver's limits).
+ * @param surface_out receives the surface; must not be NULL. Destroy it with gls_surface_destroy().
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_VALUE (size); GLS_ERROR_OUT_OF_MEMORY;
+ * GLS_ERROR_BACKEND_UNAVAILABLE (no context could be created). Any thread;
+ * the calling thread's current surface is unchanged.
+ */
+gls_result gls_surface_create(struct gls_display *display,
+                              const struct gls_config *config,
+                              uint32_t width,
+                              uint32_t height,
+                              struct gls_surface **surface_out);
+
+/**
+ * Destroys a surface and its context. If it is current on the calling
+ * thread it is released first; if it is current on another thread it lives
+ * on until released there. NULL is a no-op; a handle that is not live is
+ * ignored (and reported by gls_last_error_message()).
+ */
+void gls_surface_destroy(struct gls_surface *surface);
+
+/**
+ * The size of each eye's buffers.
+ *
+ * @param surface a live surface. @param width_out, height_out must not be NULL.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Thread-safe.
+ */
+gls_result gls_surface_get_size(const struct gls_surface *surface,
+                                uint32_t *width_out,
+                                uint32_t *height_out);
+
+/**
+ * Makes a surface's context current on the calling thread, with its
+ * emulated default framebuffer bound (as glXMakeCurrent binds a window).
+ * The first time, the viewport and scissor box are set to the surface
+ * size. NULL releases the current surface.
+ *
+ * @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_OPERATION if
+ * the surface is current on another thread. Per thread, as in GL.
+ */
+gls_result gls_make_current(struct gls_surface *surface);
+
+/**
+ * glDrawBuffer for the emulated default framebuffer of the current surface.
+ *
+ * GL_BACK (both back buffers on stereo), GL_FRONT, GL_LEFT, GL_RIGHT,
+ * GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT, GL_BACK_RIGHT,
+ * GL_FRONT_AND_BACK and GL_NONE select what GL 4.5 says. Fixed-function
+ * colour, gl_FragColor and glClear reach every selected buffer. A shader
+ * that writes a user-defined `out vec4` (location 0) reaches only the first
+ * selected buffer, which is the left eye's when both eyes are selected; the
+ * other buffers get undefined values (GL's rule for outputs a shader does
+ * not write). Such programs should draw each eye with its own buffer
+ * selected, or write gl_FragColor.
+ *
+ * @param gl_buffer a GL buffer name.
+ * @return GLS_OK; GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_INVALID_ENUM (not
+ * a buffer name); GLS_ERROR_INVALID_OPERATION (a buffer the configuration
+ * lacks: right buffers on mono, back buffers on single-buffered; or an
+ * FBO attachment). After an error nothing changed; gls_get_error() reports
+ * the matching GL error. Thread: the surface's.
+ */
+gls_result gls_draw_buffer(uint32_t gl_buffer);
+
+/**
+ * glDrawBuffers for the emulated default framebuffer: output i goes to
+ * bufs[i] (GL_NONE, GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT,
+ * GL_BACK_RIGHT; GL_BACK alone).
+ *
+ * @param n 0…GL_MAX_DRAW_BUFFERS (at most 8). @param bufs n values; must not be NULL when n > 0.
+ * @return GLS_OK; GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_NULL_POINTER;
+ * GLS_ERROR_INVALID_VALUE (n); GLS_ERROR_INVALID_ENUM (GL_FRONT, GL_LEFT,
+ * GL_RIGHT, GL_FRONT_AND_BACK, or not a buffer); GLS_ERROR_INVALID_OPERATION
+ * (a buffer named twice or one the configuration lacks). Thread: the surface's.
+ */
+gls_result gls_draw_buffers(int32_t n, const uint32_t *bufs);
+
+/**
+ * glReadBuffer for the emulated default framebuffer: GL_FRONT, GL_LEFT and
+ * GL_FRONT_AND_BACK read front-left, GL_BACK back-left, GL_RIGHT front-right.
+ *
+ * @return as gls_draw_buffer(). Thread: the surface's.
+ */
+gls_result gls_read_buffer(uint32_t gl_buffer);
+
+/**
+ * glGetError for the current surface: an error the emulation raised
+ * (e.g. GL_INVALID_ENUM from gls_draw_buffer) first, then the driver's.
+ *
+ * @return a GL error code; GL_NO_ERROR (0) when there is no current
+ * surface (with a message for gls_last_error_message()). Thread: the surface's.
+ */
+uint32_t gls_get_error(void);
+
+/**
+ * glGetIntegerv with the emulated default framebuffer's values: GL_STEREO
+ * and GL_DOUBLEBUFFER of the configuration, GL_DRAW_BUFFER,
+ * GL_DRAW_BUFFERi and GL_READ_BUFFER as set, and 0 for
+ * GL_DRAW/READ_FRAMEBUFFER_BINDING while the emulated framebuffer is bound.
+ * Every other pname goes to glGetIntegerv.
+ *
+ * @param pname a GL state name. @param data receives the value(s); must not
+ * be NULL and must hold as many values as glGetIntegerv writes for pname.
+ * @return GLS_OK, GLS_ERROR_NO_CURRENT_SURFACE or GLS_ERROR_NULL_POINTER.
+ * Thread: the surface's.
+ */
+gls_result gls_get_integerv(uint32_t pname, int32_t *data);
+
+/**
+ * glBindFramebuffer where framebuffer 0 means the emulated default
+ * framebuffer (a program's own framebuffer objects bind as usual).
+ *
+ * @return GLS_OK or GLS_ERROR_NO_CURRENT_SURFACE. Thread: the surface's.
+ */
+gls_result gls_bind_framebuffer(uint32_t target, uint32_t framebuffer);
+
+/**
+ * The address of a GL function of the current surface's backend, for
+ * programs that load GL themselves (as with glXGetProcAddress).
+ *
+ * @param name a GL function name; must not be NULL.
+ * @return the address, or NULL with a message when there is no current
+ * surface. Thread: the surface's.
+ */
+void *gls_get_proc_address(const char *name);
+
+/**
+ * Loads one eye's HP projection (as gls_stereo_eye_matrix()) into
+ * GL_PROJECTION of the current context; the matrix mode is left unchanged.
+ *
+ * @return as gls_stereo_eye_matrix(), plus GLS_ERROR_NO_CURRENT_SURFACE.
+ * Thread: the surface's.
+ */
+gls_result gls_apply_stereo_eye(const struct gls_frustum *mono,
+                                const struct gls_stereo_adjust *adj,
+                                uint32_t eye);
+
+/**
+ * Presents a frame: for double-buffered configurations each eye's back
+ * buffer becomes its front buffer (one swap for both eyes); the contents
+ * of the new back buffers are undefined, as after a real swap.
+ *
+ * @param surface a live surface, current on the calling thread or on none.
+ * @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_OPERATION if
+ * it is current on another thread. Thread: the surface's.
+ */
+gls_result gls_swap_buffers(struct gls_surface *surface);
+
+/**
+ * Reads one colour buffer as RGBA8, rows top first (the reverse of
+ * glReadPixels), width × height × 4 bytes. Buffer names follow
+ * glReadBuffer: GL_FRONT_LEFT, GL_BACK_RIGHT, GL_FRONT (= front-left),
+ * GL_RIGHT (= front-right), …
+ *
+ * The program's rendering is finished first when the surface is current on
+ * the calling thread; from another thread, synchronise with it yourself.
+ *
+ * @param surface a live surface. @param gl_buffer a buffer name.
+ * @param rgba receives the pixels; must not be NULL.
+ * @param len size of rgba in bytes; at least width × height × 4.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_OPERATION (a buffer the
+ * configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small).
+ * Nothing is written on error. Any thread.
+ */
+gls_result gls_surface_read_pixels(struct gls_surface *surface,
+                                   uint32_t gl_buffer,
+                                   uint8_t *rgba,
+                                   size_t len);
+
+/**
+ * Writes what a viewer sees now to a PNG file: GLS_IMAGE_LEFT or
+ * GLS_IMAGE_RIGHT (an eye's front buffer), or GLS_IMAGE_COMPOSITE (both
+ * eyes in the surface's output mode). Rows top first, 8-bit RGBA. The file
+ * appears complete or not at all (written to a temporary name, then renamed).
+ *
+ * @param surface a live surface. @param image GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE.
+ * @param path a file path (UTF-8); must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_IO (the message names the path
+ * and the reason). Any thread.
+ */
+gls_result gls_surface_save_png(struct gls_surface *surface,
+                                uint32_t image,
+                                const char *path);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -31,6 +31,15 @@ pub fn check_size(width: u32, height: u32) -> Result<()> {
     Ok(())
 }
 
+/// Reverses the order of `stride`-byte rows in place (GL reads rows bottom first).
+pub fn flip_rows(pixels: &mut [u8], stride: usize) {
+    let h = pixels.len() / stride;
+    for y in 0..h / 2 {
+        let (top, bottom) = pixels.split_at_mut((h - 1 - y) * stride);
+        top[y * stride..(y + 1) * stride].swap_with_slice(&mut bottom[..stride]);
+    }
+}
+
 impl Image {
     /// A black, fully transparent image. Panics on a size outside
     /// 1…MAX_DIMENSION (check with [`check_size`] first for user input).
@@ -124,12 +133,7 @@ impl Image {
 
     /// Reverses the row order in place (GL reads rows bottom first).
     pub fn flip_vertical(&mut self) {
-        let stride = self.width as usize * 4;
-        let h = self.height as usize;
-        for y in 0..h / 2 {
-            let (top, bottom) = self.pixels.split_at_mut((h - 1 - y) * stride);
-            top[y * stride..(y + 1) * stride].swap_with_slice(&mut bottom[..stride]);
-        }
+        flip_rows(&mut self.pixels, self.width as usize * 4);
     }
 
     /// The largest per-channel difference to another image of the same size,

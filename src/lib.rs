@@ -10,14 +10,27 @@
 //!
 //! Modules, from the inside out (dependencies point inward):
 //! - [`math`]: pure projection and parallax math (f64, no GL);
+//! - [`config`], [`stereo::buffers`]: attribute lists and draw-buffer rules (pure);
+//! - [`gl`]: the GL function table, loaded from the backend;
+//! - [`backend`]: EGL, OSMesa (and GLX) contexts, chosen at run time;
+//! - [`stereo::emulated`]: the emulated quad buffer;
+//! - [`display`], [`surface`]: the objects a program uses;
+//! - [`capture`]: PNG files;
 //! - [`image`]: RGBA8 images, rows top first;
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]
 
+pub mod backend;
+pub mod capture;
+pub mod config;
+pub mod display;
 pub mod error;
 pub mod ffi;
+pub mod gl;
 pub mod image;
 pub mod math;
+pub mod stereo;
+pub mod surface;
 
 pub use error::{Error, Result};

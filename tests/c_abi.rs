@@ -14,3 +14,13 @@ fn c_math_program_reproduces_the_seed_and_gets_documented_codes() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains(" passed, 0 failed"), "{stdout}");
 }
+
+#[test]
+fn c_surface_misuse_gets_documented_codes_and_the_process_goes_on() {
+    let dir = common::scratch("surface_abi");
+    let exe = dir.join("surface_abi");
+    common::compile_c(&[common::root().join("tests/c/surface_abi.c")], &exe, &[]);
+    let out = common::run_ok(&mut Command::new(&exe));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains(" passed, 0 failed"), "{stdout}");
+}

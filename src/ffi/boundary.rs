@@ -116,7 +116,6 @@ pub(crate) unsafe fn write_out<T>(ptr: *mut T, value: T) {
 }
 
 /// Reads a C string argument as UTF-8.
-#[allow(dead_code)] // first used by the capture exports
 ///
 /// # Safety
 /// `ptr` must be NULL or point to a NUL-terminated string.

@@ -10,9 +10,12 @@
 //! `GLS_ERROR_NULL_POINTER` where it is required) or valid for the access the
 //! function's documentation describes (arrays hold the stated count); handles
 //! come from this library.
-#![allow(clippy::missing_safety_doc)]
+#![allow(clippy::missing_safety_doc, non_camel_case_types)]
 
 pub(crate) mod boundary;
 pub mod core;
+pub mod display;
+pub(crate) mod handles;
 pub mod math;
+pub mod surface;
 pub mod types;

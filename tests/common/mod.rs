@@ -10,14 +10,12 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The directory holding libglstereo.so for this build profile
-/// (target/<profile>, the parent of the test binary's deps/).
+/// The directory holding the libglstereo.so built with this test binary:
+/// target/<profile>/deps. (`cargo test` refreshes the library there but not
+/// the copy in target/<profile>, which only `cargo build` updates.)
 pub fn lib_dir() -> PathBuf {
     let exe = std::env::current_exe().expect("test binary path");
-    exe.parent()
-        .and_then(Path::parent)
-        .expect("target/<profile>")
-        .to_path_buf()
+    exe.parent().expect("target/<profile>/deps").to_path_buf()
 }
 
 /// A scratch directory for one test, emptied first.
@@ -91,4 +89,44 @@ pub fn run_ok(cmd: &mut Command) -> Output {
         String::from_utf8_lossy(&o.stderr)
     );
     o
+}
+
+/// Builds one C example (c-examples/NAME.c with example.h) into the scratch
+/// area: linked with -lGL, or with -lOSMesa when `osmesa`.
+pub fn build_example(name: &str, osmesa: bool) -> PathBuf {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    // Tests of one binary share each build; the lock serialises compilers.
+    static BUILT: OnceLock<Mutex<HashMap<(String, bool), PathBuf>>> = OnceLock::new();
+    let mut built = BUILT
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    if let Some(p) = built.get(&(name.to_owned(), osmesa)) {
+        return p.clone();
+    }
+    let dir = lib_dir().join("test-examples");
+    std::fs::create_dir_all(&dir).unwrap();
+    let exe = dir.join(if osmesa {
+        format!("{name}-osmesa")
+    } else {
+        name.to_owned()
+    });
+    let src = root().join("c-examples").join(format!("{name}.c"));
+    // Each test binary may build the same example; build to a unique name
+    // and rename, so concurrent builds never see a half-written file.
+    let tmp = dir.join(format!(
+        ".{}-{}",
+        exe.file_name().unwrap().to_string_lossy(),
+        std::process::id()
+    ));
+    compile_c(&[src], &tmp, &[if osmesa { "-lOSMesa" } else { "-lGL" }]);
+    std::fs::rename(&tmp, &exe).unwrap();
+    built.insert((name.to_owned(), osmesa), exe.clone());
+    exe
+}
+
+/// Reads a PNG written by the library.
+pub fn png(path: &Path) -> glstereo::image::Image {
+    glstereo::capture::read_png(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }

@@ -1,0 +1,221 @@
+//! GL backends: where contexts come from. Chosen at run time and loaded with
+//! dlopen, so the library links no GL library and loads on machines that
+//! have none (the error then names the package to install).
+//!
+//! Every surface owns two contexts that share objects: the *application*
+//! context the program renders with, and a *compositor* context the library
+//! uses to read back and compose the eyes, so nothing the library does ever
+//! touches the program's GL state.
+
+pub mod egl;
+pub mod osmesa;
+
+use std::ffi::{CStr, c_void};
+
+use crate::config::{Config, ConfigRequest, EmulationPolicy};
+use crate::error::{Error, Result};
+
+/// Which GL backend a display uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackendKind {
+    /// GLX on an X server ($DISPLAY): real windows.
+    Glx,
+    /// EGL on Mesa's surfaceless platform: headless.
+    Egl,
+    /// OSMesa: headless, software only.
+    OsMesa,
+}
+
+impl BackendKind {
+    /// The name used by GLSTEREO_BACKEND and in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            BackendKind::Glx => "glx",
+            BackendKind::Egl => "egl",
+            BackendKind::OsMesa => "osmesa",
+        }
+    }
+}
+
+/// What the program or the user asked for: a specific backend or the
+/// automatic choice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackendChoice {
+    /// GLX when $DISPLAY is usable, else EGL surfaceless, else OSMesa (and
+    /// OSMesa first when the program's `gl*` calls resolve to libOSMesa).
+    Auto,
+    /// Exactly this backend.
+    Only(BackendKind),
+}
+
+impl BackendChoice {
+    /// Parses GLSTEREO_BACKEND: auto, glx, egl or osmesa (any case); unset or
+    /// empty is auto.
+    pub fn from_env_value(v: Option<&str>) -> Result<BackendChoice> {
+        match v.map(|s| s.trim().to_ascii_lowercase()).as_deref() {
+            None | Some("") | Some("auto") => Ok(BackendChoice::Auto),
+            Some("glx") => Ok(BackendChoice::Only(BackendKind::Glx)),
+            Some("egl") => Ok(BackendChoice::Only(BackendKind::Egl)),
+            Some("osmesa") => Ok(BackendChoice::Only(BackendKind::OsMesa)),
+            Some(other) => Err(Error::invalid_value(format!(
+                "GLSTEREO_BACKEND={other:?} is not valid: use auto, glx, egl or osmesa"
+            ))),
+        }
+    }
+}
+
+/// Which of a surface's two contexts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContextRole {
+    /// The context the program renders with.
+    App,
+    /// The library's own context (read-back, composition, presentation).
+    Compositor,
+}
+
+/// One backend connection (an EGL display, the OSMesa library, an X display).
+pub trait Platform: Send + Sync {
+    /// Which backend this is.
+    fn kind(&self) -> BackendKind;
+
+    /// Chooses a configuration for a parsed request. Backends without native
+    /// stereo use [`Config::choose`] with `native_stereo_available = false`.
+    fn choose_config(&self, request: ConfigRequest, policy: EmulationPolicy) -> Result<Config> {
+        Config::choose(request, false, policy)
+    }
+
+    /// Creates the drawable (if any) and the two contexts of a surface.
+    fn create_surface(
+        &self,
+        config: &Config,
+        width: u32,
+        height: u32,
+    ) -> Result<Box<dyn PlatformSurface>>;
+
+    /// The address of a GL function of this backend (NULL if unknown; EGL
+    /// may return a stub for unknown names).
+    fn get_proc_address(&self, name: &CStr) -> *const c_void;
+}
+
+/// The backend half of a surface: its drawable and two contexts.
+pub trait PlatformSurface: Send + Sync {
+    /// Makes one of the surface's contexts current on the calling thread.
+    fn make_current(&self, role: ContextRole) -> Result<()>;
+
+    /// Releases whatever context of this backend is current on the calling thread.
+    fn release_current(&self) -> Result<()>;
+
+    /// Shows the drawable's back buffer (a real swap); headless backends do nothing.
+    fn present(&self) -> Result<()> {
+        Ok(())
+    }
+
+    /// The drawable's current size, for backends with windows that can be
+    /// resized; None for headless surfaces, whose size is fixed.
+    fn drawable_size(&self) -> Option<(u32, u32)> {
+        None
+    }
+}
+
+/// Opens the backend `choice` selects. For Auto, tries GLX (when compiled
+/// in and $DISPLAY is set), then EGL, then OSMesa, except that a program
+/// whose `gl*` symbols come from libOSMesa gets OSMesa (its calls could not
+/// reach any other backend's context).
+pub fn open(choice: BackendChoice) -> Result<Box<dyn Platform>> {
+    match choice {
+        BackendChoice::Only(kind) => open_kind(kind),
+        BackendChoice::Auto => {
+            if program_gl_is_osmesa() == Some(true) {
+                return open_kind(BackendKind::OsMesa);
+            }
+            let mut failures = Vec::new();
+            for kind in auto_order() {
+                match open_kind(kind) {
+                    Ok(p) => return Ok(p),
+                    Err(e) => failures.push(format!("{}: {e}", kind.name())),
+                }
+            }
+            Err(Error::BackendUnavailable(format!(
+                "no GL backend could be opened ({})",
+                failures.join("; ")
+            )))
+        }
+    }
+}
+
+fn auto_order() -> Vec<BackendKind> {
+    let mut v = Vec::new();
+    if glx_available() && std::env::var_os("DISPLAY").is_some_and(|d| !d.is_empty()) {
+        v.push(BackendKind::Glx);
+    }
+    v.push(BackendKind::Egl);
+    v.push(BackendKind::OsMesa);
+    v
+}
+
+/// Whether the GLX backend is part of this build.
+fn glx_available() -> bool {
+    false
+}
+
+fn open_kind(kind: BackendKind) -> Result<Box<dyn Platform>> {
+    match kind {
+        BackendKind::Egl => Ok(Box::new(egl::EglPlatform::open()?)),
+        BackendKind::OsMesa => {
+            if program_gl_is_osmesa() == Some(false) {
+                return Err(Error::BackendUnavailable(
+                    "this program calls GL through libGL, whose calls cannot reach an OSMesa \
+                     context: link it with -lOSMesa instead of -lGL, or use GLSTEREO_BACKEND=egl"
+                        .into(),
+                ));
+            }
+            Ok(Box::new(osmesa::OsMesaPlatform::open()?))
+        }
+        BackendKind::Glx => Err(Error::BackendUnavailable(
+            "the GLX backend is not available in this build yet: use GLSTEREO_BACKEND=egl".into(),
+        )),
+    }
+}
+
+/// Where the process's global `glClear` comes from: Some(true) for
+/// libOSMesa, Some(false) for another GL library, None when the program
+/// does not call GL itself.
+pub fn program_gl_is_osmesa() -> Option<bool> {
+    // SAFETY: dlsym/dladdr with a static NUL-terminated name and a valid
+    // Dl_info out-pointer; the returned strings are owned by the loader.
+    unsafe {
+        let sym = libc::dlsym(libc::RTLD_DEFAULT, c"glClear".as_ptr());
+        if sym.is_null() {
+            return None;
+        }
+        let mut info: libc::Dl_info = std::mem::zeroed();
+        if libc::dladdr(sym, &mut info) == 0 || info.dli_fname.is_null() {
+            return None;
+        }
+        let lib = CStr::from_ptr(info.dli_fname).to_string_lossy();
+        Some(lib.contains("OSMesa"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn backend_names_parse() {
+        assert_eq!(
+            BackendChoice::from_env_value(None).unwrap(),
+            BackendChoice::Auto
+        );
+        assert_eq!(
+            BackendChoice::from_env_value(Some("EGL")).unwrap(),
+            BackendChoice::Only(BackendKind::Egl)
+        );
+        assert_eq!(
+            BackendChoice::from_env_value(Some(" osmesa ")).unwrap(),
+            BackendChoice::Only(BackendKind::OsMesa)
+        );
+        let e = BackendChoice::from_env_value(Some("vulkan")).unwrap_err();
+        assert!(e.to_string().contains("auto, glx, egl or osmesa"), "{e}");
+    }
+}

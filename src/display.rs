@@ -1,0 +1,81 @@
+//! A display: one backend connection, the configurations it offers, and the
+//! surfaces made on it.
+
+use std::sync::{Arc, OnceLock};
+
+use crate::backend::{self, BackendChoice, BackendKind, Platform};
+use crate::config::{Config, ConfigRequest, EmulationPolicy};
+use crate::error::Result;
+use crate::gl::Gl;
+use crate::surface::Surface;
+
+/// A backend connection. Shared (`Arc`) by the surfaces made on it, which
+/// keep it alive after the program closes it.
+pub struct Display {
+    platform: Box<dyn Platform>,
+    gl: OnceLock<Arc<Gl>>,
+}
+
+impl std::fmt::Debug for Display {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Display({})", self.platform.kind().name())
+    }
+}
+
+impl Display {
+    /// Opens a backend. `BackendChoice::Auto` defers to GLSTEREO_BACKEND and
+    /// then to the automatic order (see [`backend::open`]).
+    pub fn open(choice: BackendChoice) -> Result<Arc<Display>> {
+        let choice = match choice {
+            BackendChoice::Auto => {
+                BackendChoice::from_env_value(std::env::var("GLSTEREO_BACKEND").ok().as_deref())?
+            }
+            c => c,
+        };
+        Ok(Arc::new(Display {
+            platform: backend::open(choice)?,
+            gl: OnceLock::new(),
+        }))
+    }
+
+    /// Which backend this display uses.
+    pub fn kind(&self) -> BackendKind {
+        self.platform.kind()
+    }
+
+    pub(crate) fn platform(&self) -> &dyn Platform {
+        &*self.platform
+    }
+
+    /// The GL table of this backend, loaded on first use (a context of the
+    /// backend must be current then).
+    pub(crate) fn gl(&self) -> Result<Arc<Gl>> {
+        if let Some(gl) = self.gl.get() {
+            return Ok(gl.clone());
+        }
+        // SAFETY: the backend's GetProcAddress returns its GL functions; the
+        // caller made a context of this backend current.
+        let gl =
+            Arc::new(unsafe { Gl::load_current(|name| self.platform.get_proc_address(name))? });
+        Ok(self.gl.get_or_init(|| gl).clone())
+    }
+
+    /// Chooses a configuration for a glXChooseVisual attribute list (without
+    /// the terminating None), honouring GLSTEREO_EMULATION.
+    pub fn choose_config(&self, attribs: &[i32]) -> Result<Config> {
+        let request = ConfigRequest::parse_visual_attribs(attribs)?;
+        let policy =
+            EmulationPolicy::from_env_value(std::env::var("GLSTEREO_EMULATION").ok().as_deref())?;
+        self.platform.choose_config(request, policy)
+    }
+
+    /// Creates a surface of `width` × `height` pixels per eye.
+    pub fn create_surface(
+        self: &Arc<Self>,
+        config: &Config,
+        width: u32,
+        height: u32,
+    ) -> Result<Arc<Surface>> {
+        Surface::create(self.clone(), config.clone(), width, height)
+    }
+}

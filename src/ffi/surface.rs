@@ -1,0 +1,359 @@
+//! Surfaces, the current surface, and the emulated default framebuffer's GL
+//! state through the C ABI.
+
+use std::ffi::{c_char, c_void};
+use std::sync::Arc;
+
+use super::boundary::{arg_out, arg_ref, arg_str, ffi_boundary, write_out};
+use super::display::{gls_config, gls_display};
+use super::handles::{self, Kind};
+use super::types::*;
+use crate::config::Config;
+use crate::display::Display;
+use crate::error::Error;
+use crate::math::{Eye, hp_eye};
+use crate::surface::{self, CaptureImage, Surface};
+
+/// A stereo (or mono) drawing surface with its own GL context (opaque).
+pub struct gls_surface {
+    _private: [u8; 0],
+}
+
+/// The left eye's front buffer, as displayed.
+pub const GLS_IMAGE_LEFT: u32 = 0;
+/// The right eye's front buffer, as displayed (the left one on a mono surface).
+pub const GLS_IMAGE_RIGHT: u32 = 1;
+/// Both eyes composed in the surface's output mode, as a viewer sees them.
+pub const GLS_IMAGE_COMPOSITE: u32 = 2;
+
+fn surface_arg(s: *const gls_surface) -> Result<Arc<Surface>, Error> {
+    handles::get(s, Kind::Surface, "surface")
+}
+
+/// Creates a surface: an emulated default framebuffer of `width` × `height`
+/// pixels per eye (left/right, front/back as the configuration says, one
+/// depth/stencil buffer shared by both eyes) and its own GL context
+/// (compatibility profile, 4.5 on Mesa).
+///
+/// @param display a live display. @param config a live configuration from it.
+/// @param width, height 1…16384 (and within the driver's limits).
+/// @param surface_out receives the surface; must not be NULL. Destroy it with gls_surface_destroy().
+/// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+/// GLS_ERROR_INVALID_VALUE (size); GLS_ERROR_OUT_OF_MEMORY;
+/// GLS_ERROR_BACKEND_UNAVAILABLE (no context could be created). Any thread;
+/// the calling thread's current surface is unchanged.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_create(
+    display: *mut gls_display,
+    config: *const gls_config,
+    width: u32,
+    height: u32,
+    surface_out: *mut *mut gls_surface,
+) -> gls_result {
+    ffi_boundary!("gls_surface_create", {
+        let d: Arc<Display> = handles::get(display, Kind::Display, "display")?;
+        let c: Arc<Config> = handles::get(config, Kind::Config, "config")?;
+        let out = arg_out(surface_out, "surface_out")?;
+        let s = d.create_surface(&c, width, height)?;
+        // SAFETY: checked non-NULL.
+        unsafe { write_out(out, handles::publish(s, Kind::Surface)) };
+        Ok(())
+    })
+}
+
+/// Destroys a surface and its context. If it is current on the calling
+/// thread it is released first; if it is current on another thread it lives
+/// on until released there. NULL is a no-op; a handle that is not live is
+/// ignored (and reported by gls_last_error_message()).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_surface_destroy(surface: *mut gls_surface) {
+    ffi_boundary!("gls_surface_destroy", () => {
+        if surface.is_null() {
+            return Ok(());
+        }
+        let s: Arc<Surface> =
+            handles::release(surface, Kind::Surface).ok_or(Error::InvalidHandle("surface"))?;
+        s.release_if_current();
+        Ok(())
+    })
+}
+
+/// The size of each eye's buffers.
+///
+/// @param surface a live surface. @param width_out, height_out must not be NULL.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Thread-safe.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_get_size(
+    surface: *const gls_surface,
+    width_out: *mut u32,
+    height_out: *mut u32,
+) -> gls_result {
+    ffi_boundary!("gls_surface_get_size", {
+        let s = surface_arg(surface)?;
+        let w_out = arg_out(width_out, "width_out")?;
+        let h_out = arg_out(height_out, "height_out")?;
+        let (w, h) = s.size();
+        // SAFETY: checked non-NULL.
+        unsafe {
+            write_out(w_out, w);
+            write_out(h_out, h);
+        }
+        Ok(())
+    })
+}
+
+/// Makes a surface's context current on the calling thread, with its
+/// emulated default framebuffer bound (as glXMakeCurrent binds a window).
+/// The first time, the viewport and scissor box are set to the surface
+/// size. NULL releases the current surface.
+///
+/// @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_OPERATION if
+/// the surface is current on another thread. Per thread, as in GL.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_make_current(surface: *mut gls_surface) -> gls_result {
+    ffi_boundary!("gls_make_current", {
+        if surface.is_null() {
+            return surface::make_current(None);
+        }
+        let s = surface_arg(surface)?;
+        surface::make_current(Some(&s))
+    })
+}
+
+/// glDrawBuffer for the emulated default framebuffer of the current surface.
+///
+/// GL_BACK (both back buffers on stereo), GL_FRONT, GL_LEFT, GL_RIGHT,
+/// GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT, GL_BACK_RIGHT,
+/// GL_FRONT_AND_BACK and GL_NONE select what GL 4.5 says. Fixed-function
+/// colour, gl_FragColor and glClear reach every selected buffer. A shader
+/// that writes a user-defined `out vec4` (location 0) reaches only the first
+/// selected buffer, which is the left eye's when both eyes are selected; the
+/// other buffers get undefined values (GL's rule for outputs a shader does
+/// not write). Such programs should draw each eye with its own buffer
+/// selected, or write gl_FragColor.
+///
+/// @param gl_buffer a GL buffer name.
+/// @return GLS_OK; GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_INVALID_ENUM (not
+/// a buffer name); GLS_ERROR_INVALID_OPERATION (a buffer the configuration
+/// lacks: right buffers on mono, back buffers on single-buffered; or an
+/// FBO attachment). After an error nothing changed; gls_get_error() reports
+/// the matching GL error. Thread: the surface's.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_draw_buffer(gl_buffer: u32) -> gls_result {
+    ffi_boundary!("gls_draw_buffer", {
+        surface::require_current()?.draw_buffer(gl_buffer)
+    })
+}
+
+/// glDrawBuffers for the emulated default framebuffer: output i goes to
+/// bufs[i] (GL_NONE, GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT,
+/// GL_BACK_RIGHT; GL_BACK alone).
+///
+/// @param n 0…GL_MAX_DRAW_BUFFERS (at most 8). @param bufs n values; must not be NULL when n > 0.
+/// @return GLS_OK; GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_NULL_POINTER;
+/// GLS_ERROR_INVALID_VALUE (n); GLS_ERROR_INVALID_ENUM (GL_FRONT, GL_LEFT,
+/// GL_RIGHT, GL_FRONT_AND_BACK, or not a buffer); GLS_ERROR_INVALID_OPERATION
+/// (a buffer named twice or one the configuration lacks). Thread: the surface's.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_draw_buffers(n: i32, bufs: *const u32) -> gls_result {
+    ffi_boundary!("gls_draw_buffers", {
+        let s = surface::require_current()?;
+        if n < 0 {
+            return Err(Error::invalid_value(format!("n must be >= 0, got {n}")));
+        }
+        if n > 0 && bufs.is_null() {
+            return Err(Error::NullPointer("bufs"));
+        }
+        if n as usize > crate::stereo::emulated::MAX_DRAW_BUFFERS {
+            return s.draw_buffers(&vec![0; n as usize]);
+        }
+        let list = if n == 0 {
+            &[][..]
+        } else {
+            // SAFETY: non-NULL and holds n values (contract).
+            unsafe { std::slice::from_raw_parts(bufs, n as usize) }
+        };
+        s.draw_buffers(list)
+    })
+}
+
+/// glReadBuffer for the emulated default framebuffer: GL_FRONT, GL_LEFT and
+/// GL_FRONT_AND_BACK read front-left, GL_BACK back-left, GL_RIGHT front-right.
+///
+/// @return as gls_draw_buffer(). Thread: the surface's.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_read_buffer(gl_buffer: u32) -> gls_result {
+    ffi_boundary!("gls_read_buffer", {
+        surface::require_current()?.read_buffer(gl_buffer)
+    })
+}
+
+/// glGetError for the current surface: an error the emulation raised
+/// (e.g. GL_INVALID_ENUM from gls_draw_buffer) first, then the driver's.
+///
+/// @return a GL error code; GL_NO_ERROR (0) when there is no current
+/// surface (with a message for gls_last_error_message()). Thread: the surface's.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_get_error() -> u32 {
+    ffi_boundary!("gls_get_error", 0 => { surface::require_current()?.take_gl_error() })
+}
+
+/// glGetIntegerv with the emulated default framebuffer's values: GL_STEREO
+/// and GL_DOUBLEBUFFER of the configuration, GL_DRAW_BUFFER,
+/// GL_DRAW_BUFFERi and GL_READ_BUFFER as set, and 0 for
+/// GL_DRAW/READ_FRAMEBUFFER_BINDING while the emulated framebuffer is bound.
+/// Every other pname goes to glGetIntegerv.
+///
+/// @param pname a GL state name. @param data receives the value(s); must not
+/// be NULL and must hold as many values as glGetIntegerv writes for pname.
+/// @return GLS_OK, GLS_ERROR_NO_CURRENT_SURFACE or GLS_ERROR_NULL_POINTER.
+/// Thread: the surface's.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_get_integerv(pname: u32, data: *mut i32) -> gls_result {
+    ffi_boundary!("gls_get_integerv", {
+        let s = surface::require_current()?;
+        let out = arg_out(data, "data")?;
+        match s.emulated_integer(pname)? {
+            // SAFETY: checked non-NULL.
+            Some(v) => unsafe { write_out(out, v) },
+            // SAFETY: the surface's context is current; `data` is as large as GL needs (contract).
+            None => unsafe { s.gl().GetIntegerv(pname, out) },
+        }
+        Ok(())
+    })
+}
+
+/// glBindFramebuffer where framebuffer 0 means the emulated default
+/// framebuffer (a program's own framebuffer objects bind as usual).
+///
+/// @return GLS_OK or GLS_ERROR_NO_CURRENT_SURFACE. Thread: the surface's.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_bind_framebuffer(target: u32, framebuffer: u32) -> gls_result {
+    ffi_boundary!("gls_bind_framebuffer", {
+        surface::require_current()?.bind_framebuffer(target, framebuffer)
+    })
+}
+
+/// The address of a GL function of the current surface's backend, for
+/// programs that load GL themselves (as with glXGetProcAddress).
+///
+/// @param name a GL function name; must not be NULL.
+/// @return the address, or NULL with a message when there is no current
+/// surface. Thread: the surface's.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_get_proc_address(name: *const c_char) -> *mut c_void {
+    ffi_boundary!("gls_get_proc_address", std::ptr::null_mut() => {
+        // SAFETY: NUL-terminated (contract).
+        let name = unsafe { arg_str(name, "name")? };
+        let s = surface::require_current()?;
+        let c = std::ffi::CString::new(name).map_err(|_| Error::invalid_value("name contains NUL"))?;
+        Ok(s.display().platform().get_proc_address(&c) as *mut c_void)
+    })
+}
+
+/// Loads one eye's HP projection (as gls_stereo_eye_matrix()) into
+/// GL_PROJECTION of the current context; the matrix mode is left unchanged.
+///
+/// @return as gls_stereo_eye_matrix(), plus GLS_ERROR_NO_CURRENT_SURFACE.
+/// Thread: the surface's.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_apply_stereo_eye(
+    mono: *const gls_frustum,
+    adj: *const gls_stereo_adjust,
+    eye: u32,
+) -> gls_result {
+    ffi_boundary!("gls_apply_stereo_eye", {
+        // SAFETY: NULL-checked; validity is the caller's contract.
+        let (mono, adj) = unsafe { (arg_ref(mono, "mono")?, arg_ref(adj, "adj")?) };
+        let p = hp_eye(&mono.into(), &adj.into(), Eye::try_from(eye)?)?;
+        let s = surface::require_current()?;
+        s.load_projection(&p.matrix().to_cols_array())
+    })
+}
+
+/// Presents a frame: for double-buffered configurations each eye's back
+/// buffer becomes its front buffer (one swap for both eyes); the contents
+/// of the new back buffers are undefined, as after a real swap.
+///
+/// @param surface a live surface, current on the calling thread or on none.
+/// @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_OPERATION if
+/// it is current on another thread. Thread: the surface's.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_swap_buffers(surface: *mut gls_surface) -> gls_result {
+    ffi_boundary!("gls_swap_buffers", { surface_arg(surface)?.swap_buffers() })
+}
+
+/// Reads one colour buffer as RGBA8, rows top first (the reverse of
+/// glReadPixels), width × height × 4 bytes. Buffer names follow
+/// glReadBuffer: GL_FRONT_LEFT, GL_BACK_RIGHT, GL_FRONT (= front-left),
+/// GL_RIGHT (= front-right), …
+///
+/// The program's rendering is finished first when the surface is current on
+/// the calling thread; from another thread, synchronise with it yourself.
+///
+/// @param surface a live surface. @param gl_buffer a buffer name.
+/// @param rgba receives the pixels; must not be NULL.
+/// @param len size of rgba in bytes; at least width × height × 4.
+/// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+/// GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_OPERATION (a buffer the
+/// configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small).
+/// Nothing is written on error. Any thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_read_pixels(
+    surface: *mut gls_surface,
+    gl_buffer: u32,
+    rgba: *mut u8,
+    len: usize,
+) -> gls_result {
+    ffi_boundary!("gls_surface_read_pixels", {
+        let s = surface_arg(surface)?;
+        let out = arg_out(rgba, "rgba")?;
+        let (w, h) = s.size();
+        let need = w as usize * h as usize * 4;
+        if len < need {
+            return Err(Error::invalid_value(format!(
+                "len is {len} bytes; a {w}x{h} RGBA8 image needs {need}"
+            )));
+        }
+        let img = s.read_pixels(gl_buffer)?;
+        // SAFETY: `out` holds at least `need` bytes (checked above).
+        unsafe { std::ptr::copy_nonoverlapping(img.pixels().as_ptr(), out, need) };
+        Ok(())
+    })
+}
+
+/// Writes what a viewer sees now to a PNG file: GLS_IMAGE_LEFT or
+/// GLS_IMAGE_RIGHT (an eye's front buffer), or GLS_IMAGE_COMPOSITE (both
+/// eyes in the surface's output mode). Rows top first, 8-bit RGBA. The file
+/// appears complete or not at all (written to a temporary name, then renamed).
+///
+/// @param surface a live surface. @param image GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE.
+/// @param path a file path (UTF-8); must not be NULL.
+/// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+/// GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_IO (the message names the path
+/// and the reason). Any thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_save_png(
+    surface: *mut gls_surface,
+    image: u32,
+    path: *const c_char,
+) -> gls_result {
+    ffi_boundary!("gls_surface_save_png", {
+        let s = surface_arg(surface)?;
+        let which = match image {
+            GLS_IMAGE_LEFT => CaptureImage::Left,
+            GLS_IMAGE_RIGHT => CaptureImage::Right,
+            GLS_IMAGE_COMPOSITE => CaptureImage::Composite,
+            v => {
+                return Err(Error::invalid_enum(
+                    "image",
+                    v,
+                    "use GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE",
+                ));
+            }
+        };
+        // SAFETY: NUL-terminated (contract).
+        let path = unsafe { arg_str(path, "path")? };
+        s.save_png(which, std::path::Path::new(path))
+    })
+}

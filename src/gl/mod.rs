@@ -1,0 +1,280 @@
+//! A small GL function table, loaded from the backend's GetProcAddress.
+//!
+//! The library links no GL library: every GL entry point it calls comes
+//! through this table, loaded from eglGetProcAddress, OSMesaGetProcAddress or
+//! glXGetProcAddress. That is what lets one process use OSMesa (whose `gl*`
+//! symbols differ from libGL's) and what lets the library load on machines
+//! without GL at all.
+//!
+//! Entry points are loaded by name; `eglGetProcAddress` returns stubs for
+//! unknown names, so whether a function really exists is decided from the
+//! context's version ([`Gl::version`]), not from the pointer.
+
+pub mod enums;
+
+use std::ffi::{CStr, c_char, c_void};
+
+use crate::error::{Error, Result};
+
+#[allow(non_camel_case_types, missing_docs)]
+pub mod types {
+    pub type GLenum = u32;
+    pub type GLuint = u32;
+    pub type GLint = i32;
+    pub type GLsizei = i32;
+    pub type GLboolean = u8;
+    pub type GLbitfield = u32;
+    pub type GLfloat = f32;
+    pub type GLdouble = f64;
+    pub type GLchar = std::ffi::c_char;
+    pub type GLsizeiptr = isize;
+    pub type GLintptr = isize;
+    pub type GLsync = *const std::ffi::c_void;
+    pub type GLuint64 = u64;
+}
+use types::*;
+
+macro_rules! gl_table {
+    ($( $method:ident = $sym:literal ($($arg:ident : $ty:ty),*) $(-> $ret:ty)?; )*) => {
+        /// GL entry points of one backend. Calling them requires a context of
+        /// that backend to be current on the calling thread.
+        #[allow(non_snake_case)]
+        pub struct Gl {
+            $( $method: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
+            version: (u32, u32),
+        }
+
+        impl Gl {
+            /// Loads every entry point through `get`. Fails (naming the
+            /// function) if any is NULL.
+            ///
+            /// # Safety
+            /// `get` must return the address of the named GL function of the
+            /// backend (with its real signature) or NULL.
+            pub unsafe fn load(mut get: impl FnMut(&CStr) -> *const c_void) -> Result<Gl> {
+                Ok(Gl {
+                    $( $method: {
+                        let p = get(unsafe { CStr::from_bytes_with_nul_unchecked(concat!($sym, "\0").as_bytes()) });
+                        if p.is_null() {
+                            return Err(Error::BackendUnavailable(format!(
+                                "the GL library lacks {}: a GL 3.0 or newer driver is required", $sym
+                            )));
+                        }
+                        // SAFETY: the backend's GetProcAddress returned this
+                        // function's address; the signature is the Khronos one.
+                        unsafe { std::mem::transmute::<*const c_void, unsafe extern "system" fn($($ty),*) $(-> $ret)?>(p) }
+                    }, )*
+                    version: (0, 0),
+                })
+            }
+
+            $(
+                #[doc = concat!("`", $sym, "`.\n\n# Safety\nA context of this backend must be current on the calling thread, and pointer arguments valid as GL requires.")]
+                #[allow(clippy::too_many_arguments, non_snake_case)]
+                #[inline]
+                pub unsafe fn $method(&self, $($arg: $ty),*) $(-> $ret)? {
+                    // SAFETY: forwarded under the caller's contract.
+                    unsafe { (self.$method)($($arg),*) }
+                }
+            )*
+        }
+    };
+}
+
+gl_table! {
+    GetError = "glGetError"() -> GLenum;
+    GetString = "glGetString"(name: GLenum) -> *const u8;
+    GetIntegerv = "glGetIntegerv"(pname: GLenum, data: *mut GLint);
+    GetBooleanv = "glGetBooleanv"(pname: GLenum, data: *mut GLboolean);
+    GetFloatv = "glGetFloatv"(pname: GLenum, data: *mut GLfloat);
+    GetDoublev = "glGetDoublev"(pname: GLenum, data: *mut GLdouble);
+    Flush = "glFlush"();
+    Finish = "glFinish"();
+    Enable = "glEnable"(cap: GLenum);
+    Disable = "glDisable"(cap: GLenum);
+    IsEnabled = "glIsEnabled"(cap: GLenum) -> GLboolean;
+    Viewport = "glViewport"(x: GLint, y: GLint, w: GLsizei, h: GLsizei);
+    Scissor = "glScissor"(x: GLint, y: GLint, w: GLsizei, h: GLsizei);
+    ClearColor = "glClearColor"(r: GLfloat, g: GLfloat, b: GLfloat, a: GLfloat);
+    Clear = "glClear"(mask: GLbitfield);
+    ColorMask = "glColorMask"(r: GLboolean, g: GLboolean, b: GLboolean, a: GLboolean);
+    PixelStorei = "glPixelStorei"(pname: GLenum, param: GLint);
+    ReadPixels = "glReadPixels"(x: GLint, y: GLint, w: GLsizei, h: GLsizei, format: GLenum, ty: GLenum, data: *mut c_void);
+    DrawBuffer = "glDrawBuffer"(buf: GLenum);
+    DrawBuffers = "glDrawBuffers"(n: GLsizei, bufs: *const GLenum);
+    ReadBuffer = "glReadBuffer"(src: GLenum);
+    MatrixMode = "glMatrixMode"(mode: GLenum);
+    LoadMatrixd = "glLoadMatrixd"(m: *const GLdouble);
+    MultMatrixd = "glMultMatrixd"(m: *const GLdouble);
+
+    GenTextures = "glGenTextures"(n: GLsizei, out: *mut GLuint);
+    DeleteTextures = "glDeleteTextures"(n: GLsizei, names: *const GLuint);
+    BindTexture = "glBindTexture"(target: GLenum, tex: GLuint);
+    ActiveTexture = "glActiveTexture"(unit: GLenum);
+    TexImage2D = "glTexImage2D"(target: GLenum, level: GLint, internal: GLint, w: GLsizei, h: GLsizei, border: GLint, format: GLenum, ty: GLenum, data: *const c_void);
+    TexSubImage2D = "glTexSubImage2D"(target: GLenum, level: GLint, x: GLint, y: GLint, w: GLsizei, h: GLsizei, format: GLenum, ty: GLenum, data: *const c_void);
+    TexParameteri = "glTexParameteri"(target: GLenum, pname: GLenum, param: GLint);
+
+    GenFramebuffers = "glGenFramebuffers"(n: GLsizei, out: *mut GLuint);
+    DeleteFramebuffers = "glDeleteFramebuffers"(n: GLsizei, names: *const GLuint);
+    BindFramebuffer = "glBindFramebuffer"(target: GLenum, fb: GLuint);
+    FramebufferTexture2D = "glFramebufferTexture2D"(target: GLenum, attachment: GLenum, textarget: GLenum, tex: GLuint, level: GLint);
+    FramebufferRenderbuffer = "glFramebufferRenderbuffer"(target: GLenum, attachment: GLenum, rbtarget: GLenum, rb: GLuint);
+    CheckFramebufferStatus = "glCheckFramebufferStatus"(target: GLenum) -> GLenum;
+    BlitFramebuffer = "glBlitFramebuffer"(sx0: GLint, sy0: GLint, sx1: GLint, sy1: GLint, dx0: GLint, dy0: GLint, dx1: GLint, dy1: GLint, mask: GLbitfield, filter: GLenum);
+    GenRenderbuffers = "glGenRenderbuffers"(n: GLsizei, out: *mut GLuint);
+    DeleteRenderbuffers = "glDeleteRenderbuffers"(n: GLsizei, names: *const GLuint);
+    BindRenderbuffer = "glBindRenderbuffer"(target: GLenum, rb: GLuint);
+    RenderbufferStorage = "glRenderbufferStorage"(target: GLenum, internal: GLenum, w: GLsizei, h: GLsizei);
+
+    CreateShader = "glCreateShader"(ty: GLenum) -> GLuint;
+    ShaderSource = "glShaderSource"(shader: GLuint, count: GLsizei, strings: *const *const GLchar, lengths: *const GLint);
+    CompileShader = "glCompileShader"(shader: GLuint);
+    GetShaderiv = "glGetShaderiv"(shader: GLuint, pname: GLenum, out: *mut GLint);
+    GetShaderInfoLog = "glGetShaderInfoLog"(shader: GLuint, max: GLsizei, len: *mut GLsizei, log: *mut GLchar);
+    DeleteShader = "glDeleteShader"(shader: GLuint);
+    CreateProgram = "glCreateProgram"() -> GLuint;
+    AttachShader = "glAttachShader"(program: GLuint, shader: GLuint);
+    LinkProgram = "glLinkProgram"(program: GLuint);
+    GetProgramiv = "glGetProgramiv"(program: GLuint, pname: GLenum, out: *mut GLint);
+    GetProgramInfoLog = "glGetProgramInfoLog"(program: GLuint, max: GLsizei, len: *mut GLsizei, log: *mut GLchar);
+    DeleteProgram = "glDeleteProgram"(program: GLuint);
+    UseProgram = "glUseProgram"(program: GLuint);
+    GetUniformLocation = "glGetUniformLocation"(program: GLuint, name: *const GLchar) -> GLint;
+    Uniform1i = "glUniform1i"(loc: GLint, v: GLint);
+    Uniform1f = "glUniform1f"(loc: GLint, v: GLfloat);
+    Uniform2f = "glUniform2f"(loc: GLint, a: GLfloat, b: GLfloat);
+    Uniform4f = "glUniform4f"(loc: GLint, a: GLfloat, b: GLfloat, c: GLfloat, d: GLfloat);
+    UniformMatrix3fv = "glUniformMatrix3fv"(loc: GLint, count: GLsizei, transpose: GLboolean, v: *const GLfloat);
+    GenVertexArrays = "glGenVertexArrays"(n: GLsizei, out: *mut GLuint);
+    DeleteVertexArrays = "glDeleteVertexArrays"(n: GLsizei, names: *const GLuint);
+    BindVertexArray = "glBindVertexArray"(vao: GLuint);
+    DrawArrays = "glDrawArrays"(mode: GLenum, first: GLint, count: GLsizei);
+
+    GenBuffers = "glGenBuffers"(n: GLsizei, out: *mut GLuint);
+    DeleteBuffers = "glDeleteBuffers"(n: GLsizei, names: *const GLuint);
+    BindBuffer = "glBindBuffer"(target: GLenum, buf: GLuint);
+    BufferData = "glBufferData"(target: GLenum, size: GLsizeiptr, data: *const c_void, usage: GLenum);
+    MapBufferRange = "glMapBufferRange"(target: GLenum, offset: GLintptr, len: GLsizeiptr, access: GLbitfield) -> *mut c_void;
+    UnmapBuffer = "glUnmapBuffer"(target: GLenum) -> GLboolean;
+    FenceSync = "glFenceSync"(condition: GLenum, flags: GLbitfield) -> GLsync;
+    ClientWaitSync = "glClientWaitSync"(sync: GLsync, flags: GLbitfield, timeout: GLuint64) -> GLenum;
+    DeleteSync = "glDeleteSync"(sync: GLsync);
+}
+
+impl Gl {
+    /// Loads the table and reads the version of the context current on this
+    /// thread (which must belong to the same backend).
+    ///
+    /// # Safety
+    /// As [`Gl::load`], and a context of the backend must be current.
+    pub unsafe fn load_current(get: impl FnMut(&CStr) -> *const c_void) -> Result<Gl> {
+        // SAFETY: forwarded contract.
+        let mut gl = unsafe { Gl::load(get)? };
+        // SAFETY: a context is current (contract).
+        let v = unsafe { gl.string(enums::GL_VERSION) };
+        gl.version = parse_version(&v).ok_or_else(|| {
+            Error::BackendUnavailable(format!(
+                "the GL context reports an unreadable version {v:?}"
+            ))
+        })?;
+        if gl.version < (3, 0) {
+            return Err(Error::BackendUnavailable(format!(
+                "the GL context is version {}.{}; glstereo needs GL 3.0 or newer (framebuffer objects)",
+                gl.version.0, gl.version.1
+            )));
+        }
+        Ok(gl)
+    }
+
+    /// The context's GL version (major, minor).
+    pub fn version(&self) -> (u32, u32) {
+        self.version
+    }
+
+    /// glGetString as a Rust string ("" when NULL).
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn string(&self, name: u32) -> String {
+        // SAFETY: a context is current (contract); the result is NULL or a
+        // NUL-terminated static string.
+        let p = unsafe { self.GetString(name) };
+        if p.is_null() {
+            String::new()
+        } else {
+            // SAFETY: non-NULL, NUL-terminated (GL guarantees).
+            unsafe { CStr::from_ptr(p as *const c_char) }
+                .to_string_lossy()
+                .into_owned()
+        }
+    }
+
+    /// One glGetIntegerv value.
+    ///
+    /// # Safety
+    /// A context of this backend must be current; `pname` must return one value.
+    pub unsafe fn integer(&self, pname: u32) -> i32 {
+        let mut v = 0;
+        // SAFETY: contract; one value written.
+        unsafe { self.GetIntegerv(pname, &mut v) };
+        v
+    }
+
+    /// Drains the GL error queue, returning the first error (GL_NO_ERROR if none).
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn take_error(&self) -> u32 {
+        // SAFETY: contract.
+        let first = unsafe { self.GetError() };
+        if first != enums::GL_NO_ERROR {
+            // A context has a bounded number of error flags; drain them.
+            for _ in 0..16 {
+                // SAFETY: contract.
+                if unsafe { self.GetError() } == enums::GL_NO_ERROR {
+                    break;
+                }
+            }
+        }
+        first
+    }
+
+    /// Turns a pending GL error into an [`Error`] describing `what` failed.
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn check(&self, what: &str) -> Result<()> {
+        // SAFETY: contract.
+        match unsafe { self.take_error() } {
+            enums::GL_NO_ERROR => Ok(()),
+            enums::GL_OUT_OF_MEMORY => Err(Error::OutOfMemory(format!(
+                "{what}: the GL driver ran out of memory; use a smaller surface"
+            ))),
+            e => Err(Error::Gl(format!("{what}: GL error {e:#06x}"))),
+        }
+    }
+}
+
+/// Parses "4.5 (Compatibility Profile) Mesa 22.3.6" or "OpenGL ES 3.2 …" into (4, 5).
+fn parse_version(s: &str) -> Option<(u32, u32)> {
+    let s = s.strip_prefix("OpenGL ES ").unwrap_or(s);
+    let num = s.split_whitespace().next()?;
+    let mut it = num.split('.');
+    let major = it.next()?.parse().ok()?;
+    let minor = it.next()?.parse().ok()?;
+    Some((major, minor))
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn versions_parse() {
+        assert_eq!(
+            super::parse_version("4.5 (Compatibility Profile) Mesa 22.3.6"),
+            Some((4, 5))
+        );
+        assert_eq!(super::parse_version("3.1.0 NVIDIA 535"), Some((3, 1)));
+        assert_eq!(super::parse_version("garbage"), None);
+    }
+}

@@ -1,0 +1,509 @@
+//! An emulated default framebuffer: up to four RGBA8 colour textures
+//! (front-left, back-left, front-right, back-right) and one depth/stencil
+//! renderbuffer shared by both eyes, as on real quad-buffer hardware.
+//!
+//! The textures are created in the surface's compositor context and shared
+//! with the application context, which renders into them through one
+//! framebuffer object. Each colour buffer lives in a fixed attachment
+//! *slot*; a swap exchanges which slot is "front" and which is "back" for
+//! each eye and re-issues glDrawBuffers/glReadBuffer, so presenting a frame
+//! copies nothing.
+
+use crate::error::{Error, Result};
+use crate::gl::Gl;
+use crate::gl::enums::*;
+use crate::image::flip_rows;
+use crate::stereo::buffers::{
+    BufferSet, ColorBuffer, FramebufferShape, resolve_draw_buffer, resolve_draw_buffers,
+    resolve_read_buffer,
+};
+
+/// Largest number of fragment outputs the draw state tracks.
+pub const MAX_DRAW_BUFFERS: usize = 8;
+
+/// The draw-buffer state as the program set it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum DrawState {
+    /// glDrawBuffer(name): every output 0 fragment goes to every buffer in `set`.
+    Single { name: u32, set: BufferSet },
+    /// glDrawBuffers(n, names): output i goes to `bufs[i]`.
+    Multi {
+        n: usize,
+        names: [u32; MAX_DRAW_BUFFERS],
+        bufs: [Option<ColorBuffer>; MAX_DRAW_BUFFERS],
+    },
+}
+
+/// The GL objects and state of one emulated default framebuffer.
+#[derive(Debug)]
+pub struct EmulatedFramebuffer {
+    shape: FramebufferShape,
+    width: u32,
+    height: u32,
+    /// Colour textures by slot (0 where the buffer does not exist).
+    textures: [u32; 4],
+    /// Depth/stencil renderbuffer (0 when the config has neither).
+    depth_stencil: u32,
+    /// Slot of each colour buffer, by [`ColorBuffer::index`].
+    slot_of: [usize; 4],
+    /// The framebuffer object in the application context (0 until attached).
+    app_fbo: u32,
+    /// A framebuffer object in the compositor context, for reading textures.
+    read_fbo: u32,
+    draw: DrawState,
+    read_name: u32,
+    read: Option<ColorBuffer>,
+}
+
+impl EmulatedFramebuffer {
+    /// Creates the colour textures and the depth/stencil renderbuffer and
+    /// clears them (colour to transparent black). The compositor context of
+    /// the surface must be current.
+    ///
+    /// # Safety
+    /// A context of `gl`'s backend must be current on this thread.
+    pub unsafe fn allocate(
+        gl: &Gl,
+        shape: FramebufferShape,
+        width: u32,
+        height: u32,
+        depth_bits: u32,
+        stencil_bits: u32,
+    ) -> Result<EmulatedFramebuffer> {
+        let initial = shape.initial_buffer();
+        let mut fb = EmulatedFramebuffer {
+            shape,
+            width,
+            height,
+            textures: [0; 4],
+            depth_stencil: 0,
+            slot_of: [0, 1, 2, 3],
+            app_fbo: 0,
+            read_fbo: 0,
+            draw: DrawState::Single {
+                name: initial,
+                set: resolve_draw_buffer(shape, initial).expect("the initial buffer exists"),
+            },
+            read_name: initial,
+            read: resolve_read_buffer(shape, initial).expect("the initial buffer exists"),
+        };
+        // SAFETY: a context is current (contract).
+        unsafe {
+            let max_tex = gl.integer(GL_MAX_TEXTURE_SIZE).max(0) as u32;
+            let max_rb = gl.integer(GL_MAX_RENDERBUFFER_SIZE).max(0) as u32;
+            let limit = max_tex.min(max_rb);
+            if width > limit || height > limit {
+                return Err(Error::invalid_value(format!(
+                    "surface size {width}x{height} exceeds this driver's limit of {limit} pixels per side"
+                )));
+            }
+            gl.take_error();
+            gl.GenFramebuffers(1, &mut fb.read_fbo);
+            for b in shape.allocated().iter() {
+                let mut tex = 0;
+                gl.GenTextures(1, &mut tex);
+                fb.textures[fb.slot_of[b.index()]] = tex;
+            }
+            if depth_bits > 0 || stencil_bits > 0 {
+                gl.GenRenderbuffers(1, &mut fb.depth_stencil);
+            }
+            if let Err(e) = fb.allocate_storage(gl) {
+                fb.delete(gl);
+                return Err(e);
+            }
+        }
+        Ok(fb)
+    }
+
+    /// (Re)allocates texture and renderbuffer storage at the current size and clears it.
+    unsafe fn allocate_storage(&mut self, gl: &Gl) -> Result<()> {
+        let (w, h) = (self.width as i32, self.height as i32);
+        // SAFETY: a context is current (contract of the callers).
+        unsafe {
+            for &tex in self.textures.iter().filter(|&&t| t != 0) {
+                gl.BindTexture(GL_TEXTURE_2D, tex);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+                gl.TexImage2D(
+                    GL_TEXTURE_2D,
+                    0,
+                    GL_RGBA8 as i32,
+                    w,
+                    h,
+                    0,
+                    GL_RGBA,
+                    GL_UNSIGNED_BYTE,
+                    std::ptr::null(),
+                );
+            }
+            gl.BindTexture(GL_TEXTURE_2D, 0);
+            if self.depth_stencil != 0 {
+                gl.BindRenderbuffer(GL_RENDERBUFFER, self.depth_stencil);
+                gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
+                gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
+            }
+            gl.check("allocating the stereo buffers")?;
+            // Clear every colour buffer: new storage is undefined otherwise.
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.read_fbo);
+            gl.Disable(GL_SCISSOR_TEST);
+            gl.ColorMask(1, 1, 1, 1);
+            gl.ClearColor(0.0, 0.0, 0.0, 0.0);
+            for &tex in self.textures.iter().filter(|&&t| t != 0) {
+                gl.FramebufferTexture2D(
+                    GL_FRAMEBUFFER,
+                    GL_COLOR_ATTACHMENT0,
+                    GL_TEXTURE_2D,
+                    tex,
+                    0,
+                );
+                gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+                gl.Clear(GL_COLOR_BUFFER_BIT);
+            }
+            gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+            gl.check("clearing the stereo buffers")
+        }
+    }
+
+    /// Deletes the shared objects (compositor context current).
+    unsafe fn delete(&mut self, gl: &Gl) {
+        // SAFETY: a context is current (contract of the callers).
+        unsafe {
+            gl.DeleteTextures(4, self.textures.as_ptr());
+            if self.depth_stencil != 0 {
+                gl.DeleteRenderbuffers(1, &self.depth_stencil);
+            }
+            gl.DeleteFramebuffers(1, &self.read_fbo);
+        }
+        self.textures = [0; 4];
+        self.depth_stencil = 0;
+        self.read_fbo = 0;
+    }
+
+    /// The buffers this framebuffer has.
+    pub fn shape(&self) -> FramebufferShape {
+        self.shape
+    }
+
+    /// Width and height of each colour buffer.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// The framebuffer object the application renders into (0 before attach).
+    pub fn app_fbo(&self) -> u32 {
+        self.app_fbo
+    }
+
+    /// The texture holding `buffer` now (0 if the framebuffer lacks it).
+    pub fn texture(&self, buffer: ColorBuffer) -> u32 {
+        if self.shape.allocated().contains(buffer) {
+            self.textures[self.slot_of[buffer.index()]]
+        } else {
+            0
+        }
+    }
+
+    /// Creates the application's framebuffer object, binds it as the draw
+    /// and read framebuffer, applies the draw/read state, and sets the
+    /// viewport and scissor box to the full size, as a GL context does the
+    /// first time it is bound to a window. The application context must be
+    /// current.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn attach_app(&mut self, gl: &Gl) -> Result<()> {
+        // SAFETY: the application context is current (contract).
+        unsafe {
+            gl.take_error();
+            gl.GenFramebuffers(1, &mut self.app_fbo);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
+            self.attach_storage(gl)?;
+            self.apply_draw(gl);
+            self.apply_read(gl);
+            gl.Viewport(0, 0, self.width as i32, self.height as i32);
+            gl.Scissor(0, 0, self.width as i32, self.height as i32);
+            gl.check("binding the stereo framebuffer")
+        }
+    }
+
+    unsafe fn attach_storage(&self, gl: &Gl) -> Result<()> {
+        // SAFETY: the application context is current with app_fbo bound.
+        unsafe {
+            for slot in 0..4 {
+                gl.FramebufferTexture2D(
+                    GL_FRAMEBUFFER,
+                    GL_COLOR_ATTACHMENT0 + slot as u32,
+                    GL_TEXTURE_2D,
+                    self.textures[slot],
+                    0,
+                );
+            }
+            if self.depth_stencil != 0 {
+                gl.FramebufferRenderbuffer(
+                    GL_FRAMEBUFFER,
+                    GL_DEPTH_STENCIL_ATTACHMENT,
+                    GL_RENDERBUFFER,
+                    self.depth_stencil,
+                );
+            }
+            let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+            if status != GL_FRAMEBUFFER_COMPLETE {
+                return Err(Error::Gl(format!(
+                    "the stereo framebuffer is incomplete (status {status:#06x}): the driver cannot \
+                     render to RGBA8 textures with a D24S8 renderbuffer"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    fn attachment(&self, b: Option<ColorBuffer>) -> u32 {
+        b.map_or(GL_NONE, |b| {
+            GL_COLOR_ATTACHMENT0 + self.slot_of[b.index()] as u32
+        })
+    }
+
+    /// The attachments glDrawBuffers must get for the current draw state:
+    /// for glDrawBuffer(GL_BACK) on stereo, [back-left, back-right], so
+    /// output 0 (fixed-function colour, gl_FragColor) reaches both eyes.
+    fn draw_attachments(&self) -> ([u32; MAX_DRAW_BUFFERS], usize) {
+        let mut out = [GL_NONE; MAX_DRAW_BUFFERS];
+        match self.draw {
+            DrawState::Single { set, .. } if set.is_empty() => (out, 1),
+            DrawState::Single { set, .. } => {
+                let mut n = 0;
+                for b in set.iter() {
+                    out[n] = self.attachment(Some(b));
+                    n += 1;
+                }
+                (out, n)
+            }
+            DrawState::Multi { n, bufs, .. } => {
+                for i in 0..n {
+                    out[i] = self.attachment(bufs[i]);
+                }
+                (out, n.max(1))
+            }
+        }
+    }
+
+    /// Runs `f` with the application FBO bound to `target`, restoring the
+    /// program's own binding afterwards if it had another one bound.
+    unsafe fn with_bound(&self, gl: &Gl, target: u32, binding: u32, f: impl FnOnce()) {
+        // SAFETY: the application context is current (contract of the callers).
+        unsafe {
+            let prev = gl.integer(binding) as u32;
+            if prev != self.app_fbo {
+                gl.BindFramebuffer(target, self.app_fbo);
+            }
+            f();
+            if prev != self.app_fbo {
+                gl.BindFramebuffer(target, prev);
+            }
+        }
+    }
+
+    unsafe fn apply_draw(&self, gl: &Gl) {
+        let (atts, n) = self.draw_attachments();
+        // SAFETY: the application context is current (contract of the callers).
+        unsafe {
+            self.with_bound(gl, GL_DRAW_FRAMEBUFFER, GL_DRAW_FRAMEBUFFER_BINDING, || {
+                gl.DrawBuffers(n as i32, atts.as_ptr())
+            })
+        }
+    }
+
+    unsafe fn apply_read(&self, gl: &Gl) {
+        let att = self.attachment(self.read);
+        // SAFETY: the application context is current (contract of the callers).
+        unsafe {
+            self.with_bound(gl, GL_READ_FRAMEBUFFER, GL_READ_FRAMEBUFFER_BINDING, || {
+                gl.ReadBuffer(att)
+            })
+        }
+    }
+
+    /// glDrawBuffer on the emulated framebuffer. On error nothing changes.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn set_draw_buffer(&mut self, gl: &Gl, name: u32) -> Result<()> {
+        let set = resolve_draw_buffer(self.shape, name)?;
+        self.draw = DrawState::Single { name, set };
+        // SAFETY: contract.
+        unsafe { self.apply_draw(gl) };
+        Ok(())
+    }
+
+    /// glDrawBuffers on the emulated framebuffer. On error nothing changes.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn set_draw_buffers(&mut self, gl: &Gl, names: &[u32]) -> Result<()> {
+        // SAFETY: a context is current (contract).
+        let max =
+            (unsafe { gl.integer(GL_MAX_DRAW_BUFFERS) }.max(1) as usize).min(MAX_DRAW_BUFFERS);
+        let resolved = resolve_draw_buffers(self.shape, names, max)?;
+        let mut st = DrawState::Multi {
+            n: names.len(),
+            names: [GL_NONE; MAX_DRAW_BUFFERS],
+            bufs: [None; MAX_DRAW_BUFFERS],
+        };
+        if let DrawState::Multi {
+            names: ns, bufs, ..
+        } = &mut st
+        {
+            ns[..names.len()].copy_from_slice(names);
+            bufs[..names.len()].copy_from_slice(&resolved);
+        }
+        self.draw = st;
+        // SAFETY: contract.
+        unsafe { self.apply_draw(gl) };
+        Ok(())
+    }
+
+    /// glReadBuffer on the emulated framebuffer. On error nothing changes.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn set_read_buffer(&mut self, gl: &Gl, name: u32) -> Result<()> {
+        self.read = resolve_read_buffer(self.shape, name)?;
+        self.read_name = name;
+        // SAFETY: contract.
+        unsafe { self.apply_read(gl) };
+        Ok(())
+    }
+
+    /// GL_DRAW_BUFFER (i = None) or GL_DRAW_BUFFERi as the program set it.
+    pub fn draw_buffer_query(&self, i: usize) -> u32 {
+        match self.draw {
+            DrawState::Single { name, .. } => {
+                if i == 0 {
+                    name
+                } else {
+                    GL_NONE
+                }
+            }
+            DrawState::Multi { n, names, .. } => {
+                if i < n {
+                    names[i]
+                } else {
+                    GL_NONE
+                }
+            }
+        }
+    }
+
+    /// GL_READ_BUFFER as the program set it.
+    pub fn read_buffer_query(&self) -> u32 {
+        self.read_name
+    }
+
+    /// The buffers the current draw state writes.
+    pub fn draw_set(&self) -> BufferSet {
+        match self.draw {
+            DrawState::Single { set, .. } => set,
+            DrawState::Multi { n, bufs, .. } => {
+                BufferSet::of(&bufs[..n].iter().flatten().copied().collect::<Vec<_>>())
+            }
+        }
+    }
+
+    /// Presents a double-buffered framebuffer: each eye's back buffer becomes
+    /// its front buffer (and the old front the new back, whose contents are
+    /// undefined as after a real swap). Single-buffered: nothing to do.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn swap(&mut self, gl: &Gl) {
+        if !self.shape.double_buffered {
+            return;
+        }
+        self.slot_of.swap(
+            ColorBuffer::FrontLeft.index(),
+            ColorBuffer::BackLeft.index(),
+        );
+        self.slot_of.swap(
+            ColorBuffer::FrontRight.index(),
+            ColorBuffer::BackRight.index(),
+        );
+        // SAFETY: contract.
+        unsafe {
+            self.apply_draw(gl);
+            self.apply_read(gl);
+        }
+    }
+
+    /// Changes the size of every buffer; contents become undefined (cleared
+    /// to transparent black), as when a window is resized. The compositor
+    /// context must be current.
+    ///
+    /// # Safety
+    /// A context of the surface must be current on this thread.
+    pub unsafe fn resize(&mut self, gl: &Gl, width: u32, height: u32) -> Result<()> {
+        crate::image::check_size(width, height)?;
+        let old = (self.width, self.height);
+        (self.width, self.height) = (width, height);
+        // SAFETY: contract.
+        let r = unsafe { self.allocate_storage(gl) };
+        if r.is_err() {
+            (self.width, self.height) = old;
+            // SAFETY: contract; best effort to restore the old storage.
+            let _ = unsafe { self.allocate_storage(gl) };
+        }
+        r
+    }
+
+    /// Reads one colour buffer into `out` (RGBA8, rows top first). The
+    /// compositor context must be current.
+    ///
+    /// # Safety
+    /// The surface's compositor context must be current on this thread and
+    /// `out` must hold width × height × 4 bytes.
+    pub unsafe fn read_pixels(&self, gl: &Gl, buffer: ColorBuffer, out: &mut [u8]) -> Result<()> {
+        let tex = self.texture(buffer);
+        if tex == 0 {
+            return Err(Error::invalid_operation(format!(
+                "this framebuffer has no {buffer:?} buffer"
+            )));
+        }
+        let stride = self.width as usize * 4;
+        assert_eq!(
+            out.len(),
+            stride * self.height as usize,
+            "read_pixels buffer size"
+        );
+        // SAFETY: compositor context current; `out` is large enough (asserted).
+        unsafe {
+            gl.take_error();
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
+            gl.FramebufferTexture2D(
+                GL_READ_FRAMEBUFFER,
+                GL_COLOR_ATTACHMENT0,
+                GL_TEXTURE_2D,
+                tex,
+                0,
+            );
+            gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+            gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+            gl.ReadPixels(
+                0,
+                0,
+                self.width as i32,
+                self.height as i32,
+                GL_RGBA,
+                GL_UNSIGNED_BYTE,
+                out.as_mut_ptr().cast(),
+            );
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+            gl.check("reading the stereo buffers")?;
+        }
+        flip_rows(out, stride);
+        Ok(())
+    }
+}
