@@ -11,6 +11,7 @@
 //! Modules, from the inside out (dependencies point inward):
 //! - [`math`]: pure projection and parallax math (f64, no GL);
 //! - [`image`]: RGBA8 images, rows top first;
+//! - [`output`]: output formats (mode names, geometry, CPU reference);
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]
@@ -19,5 +20,6 @@ pub mod error;
 pub mod ffi;
 pub mod image;
 pub mod math;
+pub mod output;
 
 pub use error::{Error, Result};
