@@ -15,4 +15,5 @@
 pub(crate) mod boundary;
 pub mod core;
 pub mod math;
+pub mod output;
 pub mod types;
