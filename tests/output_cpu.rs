@@ -9,7 +9,8 @@ use glstereo::math::Eye;
 use glstereo::output::anaglyph::{dubois_matrices, linear_to_srgb, luma, srgb_to_linear};
 use glstereo::output::pattern::{gradient, noise};
 use glstereo::output::{
-    AnaglyphColors, AnaglyphMethod, OutputMode, OutputOptions, compose, composite_size, placements,
+    AnaglyphColors, AnaglyphMethod, OutputMode, OutputOptions, compose, compose_into,
+    composite_size, placements,
 };
 
 fn solid(w: u32, h: u32, rgb: [u8; 3]) -> Image {
@@ -543,6 +544,44 @@ fn output_alpha_is_opaque_whatever_the_input_alpha() {
             );
         }
     }
+}
+
+#[test]
+fn composing_into_a_used_buffer_leaves_nothing_of_the_previous_frame() {
+    let (l, r) = (noise(6, 48, 110), noise(6, 48, 111));
+    let o = with(false, 0.1, 0.9);
+    for before in composites() {
+        let mut out = compose(before, &o, &r, &l, 1).unwrap();
+        for m in composites() {
+            compose_into(m, &o, &l, &r, 0, &mut out).unwrap();
+            assert_eq!(
+                out,
+                compose(m, &o, &l, &r, 0).unwrap(),
+                "{m} composed over {before}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_refused_compose_into_leaves_the_buffer_alone() {
+    let e = noise(4, 4, 120);
+    let mut out = compose(OutputMode::Rows, &plain(), &e, &e, 0).unwrap();
+    let kept = out.clone();
+    assert!(compose_into(OutputMode::Quad, &plain(), &e, &e, 0, &mut out).is_err());
+    assert!(
+        compose_into(
+            OutputMode::Rows,
+            &with(false, 2.0, 1.0),
+            &e,
+            &e,
+            0,
+            &mut out
+        )
+        .is_err()
+    );
+    assert!(compose_into(OutputMode::Rows, &plain(), &e, &noise(4, 5, 1), 0, &mut out).is_err());
+    assert_eq!(out, kept);
 }
 
 // ----------------------------------------------------------------- errors

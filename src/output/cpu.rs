@@ -125,6 +125,14 @@ pub fn compose_into(
             OutputMode::SideBySideHalf
         )));
     }
+    if mode == OutputMode::Quad {
+        return Err(Error::invalid_operation(
+            "quad is native quad-buffer output, not a composite image: choose left, right \
+             or a composite mode (a surface without native stereo falls back by itself)",
+        ));
+    }
+    // Nothing can fail past this point, so `out` is untouched on error.
+
     let (l, r) = if options.swap_eyes {
         (right, left)
     } else {
@@ -143,13 +151,6 @@ pub fn compose_into(
         },
     };
 
-    if mode == OutputMode::Quad {
-        return Err(Error::invalid_operation(
-            "quad is native quad-buffer output, not a composite image: choose left, right \
-             or a composite mode (a surface without native stereo falls back by itself)",
-        ));
-    }
-
     resize(out, cw, ch);
     match mode {
         OutputMode::Quad => {} // refused above
@@ -158,12 +159,13 @@ pub fn compose_into(
         OutputMode::FrameSequential => {
             // `frame_sequential_eye` already accounts for the swap, so pick
             // from the unswapped inputs.
-            let (shown, other) = match options.frame_sequential_eye(frame_index) {
+            let eye = options.frame_sequential_eye(frame_index);
+            let (shown, other) = match eye {
                 Eye::Left => (left, right),
                 Eye::Right => (right, left),
             };
             let full = Placement {
-                eye: Eye::Left,
+                eye,
                 x: 0,
                 y: 0,
                 width: w,
@@ -185,21 +187,19 @@ pub fn compose_into(
         | OutputMode::HdmiFramePacking
         | OutputMode::Starbase
         | OutputMode::StrRect => {
-            let Some(places) = placements(mode, w, h) else {
-                return Err(Error::invalid_operation(format!(
-                    "internal: {mode} has no eye placements"
-                )));
-            };
+            // Always Some for these modes (a layout test checks it).
+            let places = placements(mode, w, h);
             // Placements never overlap, so they leave gaps exactly when
             // they cover less than the frame: only then paint it black.
             let covered: u64 = places
                 .iter()
+                .flatten()
                 .map(|p| u64::from(p.width) * u64::from(p.height))
                 .sum();
             if covered < u64::from(cw) * u64::from(ch) {
                 fill(out.pixels_mut(), ALPHA);
             }
-            for p in &places {
+            for p in places.iter().flatten() {
                 let (eye, other) = match p.eye {
                     Eye::Left => (l, r),
                     Eye::Right => (r, l),

@@ -268,6 +268,24 @@ mod tests {
     }
 
     #[test]
+    fn placements_exist_exactly_for_the_rectangle_modes() {
+        use OutputMode::*;
+        for m in OutputMode::all() {
+            let want = matches!(
+                m,
+                SideBySide
+                    | TopBottom
+                    | SideBySideHalf
+                    | TopBottomHalf
+                    | HdmiFramePacking
+                    | Starbase
+                    | StrRect
+            );
+            assert_eq!(placements(m, 8, 6).is_some(), want, "{m}");
+        }
+    }
+
+    #[test]
     fn interleave_parity_counts_from_the_top_left() {
         use OutputMode::*;
         assert_eq!(interleaved_eye(Rows, 5, 0), Some(Eye::Left));
