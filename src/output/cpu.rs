@@ -72,8 +72,15 @@ use super::layout::{Placement, composite_size, placements};
 use super::mode::{AnaglyphColors, AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 
-/// One pixel's R, G, B in 0…255 units (f32, unrounded).
-type Rgb = [f32; 3];
+/// One pixel's R, G, B in 0…255 units (f32, unrounded), and its alpha,
+/// carried along only so rows convert four bytes at a time (it is ignored).
+type Rgb = [f32; 4];
+
+/// The colour part of a pixel, for [`luma`].
+#[inline]
+fn rgb(p: &Rgb) -> [f32; 3] {
+    [p[0], p[1], p[2]]
+}
 
 /// Composes the two eye images into the output frame of `mode` by the rules
 /// of this module's documentation.
@@ -245,8 +252,8 @@ impl Stage {
 
 fn desaturate(row: &mut [Rgb], s: f32) {
     for p in row {
-        let y = luma(*p);
-        for c in p.iter_mut() {
+        let y = luma(rgb(p));
+        for c in &mut p[..3] {
             *c = y + s * (*c - y);
         }
     }
@@ -295,7 +302,7 @@ fn load(src: &[u8], dst: &mut Vec<Rgb>) {
     dst.clear();
     dst.extend(
         src.chunks_exact(4)
-            .map(|p| [f32::from(p[0]), f32::from(p[1]), f32::from(p[2])]),
+            .map(|p| [p[0], p[1], p[2], p[3]].map(f32::from)),
     );
 }
 
@@ -352,7 +359,7 @@ fn sample_row(img: &Image, vt: Tap, ht: Option<&[Tap]>, tmp: &mut Vec<Rgb>, dst:
     if vt.f != 0.0 && vt.i1 != vt.i0 {
         let f = vt.f;
         for (p, q) in target.iter_mut().zip(img.row(vt.i1 as u32).chunks_exact(4)) {
-            for c in 0..3 {
+            for c in 0..4 {
                 p[c] += f * (f32::from(q[c]) - p[c]);
             }
         }
@@ -361,11 +368,7 @@ fn sample_row(img: &Image, vt: Tap, ht: Option<&[Tap]>, tmp: &mut Vec<Rgb>, dst:
         dst.clear();
         dst.extend(ht.iter().map(|t| {
             let (a, b) = (tmp[t.i0], tmp[t.i1]);
-            [
-                a[0] + t.f * (b[0] - a[0]),
-                a[1] + t.f * (b[1] - a[1]),
-                a[2] + t.f * (b[2] - a[2]),
-            ]
+            std::array::from_fn(|c| a[c] + t.f * (b[c] - a[c]))
         }));
     }
 }
@@ -531,7 +534,7 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
         match kind {
             Anaglyph::RedBlue => {
                 for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
-                    d.copy_from_slice(&[unorm(luma(*p)), 0, unorm(luma(*q)), 255]);
+                    d.copy_from_slice(&[unorm(luma(rgb(p))), 0, unorm(luma(rgb(q))), 255]);
                 }
             }
             Anaglyph::Masked(colors, AnaglyphMethod::Dubois) => {
@@ -552,7 +555,7 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
                 let left_grey = method != AnaglyphMethod::FullColor;
                 let right_grey = method == AnaglyphMethod::Monochrome;
                 for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
-                    let (yl, yr) = (luma(*p), luma(*q));
+                    let (yl, yr) = (luma(rgb(p)), luma(rgb(q)));
                     for c in 0..3 {
                         d[c] = unorm(match (mask[c], left_grey, right_grey) {
                             (true, false, _) => p[c],
