@@ -97,6 +97,148 @@
 #define GLS_ADJUSTMENT_MAX 2.0
 
 /**
+ * Native quad-buffer stereo ("quad"): both eyes go to the driver's left and
+ * right buffers. Only on configs with native stereo; elsewhere a surface
+ * falls back to a composite.
+ */
+#define GLS_OUTPUT_QUAD 0
+
+/**
+ * The left eye only ("left").
+ */
+#define GLS_OUTPUT_LEFT 1
+
+/**
+ * The right eye only ("right").
+ */
+#define GLS_OUTPUT_RIGHT 2
+
+/**
+ * Red-cyan anaglyph in full colour ("anaglyph-red-cyan"): R from the left eye, G and B from the right.
+ */
+#define GLS_OUTPUT_ANAGLYPH_RED_CYAN 3
+
+/**
+ * Red-cyan anaglyph, left eye as luminance ("anaglyph-red-cyan-half").
+ */
+#define GLS_OUTPUT_ANAGLYPH_RED_CYAN_HALF 4
+
+/**
+ * Red-cyan anaglyph, both eyes as luminance ("anaglyph-red-cyan-mono").
+ */
+#define GLS_OUTPUT_ANAGLYPH_RED_CYAN_MONO 5
+
+/**
+ * Red-cyan anaglyph with Dubois' least-squares matrices ("anaglyph-red-cyan-dubois").
+ */
+#define GLS_OUTPUT_ANAGLYPH_RED_CYAN_DUBOIS 6
+
+/**
+ * Green-magenta anaglyph in full colour ("anaglyph-green-magenta"): G from the left eye, R and B from the right.
+ */
+#define GLS_OUTPUT_ANAGLYPH_GREEN_MAGENTA 7
+
+/**
+ * Green-magenta anaglyph, left eye as luminance ("anaglyph-green-magenta-half").
+ */
+#define GLS_OUTPUT_ANAGLYPH_GREEN_MAGENTA_HALF 8
+
+/**
+ * Green-magenta anaglyph, both eyes as luminance ("anaglyph-green-magenta-mono").
+ */
+#define GLS_OUTPUT_ANAGLYPH_GREEN_MAGENTA_MONO 9
+
+/**
+ * Green-magenta anaglyph with Dubois' matrices ("anaglyph-green-magenta-dubois").
+ */
+#define GLS_OUTPUT_ANAGLYPH_GREEN_MAGENTA_DUBOIS 10
+
+/**
+ * Amber-blue anaglyph in full colour ("anaglyph-amber-blue"): R and G from the left eye, B from the right.
+ */
+#define GLS_OUTPUT_ANAGLYPH_AMBER_BLUE 11
+
+/**
+ * Amber-blue anaglyph, left eye as luminance ("anaglyph-amber-blue-half").
+ */
+#define GLS_OUTPUT_ANAGLYPH_AMBER_BLUE_HALF 12
+
+/**
+ * Amber-blue anaglyph, both eyes as luminance ("anaglyph-amber-blue-mono").
+ */
+#define GLS_OUTPUT_ANAGLYPH_AMBER_BLUE_MONO 13
+
+/**
+ * Amber-blue anaglyph with Dubois' matrices ("anaglyph-amber-blue-dubois").
+ */
+#define GLS_OUTPUT_ANAGLYPH_AMBER_BLUE_DUBOIS 14
+
+/**
+ * Red-blue anaglyph ("anaglyph-red-blue"): red = left luminance, green 0, blue = right luminance.
+ */
+#define GLS_OUTPUT_ANAGLYPH_RED_BLUE 15
+
+/**
+ * Both eyes at full size side by side, left on the left ("side-by-side"): a 2W×H frame.
+ */
+#define GLS_OUTPUT_SIDE_BY_SIDE 16
+
+/**
+ * Both eyes at full size, left on top ("top-bottom"): a W×2H frame.
+ */
+#define GLS_OUTPUT_TOP_BOTTOM 17
+
+/**
+ * Each eye squeezed (filtered) to half width, left on the left ("side-by-side-half"): W×H.
+ */
+#define GLS_OUTPUT_SIDE_BY_SIDE_HALF 18
+
+/**
+ * Each eye squeezed (filtered) to half height, left on top ("top-bottom-half"): W×H.
+ */
+#define GLS_OUTPUT_TOP_BOTTOM_HALF 19
+
+/**
+ * Row interleave ("rows"): the top row and every second row below it from the left eye.
+ */
+#define GLS_OUTPUT_ROWS 20
+
+/**
+ * Column interleave ("columns"): the leftmost column and every second one from the left eye.
+ */
+#define GLS_OUTPUT_COLUMNS 21
+
+/**
+ * Checkerboard ("checkerboard"): pixel (x, y), counted from the top-left, from the left eye when x + y is even.
+ */
+#define GLS_OUTPUT_CHECKERBOARD 22
+
+/**
+ * Frame-sequential ("frame-sequential"): each presented frame holds one eye, the left eye first.
+ */
+#define GLS_OUTPUT_FRAME_SEQUENTIAL 23
+
+/**
+ * HDMI 1.4a frame packing ("hdmi-frame-packing"): left on top, a black gap of H/24 rows, right below (1280x720 → 1280x1470).
+ */
+#define GLS_OUTPUT_HDMI_FRAME_PACKING 24
+
+/**
+ * HP Starbase sync-doubled stereo ("starbase"): left eye squashed into the upper half, right into the lower, same frame size.
+ */
+#define GLS_OUTPUT_STARBASE 25
+
+/**
+ * SGI STR_RECT ("str-rect"): each eye squashed to 492 of 1024 rows (scaled for other heights), left on top, black rows between.
+ */
+#define GLS_OUTPUT_STR_RECT 26
+
+/**
+ * The number of output modes: the valid GLS_OUTPUT_* values are 0 … GLS_OUTPUT_COUNT − 1.
+ */
+#define GLS_OUTPUT_COUNT 27
+
+/**
  * The left eye's front buffer, as displayed.
  */
 #define GLS_IMAGE_LEFT 0
@@ -619,6 +761,43 @@ gls_result gls_nv_stereo_matrix(const double *projection,
                                 double convergence,
                                 uint32_t eye,
                                 double *column_major_out);
+
+/**
+ * The GLS_OUTPUT_* value of an output mode name: a canonical name
+ * ("anaglyph-red-cyan", "side-by-side-half", "hdmi-frame-packing", …) or an
+ * alias from VirtualGL (rc, gm, by, i, tb, ss) or OpenSceneGraph
+ * (QUAD_BUFFER, ANAGLYPHIC, HORIZONTAL_SPLIT, VERTICAL_SPLIT,
+ * HORIZONTAL_INTERLACE, VERTICAL_INTERLACE, CHECKERBOARD, LEFT_EYE,
+ * RIGHT_EYE). Case-insensitive; surrounding whitespace is ignored.
+ * GLSTEREO_MODE accepts exactly the same names. Aliases select our
+ * nearest mode: VirtualGL's tb and OpenSceneGraph's VERTICAL_SPLIT give
+ * GLS_OUTPUT_TOP_BOTTOM_HALF with the left eye on top, whatever the peer does.
+ *
+ * Default: none; this call only translates. A surface's mode is set with
+ * gls_surface_set_output() or GLSTEREO_MODE.
+ *
+ * @param name a NUL-terminated UTF-8 string; must not be NULL.
+ * @param output_out receives the GLS_OUTPUT_* value; must not be NULL;
+ * written only on success.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER when name or output_out is NULL;
+ * GLS_ERROR_INVALID_VALUE when name is not a known mode (the message lists
+ * every valid name) or is not UTF-8.
+ * Thread-safe from any thread; needs no GL context.
+ */
+gls_result gls_output_from_name(const char *name, uint32_t *output_out);
+
+/**
+ * The canonical name of a GLS_OUTPUT_* value, e.g.
+ * "anaglyph-red-cyan-dubois" for GLS_OUTPUT_ANAGLYPH_RED_CYAN_DUBOIS;
+ * gls_output_from_name() of the name gives the value back.
+ *
+ * @param output GLS_OUTPUT_QUAD (0) … GLS_OUTPUT_STR_RECT (26).
+ * @return a static string, valid for the life of the process; do not free
+ * it. NULL for any other value, with a GLS_ERROR_INVALID_ENUM message for
+ * gls_last_error_message().
+ * Thread-safe from any thread; needs no GL context.
+ */
+const char *gls_output_name(uint32_t output);
 
 /**
  * Creates a surface: an emulated default framebuffer of `width` × `height`

@@ -17,6 +17,7 @@
 //! - [`display`], [`surface`]: the objects a program uses;
 //! - [`capture`]: PNG files;
 //! - [`image`]: RGBA8 images, rows top first;
+//! - [`output`]: output formats (mode names, geometry, CPU reference);
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]
@@ -30,6 +31,7 @@ pub mod ffi;
 pub mod gl;
 pub mod image;
 pub mod math;
+pub mod output;
 pub mod stereo;
 pub mod surface;
 

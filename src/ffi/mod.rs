@@ -17,5 +17,6 @@ pub mod core;
 pub mod display;
 pub(crate) mod handles;
 pub mod math;
+pub mod output;
 pub mod surface;
 pub mod types;

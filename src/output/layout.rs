@@ -1,0 +1,300 @@
+//! Where each eye goes: composite sizes and eye placements, shared by the CPU
+//! reference and the GL compositor so that both draw the same geometry.
+//!
+//! Coordinates are in output pixels with (0, 0) the TOP-left pixel, as in
+//! [`crate::image::Image`]. A GL viewport for a placement `p` in an output
+//! of height `H` is `(p.x, H − p.y − p.height, p.width, p.height)`.
+
+use crate::math::Eye;
+
+use super::mode::OutputMode;
+
+/// One eye image scaled into a rectangle of the output.
+///
+/// The whole eye (W×H texels) maps onto the rectangle: output pixel
+/// (x, y) inside it samples the eye at texel coordinates
+/// `u = (x − p.x + 0.5) · W / p.width`, `v = (y − p.y + 0.5) · H / p.height`
+/// (texel i has its centre at i + 0.5), with bilinear filtering and
+/// clamp-to-edge: exactly what GL does when a full-screen quad with texture
+/// coordinates 0…1 is drawn into the rectangle's viewport with GL_LINEAR.
+/// When the rectangle is the eye's size, this is an exact copy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Placement {
+    /// The eye drawn here (after any swap of the inputs).
+    pub eye: Eye,
+    /// Left column of the rectangle.
+    pub x: u32,
+    /// Top row of the rectangle (0 = top of the output).
+    pub y: u32,
+    /// Width in output pixels; 0 when the eye gets no columns (see
+    /// [`half_split`]).
+    pub width: u32,
+    /// Height in output pixels; 0 when the eye gets no rows.
+    pub height: u32,
+}
+
+/// The blank rows between the eyes in `hdmi-frame-packing`:
+/// `round(H / 24)` with halves rounded up, i.e. `(H + 12) / 24` in integers.
+/// Exactly H/24 for the HDMI 1.4a sizes (720 → 30, 1080 → 45), which is
+/// also 1/49 of the packed frame as HDMI and Bino define it.
+pub fn hdmi_gap(eye_height: u32) -> u32 {
+    eye_height.saturating_add(12) / 24
+}
+
+/// The rows each eye gets in `str-rect`: `round(H · 492 / 1024)` with halves
+/// rounded up, i.e. `(492·H + 512) / 1024` in integers. 1024 → 492 (SGI's
+/// STR_RECT: GL rows 532–1023 left, 0–491 right, 40 lost between);
+/// 768 → 369; 480 → 231. Never more than H/2, so the band between the eyes
+/// (H − 2·rows) is never negative; for H = 1 it is 0 rows (all black).
+pub fn str_rect_eye_rows(height: u32) -> u32 {
+    ((u64::from(height) * 492 + 512) / 1024) as u32
+}
+
+/// How `n` pixels split between two eyes placed one after the other in the
+/// `-half` modes and `starbase`: the first (left or top) eye gets
+/// `ceil(n/2)`, the second `floor(n/2)`. For odd n the first eye's squeeze
+/// is slightly weaker than the second's; for n = 1 the second eye gets no
+/// pixels at all.
+pub fn half_split(n: u32) -> (u32, u32) {
+    (n - n / 2, n / 2)
+}
+
+/// The size of the output frame of `mode` for eyes of `eye_width` ×
+/// `eye_height`:
+///
+/// - `side-by-side`: 2W×H; `top-bottom`: W×2H;
+/// - `hdmi-frame-packing`: W×(2H + [`hdmi_gap`]) (1280x720 → 1280x1470,
+///   1920x1080 → 1920x2205);
+/// - every other mode (quad included): W×H.
+///
+/// Arithmetic saturates instead of overflowing; [`super::cpu::compose`]
+/// rejects outputs larger than [`crate::image::MAX_DIMENSION`].
+pub fn composite_size(mode: OutputMode, eye_width: u32, eye_height: u32) -> (u32, u32) {
+    let (w, h) = (eye_width, eye_height);
+    match mode {
+        OutputMode::SideBySide => (w.saturating_mul(2), h),
+        OutputMode::TopBottom => (w, h.saturating_mul(2)),
+        OutputMode::HdmiFramePacking => (w, h.saturating_mul(2).saturating_add(hdmi_gap(h))),
+        OutputMode::Quad
+        | OutputMode::Left
+        | OutputMode::Right
+        | OutputMode::Anaglyph(..)
+        | OutputMode::AnaglyphRedBlue
+        | OutputMode::SideBySideHalf
+        | OutputMode::TopBottomHalf
+        | OutputMode::Rows
+        | OutputMode::Columns
+        | OutputMode::Checkerboard
+        | OutputMode::FrameSequential
+        | OutputMode::Starbase
+        | OutputMode::StrRect => (w, h),
+    }
+}
+
+/// The two placements of the modes that put each eye in its own rectangle
+/// (left first); None for every other mode. Output pixels outside both
+/// rectangles are black (0, 0, 0, 255).
+///
+/// - `side-by-side`: left (0, 0, W, H), right (W, 0, W, H).
+/// - `top-bottom`: left (0, 0, W, H), right (0, H, W, H).
+/// - `side-by-side-half`: left (0, 0, ⌈W/2⌉, H), right (⌈W/2⌉, 0, ⌊W/2⌋, H).
+/// - `top-bottom-half` and `starbase` (the same picture: HP's left eye in the
+///   upper 1280x512 of 1280x1024, right in the lower): left (0, 0, W, ⌈H/2⌉),
+///   right (0, ⌈H/2⌉, W, ⌊H/2⌋).
+/// - `hdmi-frame-packing`: left (0, 0, W, H), right (0, H + gap, W, H).
+/// - `str-rect` with e = [`str_rect_eye_rows`]\(H): left (0, 0, W, e),
+///   right (0, H − e, W, e).
+pub fn placements(mode: OutputMode, eye_width: u32, eye_height: u32) -> Option<[Placement; 2]> {
+    let (w, h) = (eye_width, eye_height);
+    let place = |eye, x, y, width, height| Placement {
+        eye,
+        x,
+        y,
+        width,
+        height,
+    };
+    let pair = |l: Placement, r: Placement| Some([l, r]);
+    match mode {
+        OutputMode::SideBySide => pair(place(Eye::Left, 0, 0, w, h), place(Eye::Right, w, 0, w, h)),
+        OutputMode::TopBottom => pair(place(Eye::Left, 0, 0, w, h), place(Eye::Right, 0, h, w, h)),
+        OutputMode::SideBySideHalf => {
+            let (a, b) = half_split(w);
+            pair(place(Eye::Left, 0, 0, a, h), place(Eye::Right, a, 0, b, h))
+        }
+        OutputMode::TopBottomHalf | OutputMode::Starbase => {
+            let (a, b) = half_split(h);
+            pair(place(Eye::Left, 0, 0, w, a), place(Eye::Right, 0, a, w, b))
+        }
+        OutputMode::HdmiFramePacking => pair(
+            place(Eye::Left, 0, 0, w, h),
+            place(Eye::Right, 0, h + hdmi_gap(h), w, h),
+        ),
+        OutputMode::StrRect => {
+            let e = str_rect_eye_rows(h);
+            pair(
+                place(Eye::Left, 0, 0, w, e),
+                place(Eye::Right, 0, h - e, w, e),
+            )
+        }
+        OutputMode::Quad
+        | OutputMode::Left
+        | OutputMode::Right
+        | OutputMode::Anaglyph(..)
+        | OutputMode::AnaglyphRedBlue
+        | OutputMode::Rows
+        | OutputMode::Columns
+        | OutputMode::Checkerboard
+        | OutputMode::FrameSequential => None,
+    }
+}
+
+/// The eye shown at output pixel (x, y) of the pixel-interleaved modes,
+/// counted from the top-left pixel: `rows` by y, `columns` by x,
+/// `checkerboard` by x + y; even = left. None for other modes.
+pub fn interleaved_eye(mode: OutputMode, x: u32, y: u32) -> Option<Eye> {
+    let even = match mode {
+        OutputMode::Rows => y % 2 == 0,
+        OutputMode::Columns => x % 2 == 0,
+        OutputMode::Checkerboard => (x + y) % 2 == 0,
+        _ => return None,
+    };
+    Some(if even { Eye::Left } else { Eye::Right })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hdmi_frame_packing_matches_the_hdmi_sizes() {
+        let m = OutputMode::HdmiFramePacking;
+        assert_eq!(composite_size(m, 1280, 720), (1280, 1470));
+        assert_eq!(composite_size(m, 1920, 1080), (1920, 2205));
+        // Rounding for heights that are not multiples of 24: half up.
+        assert_eq!(hdmi_gap(11), 0);
+        assert_eq!(hdmi_gap(12), 1);
+        assert_eq!(hdmi_gap(35), 1);
+        assert_eq!(hdmi_gap(36), 2);
+        assert_eq!(hdmi_gap(1), 0);
+    }
+
+    #[test]
+    fn full_size_modes_double_one_dimension_and_others_keep_the_eye_size() {
+        for m in OutputMode::all() {
+            let got = composite_size(m, 640, 480);
+            let want = match m {
+                OutputMode::SideBySide => (1280, 480),
+                OutputMode::TopBottom => (640, 960),
+                OutputMode::HdmiFramePacking => (640, 980),
+                _ => (640, 480),
+            };
+            assert_eq!(got, want, "{m}");
+        }
+        assert_eq!(
+            composite_size(OutputMode::SideBySide, u32::MAX, 1),
+            (u32::MAX, 1),
+            "saturates instead of overflowing"
+        );
+    }
+
+    #[test]
+    fn str_rect_keeps_sgi_rows_for_1024_and_scales_otherwise() {
+        assert_eq!(str_rect_eye_rows(1024), 492);
+        let p = placements(OutputMode::StrRect, 1280, 1024).unwrap();
+        // Top-first rows 0..492 are GL rows 532..1023; rows 532..1024 are GL 0..491.
+        assert_eq!((p[0].eye, p[0].y, p[0].height), (Eye::Left, 0, 492));
+        assert_eq!((p[1].eye, p[1].y, p[1].height), (Eye::Right, 532, 492));
+        assert_eq!(1024 - (p[0].y + p[0].height), 532, "left's GL bottom row");
+        assert_eq!(1024 - (p[1].y + p[1].height), 0, "right's GL bottom row");
+        assert_eq!(str_rect_eye_rows(768), 369);
+        assert_eq!(str_rect_eye_rows(480), 231);
+        for h in 1..=4096 {
+            let e = str_rect_eye_rows(h);
+            assert!(2 * e <= h, "H={h}: eyes of {e} rows overlap");
+            let exact = f64::from(h) * 492.0 / 1024.0;
+            assert!((f64::from(e) - exact).abs() <= 0.5, "H={h}: {e} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn half_modes_split_first_eye_ceil_second_floor() {
+        assert_eq!(half_split(1024), (512, 512));
+        assert_eq!(half_split(5), (3, 2));
+        assert_eq!(half_split(1), (1, 0));
+        let p = placements(OutputMode::SideBySideHalf, 5, 3).unwrap();
+        assert_eq!((p[0].x, p[0].width, p[1].x, p[1].width), (0, 3, 3, 2));
+        let p = placements(OutputMode::Starbase, 1280, 1024).unwrap();
+        assert_eq!(
+            p,
+            [
+                Placement {
+                    eye: Eye::Left,
+                    x: 0,
+                    y: 0,
+                    width: 1280,
+                    height: 512
+                },
+                Placement {
+                    eye: Eye::Right,
+                    x: 0,
+                    y: 512,
+                    width: 1280,
+                    height: 512
+                },
+            ],
+            "HP Starbase: left = upper 1280x512, right = lower 1280x512"
+        );
+    }
+
+    #[test]
+    fn placements_stay_inside_the_composite_and_do_not_overlap() {
+        for m in OutputMode::all() {
+            for (w, h) in [(1, 1), (2, 3), (7, 5), (64, 48), (1280, 1024)] {
+                let (cw, ch) = composite_size(m, w, h);
+                let Some([a, b]) = placements(m, w, h) else {
+                    continue;
+                };
+                assert_eq!((a.eye, b.eye), (Eye::Left, Eye::Right), "{m}");
+                for p in [a, b] {
+                    assert!(
+                        p.x + p.width <= cw && p.y + p.height <= ch,
+                        "{m} {w}x{h}: {p:?}"
+                    );
+                }
+                let apart = a.x + a.width <= b.x || a.y + a.height <= b.y;
+                assert!(apart, "{m} {w}x{h}: {a:?} overlaps {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn placements_exist_exactly_for_the_rectangle_modes() {
+        use OutputMode::*;
+        for m in OutputMode::all() {
+            let want = matches!(
+                m,
+                SideBySide
+                    | TopBottom
+                    | SideBySideHalf
+                    | TopBottomHalf
+                    | HdmiFramePacking
+                    | Starbase
+                    | StrRect
+            );
+            assert_eq!(placements(m, 8, 6).is_some(), want, "{m}");
+        }
+    }
+
+    #[test]
+    fn interleave_parity_counts_from_the_top_left() {
+        use OutputMode::*;
+        assert_eq!(interleaved_eye(Rows, 5, 0), Some(Eye::Left));
+        assert_eq!(interleaved_eye(Rows, 0, 1), Some(Eye::Right));
+        assert_eq!(interleaved_eye(Columns, 0, 7), Some(Eye::Left));
+        assert_eq!(interleaved_eye(Columns, 1, 0), Some(Eye::Right));
+        assert_eq!(interleaved_eye(Checkerboard, 0, 0), Some(Eye::Left));
+        assert_eq!(interleaved_eye(Checkerboard, 1, 0), Some(Eye::Right));
+        assert_eq!(interleaved_eye(Checkerboard, 1, 1), Some(Eye::Left));
+        assert_eq!(interleaved_eye(SideBySide, 0, 0), None);
+    }
+}

@@ -1,0 +1,27 @@
+//! Output formats: how the two eye images become something a person can see.
+//!
+//! This half is pure (no GL): the mode names, the options and their
+//! environment variables, the geometry of every mode, the anaglyph colour
+//! math, and the CPU reference of every composite ([`cpu::compose`]), which
+//! is the oracle the GL compositor is tested against and the production path
+//! for headless capture.
+//!
+//! - [`mode`]: [`OutputMode`], canonical names, VirtualGL/OSG aliases.
+//! - [`options`]: [`OutputOptions`] (swap, crosstalk, saturation) and
+//!   [`OutputSettings::from_env_with`] for `GLSTEREO_*`.
+//! - [`layout`]: [`composite_size`] and where each eye goes.
+//! - [`anaglyph`]: luminance weights, sRGB curves, Dubois matrices.
+//! - [`cpu`]: [`compose`], the reference of every mode.
+//! - [`pattern`]: deterministic gradient and noise test images.
+
+pub mod anaglyph;
+pub mod cpu;
+pub mod layout;
+pub mod mode;
+pub mod options;
+pub mod pattern;
+
+pub use cpu::{compose, compose_into};
+pub use layout::{Placement, composite_size, placements};
+pub use mode::{ALIASES, Alias, AliasSource, AnaglyphColors, AnaglyphMethod, OutputMode};
+pub use options::{OutputOptions, OutputSettings};
