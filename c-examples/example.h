@@ -100,6 +100,16 @@ static int example_mkdir_p(const char *dir) {
     return (mkdir(path, 0777) != 0 && errno != EEXIST) ? -1 : 0;
 }
 
+/* Applies --mode (if given) to the surface's output format. */
+static int example_apply_mode(gls_surface *surface, const example_options *o) {
+    uint32_t mode;
+    gls_result r;
+    if (!o->mode) return 0;
+    if ((r = gls_output_from_name(o->mode, &mode)) != GLS_OK) return example_fail("--mode", r);
+    if ((r = gls_surface_set_output(surface, mode)) != GLS_OK) return example_fail("gls_surface_set_output", r);
+    return 0;
+}
+
 /* Writes left.png, right.png and composite.png into o->out_dir (if set). */
 static int example_save(gls_surface *surface, const example_options *o) {
     static const struct { uint32_t image; const char *name; } files[] = {

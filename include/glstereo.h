@@ -254,6 +254,32 @@
 #define GLS_IMAGE_COMPOSITE 2
 
 /**
+ * Input framing: the left and right front buffers (GLX_STEREO, HP windowed
+ * OpenGL, SGI square-pixel stereo). Default.
+ */
+#define GLS_INPUT_QUAD_BUFFER 0
+
+/**
+ * Input framing: HP Starbase sync-doubling (seed 000 §9). One mono frame:
+ * left eye in the upper half, right eye in the lower half, each drawn
+ * squashed 1:2 and stretched ×2 vertically as the display shows it.
+ */
+#define GLS_INPUT_SYNC_DOUBLED 1
+
+/**
+ * Input framing: SGI STR_RECT (seed 002). For 1024 rows: left eye in GL
+ * rows 532–1023, right eye in rows 0–491, 40 rows lost; each stretched to
+ * the full height. Other heights scale proportionally.
+ */
+#define GLS_INPUT_STR_RECT 2
+
+/**
+ * Input framing: Xinerama "passive" stereo (seed 001). A double-width mono
+ * frame: left eye in the left half, right eye in the right half.
+ */
+#define GLS_INPUT_SIDE_BY_SIDE 3
+
+/**
  * The left eye.
  */
 #define GLS_EYE_LEFT 0
@@ -991,6 +1017,79 @@ gls_result gls_surface_read_pixels(struct gls_surface *surface,
 gls_result gls_surface_save_png(struct gls_surface *surface,
                                 uint32_t image,
                                 const char *path);
+
+/**
+ * Sets the output format a surface's composite (its window, and
+ * GLS_IMAGE_COMPOSITE captures) is made in.
+ *
+ * GLS_OUTPUT_QUAD shows the eyes in the driver's own quad buffer on a
+ * natively stereo configuration; on any other it falls back to
+ * GLS_OUTPUT_ANAGLYPH_RED_CYAN (gls_surface_get_output() still reports QUAD).
+ *
+ * Default: GLSTEREO_MODE when set at surface creation, else
+ * GLS_OUTPUT_ANAGLYPH_RED_CYAN.
+ *
+ * @param surface a live surface. @param output a GLS_OUTPUT_* value.
+ * @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_ENUM (nothing
+ * changes). Any thread.
+ */
+gls_result gls_surface_set_output(struct gls_surface *surface, uint32_t output);
+
+/**
+ * The output format as set (GLS_OUTPUT_QUAD included, even where it falls back).
+ *
+ * @param surface a live surface. @param output_out must not be NULL.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any thread.
+ */
+gls_result gls_surface_get_output(const struct gls_surface *surface, uint32_t *output_out);
+
+/**
+ * Exchanges the eyes in every output format (for glasses worn the other
+ * way round, or a peer's opposite convention).
+ *
+ * Default: GLSTEREO_SWAP_EYES at surface creation, else false.
+ *
+ * @return GLS_OK or GLS_ERROR_INVALID_HANDLE. Any thread.
+ */
+gls_result gls_surface_set_swap_eyes(struct gls_surface *surface, bool swap_eyes);
+
+/**
+ * Crosstalk ("ghosting") reduction: subtracts this fraction of the other
+ * eye from each eye before composing, in every format that shows both eyes.
+ *
+ * Default: GLSTEREO_CROSSTALK at surface creation, else 0.
+ *
+ * @param crosstalk 0…1.
+ * @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
+ * (outside 0…1 or NaN; nothing changes). Any thread.
+ */
+gls_result gls_surface_set_crosstalk(struct gls_surface *surface, float crosstalk);
+
+/**
+ * Anaglyph colour saturation, as VTK has it: each eye is blended toward
+ * its luminance before the anaglyph filter (1 = full colour, 0 = grey).
+ * Lower values reduce retinal rivalry on saturated scenes.
+ *
+ * Default: GLSTEREO_SATURATION at surface creation, else 1.
+ *
+ * @param saturation 0…1.
+ * @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
+ * (outside 0…1 or NaN; nothing changes). Any thread.
+ */
+gls_result gls_surface_set_saturation(struct gls_surface *surface, float saturation);
+
+/**
+ * Sets how the program delivers its eyes (the input framing): the quad
+ * buffer (default), one sync-doubled frame (HP Starbase), SGI STR_RECT, or
+ * a double-width side-by-side frame (Xinerama). The eyes taken apart flow
+ * to every output format and capture.
+ *
+ * @param surface a live surface. @param input a GLS_INPUT_* value.
+ * @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_ENUM;
+ * GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
+ * that way (nothing changes). Any thread.
+ */
+gls_result gls_surface_set_input(struct gls_surface *surface, uint32_t input);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -17,6 +17,7 @@
 //! - [`display`], [`surface`]: the objects a program uses;
 //! - [`capture`]: PNG files;
 //! - [`image`]: RGBA8 images, rows top first;
+//! - [`framing`]: input framings (quad buffer, sync-doubled, STR_RECT, side-by-side);
 //! - [`output`]: output formats (mode names, geometry, CPU reference);
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
@@ -28,6 +29,7 @@ pub mod config;
 pub mod display;
 pub mod error;
 pub mod ffi;
+pub mod framing;
 pub mod gl;
 pub mod image;
 pub mod math;

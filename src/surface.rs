@@ -12,9 +12,12 @@ use crate::backend::{ContextRole, PlatformSurface};
 use crate::config::{Config, StereoKind};
 use crate::display::Display;
 use crate::error::{Error, Result};
+use crate::framing::InputFraming;
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, check_size};
+use crate::output::options::{OutputOptions, OutputSettings};
+use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
 use crate::stereo::buffers::{ColorBuffer, resolve_read_buffer};
 use crate::stereo::emulated::EmulatedFramebuffer;
 
@@ -93,9 +96,21 @@ pub fn make_current(surface: Option<&Arc<Surface>>) -> Result<()> {
     Ok(())
 }
 
+/// The output mode a surface uses when neither the program nor
+/// GLSTEREO_MODE chose one, and the fallback for `quad` on a surface without
+/// native stereo.
+pub const DEFAULT_OUTPUT: OutputMode =
+    OutputMode::Anaglyph(AnaglyphColors::RedCyan, AnaglyphMethod::FullColor);
+
 /// The mutable state of a surface.
 struct SurfaceState {
     fb: EmulatedFramebuffer,
+    /// How the program delivers its eyes.
+    framing: InputFraming,
+    /// The output mode as set (may be `quad`).
+    output: OutputMode,
+    /// Swap, crosstalk, saturation.
+    options: OutputOptions,
     /// Swaps so far.
     frames: u64,
     /// A GL error the emulation raised, reported by the next get_error().
@@ -150,6 +165,9 @@ impl Surface {
                 "native stereo configurations need a window: use the GLX backend",
             ));
         }
+        // The environment's output settings apply to every new surface; a
+        // bad value fails here, before anything is created.
+        let settings = OutputSettings::from_env()?;
         let platform = display.platform().create_surface(&config, width, height)?;
         let shape = config.shape();
         let (fb, gl) = with_compositor_of(&*platform, || {
@@ -175,6 +193,9 @@ impl Surface {
             owner: Mutex::new(None),
             state: Mutex::new(SurfaceState {
                 fb,
+                framing: InputFraming::QuadBuffer,
+                output: settings.mode.unwrap_or(DEFAULT_OUTPUT),
+                options: settings.options,
                 frames: 0,
                 pending_gl_error: GL_NO_ERROR,
             }),
@@ -387,22 +408,90 @@ impl Surface {
         Ok(img)
     }
 
-    /// The two eyes as they are displayed now (the front buffers); a mono
-    /// surface shows its one image to both eyes.
+    /// The two eyes as they are displayed now, taken apart from the front
+    /// buffers by the surface's input framing (a mono surface in the
+    /// quad-buffer framing shows its one image to both eyes).
     pub fn eye_images(self: &Arc<Self>) -> Result<(Image, Image)> {
-        let left = self.read_color_buffer(ColorBuffer::FrontLeft)?;
-        let right = if self.config.shape().stereo {
-            self.read_color_buffer(ColorBuffer::FrontRight)?
-        } else {
-            left.clone()
+        let (framing, shape, (w, h)) = {
+            let st = self.state.lock().unwrap();
+            (st.framing, st.fb.shape(), st.fb.size())
         };
-        Ok((left, right))
+        let [ls, rs] = framing.sources(shape, w, h);
+        let left_buf = self.read_color_buffer(ls.buffer)?;
+        let right_buf = if rs.buffer == ls.buffer {
+            None
+        } else {
+            Some(self.read_color_buffer(rs.buffer)?)
+        };
+        let right_buf = right_buf.as_ref().unwrap_or(&left_buf);
+        Ok((
+            framing.extract(&ls, &left_buf),
+            framing.extract(&rs, right_buf),
+        ))
+    }
+
+    /// The output mode as set (`quad` included).
+    pub fn output(&self) -> OutputMode {
+        self.state.lock().unwrap().output
+    }
+
+    /// The mode the composite is made in: the output mode, except that
+    /// `quad` on a surface without native stereo falls back to
+    /// [`DEFAULT_OUTPUT`] (anaglyph-red-cyan).
+    pub fn effective_output(&self) -> OutputMode {
+        match self.output() {
+            OutputMode::Quad if self.config.stereo != StereoKind::Native => DEFAULT_OUTPUT,
+            m => m,
+        }
+    }
+
+    /// Sets the output mode.
+    pub fn set_output(&self, mode: OutputMode) {
+        self.state.lock().unwrap().output = mode;
+    }
+
+    /// The output options.
+    pub fn options(&self) -> OutputOptions {
+        self.state.lock().unwrap().options
+    }
+
+    /// Sets the output options (validated first; on error nothing changes).
+    pub fn set_options(&self, options: OutputOptions) -> Result<()> {
+        let options = options.validated()?;
+        self.state.lock().unwrap().options = options;
+        Ok(())
+    }
+
+    /// The input framing.
+    pub fn framing(&self) -> InputFraming {
+        self.state.lock().unwrap().framing
+    }
+
+    /// Sets how the program delivers its eyes (checked against the size).
+    pub fn set_framing(&self, framing: InputFraming) -> Result<()> {
+        let mut st = self.state.lock().unwrap();
+        let (w, h) = st.fb.size();
+        framing.check(st.fb.shape(), w, h)?;
+        st.framing = framing;
+        Ok(())
     }
 
     /// The composite in the surface's output mode, as a viewer sees it now.
+    /// For `frame-sequential`, the frame presented last (the first swap is
+    /// frame 0, the left eye).
     pub fn composite_image(self: &Arc<Self>) -> Result<Image> {
         let (left, right) = self.eye_images()?;
-        Ok(red_cyan(&left, &right))
+        let (options, frames) = {
+            let st = self.state.lock().unwrap();
+            (st.options, st.frames)
+        };
+        cpu::compose(
+            self.effective_output(),
+            &options,
+            &left,
+            &right,
+            frames.saturating_sub(1),
+        )
     }
 
     /// Writes one of the images a viewer sees now to a PNG file
@@ -440,21 +529,6 @@ fn set_opaque(img: &mut Image) {
     for px in img.pixels_mut().chunks_exact_mut(4) {
         px[3] = 255;
     }
-}
-
-/// Interim composite until the output formats land: a full-colour red-cyan
-/// anaglyph (R from the left eye, G and B from the right).
-fn red_cyan(left: &Image, right: &Image) -> Image {
-    let mut out = right.clone();
-    for (o, l) in out
-        .pixels_mut()
-        .chunks_exact_mut(4)
-        .zip(left.pixels().chunks_exact(4))
-    {
-        o[0] = l[0];
-        o[3] = 255;
-    }
-    out
 }
 
 fn record_gl_error(st: &mut SurfaceState, r: &Result<()>) {

@@ -51,9 +51,20 @@ fn assert_rect(
 }
 
 fn run_redblue(osmesa: bool, backend: &str, out: &Path, extra_env: &[(&str, &str)]) -> String {
+    run_redblue_args(osmesa, backend, out, extra_env, &[])
+}
+
+fn run_redblue_args(
+    osmesa: bool,
+    backend: &str,
+    out: &Path,
+    extra_env: &[(&str, &str)],
+    args: &[&str],
+) -> String {
     let exe = common::build_example("redblue", osmesa);
     let mut cmd = Command::new(exe);
     cmd.args(["--out", out.to_str().unwrap(), "--size", "320x240"])
+        .args(args)
         .env("GLSTEREO_BACKEND", backend)
         .env_remove("GLSTEREO_MODE")
         .env_remove("GLSTEREO_EMULATION");
@@ -126,4 +137,60 @@ fn an_osmesa_build_refuses_the_egl_backend_kind_of_mistake() {
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("-lOSMesa"), "{err}");
+}
+
+#[test]
+fn the_output_mode_comes_from_the_command_line_or_the_environment() {
+    // --mode through gls_surface_set_output: side-by-side is 2W x H, left eye on the left.
+    let out = common::scratch("redblue_sbs");
+    run_redblue_args(false, "egl", &out, &[], &["--mode", "side-by-side"]);
+    let comp = common::png(&out.join("composite.png"));
+    let left = common::png(&out.join("left.png"));
+    assert_eq!((comp.width(), comp.height()), (640, 240));
+    for (x, y) in [(0, 0), (100, 150), (319, 239)] {
+        assert_eq!(
+            comp.get(x, y),
+            left.get(x, y),
+            "left half is the left eye at ({x}, {y})"
+        );
+    }
+    // GLSTEREO_MODE, with an alias, case-insensitive: VirtualGL's "tb" = top-bottom-half.
+    let out = common::scratch("redblue_env_tb");
+    run_redblue(false, "egl", &out, &[("GLSTEREO_MODE", "TB")]);
+    let comp = common::png(&out.join("composite.png"));
+    assert_eq!((comp.width(), comp.height()), (320, 240));
+    // The left eye (blue rectangle at rows 96..216 of 240) squeezed into the top half.
+    assert_eq!(comp.get(100, 48 + 30)[2], 255, "blue in the top half");
+    assert!(
+        comp.get(100, 120 + 30)[2] < 60,
+        "no blue at that place in the bottom half"
+    );
+}
+
+#[test]
+fn a_bad_mode_is_a_clear_error_listing_the_names() {
+    let exe = common::build_example("redblue", false);
+    let o = Command::new(&exe)
+        .env("GLSTEREO_BACKEND", "egl")
+        .env("GLSTEREO_MODE", "garbage")
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("garbage")
+            && err.contains("anaglyph-red-cyan")
+            && err.contains("checkerboard"),
+        "{err}"
+    );
+    let o = Command::new(&exe)
+        .args(["--mode", "nonsense"])
+        .env("GLSTEREO_BACKEND", "egl")
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("side-by-side"),
+        "lists the valid names"
+    );
 }

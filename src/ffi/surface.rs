@@ -11,6 +11,7 @@ use super::types::*;
 use crate::config::Config;
 use crate::display::Display;
 use crate::error::Error;
+use crate::framing::InputFraming;
 use crate::math::{Eye, hp_eye};
 use crate::surface::{self, CaptureImage, Surface};
 
@@ -355,5 +356,155 @@ pub unsafe extern "C" fn gls_surface_save_png(
         // SAFETY: NUL-terminated (contract).
         let path = unsafe { arg_str(path, "path")? };
         s.save_png(which, std::path::Path::new(path))
+    })
+}
+
+/// Input framing: the left and right front buffers (GLX_STEREO, HP windowed
+/// OpenGL, SGI square-pixel stereo). Default.
+pub const GLS_INPUT_QUAD_BUFFER: u32 = 0;
+/// Input framing: HP Starbase sync-doubling (seed 000 §9). One mono frame:
+/// left eye in the upper half, right eye in the lower half, each drawn
+/// squashed 1:2 and stretched ×2 vertically as the display shows it.
+pub const GLS_INPUT_SYNC_DOUBLED: u32 = 1;
+/// Input framing: SGI STR_RECT (seed 002). For 1024 rows: left eye in GL
+/// rows 532–1023, right eye in rows 0–491, 40 rows lost; each stretched to
+/// the full height. Other heights scale proportionally.
+pub const GLS_INPUT_STR_RECT: u32 = 2;
+/// Input framing: Xinerama "passive" stereo (seed 001). A double-width mono
+/// frame: left eye in the left half, right eye in the right half.
+pub const GLS_INPUT_SIDE_BY_SIDE: u32 = 3;
+
+/// Sets the output format a surface's composite (its window, and
+/// GLS_IMAGE_COMPOSITE captures) is made in.
+///
+/// GLS_OUTPUT_QUAD shows the eyes in the driver's own quad buffer on a
+/// natively stereo configuration; on any other it falls back to
+/// GLS_OUTPUT_ANAGLYPH_RED_CYAN (gls_surface_get_output() still reports QUAD).
+///
+/// Default: GLSTEREO_MODE when set at surface creation, else
+/// GLS_OUTPUT_ANAGLYPH_RED_CYAN.
+///
+/// @param surface a live surface. @param output a GLS_OUTPUT_* value.
+/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_ENUM (nothing
+/// changes). Any thread.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_surface_set_output(surface: *mut gls_surface, output: u32) -> gls_result {
+    ffi_boundary!("gls_surface_set_output", {
+        let s = surface_arg(surface)?;
+        s.set_output(crate::output::OutputMode::try_from(output)?);
+        Ok(())
+    })
+}
+
+/// The output format as set (GLS_OUTPUT_QUAD included, even where it falls back).
+///
+/// @param surface a live surface. @param output_out must not be NULL.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_get_output(
+    surface: *const gls_surface,
+    output_out: *mut u32,
+) -> gls_result {
+    ffi_boundary!("gls_surface_get_output", {
+        let s = surface_arg(surface)?;
+        let out = arg_out(output_out, "output_out")?;
+        // SAFETY: checked non-NULL.
+        unsafe { write_out(out, u32::from(s.output())) };
+        Ok(())
+    })
+}
+
+/// Exchanges the eyes in every output format (for glasses worn the other
+/// way round, or a peer's opposite convention).
+///
+/// Default: GLSTEREO_SWAP_EYES at surface creation, else false.
+///
+/// @return GLS_OK or GLS_ERROR_INVALID_HANDLE. Any thread.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_surface_set_swap_eyes(
+    surface: *mut gls_surface,
+    swap_eyes: bool,
+) -> gls_result {
+    ffi_boundary!("gls_surface_set_swap_eyes", {
+        let s = surface_arg(surface)?;
+        s.set_options(crate::output::OutputOptions {
+            swap_eyes,
+            ..s.options()
+        })
+    })
+}
+
+/// Crosstalk ("ghosting") reduction: subtracts this fraction of the other
+/// eye from each eye before composing, in every format that shows both eyes.
+///
+/// Default: GLSTEREO_CROSSTALK at surface creation, else 0.
+///
+/// @param crosstalk 0…1.
+/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
+/// (outside 0…1 or NaN; nothing changes). Any thread.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_surface_set_crosstalk(
+    surface: *mut gls_surface,
+    crosstalk: f32,
+) -> gls_result {
+    ffi_boundary!("gls_surface_set_crosstalk", {
+        let s = surface_arg(surface)?;
+        s.set_options(crate::output::OutputOptions {
+            crosstalk,
+            ..s.options()
+        })
+    })
+}
+
+/// Anaglyph colour saturation, as VTK has it: each eye is blended toward
+/// its luminance before the anaglyph filter (1 = full colour, 0 = grey).
+/// Lower values reduce retinal rivalry on saturated scenes.
+///
+/// Default: GLSTEREO_SATURATION at surface creation, else 1.
+///
+/// @param saturation 0…1.
+/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
+/// (outside 0…1 or NaN; nothing changes). Any thread.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_surface_set_saturation(
+    surface: *mut gls_surface,
+    saturation: f32,
+) -> gls_result {
+    ffi_boundary!("gls_surface_set_saturation", {
+        let s = surface_arg(surface)?;
+        s.set_options(crate::output::OutputOptions {
+            saturation,
+            ..s.options()
+        })
+    })
+}
+
+/// Sets how the program delivers its eyes (the input framing): the quad
+/// buffer (default), one sync-doubled frame (HP Starbase), SGI STR_RECT, or
+/// a double-width side-by-side frame (Xinerama). The eyes taken apart flow
+/// to every output format and capture.
+///
+/// @param surface a live surface. @param input a GLS_INPUT_* value.
+/// @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_ENUM;
+/// GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
+/// that way (nothing changes). Any thread.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_surface_set_input(surface: *mut gls_surface, input: u32) -> gls_result {
+    ffi_boundary!("gls_surface_set_input", {
+        let s = surface_arg(surface)?;
+        let framing = match input {
+            GLS_INPUT_QUAD_BUFFER => InputFraming::QuadBuffer,
+            GLS_INPUT_SYNC_DOUBLED => InputFraming::SyncDoubled,
+            GLS_INPUT_STR_RECT => InputFraming::StrRect,
+            GLS_INPUT_SIDE_BY_SIDE => InputFraming::SideBySide,
+            v => {
+                return Err(Error::invalid_enum(
+                    "input",
+                    v,
+                    "use GLS_INPUT_QUAD_BUFFER, GLS_INPUT_SYNC_DOUBLED, GLS_INPUT_STR_RECT or GLS_INPUT_SIDE_BY_SIDE",
+                ));
+            }
+        };
+        s.set_framing(framing)
     })
 }

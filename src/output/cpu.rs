@@ -373,6 +373,40 @@ fn sample_row(img: &Image, vt: Tap, ht: Option<&[Tap]>, tmp: &mut Vec<Rgb>, dst:
     }
 }
 
+/// Resamples the rectangle (`x`, `y`, `w`, `h`) of `src` (rows top first)
+/// to `out_w` × `out_h` pixels with the module's bilinear rule (sample at
+/// the output pixel centre mapped into the rectangle, clamp-to-edge within
+/// it). Same size is an exact copy. Output alpha is 255.
+///
+/// Panics if the rectangle is empty or not inside `src` (callers build it
+/// from the image's own size).
+pub fn resample(src: &Image, x: u32, y: u32, w: u32, h: u32, out_w: u32, out_h: u32) -> Image {
+    assert!(
+        w > 0 && h > 0 && x + w <= src.width() && y + h <= src.height(),
+        "resample rectangle"
+    );
+    let mut sub = Image::new(w, h);
+    for row in 0..h {
+        let s = &src.row(y + row)[x as usize * 4..(x + w) as usize * 4];
+        row_mut(&mut sub, row).copy_from_slice(s);
+    }
+    let mut out = Image::new(out_w, out_h);
+    if (w, h) == (out_w, out_h) {
+        for row in 0..h {
+            copy_opaque(sub.row(row), row_mut(&mut out, row));
+        }
+        return out;
+    }
+    let ht: Vec<Tap> = (0..out_w).map(|i| tap(i, w, out_w)).collect();
+    let ht = (w != out_w).then_some(&ht[..]);
+    let (mut tmp, mut line) = (Vec::new(), Vec::new());
+    for row in 0..out_h {
+        sample_row(&sub, tap(row, h, out_h), ht, &mut tmp, &mut line);
+        store(&line, row_mut(&mut out, row));
+    }
+    out
+}
+
 /// Draws `eye` scaled into placement `p`, with crosstalk against `other`
 /// sampled at the same coordinates.
 fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: &mut Image) {
