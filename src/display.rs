@@ -38,6 +38,14 @@ impl Display {
         }))
     }
 
+    /// Opens the GLX backend on the X display `name` (None: $DISPLAY).
+    pub fn open_x11(name: Option<&str>) -> Result<Arc<Display>> {
+        Ok(Arc::new(Display {
+            platform: Box::new(backend::glx::GlxPlatform::open(name)?),
+            gl: OnceLock::new(),
+        }))
+    }
+
     /// Which backend this display uses.
     pub fn kind(&self) -> BackendKind {
         self.platform.kind()

@@ -160,11 +160,6 @@ impl Surface {
         height: u32,
     ) -> Result<Arc<Surface>> {
         check_size(width, height)?;
-        if config.stereo == StereoKind::Native {
-            return Err(Error::invalid_operation(
-                "native stereo configurations need a window: use the GLX backend",
-            ));
-        }
         // The environment's output settings apply to every new surface; a
         // bad value fails here, before anything is created.
         let settings = OutputSettings::from_env()?;

@@ -227,6 +227,13 @@ impl PlatformSurface for EglSurface {
             })
     }
 
+    fn native_handles(&self) -> super::NativeHandles {
+        super::NativeHandles::Egl {
+            display: self.shared.display.as_ptr(),
+            context: self.app.as_ptr(),
+        }
+    }
+
     fn release_current(&self) -> Result<()> {
         self.shared
             .egl

@@ -8,6 +8,7 @@
 //! touches the program's GL state.
 
 pub mod egl;
+pub mod glx;
 pub mod osmesa;
 
 use std::ffi::{CStr, c_void};
@@ -97,6 +98,44 @@ pub trait Platform: Send + Sync {
     fn get_proc_address(&self, name: &CStr) -> *const c_void;
 }
 
+/// Something that happened to a window.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WindowEvent {
+    /// A key was pressed: its X keysym (XK_*; Latin-1 keys are their character codes).
+    Key(u32),
+    /// The user asked to close the window (the window manager's close button).
+    CloseRequested,
+}
+
+/// The backend's own handles of a surface, for programs that mix glstereo
+/// with their own use of the backend.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NativeHandles {
+    /// Xlib `Display*`, the X `Window`, and the application's `GLXContext`.
+    Glx {
+        /// `Display*`.
+        display: *mut c_void,
+        /// `Window` (XID).
+        window: u64,
+        /// `GLXContext` of the application.
+        context: *mut c_void,
+    },
+    /// `EGLDisplay` and the application's `EGLContext` (surfaceless: no `EGLSurface`).
+    Egl {
+        /// `EGLDisplay`.
+        display: *mut c_void,
+        /// `EGLContext` of the application.
+        context: *mut c_void,
+    },
+    /// The application's `OSMesaContext` and the buffer it is bound to.
+    OsMesa {
+        /// `OSMesaContext` of the application.
+        context: *mut c_void,
+        /// The 1x1 RGBA buffer bound with OSMesaMakeCurrent (rendering goes to glstereo's framebuffer).
+        buffer: *mut c_void,
+    },
+}
+
 /// The backend half of a surface: its drawable and two contexts.
 pub trait PlatformSurface: Send + Sync {
     /// Makes one of the surface's contexts current on the calling thread.
@@ -115,6 +154,31 @@ pub trait PlatformSurface: Send + Sync {
     fn drawable_size(&self) -> Option<(u32, u32)> {
         None
     }
+
+    /// Resizes the window (headless surfaces: `InvalidOperation`).
+    fn resize_window(&self, _width: u32, _height: u32) -> Result<()> {
+        Err(Error::invalid_operation(
+            "a headless surface has no window to resize",
+        ))
+    }
+
+    /// The next window event, if any (headless surfaces have none).
+    fn next_event(&self) -> Option<WindowEvent> {
+        None
+    }
+
+    /// Whether the user asked to close the window.
+    fn close_requested(&self) -> bool {
+        false
+    }
+
+    /// Sets the window title (headless surfaces: nothing to do).
+    fn set_title(&self, _title: &str) -> Result<()> {
+        Ok(())
+    }
+
+    /// The backend's own handles.
+    fn native_handles(&self) -> NativeHandles;
 }
 
 /// Opens the backend `choice` selects. For Auto, tries GLX (when compiled
@@ -153,9 +217,11 @@ fn auto_order() -> Vec<BackendKind> {
     v
 }
 
-/// Whether the GLX backend is part of this build.
+/// Whether GLX is worth trying: libGL can be loaded.
 fn glx_available() -> bool {
-    false
+    // SAFETY: loading the system's libGL runs only its initialisers; the GLX
+    // backend loads it anyway when used.
+    unsafe { libloading::Library::new("libGL.so.1") }.is_ok()
 }
 
 fn open_kind(kind: BackendKind) -> Result<Box<dyn Platform>> {
@@ -171,9 +237,7 @@ fn open_kind(kind: BackendKind) -> Result<Box<dyn Platform>> {
             }
             Ok(Box::new(osmesa::OsMesaPlatform::open()?))
         }
-        BackendKind::Glx => Err(Error::BackendUnavailable(
-            "the GLX backend is not available in this build yet: use GLSTEREO_BACKEND=egl".into(),
-        )),
+        BackendKind::Glx => Ok(Box::new(glx::GlxPlatform::open(None)?)),
     }
 }
 

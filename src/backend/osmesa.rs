@@ -205,6 +205,13 @@ impl PlatformSurface for OsMesaSurface {
         }
     }
 
+    fn native_handles(&self) -> super::NativeHandles {
+        super::NativeHandles::OsMesa {
+            context: self.app,
+            buffer: self.buffer.as_ptr() as *mut c_void,
+        }
+    }
+
     fn release_current(&self) -> Result<()> {
         // SAFETY: NULL context and buffer release the calling thread's context.
         unsafe { (self.lib.make_current)(std::ptr::null_mut(), std::ptr::null_mut(), 0, 0, 0) };

@@ -5,6 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+pub mod xvfb;
+
 /// The crate root.
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -54,7 +56,10 @@ pub fn compile_c(sources: &[PathBuf], out: &Path, extra: &[&str]) {
         .arg(out)
         .arg("-L")
         .arg(&lib)
-        .arg(format!("-Wl,-rpath,{}", lib.display()))
+        // DT_RPATH (not RUNPATH): searched before LD_LIBRARY_PATH, which
+        // cargo sets to target/<profile> first, where an older library may
+        // sit; the program must load the one this test run built.
+        .arg(format!("-Wl,--disable-new-dtags,-rpath,{}", lib.display()))
         .arg("-lglstereo")
         .args(extra)
         .arg("-lm");
