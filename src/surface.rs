@@ -16,6 +16,7 @@ use crate::framing::InputFraming;
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, check_size};
+use crate::output::gl::{ComposePath, GlCompositor, Job, TexRect, preferred_path};
 use crate::output::options::{OutputOptions, OutputSettings};
 use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
 use crate::stereo::buffers::{ColorBuffer, resolve_read_buffer};
@@ -115,6 +116,8 @@ struct SurfaceState {
     frames: u64,
     /// A GL error the emulation raised, reported by the next get_error().
     pending_gl_error: u32,
+    /// The GL compositor (objects in the compositor context, made on first use).
+    compositor: GlCompositor,
 }
 
 /// A stereo (or mono) surface: emulated default framebuffer, two contexts.
@@ -198,6 +201,7 @@ impl Surface {
                 options: settings.options,
                 frames: 0,
                 pending_gl_error: GL_NO_ERROR,
+                compositor: GlCompositor::new(),
             }),
         }))
     }
@@ -371,7 +375,12 @@ impl Surface {
     }
 
     /// Presents the frame: each eye's back buffer becomes its front buffer
-    /// (double-buffered configs; single-buffered ones just flush).
+    /// (double-buffered configs; single-buffered ones just flush). On a
+    /// surface with a window ([`PlatformSurface::drawable_size`] is Some),
+    /// the new front buffers are then composed in the output mode into the
+    /// window's framebuffer 0 in the compositor context (placed by
+    /// [`crate::output::layout::window_fit`]), and `present()` is called
+    /// with the compositor context still current.
     pub fn swap_buffers(self: &Arc<Self>) -> Result<()> {
         self.with_app(|st| {
             // SAFETY: with_app made the application context current.
@@ -382,6 +391,16 @@ impl Surface {
             st.frames += 1;
             Ok(())
         })?;
+        if let Some((width, height)) = self.platform.drawable_size() {
+            let mode = self.effective_output();
+            return self.with_compositor(|gl, st| {
+                let job = gl_job(st, mode);
+                // SAFETY: with_compositor made the compositor context current;
+                // the job's textures are this surface's.
+                unsafe { st.compositor.compose_window(gl, &job, 0, width, height)? };
+                self.platform.present()
+            });
+        }
         self.platform.present()
     }
 
@@ -478,8 +497,46 @@ impl Surface {
 
     /// The composite in the surface's output mode, as a viewer sees it now.
     /// For `frame-sequential`, the frame presented last (the first swap is
-    /// frame 0, the left eye).
+    /// frame 0, the left eye). Made the faster way for this backend and mode
+    /// ([`preferred_path`]).
     pub fn composite_image(self: &Arc<Self>) -> Result<Image> {
+        let path = preferred_path(self.display.kind(), self.effective_output());
+        self.composite_image_via(path)
+    }
+
+    /// [`Surface::composite_image`] made a given way: both ways give the
+    /// same image within 1 unit per channel (the GL path falls back to the
+    /// CPU for a composite larger than the driver renders).
+    pub fn composite_image_via(self: &Arc<Self>, path: ComposePath) -> Result<Image> {
+        match path {
+            ComposePath::Cpu => self.composite_image_cpu(),
+            ComposePath::Gl => {
+                let mode = self.effective_output();
+                let r = self.with_compositor(|gl, st| {
+                    let job = gl_job(st, mode);
+                    // SAFETY: with_compositor made the compositor context
+                    // current; the job's textures are this surface's.
+                    unsafe {
+                        let (w, h) = job.eye_size;
+                        let (cw, ch) = crate::output::composite_size(mode, w, h);
+                        if cw > st.compositor.max_side(gl) || ch > st.compositor.max_side(gl) {
+                            return Ok(None);
+                        }
+                        let (cw, ch) = st.compositor.compose_capture(gl, &job)?;
+                        let mut img = Image::new(cw, ch);
+                        st.compositor.read_capture(gl, &mut img)?;
+                        Ok(Some(img))
+                    }
+                })?;
+                match r {
+                    Some(img) => Ok(img),
+                    None => self.composite_image_cpu(),
+                }
+            }
+        }
+    }
+
+    fn composite_image_cpu(self: &Arc<Self>) -> Result<Image> {
         let (left, right) = self.eye_images()?;
         let (options, frames) = {
             let st = self.state.lock().unwrap();
@@ -523,6 +580,19 @@ pub enum CaptureImage {
     Right,
     /// Both eyes composed in the surface's output mode.
     Composite,
+}
+
+/// The GL compositor's job for the front buffers as they are now.
+fn gl_job(st: &SurfaceState, mode: OutputMode) -> Job {
+    let (w, h) = st.fb.size();
+    let [ls, rs] = st.framing.sources(st.fb.shape(), w, h);
+    Job {
+        mode,
+        options: st.options,
+        frame_index: st.frames.saturating_sub(1),
+        eyes: [ls, rs].map(|s| TexRect::from_source(st.fb.texture(s.buffer), &s, h)),
+        eye_size: st.framing.eye_size(w, h),
+    }
 }
 
 fn set_opaque(img: &mut Image) {
