@@ -12,7 +12,7 @@ use crate::backend::{ContextRole, PlatformSurface};
 use crate::config::{Config, StereoKind};
 use crate::display::Display;
 use crate::error::{Error, Result};
-use crate::framing::InputFraming;
+use crate::framing::{EyeSource, InputFraming};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, check_size};
@@ -442,11 +442,25 @@ impl Surface {
         } else {
             Some(self.read_color_buffer(rs.buffer)?)
         };
-        let right_buf = right_buf.as_ref().unwrap_or(&left_buf);
-        Ok((
-            framing.extract(&ls, &left_buf),
-            framing.extract(&rs, right_buf),
-        ))
+        // An eye that is a whole buffer is that buffer as displayed (opaque,
+        // as `extract` makes it); only rectangles are taken apart.
+        let whole = |s: &EyeSource| (s.x, s.y, s.width, s.height) == (0, 0, w, h);
+        let opaque = |mut img: Image| {
+            set_opaque(&mut img);
+            img
+        };
+        let right = match right_buf {
+            Some(buf) if whole(&rs) => opaque(buf),
+            Some(buf) => framing.extract(&rs, &buf),
+            None if whole(&rs) => opaque(left_buf.clone()),
+            None => framing.extract(&rs, &left_buf),
+        };
+        let left = if whole(&ls) {
+            opaque(left_buf)
+        } else {
+            framing.extract(&ls, &left_buf)
+        };
+        Ok((left, right))
     }
 
     /// The output mode as set (`quad` included).
@@ -497,43 +511,47 @@ impl Surface {
 
     /// The composite in the surface's output mode, as a viewer sees it now.
     /// For `frame-sequential`, the frame presented last (the first swap is
-    /// frame 0, the left eye). Made the faster way for this backend and mode
-    /// ([`preferred_path`]).
+    /// frame 0, the left eye). Made the faster way for this renderer, mode
+    /// and options ([`crate::output::gl::preferred_path`]).
     pub fn composite_image(self: &Arc<Self>) -> Result<Image> {
-        let path = preferred_path(self.display.kind(), self.effective_output());
-        self.composite_image_via(path)
+        self.composite(None)
     }
 
     /// [`Surface::composite_image`] made a given way: both ways give the
-    /// same image within 1 unit per channel (the GL path falls back to the
+    /// same image within 1 unit per channel (the GL way falls back to the
     /// CPU for a composite larger than the driver renders).
     pub fn composite_image_via(self: &Arc<Self>, path: ComposePath) -> Result<Image> {
-        match path {
-            ComposePath::Cpu => self.composite_image_cpu(),
-            ComposePath::Gl => {
-                let mode = self.effective_output();
-                let r = self.with_compositor(|gl, st| {
-                    let job = gl_job(st, mode);
-                    // SAFETY: with_compositor made the compositor context
-                    // current; the job's textures are this surface's.
-                    unsafe {
-                        let (w, h) = job.eye_size;
-                        let (cw, ch) = crate::output::composite_size(mode, w, h);
-                        if cw > st.compositor.max_side(gl) || ch > st.compositor.max_side(gl) {
-                            return Ok(None);
-                        }
-                        let (cw, ch) = st.compositor.compose_capture(gl, &job)?;
-                        let mut img = Image::new(cw, ch);
-                        st.compositor.read_capture(gl, &mut img)?;
-                        Ok(Some(img))
+        self.composite(Some(path))
+    }
+
+    fn composite(self: &Arc<Self>, path: Option<ComposePath>) -> Result<Image> {
+        let mode = self.effective_output();
+        if path != Some(ComposePath::Cpu) {
+            let on_gl = self.with_compositor(|gl, st| {
+                let job = gl_job(st, mode);
+                let c = &mut st.compositor;
+                // SAFETY: with_compositor made the compositor context
+                // current; the job's textures are this surface's.
+                unsafe {
+                    let (w, h) = job.eye_size;
+                    let (cw, ch) = crate::output::composite_size(mode, w, h);
+                    let fits = cw <= c.max_side(gl) && ch <= c.max_side(gl);
+                    let chosen =
+                        path.unwrap_or_else(|| preferred_path(c.software(gl), mode, &job.options));
+                    if !fits || chosen == ComposePath::Cpu {
+                        return Ok(None);
                     }
-                })?;
-                match r {
-                    Some(img) => Ok(img),
-                    None => self.composite_image_cpu(),
+                    let (cw, ch) = c.compose_capture(gl, &job)?;
+                    let mut img = Image::new(cw, ch);
+                    c.read_capture(gl, &mut img)?;
+                    Ok(Some(img))
                 }
+            })?;
+            if let Some(img) = on_gl {
+                return Ok(img);
             }
         }
+        self.composite_image_cpu()
     }
 
     fn composite_image_cpu(self: &Arc<Self>) -> Result<Image> {

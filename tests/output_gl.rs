@@ -211,15 +211,32 @@ fn a_composite_too_tall_fails_the_same_way_on_both_paths() {
 
 #[test]
 fn the_preferred_path_gives_the_reference_image() {
+    // composite_image() picks CPU or GL per mode and options: either way,
+    // the reference image.
     let (w, h) = (20, 10);
     let s = stereo_surface(BACKEND, w, h);
     let (l, r) = (gradient(w, h, 3), noise(w, h, 4));
     show(&s, &l, &r);
-    for mode in composites() {
-        s.set_output(mode);
-        let got = s.composite_image().unwrap();
-        let want = compose(mode, &OutputOptions::default(), &l, &r, s.frames() - 1).unwrap();
-        assert_within(&got, &want, 1, &format!("composite_image() in {mode}"));
+    for o in [
+        OutputOptions::default(),
+        OutputOptions {
+            swap_eyes: true,
+            crosstalk: 0.2,
+            saturation: 0.5,
+        },
+    ] {
+        s.set_options(o).unwrap();
+        for mode in composites() {
+            s.set_output(mode);
+            let got = s.composite_image().unwrap();
+            let want = compose(mode, &o, &l, &r, s.frames() - 1).unwrap();
+            assert_within(
+                &got,
+                &want,
+                1,
+                &format!("composite_image() in {mode}, {o:?}"),
+            );
+        }
     }
     surface::make_current(None).unwrap();
 }
