@@ -34,8 +34,9 @@
 //!
 //! # Programs and state
 //!
-//! GLSL 1.30 (any GL 3.0+ context, compatibility or core). Seven small
-//! programs ([`Kernel`]), each compiled on first use in the compositor
+//! GLSL 1.30, so any GL 3.0 context works. Seven small programs (copy and
+//! scale, each with or without crosstalk; interleave; channel-mask
+//! anaglyphs; Dubois), each compiled on first use in the compositor
 //! context, with uniform locations cached; a frame allocates nothing (the
 //! capture framebuffer and the resampling targets are reallocated only when
 //! a size changes). The compositor context belongs to the library: every
