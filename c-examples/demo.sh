@@ -16,7 +16,8 @@ echo "== projection (math only)"
 "$BUILD/projection"
 
 echo "== redblue on $GLSTEREO_BACKEND"
-"$BUILD/redblue$SUFFIX" --out "$OUT/redblue"
+"$BUILD/redblue$SUFFIX" --out "$OUT/redblue" \
+  --modes anaglyph-red-cyan,anaglyph-red-cyan-dubois,side-by-side,top-bottom,rows
 
 echo
 echo "images are in $OUT/"

@@ -3,6 +3,8 @@
  *   --out DIR     write DIR/left.png, DIR/right.png and DIR/composite.png
  *   --size WxH    size of each eye (default 640x480)
  *   --mode NAME   output format of the composite (see the README)
+ *   --modes LIST  also write DIR/composite-NAME.png for each output format
+ *                 in the comma-separated LIST (e.g. rows,side-by-side)
  *
  * Header-only, C99 + POSIX, so each example stays one small file. */
 #ifndef GLSTEREO_EXAMPLE_H
@@ -21,10 +23,11 @@ typedef struct example_options {
     const char *out_dir; /* NULL: write no images */
     unsigned width, height;
     const char *mode; /* NULL: the surface's default (GLSTEREO_MODE or red-cyan) */
+    const char *modes; /* NULL, or more formats to write composites in: "a,b,c" */
 } example_options;
 
 static void example_usage(const char *prog, const char *extra) {
-    fprintf(stderr, "usage: %s [--out DIR] [--size WxH] [--mode NAME]%s%s\n", prog,
+    fprintf(stderr, "usage: %s [--out DIR] [--size WxH] [--mode NAME] [--modes LIST]%s%s\n", prog,
             extra ? " " : "", extra ? extra : "");
 }
 
@@ -32,7 +35,8 @@ static void example_usage(const char *prog, const char *extra) {
  * Returns 1 if consumed, 0 if not a shared option, -1 on a bad value. */
 static int example_parse_common(int *i, int argc, char **argv, example_options *o) {
     const char *arg = argv[*i];
-    if ((strcmp(arg, "--out") == 0 || strcmp(arg, "--size") == 0 || strcmp(arg, "--mode") == 0) &&
+    if ((strcmp(arg, "--out") == 0 || strcmp(arg, "--size") == 0 || strcmp(arg, "--mode") == 0 ||
+         strcmp(arg, "--modes") == 0) &&
         *i + 1 >= argc) {
         fprintf(stderr, "%s needs a value\n", arg);
         return -1;
@@ -54,6 +58,10 @@ static int example_parse_common(int *i, int argc, char **argv, example_options *
         o->mode = argv[++*i];
         return 1;
     }
+    if (strcmp(arg, "--modes") == 0) {
+        o->modes = argv[++*i];
+        return 1;
+    }
     return 0;
 }
 
@@ -63,6 +71,7 @@ static example_options example_defaults(void) {
     o.width = 640;
     o.height = 480;
     o.mode = NULL;
+    o.modes = NULL;
     return o;
 }
 
@@ -110,7 +119,36 @@ static int example_apply_mode(gls_surface *surface, const example_options *o) {
     return 0;
 }
 
-/* Writes left.png, right.png and composite.png into o->out_dir (if set). */
+/* Writes DIR/composite-NAME.png for each name in o->modes, then puts the
+ * surface's own output format back. */
+static int example_save_modes(gls_surface *surface, const example_options *o) {
+    uint32_t own, mode;
+    gls_result r;
+    if (!o->modes) return 0;
+    if ((r = gls_surface_get_output(surface, &own)) != GLS_OK) return example_fail("gls_surface_get_output", r);
+    for (const char *name = o->modes; *name;) {
+        char one[64], path[4096];
+        size_t n = strcspn(name, ",");
+        if (n == 0 || n >= sizeof one) {
+            fprintf(stderr, "--modes: bad list %s\n", o->modes);
+            return 1;
+        }
+        memcpy(one, name, n);
+        one[n] = '\0';
+        name += n + (name[n] == ',');
+        if ((r = gls_output_from_name(one, &mode)) != GLS_OK) return example_fail("--modes", r);
+        if ((r = gls_surface_set_output(surface, mode)) != GLS_OK) return example_fail("gls_surface_set_output", r);
+        snprintf(path, sizeof path, "%s/composite-%s.png", o->out_dir, gls_output_name(mode));
+        if ((r = gls_surface_save_png(surface, GLS_IMAGE_COMPOSITE, path)) != GLS_OK)
+            return example_fail("gls_surface_save_png", r);
+        printf("wrote %s\n", path);
+    }
+    if ((r = gls_surface_set_output(surface, own)) != GLS_OK) return example_fail("gls_surface_set_output", r);
+    return 0;
+}
+
+/* Writes left.png, right.png and composite.png into o->out_dir (if set),
+ * and a composite-NAME.png per --modes entry. */
 static int example_save(gls_surface *surface, const example_options *o) {
     static const struct { uint32_t image; const char *name; } files[] = {
         {GLS_IMAGE_LEFT, "left.png"}, {GLS_IMAGE_RIGHT, "right.png"}, {GLS_IMAGE_COMPOSITE, "composite.png"}};
@@ -126,7 +164,7 @@ static int example_save(gls_surface *surface, const example_options *o) {
         if (r != GLS_OK) return example_fail("gls_surface_save_png", r);
         printf("wrote %s\n", path);
     }
-    return 0;
+    return example_save_modes(surface, o);
 }
 
 #endif

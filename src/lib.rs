@@ -18,7 +18,7 @@
 //! - [`capture`]: PNG files;
 //! - [`image`]: RGBA8 images, rows top first;
 //! - [`framing`]: input framings (quad buffer, sync-doubled, STR_RECT, side-by-side);
-//! - [`output`]: output formats (mode names, geometry, CPU reference);
+//! - [`output`]: output formats (mode names, geometry, CPU reference, GL compositor);
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]

@@ -12,10 +12,11 @@ use crate::backend::{ContextRole, PlatformSurface};
 use crate::config::{Config, StereoKind};
 use crate::display::Display;
 use crate::error::{Error, Result};
-use crate::framing::InputFraming;
+use crate::framing::{EyeSource, InputFraming};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, check_size};
+use crate::output::gl::{ComposePath, GlCompositor, Job, TexRect, preferred_path};
 use crate::output::options::{OutputOptions, OutputSettings};
 use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
 use crate::stereo::buffers::{ColorBuffer, resolve_read_buffer};
@@ -115,6 +116,8 @@ struct SurfaceState {
     frames: u64,
     /// A GL error the emulation raised, reported by the next get_error().
     pending_gl_error: u32,
+    /// The GL compositor (objects in the compositor context, made on first use).
+    compositor: GlCompositor,
 }
 
 /// A stereo (or mono) surface: emulated default framebuffer, two contexts.
@@ -193,6 +196,7 @@ impl Surface {
                 options: settings.options,
                 frames: 0,
                 pending_gl_error: GL_NO_ERROR,
+                compositor: GlCompositor::new(),
             }),
         }))
     }
@@ -366,7 +370,12 @@ impl Surface {
     }
 
     /// Presents the frame: each eye's back buffer becomes its front buffer
-    /// (double-buffered configs; single-buffered ones just flush).
+    /// (double-buffered configs; single-buffered ones just flush). On a
+    /// surface with a window ([`PlatformSurface::drawable_size`] is Some),
+    /// the new front buffers are then composed in the output mode into the
+    /// window's framebuffer 0 in the compositor context (placed by
+    /// [`crate::output::layout::window_fit`]), and `present()` is called
+    /// with the compositor context still current.
     pub fn swap_buffers(self: &Arc<Self>) -> Result<()> {
         self.with_app(|st| {
             // SAFETY: with_app made the application context current.
@@ -377,6 +386,16 @@ impl Surface {
             st.frames += 1;
             Ok(())
         })?;
+        if let Some((width, height)) = self.platform.drawable_size() {
+            let mode = self.effective_output();
+            return self.with_compositor(|gl, st| {
+                let job = gl_job(st, mode);
+                // SAFETY: with_compositor made the compositor context current;
+                // the job's textures are this surface's.
+                unsafe { st.compositor.compose_window(gl, &job, 0, width, height)? };
+                self.platform.present()
+            });
+        }
         self.platform.present()
     }
 
@@ -418,11 +437,25 @@ impl Surface {
         } else {
             Some(self.read_color_buffer(rs.buffer)?)
         };
-        let right_buf = right_buf.as_ref().unwrap_or(&left_buf);
-        Ok((
-            framing.extract(&ls, &left_buf),
-            framing.extract(&rs, right_buf),
-        ))
+        // An eye that is a whole buffer is that buffer as displayed (opaque,
+        // as `extract` makes it); only rectangles are taken apart.
+        let whole = |s: &EyeSource| (s.x, s.y, s.width, s.height) == (0, 0, w, h);
+        let opaque = |mut img: Image| {
+            set_opaque(&mut img);
+            img
+        };
+        let right = match right_buf {
+            Some(buf) if whole(&rs) => opaque(buf),
+            Some(buf) => framing.extract(&rs, &buf),
+            None if whole(&rs) => opaque(left_buf.clone()),
+            None => framing.extract(&rs, &left_buf),
+        };
+        let left = if whole(&ls) {
+            opaque(left_buf)
+        } else {
+            framing.extract(&ls, &left_buf)
+        };
+        Ok((left, right))
     }
 
     /// The output mode as set (`quad` included).
@@ -473,8 +506,50 @@ impl Surface {
 
     /// The composite in the surface's output mode, as a viewer sees it now.
     /// For `frame-sequential`, the frame presented last (the first swap is
-    /// frame 0, the left eye).
+    /// frame 0, the left eye). Made the faster way for this renderer, mode
+    /// and options ([`crate::output::gl::preferred_path`]).
     pub fn composite_image(self: &Arc<Self>) -> Result<Image> {
+        self.composite(None)
+    }
+
+    /// [`Surface::composite_image`] made a given way: both ways give the
+    /// same image within 1 unit per channel (the GL way falls back to the
+    /// CPU for a composite larger than the driver renders).
+    pub fn composite_image_via(self: &Arc<Self>, path: ComposePath) -> Result<Image> {
+        self.composite(Some(path))
+    }
+
+    fn composite(self: &Arc<Self>, path: Option<ComposePath>) -> Result<Image> {
+        let mode = self.effective_output();
+        if path != Some(ComposePath::Cpu) {
+            let on_gl = self.with_compositor(|gl, st| {
+                let job = gl_job(st, mode);
+                let c = &mut st.compositor;
+                // SAFETY: with_compositor made the compositor context
+                // current; the job's textures are this surface's.
+                unsafe {
+                    let (w, h) = job.eye_size;
+                    let (cw, ch) = crate::output::composite_size(mode, w, h);
+                    let fits = cw <= c.max_side(gl) && ch <= c.max_side(gl);
+                    let chosen =
+                        path.unwrap_or_else(|| preferred_path(c.software(gl), mode, &job.options));
+                    if !fits || chosen == ComposePath::Cpu {
+                        return Ok(None);
+                    }
+                    let (cw, ch) = c.compose_capture(gl, &job)?;
+                    let mut img = Image::new(cw, ch);
+                    c.read_capture(gl, &mut img)?;
+                    Ok(Some(img))
+                }
+            })?;
+            if let Some(img) = on_gl {
+                return Ok(img);
+            }
+        }
+        self.composite_image_cpu()
+    }
+
+    fn composite_image_cpu(self: &Arc<Self>) -> Result<Image> {
         let (left, right) = self.eye_images()?;
         let (options, frames) = {
             let st = self.state.lock().unwrap();
@@ -518,6 +593,19 @@ pub enum CaptureImage {
     Right,
     /// Both eyes composed in the surface's output mode.
     Composite,
+}
+
+/// The GL compositor's job for the front buffers as they are now.
+fn gl_job(st: &SurfaceState, mode: OutputMode) -> Job {
+    let (w, h) = st.fb.size();
+    let [ls, rs] = st.framing.sources(st.fb.shape(), w, h);
+    Job {
+        mode,
+        options: st.options,
+        frame_index: st.frames.saturating_sub(1),
+        eyes: [ls, rs].map(|s| TexRect::from_source(st.fb.texture(s.buffer), &s, h)),
+        eye_size: st.framing.eye_size(w, h),
+    }
 }
 
 fn set_opaque(img: &mut Image) {

@@ -145,12 +145,19 @@ pub trait PlatformSurface: Send + Sync {
     fn release_current(&self) -> Result<()>;
 
     /// Shows the drawable's back buffer (a real swap); headless backends do nothing.
+    /// For a surface with a window ([`PlatformSurface::drawable_size`] is
+    /// Some), it is called with the compositor context current, right after
+    /// the composite was drawn into that context's framebuffer 0 (its back
+    /// buffer when double-buffered).
     fn present(&self) -> Result<()> {
         Ok(())
     }
 
     /// The drawable's current size, for backends with windows that can be
-    /// resized; None for headless surfaces, whose size is fixed.
+    /// resized; None for headless surfaces, whose size is fixed. Some makes
+    /// every swap compose the front buffers into the compositor context's
+    /// framebuffer 0 at this size (fitted by
+    /// [`crate::output::layout::window_fit`]) before [`PlatformSurface::present`].
     fn drawable_size(&self) -> Option<(u32, u32)> {
         None
     }

@@ -89,12 +89,21 @@ pub const GL_STENCIL_INDEX8: u32 = 0x8D48;
 pub const GL_PACK_ALIGNMENT: u32 = 0x0D05;
 pub const GL_PACK_ROW_LENGTH: u32 = 0x0D02;
 pub const GL_UNPACK_ALIGNMENT: u32 = 0x0CF5;
+pub const GL_UNPACK_ROW_LENGTH: u32 = 0x0CF2;
 
 pub const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
 pub const GL_DEPTH_BUFFER_BIT: u32 = 0x0100;
 pub const GL_STENCIL_BUFFER_BIT: u32 = 0x0400;
 pub const GL_SCISSOR_TEST: u32 = 0x0C11;
 pub const GL_TRIANGLES: u32 = 0x0004;
+pub const GL_BLEND: u32 = 0x0BE2;
+pub const GL_DEPTH_TEST: u32 = 0x0B71;
+pub const GL_STENCIL_TEST: u32 = 0x0B90;
+pub const GL_CULL_FACE: u32 = 0x0B44;
+pub const GL_DITHER: u32 = 0x0BD0;
+pub const GL_FRAMEBUFFER_SRGB: u32 = 0x8DB9;
+pub const GL_COLOR_LOGIC_OP: u32 = 0x0BF2;
+pub const GL_RASTERIZER_DISCARD: u32 = 0x8C89;
 
 pub const GL_VERTEX_SHADER: u32 = 0x8B31;
 pub const GL_FRAGMENT_SHADER: u32 = 0x8B30;

@@ -103,6 +103,8 @@ gl_table! {
     DrawBuffer = "glDrawBuffer"(buf: GLenum);
     DrawBuffers = "glDrawBuffers"(n: GLsizei, bufs: *const GLenum);
     ReadBuffer = "glReadBuffer"(src: GLenum);
+    DrawPixels = "glDrawPixels"(w: GLsizei, h: GLsizei, format: GLenum, ty: GLenum, data: *const c_void);
+    WindowPos2i = "glWindowPos2i"(x: GLint, y: GLint);
     MatrixMode = "glMatrixMode"(mode: GLenum);
     LoadMatrixd = "glLoadMatrixd"(m: *const GLdouble);
     MultMatrixd = "glMultMatrixd"(m: *const GLdouble);
@@ -144,7 +146,10 @@ gl_table! {
     Uniform1i = "glUniform1i"(loc: GLint, v: GLint);
     Uniform1f = "glUniform1f"(loc: GLint, v: GLfloat);
     Uniform2f = "glUniform2f"(loc: GLint, a: GLfloat, b: GLfloat);
+    Uniform3f = "glUniform3f"(loc: GLint, a: GLfloat, b: GLfloat, c: GLfloat);
     Uniform4f = "glUniform4f"(loc: GLint, a: GLfloat, b: GLfloat, c: GLfloat, d: GLfloat);
+    Uniform2i = "glUniform2i"(loc: GLint, a: GLint, b: GLint);
+    Uniform4i = "glUniform4i"(loc: GLint, a: GLint, b: GLint, c: GLint, d: GLint);
     UniformMatrix3fv = "glUniformMatrix3fv"(loc: GLint, count: GLsizei, transpose: GLboolean, v: *const GLfloat);
     GenVertexArrays = "glGenVertexArrays"(n: GLsizei, out: *mut GLuint);
     DeleteVertexArrays = "glDeleteVertexArrays"(n: GLsizei, names: *const GLuint);

@@ -115,7 +115,6 @@ pub fn compose_into(
     frame_index: u64,
     out: &mut Image,
 ) -> Result<()> {
-    let options = options.validated()?;
     let (w, h) = (left.width(), left.height());
     if (right.width(), right.height()) != (w, h) {
         return Err(Error::invalid_value(format!(
@@ -124,20 +123,7 @@ pub fn compose_into(
             right.height()
         )));
     }
-    let (cw, ch) = composite_size(mode, w, h);
-    if check_size(cw, ch).is_err() {
-        return Err(Error::invalid_value(format!(
-            "{mode} of {w}x{h} eyes makes a {cw}x{ch} frame; each side must be at most \
-             {MAX_DIMENSION}: use smaller eyes or a same-size mode such as {}",
-            OutputMode::SideBySideHalf
-        )));
-    }
-    if mode == OutputMode::Quad {
-        return Err(Error::invalid_operation(
-            "quad is native quad-buffer output, not a composite image: choose left, right \
-             or a composite mode (a surface without native stereo falls back by itself)",
-        ));
-    }
+    let (options, (cw, ch)) = check_composite(mode, options, w, h)?;
     // Nothing can fail past this point, so `out` is untouched on error.
 
     let (l, r) = if options.swap_eyes {
@@ -216,6 +202,34 @@ pub fn compose_into(
         }
     }
     Ok(())
+}
+
+/// The checks every composite passes, on the CPU and on GL alike: valid
+/// options, an output no larger than [`MAX_DIMENSION`] a side, and a
+/// composite mode (not `quad`). Returns the validated options and the
+/// composite size.
+pub(crate) fn check_composite(
+    mode: OutputMode,
+    options: &OutputOptions,
+    w: u32,
+    h: u32,
+) -> Result<(OutputOptions, (u32, u32))> {
+    let options = options.validated()?;
+    let (cw, ch) = composite_size(mode, w, h);
+    if check_size(cw, ch).is_err() {
+        return Err(Error::invalid_value(format!(
+            "{mode} of {w}x{h} eyes makes a {cw}x{ch} frame; each side must be at most \
+             {MAX_DIMENSION}: use smaller eyes or a same-size mode such as {}",
+            OutputMode::SideBySideHalf
+        )));
+    }
+    if mode == OutputMode::Quad {
+        return Err(Error::invalid_operation(
+            "quad is native quad-buffer output, not a composite image: choose left, right \
+             or a composite mode (a surface without native stereo falls back by itself)",
+        ));
+    }
+    Ok((options, (cw, ch)))
 }
 
 /// The per-eye colour steps before the mode, with their effective values

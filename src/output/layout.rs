@@ -161,6 +161,80 @@ pub fn interleaved_eye(mode: OutputMode, x: u32, y: u32) -> Option<Eye> {
     Some(if even { Eye::Left } else { Eye::Right })
 }
 
+/// Where a composite of `cw` × `ch` pixels is shown in a window of `ww` ×
+/// `wh` pixels: a rectangle in window pixels, (0, 0) the TOP-left, whose x
+/// and y are negative when the composite is larger than the window and
+/// cropped. Window pixels outside it are black.
+///
+/// - Same size: the whole window, pixel for pixel.
+/// - `rows`, `columns`, `checkerboard`: never scaled (scaling would mix the
+///   interleaved eyes): pixel for pixel, centred, cropped when larger, with
+///   the offsets rounded down to even numbers so the window's top-left pixel
+///   keeps the composite's parity (top row and left column = left eye).
+/// - Every other mode: scaled by one factor to the largest size that fits
+///   (aspect ratio kept, sizes rounded to the nearest pixel, at least 1),
+///   centred (offsets rounded down), with bilinear filtering.
+///
+/// Glstereo never resizes a window: a backend that wants the composite
+/// pixel for pixel makes its window [`composite_size`] (e.g. 2W × H for
+/// `side-by-side` of W × H eyes) and resizes the eye buffers to match.
+pub fn window_fit(mode: OutputMode, cw: u32, ch: u32, ww: u32, wh: u32) -> WindowFit {
+    let exact = WindowFit {
+        x: 0,
+        y: 0,
+        width: cw,
+        height: ch,
+    };
+    if (cw, ch) == (ww, wh) {
+        return exact;
+    }
+    let centre = |outer: u32, inner: u32| (i64::from(outer) - i64::from(inner)).div_euclid(2);
+    if interleaved_eye(mode, 0, 0).is_some() {
+        // Floor to even: -3 → -4, 3 → 2.
+        let even = |v: i64| (v.div_euclid(2) * 2) as i32;
+        return WindowFit {
+            x: even(centre(ww, cw)),
+            y: even(centre(wh, ch)),
+            ..exact
+        };
+    }
+    let (cw64, ch64, ww64, wh64) = (u64::from(cw), u64::from(ch), u64::from(ww), u64::from(wh));
+    // Fit the width when the window is relatively narrower, else the height;
+    // round(a·b/c) in integers, halves up.
+    let scaled = |a: u64, b: u64, c: u64| ((2 * a * b + c) / (2 * c)).max(1) as u32;
+    let (width, height) = if ww64 * ch64 <= wh64 * cw64 {
+        (ww, scaled(ch64, ww64, cw64).min(wh))
+    } else {
+        (scaled(cw64, wh64, ch64).min(ww), wh)
+    };
+    WindowFit {
+        x: centre(ww, width) as i32,
+        y: centre(wh, height) as i32,
+        width,
+        height,
+    }
+}
+
+/// A composite's rectangle in a window (see [`window_fit`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WindowFit {
+    /// Left column in the window (negative: cropped on the left).
+    pub x: i32,
+    /// Top row in the window (negative: cropped at the top).
+    pub y: i32,
+    /// Width in window pixels.
+    pub width: u32,
+    /// Height in window pixels.
+    pub height: u32,
+}
+
+impl WindowFit {
+    /// True when the composite fills a `ww` × `wh` window pixel for pixel.
+    pub fn is_exact(&self, ww: u32, wh: u32) -> bool {
+        (self.x, self.y, self.width, self.height) == (0, 0, ww, wh)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,5 +370,60 @@ mod tests {
         assert_eq!(interleaved_eye(Checkerboard, 1, 0), Some(Eye::Right));
         assert_eq!(interleaved_eye(Checkerboard, 1, 1), Some(Eye::Left));
         assert_eq!(interleaved_eye(SideBySide, 0, 0), None);
+    }
+
+    #[test]
+    fn window_fit_keeps_same_sizes_and_interleave_parity_and_scales_the_rest() {
+        use OutputMode::*;
+        let f = window_fit(Rows, 640, 480, 640, 480);
+        assert!(f.is_exact(640, 480));
+        // Interleaved: never scaled, centred with even offsets, cropped when larger.
+        assert_eq!(
+            window_fit(Rows, 640, 480, 643, 487),
+            WindowFit {
+                x: 0,
+                y: 2,
+                width: 640,
+                height: 480
+            }
+        );
+        assert_eq!(
+            window_fit(Checkerboard, 640, 480, 634, 474),
+            WindowFit {
+                x: -4,
+                y: -4,
+                width: 640,
+                height: 480
+            }
+        );
+        // Side-by-side full of 640x480 eyes in a 640x480 window: scaled to 640x240, centred.
+        assert_eq!(
+            window_fit(SideBySide, 1280, 480, 640, 480),
+            WindowFit {
+                x: 0,
+                y: 120,
+                width: 640,
+                height: 240
+            }
+        );
+        // HDMI frame packing 1280x1470 in a 1280x720 window: pillarboxed.
+        let f = window_fit(HdmiFramePacking, 1280, 1470, 1280, 720);
+        assert_eq!((f.width, f.height), (627, 720));
+        assert_eq!((f.x, f.y), ((1280 - 627) / 2, 0));
+        // Any size: the fitted rectangle lies inside the window and touches two sides.
+        for (cw, ch, ww, wh) in [
+            (7, 3, 2, 9),
+            (1, 1, 1000, 3),
+            (5000, 1, 3, 3),
+            (33, 17, 34, 17),
+        ] {
+            let f = window_fit(AnaglyphRedBlue, cw, ch, ww, wh);
+            assert!(f.x >= 0 && f.y >= 0, "{f:?}");
+            assert!(
+                f.x as u32 + f.width <= ww && f.y as u32 + f.height <= wh,
+                "{f:?}"
+            );
+            assert!(f.width == ww || f.height == wh, "{f:?}");
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! Output formats: how the two eye images become something a person can see.
 //!
-//! This half is pure (no GL): the mode names, the options and their
+//! Most of it is pure (no GL): the mode names, the options and their
 //! environment variables, the geometry of every mode, the anaglyph colour
 //! math, and the CPU reference of every composite ([`cpu::compose`]), which
 //! is the oracle the GL compositor is tested against and the production path
@@ -13,15 +13,19 @@
 //! - [`anaglyph`]: luminance weights, sRGB curves, Dubois matrices.
 //! - [`cpu`]: [`compose`], the reference of every mode.
 //! - [`pattern`]: deterministic gradient and noise test images.
+//! - [`gl`]: [`GlCompositor`], the same modes drawn by GL in a surface's
+//!   compositor context (captures and windows).
 
 pub mod anaglyph;
 pub mod cpu;
+pub mod gl;
 pub mod layout;
 pub mod mode;
 pub mod options;
 pub mod pattern;
 
 pub use cpu::{compose, compose_into};
+pub use gl::{ComposePath, GlCompositor};
 pub use layout::{Placement, composite_size, placements};
 pub use mode::{ALIASES, Alias, AliasSource, AnaglyphColors, AnaglyphMethod, OutputMode};
 pub use options::{OutputOptions, OutputSettings};
