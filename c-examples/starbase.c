@@ -38,6 +38,12 @@ static int draw_eye(uint32_t eye, double aspect) {
     return 0;
 }
 
+/* A Starbase call failed: -1 with errno, and the library's explanation. */
+static int starbase_fail(const char *what) {
+    fprintf(stderr, "%s failed: %s\n  %s\n", what, strerror(errno), gls_last_error_message());
+    return 1;
+}
+
 static void clear_grey(void) {
     glClearColor(0.2f, 0.2f, 0.2f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
@@ -54,18 +60,12 @@ static int run_starbase(const example_options *opt, int save_mono) {
      * the emulation, the screen size gopen() opens. */
     if ((r = gls_screen_set_size(opt->width, opt->height)) != GLS_OK) return example_fail("gls_screen_set_size", r);
     int fildes = gopen("/dev/crt", OUTDEV, NULL, INIT | THREE_D);
-    if (fildes < 0) {
-        perror("gopen");
-        return example_fail("gopen", GLS_ERROR_BACKEND_UNAVAILABLE);
-    }
+    if (fildes < 0) return starbase_fail("gopen");
     if ((r = gls_starbase_surface(fildes, &surface)) != GLS_OK) return example_fail("gls_starbase_surface", r);
     if (example_apply_mode(surface, opt)) return 1;
 
     arg1.i[0] = TRUE; /* activate stereo sync-doubling */
-    if (gescape(fildes, STEREO, &arg1, &arg2) != 0) {
-        perror("gescape(STEREO)");
-        return example_fail("gescape", GLS_ERROR_INVALID_ENUM);
-    }
+    if (gescape(fildes, STEREO, &arg1, &arg2) != 0) return starbase_fail("gescape(STEREO, TRUE)");
     printf("starbase: sync-doubling on, %dx%d screen, each eye %dx%d squashed 1:2\n", w, h, w, h / 2);
 
     glViewport(0, 0, w, h);
@@ -82,10 +82,7 @@ static int run_starbase(const example_options *opt, int save_mono) {
 
     if (!save_mono && example_save(surface, opt)) return 1;
     arg1.i[0] = FALSE; /* restore the non-stereo display */
-    if (gescape(fildes, STEREO, &arg1, &arg2) != 0) {
-        perror("gescape(STEREO)");
-        return 1;
-    }
+    if (gescape(fildes, STEREO, &arg1, &arg2) != 0) return starbase_fail("gescape(STEREO, FALSE)");
     if (save_mono && example_save(surface, opt)) return 1;
     gclose(fildes);
     return 0;
