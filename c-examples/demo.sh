@@ -19,5 +19,12 @@ echo "== redblue on $GLSTEREO_BACKEND"
 "$BUILD/redblue$SUFFIX" --out "$OUT/redblue" \
   --modes anaglyph-red-cyan,anaglyph-red-cyan-dubois,side-by-side,top-bottom,rows
 
+echo "== starbase (HP Starbase gescape(STEREO), sync-doubled) on $GLSTEREO_BACKEND"
+"$BUILD/starbase$SUFFIX" --out "$OUT/starbase"
+
+echo "== irisgl (SGI IRIS GL STR_RECT, then square-pixel stereo) on $GLSTEREO_BACKEND"
+"$BUILD/irisgl$SUFFIX" --out "$OUT/irisgl/str-rect"
+"$BUILD/irisgl$SUFFIX" --square-pixel --out "$OUT/irisgl/square-pixel"
+
 echo
 echo "images are in $OUT/"

@@ -57,6 +57,52 @@
 #define GLS_STEREO_EMULATED 2
 
 /**
+ * getgdesc inquiry GD_XPMAX: the emulated screen's width in pixels.
+ */
+#define GLS_IRISGL_GD_XPMAX 0
+
+/**
+ * getgdesc inquiry GD_YPMAX: the emulated screen's height in pixels.
+ */
+#define GLS_IRISGL_GD_YPMAX 1
+
+/**
+ * getgdesc inquiry GD_STEREO: 1, stereo display modes are available.
+ */
+#define GLS_IRISGL_GD_STEREO 50
+
+/**
+ * getgdesc inquiry GD_STEREO_IN_WINDOW: 1 when windows get stereo buffers.
+ */
+#define GLS_IRISGL_GD_STEREO_IN_WINDOW 89
+
+/**
+ * Monitor type HZ60: 60 Hz mono (the initial mode).
+ */
+#define GLS_IRISGL_HZ60 1
+
+/**
+ * Monitor type STR_RECT: full-screen above/below stereo (left eye GL rows
+ * 532–1023, right eye rows 0–491 of 1024; 40 rows lost).
+ */
+#define GLS_IRISGL_STR_RECT 15
+
+/**
+ * Monitor type HZ72: 72 Hz mono.
+ */
+#define GLS_IRISGL_HZ72 23
+
+/**
+ * Monitor type STR_BOT: windowed stereo in the bottom 492 rows.
+ */
+#define GLS_IRISGL_STR_BOT 27
+
+/**
+ * Monitor type STR_TOP: windowed stereo in the top 492 rows.
+ */
+#define GLS_IRISGL_STR_TOP 28
+
+/**
  * Seed 000 Eq 1, mono: x' = x·d/(d−z).
  */
 #define GLS_EQUATION_MONO 1
@@ -239,6 +285,22 @@
 #define GLS_OUTPUT_COUNT 27
 
 /**
+ * The STEREO gescape opcode. HP's numeric value is not public; glstereo
+ * uses 9000, outside every opcode range of HP's starbase.c.h (0–1308).
+ */
+#define GLS_STARBASE_STEREO 9000
+
+/**
+ * The `gopen()` kind for an output device (HP's OUTDEV).
+ */
+#define GLS_STARBASE_OUTDEV 0
+
+/**
+ * The `gopen()` kind for an output and input device (HP's OUTINDEV).
+ */
+#define GLS_STARBASE_OUTINDEV 2
+
+/**
  * The left eye's front buffer, as displayed.
  */
 #define GLS_IMAGE_LEFT 0
@@ -278,6 +340,18 @@
  * frame: left eye in the left half, right eye in the right half.
  */
 #define GLS_INPUT_SIDE_BY_SIDE 3
+
+/**
+ * Input framing: SGI STR_TOP (seed 002). For 1024 rows: both eyes from GL
+ * rows 532–1023, stretched to the full height; the left eye from the left
+ * buffer, the right eye from the right buffer (the left one on mono).
+ */
+#define GLS_INPUT_STR_TOP 4
+
+/**
+ * Input framing: SGI STR_BOT, as GLS_INPUT_STR_TOP with GL rows 0–491.
+ */
+#define GLS_INPUT_STR_BOT 5
 
 /**
  * The left eye.
@@ -370,6 +444,26 @@ typedef struct gls_stereo_adjust {
    */
   double balance_adjustment;
 } gls_stereo_adjust;
+
+/**
+ * The argument block of a gescape, as HP's `gescape_arg`: 64 ints, 64
+ * floats or 255 chars in 256 bytes. For STEREO, `i[0]` is TRUE (non-zero,
+ * sync-doubling on) or FALSE (0, off).
+ */
+typedef union gls_gescape_arg {
+  /**
+   * The block as ints (`arg.i[0]` for STEREO).
+   */
+  int32_t i[64];
+  /**
+   * The block as floats.
+   */
+  float f[64];
+  /**
+   * The block as chars.
+   */
+  char c[255];
+} gls_gescape_arg;
 
 /**
  * Success.
@@ -564,6 +658,201 @@ gls_result gls_config_get_attrib(const struct gls_config *config,
 void gls_config_free(struct gls_config *config);
 
 /**
+ * getgdesc(inquiry): GD_XPMAX and GD_YPMAX give the emulated screen's
+ * width and height in pixels (1280 and 1024 by default; SGI's programs
+ * use getgdesc(GD_XPMAX) - 1 as the last column); GD_STEREO gives 1 (the
+ * STR_* modes work on every window); GD_STEREO_IN_WINDOW gives 1 when
+ * windows get stereo buffers: for the current window, whether it has
+ * them; otherwise whether GLSTEREO_EMULATION allows them.
+ *
+ * @param inquiry one of the four GLS_IRISGL_GD_* values.
+ * @param value_out must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_ENUM (another
+ * inquiry; irisgl.h's getgdesc() then returns -1, as IRIS GL does);
+ * GLS_ERROR_INVALID_VALUE (a bad GLSTEREO_EMULATION). Thread-safe.
+ */
+gls_result gls_irisgl_getgdesc(int32_t inquiry, int64_t *value_out);
+
+/**
+ * getmonitor(): the current monitor mode.
+ *
+ * Default: GLS_IRISGL_HZ60.
+ *
+ * @param mode_out must not be NULL.
+ * @return GLS_OK or GLS_ERROR_NULL_POINTER. Thread-safe.
+ */
+gls_result gls_irisgl_getmonitor(int32_t *mode_out);
+
+/**
+ * setmonitor(mode): switches the (process-wide) monitor mode, which sets
+ * how every winopen() window's eyes are read: HZ60 / HZ72 the quad buffer
+ * (a mono window shows one image to both eyes; a stereobuffer() window its
+ * left and right buffers — square-pixel stereo); STR_RECT the above/below
+ * rows (GLS_INPUT_STR_RECT); STR_TOP / STR_BOT one 492-row band, from each
+ * eye's buffer (GLS_INPUT_STR_TOP / GLS_INPUT_STR_BOT). Restore the mode
+ * getmonitor() gave before switching.
+ *
+ * @param mode GLS_IRISGL_HZ60, _HZ72, _STR_RECT, _STR_TOP or _STR_BOT.
+ * @return GLS_OK; GLS_ERROR_INVALID_ENUM (another mode);
+ * GLS_ERROR_INVALID_VALUE (a window too small for the bands). Nothing
+ * changes on error. Thread-safe.
+ */
+gls_result gls_irisgl_setmonitor(int32_t mode);
+
+/**
+ * prefposition(x1, x2, y1, y2): the next winopen() window covers these
+ * inclusive screen pixels, clamped to the emulated screen (so the seed's
+ * prefposition(0, getgdesc(GD_XPMAX), 0, getgdesc(GD_YPMAX)) is the full
+ * screen). Only the size matters: the emulated window stands for the
+ * screen area it covers.
+ *
+ * @return GLS_OK or GLS_ERROR_INVALID_VALUE (x2 < x1 or y2 < y1). Thread-safe.
+ */
+gls_result gls_irisgl_prefposition(int32_t x1, int32_t x2, int32_t y1, int32_t y2);
+
+/**
+ * winopen(title): opens a window (GLSTEREO_BACKEND chooses the backend):
+ * the size prefposition() gave, else the whole emulated screen; RGBA8
+ * with depth, double-buffered underneath, with stereo buffers unless
+ * GLSTEREO_EMULATION=off; read in the current monitor mode; made current
+ * on the calling thread. As in IRIS GL it starts mono and single-buffered
+ * (drawing reaches the front buffers) until gconfig().
+ *
+ * @param title ignored by the headless backends; may be NULL.
+ * @param window_out receives the window identifier (>= 1); must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_VALUE (a bad
+ * title string or prefposition); GLS_ERROR_BACKEND_UNAVAILABLE;
+ * GLS_ERROR_OUT_OF_MEMORY. Thread: the window is current on the calling thread.
+ */
+gls_result gls_irisgl_winopen(const char *title, int32_t *window_out);
+
+/**
+ * winclose(window): releases the window if current on the calling thread
+ * and destroys it.
+ *
+ * @return GLS_OK or GLS_ERROR_INVALID_HANDLE (not a live window). Thread-safe.
+ */
+gls_result gls_irisgl_winclose(int32_t window);
+
+/**
+ * The surface of a winopen() window, to capture it
+ * (gls_surface_save_png()) or choose its output format. Owned by the
+ * window: winclose() destroys it; do not destroy it yourself.
+ *
+ * @param surface_out must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE. Thread-safe.
+ */
+gls_result gls_irisgl_surface(int32_t window, struct gls_surface **surface_out);
+
+/**
+ * stereobuffer(): the current window gets stereo buffering at the next
+ * gconfig(). @return GLS_OK or GLS_ERROR_INVALID_OPERATION (no current
+ * winopen() window). Thread: the window's.
+ */
+gls_result gls_irisgl_stereobuffer(void);
+
+/**
+ * monobuffer(): the current window goes back to mono at the next
+ * gconfig(): drawing reaches both eyes' buffers alike.
+ * @return as gls_irisgl_stereobuffer(). Thread: the window's.
+ */
+gls_result gls_irisgl_monobuffer(void);
+
+/**
+ * doublebuffer(): the current window draws into back buffers from the
+ * next gconfig(), shown by swapbuffers().
+ * @return as gls_irisgl_stereobuffer(). Thread: the window's.
+ */
+gls_result gls_irisgl_doublebuffer(void);
+
+/**
+ * singlebuffer(): the current window draws into its front (visible)
+ * buffers from the next gconfig(). Default for a new window.
+ * @return as gls_irisgl_stereobuffer(). Thread: the window's.
+ */
+gls_result gls_irisgl_singlebuffer(void);
+
+/**
+ * gconfig(): applies stereobuffer()/monobuffer() and
+ * doublebuffer()/singlebuffer() to the current window and points drawing
+ * at the buffers they and leftbuffer()/rightbuffer() select.
+ *
+ * @return GLS_OK; GLS_ERROR_INVALID_OPERATION (no current window, or
+ * stereobuffer() on a window without stereo buffers — nothing changes).
+ * Thread: the window's.
+ */
+gls_result gls_irisgl_gconfig(void);
+
+/**
+ * leftbuffer(enable): whether drawing reaches the left eye's buffer of a
+ * stereo-buffered window (with rightbuffer(): both → GL_BACK, left only →
+ * GL_BACK_LEFT, right only → GL_BACK_RIGHT, neither → GL_NONE; the FRONT
+ * ones when single-buffered). A mono window remembers it for later.
+ *
+ * Default: true.
+ *
+ * @return as gls_irisgl_stereobuffer(). Thread: the window's.
+ */
+gls_result gls_irisgl_leftbuffer(bool enable);
+
+/**
+ * rightbuffer(enable): whether drawing reaches the right eye's buffer; see
+ * gls_irisgl_leftbuffer().
+ *
+ * Default: false.
+ *
+ * @return as gls_irisgl_stereobuffer(). Thread: the window's.
+ */
+gls_result gls_irisgl_rightbuffer(bool enable);
+
+/**
+ * swapbuffers(): presents a double-buffered current window (both eyes at
+ * once); ignored for a single-buffered one, as in IRIS GL.
+ *
+ * @return GLS_OK; GLS_ERROR_INVALID_OPERATION (no current window); the
+ * codes of gls_swap_buffers(). Thread: the window's.
+ */
+gls_result gls_irisgl_swapbuffers(void);
+
+/**
+ * viewport(left, right, bottom, top) with IRIS GL's inclusive pixel
+ * bounds: glViewport(left, bottom, right − left + 1, top − bottom + 1).
+ * As IRIS GL's viewport also sets the screenmask, it sets the same
+ * glScissor box and enables GL_SCISSOR_TEST, so a clear touches only this
+ * viewport (e.g. one eye's band in STR_RECT).
+ *
+ * @return GLS_OK; GLS_ERROR_INVALID_VALUE (right < left or top < bottom);
+ * GLS_ERROR_NO_CURRENT_SURFACE. Thread: the surface's. Works on any current surface.
+ */
+gls_result gls_irisgl_viewport(int32_t left, int32_t right, int32_t bottom, int32_t top);
+
+/**
+ * window(left, right, bottom, top, near, far): glFrustum's matrix
+ * replaces GL_PROJECTION (the matrix mode is left unchanged). Seed 002's
+ * stereo eyes: window(−top·aspect ± half_sep·near/distance, top·aspect ±
+ * half_sep·near/distance, −top, top, near, far), then translate(±half_sep, 0, 0).
+ *
+ * @return GLS_OK; GLS_ERROR_INVALID_VALUE (glFrustum's rules: near > 0,
+ * far > near, left ≠ right, bottom ≠ top, all finite);
+ * GLS_ERROR_NO_CURRENT_SURFACE. Thread: the surface's.
+ */
+gls_result gls_irisgl_window(double left,
+                             double right,
+                             double bottom,
+                             double top,
+                             double near_clip,
+                             double far_clip);
+
+/**
+ * translate(x, y, z): multiplies the current GL matrix by a translation,
+ * as glTranslated.
+ *
+ * @return GLS_OK; GLS_ERROR_INVALID_VALUE (not finite);
+ * GLS_ERROR_NO_CURRENT_SURFACE. Thread: the surface's.
+ */
+gls_result gls_irisgl_translate(double x, double y, double z);
+
+/**
  * One eye's frustum and camera offset by HP's method (seed 000 §6–7).
  *
  * Xrange = (right − left) × zero_parallax_distance / near_clip;
@@ -716,7 +1005,10 @@ gls_result gls_stereo_look_at(const double *eye,
  * One eye by SGI IRIS GL's method (seed 002 §7): window(−top·aspect ±
  * half_sep·near/distance, top·aspect ± half_sep·near/distance, −top, top,
  * near, far) then translate(±half_sep, 0, 0), upper signs for the left eye.
- * For STR_RECT, pass the squashed aspect (≈ 0.48 × the screen's).
+ * For STR_RECT, pass the display's aspect (screen width / height) and draw
+ * into the 492-row viewport: the viewport squashes the eye by ≈ 0.48
+ * (492/1024), which the display stretches back (seed 002 §7's "squashed
+ * aspect"); passing 0.48 × the aspect as well would squash it twice.
  *
  * @param top, aspect, distance > 0; half_sep >= 0; near/far as glFrustum.
  * @param eye GLS_EYE_LEFT or GLS_EYE_RIGHT.
@@ -824,6 +1116,103 @@ gls_result gls_output_from_name(const char *name, uint32_t *output_out);
  * Thread-safe from any thread; needs no GL context.
  */
 const char *gls_output_name(uint32_t output);
+
+/**
+ * Sets the size of the emulated screen that gls_starbase_open() (gopen())
+ * and gls_irisgl_winopen() (winopen()) open from now on, as a period
+ * program's display mode was set outside it (HP's and SGI's setmon).
+ * Surfaces already open keep their size.
+ *
+ * Default: 1280x1024, the mode of both seeds. Process-wide.
+ *
+ * @param width, height 1…16384.
+ * @return GLS_OK or GLS_ERROR_INVALID_VALUE (nothing changes). Thread-safe.
+ */
+gls_result gls_screen_set_size(uint32_t width, uint32_t height);
+
+/**
+ * The size of the emulated screen.
+ *
+ * @param width_out, height_out must not be NULL.
+ * @return GLS_OK or GLS_ERROR_NULL_POINTER. Thread-safe.
+ */
+gls_result gls_screen_get_size(uint32_t *width_out, uint32_t *height_out);
+
+/**
+ * A Starbase descriptor (`fildes`) for an existing surface, to pass to
+ * gescape(). The same surface always gets the same descriptor. The
+ * program keeps owning the surface: gls_surface_destroy() ends the
+ * descriptor too (gescape() on it then fails with EBADF).
+ *
+ * @param surface a live surface (mono, any size; sync-doubling reads its
+ * front-left buffer). @param fildes_out receives the descriptor (>= 3);
+ * must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE. Thread-safe.
+ */
+gls_result gls_starbase_fildes(struct gls_surface *surface, int32_t *fildes_out);
+
+/**
+ * The emulation's gopen(): opens the emulated screen (GLSTEREO_BACKEND
+ * chooses the backend) as a mono, double-buffered RGBA8 surface with a
+ * depth buffer, the size of gls_screen_get_size() (1280x1024 unless
+ * gls_screen_set_size() said otherwise), and makes it current on the
+ * calling thread so the program can draw with GL. Get the surface with
+ * gls_starbase_surface(); gls_starbase_close() destroys it.
+ *
+ * @param kind GLS_STARBASE_OUTDEV or GLS_STARBASE_OUTINDEV (the emulation
+ * has no input devices). @param fildes_out receives the descriptor (>= 3);
+ * must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_ENUM (kind);
+ * GLS_ERROR_BACKEND_UNAVAILABLE; GLS_ERROR_OUT_OF_MEMORY; the codes of
+ * gls_make_current(). Thread: the surface is current on the calling thread.
+ */
+gls_result gls_starbase_open(int32_t kind, int32_t *fildes_out);
+
+/**
+ * The surface a descriptor names, to capture it (gls_surface_save_png()),
+ * choose its output format or present it (gls_swap_buffers()). The handle
+ * stays owned by the descriptor's creator: do not destroy a gopen()
+ * surface yourself, gls_starbase_close() does.
+ *
+ * @param fildes a descriptor. @param surface_out must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE (not a
+ * live descriptor). Thread-safe.
+ */
+gls_result gls_starbase_surface(int32_t fildes, struct gls_surface **surface_out);
+
+/**
+ * The emulation's gclose(): ends a descriptor. A surface opened by
+ * gls_starbase_open() is released (if current on the calling thread) and
+ * destroyed; one named with gls_starbase_fildes() is left to its owner.
+ *
+ * @return GLS_OK or GLS_ERROR_INVALID_HANDLE (not a live descriptor;
+ * nothing changes). Thread-safe.
+ */
+gls_result gls_starbase_close(int32_t fildes);
+
+/**
+ * Starbase's gescape(fildes, op, arg1, arg2). The emulation has one
+ * escape, GLS_STARBASE_STEREO: arg1->i[0] non-zero (TRUE) turns
+ * sync-doubling on for the surface fildes names — its mono frame is then
+ * read as left eye = upper half, right eye = lower half, each stretched ×2
+ * vertically (GLS_INPUT_SYNC_DOUBLED), and those eyes go to every output
+ * format and capture; 0 (FALSE) turns it off (GLS_INPUT_QUAD_BUFFER: the
+ * plain mono frame to both eyes). arg2 is not used.
+ *
+ * Default: off.
+ *
+ * @param fildes a live descriptor. @param op GLS_STARBASE_STEREO.
+ * @param arg1 must not be NULL. @param arg2 unused; may be NULL.
+ * @return GLS_OK; GLS_ERROR_INVALID_HANDLE (fildes, checked first);
+ * GLS_ERROR_INVALID_ENUM (op); GLS_ERROR_NULL_POINTER (arg1);
+ * GLS_ERROR_INVALID_VALUE (a surface under 2 rows). Nothing changes on
+ * error. starbase.h's gescape() turns these into -1 with errno EBADF,
+ * EINVAL, EFAULT and EINVAL. Thread-safe.
+ */
+gls_result gls_starbase_gescape(int32_t fildes,
+                                int32_t op,
+                                const union gls_gescape_arg *arg1,
+                                union gls_gescape_arg *arg2);
 
 /**
  * Creates a surface: an emulated default framebuffer of `width` × `height`
@@ -1080,9 +1469,9 @@ gls_result gls_surface_set_saturation(struct gls_surface *surface, float saturat
 
 /**
  * Sets how the program delivers its eyes (the input framing): the quad
- * buffer (default), one sync-doubled frame (HP Starbase), SGI STR_RECT, or
- * a double-width side-by-side frame (Xinerama). The eyes taken apart flow
- * to every output format and capture.
+ * buffer (default), one sync-doubled frame (HP Starbase), SGI STR_RECT,
+ * a double-width side-by-side frame (Xinerama), or SGI STR_TOP / STR_BOT.
+ * The eyes taken apart flow to every output format and capture.
  *
  * @param surface a live surface. @param input a GLS_INPUT_* value.
  * @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_ENUM;

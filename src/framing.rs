@@ -33,6 +33,16 @@ pub enum InputFraming {
     /// Xinerama "passive" stereo (seed 001): a double-width mono frame, left
     /// eye in the left half, right eye in the right half, not stretched.
     SideBySide,
+    /// SGI STR_TOP (seed 002 §3, §5): the display shows only the top 492 of
+    /// 1024 rows (GL rows 532–1023), stretched to the full height, to both
+    /// eyes; a window with left and right buffers shows each to its eye.
+    /// So: both eyes from that band, the left eye from the left buffer and
+    /// the right eye from the right buffer (the left one on a mono surface).
+    /// Other heights scale as [`InputFraming::StrRect`].
+    StrTop,
+    /// SGI STR_BOT: as [`InputFraming::StrTop`] with the bottom 492 rows
+    /// (GL rows 0–491).
+    StrBot,
 }
 
 /// Where one eye comes from.
@@ -52,11 +62,13 @@ pub struct EyeSource {
 
 impl InputFraming {
     /// Every framing.
-    pub const ALL: [InputFraming; 4] = [
+    pub const ALL: [InputFraming; 6] = [
         InputFraming::QuadBuffer,
         InputFraming::SyncDoubled,
         InputFraming::StrRect,
         InputFraming::SideBySide,
+        InputFraming::StrTop,
+        InputFraming::StrBot,
     ];
 
     /// The size of each eye once taken apart from a `width` × `height` frame.
@@ -72,7 +84,9 @@ impl InputFraming {
         let too_small = match self {
             InputFraming::QuadBuffer => false,
             InputFraming::SyncDoubled => height < 2,
-            InputFraming::StrRect => str_rect_eye_rows(height) == 0,
+            InputFraming::StrRect | InputFraming::StrTop | InputFraming::StrBot => {
+                str_rect_eye_rows(height) == 0
+            }
             InputFraming::SideBySide => width < 2,
         };
         if too_small {
@@ -80,8 +94,9 @@ impl InputFraming {
                 "a {width}x{height} frame is too small to hold two eyes as {self:?}"
             )));
         }
-        // On a stereo surface the other framings read the left buffers only,
-        // as a sync-doubled display shows one mono frame.
+        // On a stereo surface the one-frame framings read the left buffers
+        // only, as a sync-doubled display shows one mono frame; StrTop and
+        // StrBot read both, as SGI's windowed stereo does.
         let _ = shape;
         Ok(())
     }
@@ -91,6 +106,11 @@ impl InputFraming {
     /// display shows.
     pub fn sources(self, shape: FramebufferShape, width: u32, height: u32) -> [EyeSource; 2] {
         let fl = ColorBuffer::FrontLeft;
+        let fr = if shape.stereo {
+            ColorBuffer::FrontRight
+        } else {
+            fl
+        };
         let whole = |buffer| EyeSource {
             buffer,
             x: 0,
@@ -99,14 +119,7 @@ impl InputFraming {
             height,
         };
         match self {
-            InputFraming::QuadBuffer => {
-                let right = if shape.stereo {
-                    ColorBuffer::FrontRight
-                } else {
-                    fl
-                };
-                [whole(fl), whole(right)]
-            }
+            InputFraming::QuadBuffer => [whole(fl), whole(fr)],
             InputFraming::SyncDoubled => {
                 let (top, bottom) = half_split(height);
                 [
@@ -144,6 +157,22 @@ impl InputFraming {
                         height: rows,
                     },
                 ]
+            }
+            InputFraming::StrTop | InputFraming::StrBot => {
+                let rows = str_rect_eye_rows(height);
+                let y = if self == InputFraming::StrTop {
+                    0
+                } else {
+                    height - rows
+                };
+                let band = |buffer| EyeSource {
+                    buffer,
+                    x: 0,
+                    y,
+                    width,
+                    height: rows,
+                };
+                [band(fl), band(fr)]
             }
             InputFraming::SideBySide => {
                 let (l, r) = half_split(width);
@@ -220,6 +249,30 @@ mod tests {
             right.pixels().chunks(4).all(|p| p == [0, 0, 0, 255]),
             "right eye is the black half"
         );
+    }
+
+    #[test]
+    fn str_top_and_str_bot_take_one_band_from_each_eyes_buffer() {
+        let stereo = FramebufferShape {
+            stereo: true,
+            double_buffered: true,
+        };
+        let [l, r] = InputFraming::StrTop.sources(stereo, 1280, 1024);
+        assert_eq!(
+            (l.buffer, r.buffer),
+            (ColorBuffer::FrontLeft, ColorBuffer::FrontRight)
+        );
+        assert_eq!((l.y, l.height, r.y, r.height), (0, 492, 0, 492));
+        let [l, r] = InputFraming::StrBot.sources(MONO, 1280, 1024);
+        assert_eq!(
+            (l.buffer, r.buffer),
+            (ColorBuffer::FrontLeft, ColorBuffer::FrontLeft)
+        );
+        // Top-first rows 532..1024 are GL rows 0..491.
+        assert_eq!((l.y, l.height), (532, 492));
+        assert_eq!(r, l);
+        assert!(InputFraming::StrTop.check(MONO, 4, 1).is_err());
+        assert_eq!(InputFraming::StrBot.eye_size(1280, 1024), (1280, 1024));
     }
 
     #[test]

@@ -19,6 +19,7 @@
 //! - [`image`]: RGBA8 images, rows top first;
 //! - [`framing`]: input framings (quad buffer, sync-doubled, STR_RECT, side-by-side);
 //! - [`output`]: output formats (mode names, geometry, CPU reference, GL compositor);
+//! - [`shims`]: the period APIs (HP Starbase, SGI IRIS GL, NVIDIA 3D Vision);
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]
@@ -34,6 +35,7 @@ pub mod gl;
 pub mod image;
 pub mod math;
 pub mod output;
+pub mod shims;
 pub mod stereo;
 pub mod surface;
 

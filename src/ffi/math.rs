@@ -330,7 +330,10 @@ pub unsafe extern "C" fn gls_stereo_look_at(
 /// One eye by SGI IRIS GL's method (seed 002 §7): window(−top·aspect ±
 /// half_sep·near/distance, top·aspect ± half_sep·near/distance, −top, top,
 /// near, far) then translate(±half_sep, 0, 0), upper signs for the left eye.
-/// For STR_RECT, pass the squashed aspect (≈ 0.48 × the screen's).
+/// For STR_RECT, pass the display's aspect (screen width / height) and draw
+/// into the 492-row viewport: the viewport squashes the eye by ≈ 0.48
+/// (492/1024), which the display stretches back (seed 002 §7's "squashed
+/// aspect"); passing 0.48 × the aspect as well would squash it twice.
 ///
 /// @param top, aspect, distance > 0; half_sep >= 0; near/far as glFrustum.
 /// @param eye GLS_EYE_LEFT or GLS_EYE_RIGHT.

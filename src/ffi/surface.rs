@@ -373,6 +373,12 @@ pub const GLS_INPUT_STR_RECT: u32 = 2;
 /// Input framing: Xinerama "passive" stereo (seed 001). A double-width mono
 /// frame: left eye in the left half, right eye in the right half.
 pub const GLS_INPUT_SIDE_BY_SIDE: u32 = 3;
+/// Input framing: SGI STR_TOP (seed 002). For 1024 rows: both eyes from GL
+/// rows 532–1023, stretched to the full height; the left eye from the left
+/// buffer, the right eye from the right buffer (the left one on mono).
+pub const GLS_INPUT_STR_TOP: u32 = 4;
+/// Input framing: SGI STR_BOT, as GLS_INPUT_STR_TOP with GL rows 0–491.
+pub const GLS_INPUT_STR_BOT: u32 = 5;
 
 /// Sets the output format a surface's composite (its window, and
 /// GLS_IMAGE_COMPOSITE captures) is made in.
@@ -480,9 +486,9 @@ pub extern "C" fn gls_surface_set_saturation(
 }
 
 /// Sets how the program delivers its eyes (the input framing): the quad
-/// buffer (default), one sync-doubled frame (HP Starbase), SGI STR_RECT, or
-/// a double-width side-by-side frame (Xinerama). The eyes taken apart flow
-/// to every output format and capture.
+/// buffer (default), one sync-doubled frame (HP Starbase), SGI STR_RECT,
+/// a double-width side-by-side frame (Xinerama), or SGI STR_TOP / STR_BOT.
+/// The eyes taken apart flow to every output format and capture.
 ///
 /// @param surface a live surface. @param input a GLS_INPUT_* value.
 /// @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_ENUM;
@@ -497,11 +503,13 @@ pub extern "C" fn gls_surface_set_input(surface: *mut gls_surface, input: u32) -
             GLS_INPUT_SYNC_DOUBLED => InputFraming::SyncDoubled,
             GLS_INPUT_STR_RECT => InputFraming::StrRect,
             GLS_INPUT_SIDE_BY_SIDE => InputFraming::SideBySide,
+            GLS_INPUT_STR_TOP => InputFraming::StrTop,
+            GLS_INPUT_STR_BOT => InputFraming::StrBot,
             v => {
                 return Err(Error::invalid_enum(
                     "input",
                     v,
-                    "use GLS_INPUT_QUAD_BUFFER, GLS_INPUT_SYNC_DOUBLED, GLS_INPUT_STR_RECT or GLS_INPUT_SIDE_BY_SIDE",
+                    "use GLS_INPUT_QUAD_BUFFER, GLS_INPUT_SYNC_DOUBLED, GLS_INPUT_STR_RECT, GLS_INPUT_SIDE_BY_SIDE, GLS_INPUT_STR_TOP or GLS_INPUT_STR_BOT",
                 ));
             }
         };
