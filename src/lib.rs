@@ -16,11 +16,13 @@
 //! - [`stereo::emulated`]: the emulated quad buffer;
 //! - [`display`], [`surface`]: the objects a program uses;
 //! - [`capture`]: PNG files;
+//! - [`analysis`]: measured parallax and auto-convergence from the depth buffer;
 //! - [`image`]: RGBA8 images, rows top first;
 //! - [`error`]: the one error type and its C result codes;
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod backend;
 pub mod capture;
 pub mod config;

@@ -19,3 +19,5 @@ pub(crate) mod handles;
 pub mod math;
 pub mod surface;
 pub mod types;
+// Measurement of rendered frames: after the surface calls in the header.
+pub mod analysis;
