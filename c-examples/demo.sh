@@ -18,5 +18,8 @@ echo "== projection (math only)"
 echo "== redblue on $GLSTEREO_BACKEND"
 "$BUILD/redblue$SUFFIX" --out "$OUT/redblue"
 
+echo "== oglplane on $GLSTEREO_BACKEND: one turn of the airplane, parallax measured each frame"
+"$BUILD/oglplane$SUFFIX" --frames 60 --angle -54 --out "$OUT/oglplane"
+
 echo
 echo "images are in $OUT/"
