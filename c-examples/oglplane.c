@@ -15,9 +15,20 @@
  * and, beyond the original, measures the parallax it really rendered from
  * the depth buffer and checks it against the 3% comfort budget.
  *
- * The airplane's pose depends only on the frame number: frame k (from 0)
- * is turned --angle + 6k degrees about the vertical axis, after a fixed
- * 20-degree tilt towards the viewer.
+ * Options, besides --out, --size and --mode (example.h):
+ *   --frames N         draw N frames (default 1); frame k (from 0) turns the
+ *                      airplane --angle + 6k degrees about the vertical axis,
+ *                      after a fixed 20-degree tilt towards the viewer, so
+ *                      the pose depends only on the frame number
+ *   --angle DEG        the first frame's angle (default -60: nose towards
+ *                      the viewer's right)
+ *   --offset X         stereo strength, UserOffsetAdjustment, 0...2 (default 1)
+ *   --balance X        parallax balance, UserBalanceAdjustment, 0...2 (default 1)
+ *   --keys KEYS        key presses applied before the first frame
+ *   --zero-parallax D  distance of the zero-parallax plane (default 10: the
+ *                      airplane's centre)
+ *   --auto-converge    after each frame, put zero parallax at the measured
+ *                      centre of interest
  *
  * Keys (in a window, once the GLX backend exists; headless, --keys types
  * them): + or = stronger, - weaker, ] more positive balance, [ less,
@@ -178,7 +189,8 @@ static int parse_number(const char *opt, const char *text, double lo, double hi,
     return 1;
 }
 
-#define OPTIONS "[--frames N] [--angle DEG] [--offset X] [--balance X] [--keys KEYS] [--auto-converge]"
+#define OPTIONS \
+    "[--frames N] [--angle DEG] [--offset X] [--balance X] [--keys KEYS] [--zero-parallax D] [--auto-converge]"
 
 int main(int argc, char **argv) {
     example_options opt = example_defaults();
@@ -213,6 +225,8 @@ int main(int argc, char **argv) {
             ok = parse_number(a, v, 0, GLS_ADJUSTMENT_MAX, &settings.adj.offset_adjustment);
         } else if (strcmp(a, "--balance") == 0) {
             ok = parse_number(a, v, 0, GLS_ADJUSTMENT_MAX, &settings.adj.balance_adjustment);
+        } else if (strcmp(a, "--zero-parallax") == 0) {
+            ok = parse_number(a, v, NEAR_CLIP, FAR_CLIP, &settings.adj.zero_parallax_distance);
         } else if (strcmp(a, "--keys") == 0) {
             keys = v;
         } else {
@@ -279,7 +293,7 @@ int main(int argc, char **argv) {
                eye == GLS_EYE_LEFT ? "left " : "right", offset, f.left - mono.left);
     }
 
-    gls_parallax_report total = {0};
+    gls_parallax_report total = {0}, last = {0};
     double centre_of_interest = 0.0;
     int measured = 0;
     double angle = start_angle;
@@ -298,6 +312,7 @@ int main(int argc, char **argv) {
             if ((r = gls_stereo_measure_parallax(&mono, &settings.adj, GLS_PARALLAX_BUDGET_DEFAULT, &report)) != GLS_OK)
                 return example_fail("gls_stereo_measure_parallax", r);
             merge_reports(&total, &report, !measured);
+            last = report;
             measured = 1;
             if ((r = gls_stereo_auto_converge(&mono, &centre_of_interest)) != GLS_OK)
                 return example_fail("gls_stereo_auto_converge", r);
@@ -316,9 +331,13 @@ int main(int argc, char **argv) {
 
     if (measured) {
         char text[512];
-        gls_parallax_report_describe(&total, text, sizeof text, NULL);
-        printf("measured %s\n", text);
-        printf("centre of interest at distance %.3f (zero parallax at %.3f)\n", centre_of_interest,
+        gls_parallax_report_describe(&last, text, sizeof text, NULL);
+        printf("measured in the last frame: %s\n", text);
+        if (frames > 1) {
+            gls_parallax_report_describe(&total, text, sizeof text, NULL);
+            printf("measured over %ld frames: %s\n", (long)frames, text);
+        }
+        printf("centre of interest at distance %.3f (zero parallax now at %.3f)\n", centre_of_interest,
                settings.adj.zero_parallax_distance);
         if (total.warnings != GLS_PARALLAX_WITHIN_BUDGET)
             fprintf(stderr, "oglplane: the parallax exceeds the comfort budget: see above\n");
