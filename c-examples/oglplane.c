@@ -314,9 +314,12 @@ int main(int argc, char **argv) {
             merge_reports(&total, &report, !measured);
             last = report;
             measured = 1;
-            if ((r = gls_stereo_auto_converge(&mono, &centre_of_interest)) != GLS_OK)
-                return example_fail("gls_stereo_auto_converge", r);
-            if (settings.auto_converge) settings.adj.zero_parallax_distance = centre_of_interest;
+            /* Where the subject is: converge there (next frame), or report it. */
+            if (settings.auto_converge || frame + 1 == (long)frames) {
+                if ((r = gls_stereo_auto_converge(&mono, &centre_of_interest)) != GLS_OK)
+                    return example_fail("gls_stereo_auto_converge", r);
+                if (settings.auto_converge) settings.adj.zero_parallax_distance = centre_of_interest;
+            }
         } else {
             glClear(GL_DEPTH_BUFFER_BIT);
             glMatrixMode(GL_PROJECTION);
