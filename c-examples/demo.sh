@@ -26,5 +26,8 @@ echo "== irisgl (SGI IRIS GL STR_RECT, then square-pixel stereo) on $GLSTEREO_BA
 "$BUILD/irisgl$SUFFIX" --out "$OUT/irisgl/str-rect"
 "$BUILD/irisgl$SUFFIX" --square-pixel --out "$OUT/irisgl/square-pixel"
 
+echo "== oglplane on $GLSTEREO_BACKEND: one turn of the airplane, parallax measured each frame"
+"$BUILD/oglplane$SUFFIX" --frames 60 --angle -54 --out "$OUT/oglplane"
+
 echo
 echo "images are in $OUT/"

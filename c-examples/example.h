@@ -75,8 +75,9 @@ static example_options example_defaults(void) {
     return o;
 }
 
-/* Parses a command line that has only the shared options. */
-static int example_parse(int argc, char **argv, example_options *o) {
+/* Parses a command line that has only the shared options. (inline: examples
+ * with options of their own use example_parse_common instead.) */
+static inline int example_parse(int argc, char **argv, example_options *o) {
     for (int i = 1; i < argc; ++i) {
         int r = example_parse_common(&i, argc, argv, o);
         if (r != 1) {

@@ -364,6 +364,21 @@
 #define GLS_EYE_RIGHT 1
 
 /**
+ * The measured parallax is within the comfort budget on both sides.
+ */
+#define GLS_PARALLAX_WITHIN_BUDGET 0
+
+/**
+ * The most negative parallax (in front of the screen) exceeds the budget.
+ */
+#define GLS_PARALLAX_WARN_NEGATIVE 1
+
+/**
+ * The most positive parallax (behind the screen) exceeds the budget.
+ */
+#define GLS_PARALLAX_WARN_POSITIVE 2
+
+/**
  * A chosen framebuffer configuration (opaque).
  */
 typedef struct gls_config gls_config;
@@ -464,6 +479,54 @@ typedef union gls_gescape_arg {
    */
   char c[255];
 } gls_gescape_arg;
+
+/**
+ * The parallax a rendered frame spans, measured from its depth buffer by
+ * gls_stereo_measure_parallax(). Parallax is right-eye x minus left-eye x
+ * on the screen: negative in front of the screen, positive behind it;
+ * seed 000 §7 advises keeping both within about 3% of the viewport width.
+ */
+typedef struct gls_parallax_report {
+  /**
+   * The smallest parallax (the most negative when any is negative), in
+   * percent of the viewport width; it belongs to the nearest pixel.
+   */
+  double min_percent;
+  /**
+   * The largest parallax, in percent of the viewport width; it belongs
+   * to the farthest pixel.
+   */
+  double max_percent;
+  /**
+   * min_percent in pixels (percent / 100 × viewport width).
+   */
+  double min_pixels;
+  /**
+   * max_percent in pixels.
+   */
+  double max_pixels;
+  /**
+   * Eye-space distance (along the view axis) of the nearest pixel holding geometry.
+   */
+  double nearest_distance;
+  /**
+   * Eye-space distance of the farthest pixel holding geometry.
+   */
+  double farthest_distance;
+  /**
+   * The budget the warnings compare with, in percent each side.
+   */
+  double budget_percent;
+  /**
+   * How many pixels of the viewport hold geometry.
+   */
+  uint64_t covered_pixels;
+  /**
+   * GLS_PARALLAX_WITHIN_BUDGET, or GLS_PARALLAX_WARN_NEGATIVE and/or
+   * GLS_PARALLAX_WARN_POSITIVE (bits).
+   */
+  uint32_t warnings;
+} gls_parallax_report;
 
 /**
  * Success.
@@ -1479,6 +1542,88 @@ gls_result gls_surface_set_saturation(struct gls_surface *surface, float saturat
  * that way (nothing changes). Any thread.
  */
 gls_result gls_surface_set_input(struct gls_surface *surface, uint32_t input);
+
+/**
+ * Measures the on-screen parallax of the frame being drawn on the current
+ * surface: the most negative and most positive parallax of its geometry,
+ * in percent of the viewport width and in pixels, with warnings when
+ * either exceeds ±budget_percent.
+ *
+ * Call it right after drawing an eye with gls_apply_stereo_eye(mono, adj,
+ * eye) (or gls_stereo_eye_matrix()), before the next depth clear and
+ * before the swap. It reads the depth buffer, which both eyes share:
+ * pixels not at the glClearDepth value hold geometry; their window depths
+ * are mapped back to eye-space distances through the frustum's near and
+ * far clip distances and the current glDepthRange, and the parallax of
+ * the nearest and farthest of them is what HP's projection with `adj`
+ * gives at those distances. One eye is enough: with parallel-axis stereo
+ * a point's parallax depends only on its distance. To include what only
+ * the other eye sees, measure after each eye and take the extremes.
+ * Only the current viewport is examined.
+ *
+ * @param mono the mono frustum the eyes were derived from; must not be NULL.
+ * @param adj the stereo settings the eyes were drawn with; must not be NULL.
+ * @param budget_percent > 0; GLS_PARALLAX_BUDGET_DEFAULT is seed 000's 3%.
+ * @param report_out receives the report; must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_VALUE (as
+ * gls_stereo_eye(), or budget_percent <= 0); GLS_ERROR_NO_CURRENT_SURFACE;
+ * GLS_ERROR_INVALID_OPERATION when the surface has no depth buffer, no
+ * pixel of the viewport holds geometry, or glDepthRange has equal near
+ * and far. The report is written only on GLS_OK. Reads back the depth
+ * buffer (and waits for the frame's rendering): cost grows with the
+ * surface size. Thread: the surface's.
+ */
+gls_result gls_stereo_measure_parallax(const struct gls_frustum *mono,
+                                       const struct gls_stereo_adjust *adj,
+                                       double budget_percent,
+                                       struct gls_parallax_report *report_out);
+
+/**
+ * Auto-convergence: the distance of the centre of interest of the frame
+ * being drawn on the current surface, to use as
+ * gls_stereo_adjust.zero_parallax_distance so that the subject sits at
+ * the screen surface (seed 000 §10: put the plane of zero parallax near
+ * the centre of interest).
+ *
+ * The centre of interest is the median eye-space distance of the pixels
+ * holding geometry in the middle half of the viewport's width and height
+ * (a quarter of its area, where a program frames its subject), or of the
+ * whole viewport when that window holds no geometry. The median is a
+ * distance the scene really has there and ignores a minority of other
+ * pixels (a far background, a near object crossing the view). Call it
+ * when gls_stereo_measure_parallax() may be called; apply the result to
+ * the next frame (HP's offset scales with the distance, so the strength
+ * follows).
+ *
+ * @param mono the mono frustum the frame was drawn with (its near and far
+ * clip distances map depth back to distance); must not be NULL.
+ * @param distance_out receives the distance; must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_VALUE (a bad
+ * frustum); GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_INVALID_OPERATION as
+ * gls_stereo_measure_parallax(). Written only on GLS_OK. Thread: the surface's.
+ */
+gls_result gls_stereo_auto_converge(const struct gls_frustum *mono, double *distance_out);
+
+/**
+ * Describes a parallax report in one line of UTF-8 for people, e.g.
+ * "parallax -2.12% to +1.17% of viewport width (-13.6 to +7.5 px),
+ * distance 8.032 to 12.443: within the 3% budget", or with "; WARNING:
+ * … exceeds the 3% budget (…what to change…)" for each side beyond it.
+ *
+ * Works like snprintf: writes at most len − 1 bytes and a NUL (cut at a
+ * character boundary), and reports the full length.
+ *
+ * @param report must not be NULL.
+ * @param buf receives the text; may be NULL only when len is 0.
+ * @param len size of buf in bytes.
+ * @param length_out receives the length of the whole text without the
+ * NUL (to size buf); may be NULL.
+ * @return GLS_OK or GLS_ERROR_NULL_POINTER. Thread-safe; no GL context needed.
+ */
+gls_result gls_parallax_report_describe(const struct gls_parallax_report *report,
+                                        char *buf,
+                                        size_t len,
+                                        size_t *length_out);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -16,6 +16,7 @@
 //! - [`stereo::emulated`]: the emulated quad buffer;
 //! - [`display`], [`surface`]: the objects a program uses;
 //! - [`capture`]: PNG files;
+//! - [`analysis`]: measured parallax and auto-convergence from the depth buffer;
 //! - [`image`]: RGBA8 images, rows top first;
 //! - [`framing`]: input framings (quad buffer, sync-doubled, STR_RECT, side-by-side);
 //! - [`output`]: output formats (mode names, geometry, CPU reference, GL compositor);
@@ -24,6 +25,7 @@
 //! - [`ffi`]: the C ABI (the only `extern "C"` code).
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod backend;
 pub mod capture;
 pub mod config;

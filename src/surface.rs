@@ -422,6 +422,24 @@ impl Surface {
         Ok(img)
     }
 
+    /// Reads the depth buffer both eyes share (it holds what was drawn
+    /// last) as window depths, rows bottom first. The program's rendering
+    /// is finished first when the surface is current on this thread.
+    pub fn read_depth(self: &Arc<Self>) -> Result<crate::analysis::DepthImage> {
+        if self.config.depth_bits == 0 {
+            return Err(Error::invalid_operation(
+                "this surface has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
+            ));
+        }
+        self.with_compositor(|gl, st| {
+            let (w, h) = st.fb.size();
+            let mut values = vec![0f32; w as usize * h as usize];
+            // SAFETY: the compositor context is current; `values` has w×h entries.
+            unsafe { st.fb.read_depth(gl, &mut values)? };
+            crate::analysis::DepthImage::new(w, h, values)
+        })
+    }
+
     /// The two eyes as they are displayed now, taken apart from the front
     /// buffers by the surface's input framing (a mono surface in the
     /// quad-buffer framing shows its one image to both eyes).

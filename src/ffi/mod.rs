@@ -23,3 +23,5 @@ pub mod screen;
 pub mod starbase;
 pub mod surface;
 pub mod types;
+// Measurement of rendered frames: after the surface calls in the header.
+pub mod analysis;

@@ -57,6 +57,8 @@ pub const GL_GREEN_BITS: u32 = 0x0D53;
 pub const GL_BLUE_BITS: u32 = 0x0D54;
 pub const GL_ALPHA_BITS: u32 = 0x0D55;
 pub const GL_DEPTH_BITS: u32 = 0x0D56;
+pub const GL_DEPTH_RANGE: u32 = 0x0B70;
+pub const GL_DEPTH_CLEAR_VALUE: u32 = 0x0B73;
 pub const GL_STENCIL_BITS: u32 = 0x0D57;
 
 pub const GL_FRAMEBUFFER: u32 = 0x8D40;

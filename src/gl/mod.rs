@@ -97,6 +97,7 @@ gl_table! {
     Scissor = "glScissor"(x: GLint, y: GLint, w: GLsizei, h: GLsizei);
     ClearColor = "glClearColor"(r: GLfloat, g: GLfloat, b: GLfloat, a: GLfloat);
     Clear = "glClear"(mask: GLbitfield);
+    ClearDepth = "glClearDepth"(depth: GLdouble);
     ColorMask = "glColorMask"(r: GLboolean, g: GLboolean, b: GLboolean, a: GLboolean);
     PixelStorei = "glPixelStorei"(pname: GLenum, param: GLint);
     ReadPixels = "glReadPixels"(x: GLint, y: GLint, w: GLsizei, h: GLsizei, format: GLenum, ty: GLenum, data: *mut c_void);

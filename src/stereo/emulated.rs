@@ -506,4 +506,55 @@ impl EmulatedFramebuffer {
         flip_rows(out, stride);
         Ok(())
     }
+
+    /// Reads the depth/stencil renderbuffer's depth as window depths in
+    /// 0…1 into `out`, rows bottom first (glReadPixels order). Both eyes
+    /// share it, so it holds what the program drew last. The compositor
+    /// context must be current.
+    ///
+    /// # Safety
+    /// The surface's compositor context must be current on this thread and
+    /// `out` must hold width × height values.
+    pub unsafe fn read_depth(&self, gl: &Gl, out: &mut [f32]) -> Result<()> {
+        if self.depth_stencil == 0 {
+            return Err(Error::invalid_operation(
+                "this framebuffer has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
+            ));
+        }
+        assert_eq!(
+            out.len(),
+            self.width as usize * self.height as usize,
+            "read_depth buffer size"
+        );
+        // SAFETY: compositor context current; `out` is large enough (asserted).
+        unsafe {
+            gl.take_error();
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
+            gl.FramebufferRenderbuffer(
+                GL_READ_FRAMEBUFFER,
+                GL_DEPTH_STENCIL_ATTACHMENT,
+                GL_RENDERBUFFER,
+                self.depth_stencil,
+            );
+            gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+            gl.ReadPixels(
+                0,
+                0,
+                self.width as i32,
+                self.height as i32,
+                GL_DEPTH_COMPONENT,
+                GL_FLOAT,
+                out.as_mut_ptr().cast(),
+            );
+            gl.FramebufferRenderbuffer(
+                GL_READ_FRAMEBUFFER,
+                GL_DEPTH_STENCIL_ATTACHMENT,
+                GL_RENDERBUFFER,
+                0,
+            );
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+            gl.check("reading the depth buffer")
+        }
+    }
 }
