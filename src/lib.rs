@@ -14,6 +14,8 @@
 //! - [`gl`]: the GL function table, loaded from the backend;
 //! - [`backend`]: EGL, OSMesa (and GLX) contexts, chosen at run time;
 //! - [`stereo::emulated`]: the emulated quad buffer;
+//! - [`shims`]: legacy and vendor APIs (NV_3dvision_settings);
+//! - [`framing`]: how programs deliver eyes (automatic stereo of mono frames);
 //! - [`display`], [`surface`]: the objects a program uses;
 //! - [`capture`]: PNG files;
 //! - [`image`]: RGBA8 images, rows top first;
@@ -27,9 +29,11 @@ pub mod config;
 pub mod display;
 pub mod error;
 pub mod ffi;
+pub mod framing;
 pub mod gl;
 pub mod image;
 pub mod math;
+pub mod shims;
 pub mod stereo;
 pub mod surface;
 

@@ -17,5 +17,6 @@ pub mod core;
 pub mod display;
 pub(crate) mod handles;
 pub mod math;
+pub mod nv3dvision;
 pub mod surface;
 pub mod types;
