@@ -18,5 +18,8 @@ echo "== projection (math only)"
 echo "== redblue on $GLSTEREO_BACKEND"
 "$BUILD/redblue$SUFFIX" --out "$OUT/redblue"
 
+echo "== autostereo on $GLSTEREO_BACKEND (a mono program, automatic stereo)"
+"$BUILD/autostereo$SUFFIX" --out "$OUT/autostereo" --frames 5
+
 echo
 echo "images are in $OUT/"
