@@ -226,9 +226,17 @@ pub fn render_frame(surface: &Arc<Surface>, draw: &mut dyn FnMut()) -> Result<()
         (Eye::Left, settings.eye_projection(&mono, Eye::Left)?),
         (Eye::Right, settings.eye_projection(&mono, Eye::Right)?),
     ];
+    /// Clears IN_FRAME however the frame ends (a Rust callback may panic).
+    struct InFrame;
+    impl Drop for InFrame {
+        fn drop(&mut self) {
+            IN_FRAME.with(|f| f.set(false));
+        }
+    }
     IN_FRAME.with(|f| f.set(true));
+    let in_frame = InFrame;
     let result = draw_eyes(surface, &program, mode, &modelview, &eyes, draw);
-    IN_FRAME.with(|f| f.set(false));
+    drop(in_frame);
     if surface::current().is_some_and(|c| Arc::ptr_eq(&c, surface)) {
         // SAFETY: still current on this thread (checked).
         unsafe { load(surface, GL_PROJECTION, &mono) };
