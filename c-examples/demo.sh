@@ -29,5 +29,8 @@ echo "== irisgl (SGI IRIS GL STR_RECT, then square-pixel stereo) on $GLSTEREO_BA
 echo "== oglplane on $GLSTEREO_BACKEND: one turn of the airplane, parallax measured each frame"
 "$BUILD/oglplane$SUFFIX" --frames 60 --angle -54 --out "$OUT/oglplane"
 
+echo "== autostereo on $GLSTEREO_BACKEND (a mono program, automatic stereo)"
+"$BUILD/autostereo$SUFFIX" --out "$OUT/autostereo" --frames 5
+
 echo
 echo "images are in $OUT/"

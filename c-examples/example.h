@@ -26,14 +26,14 @@ typedef struct example_options {
     const char *modes; /* NULL, or more formats to write composites in: "a,b,c" */
 } example_options;
 
-static void example_usage(const char *prog, const char *extra) {
+static inline void example_usage(const char *prog, const char *extra) {
     fprintf(stderr, "usage: %s [--out DIR] [--size WxH] [--mode NAME] [--modes LIST]%s%s\n", prog,
             extra ? " " : "", extra ? extra : "");
 }
 
 /* Parses the shared option at argv[*i] (and its value), advancing *i.
  * Returns 1 if consumed, 0 if not a shared option, -1 on a bad value. */
-static int example_parse_common(int *i, int argc, char **argv, example_options *o) {
+static inline int example_parse_common(int *i, int argc, char **argv, example_options *o) {
     const char *arg = argv[*i];
     if ((strcmp(arg, "--out") == 0 || strcmp(arg, "--size") == 0 || strcmp(arg, "--mode") == 0 ||
          strcmp(arg, "--modes") == 0) &&
@@ -65,7 +65,7 @@ static int example_parse_common(int *i, int argc, char **argv, example_options *
     return 0;
 }
 
-static example_options example_defaults(void) {
+static inline example_options example_defaults(void) {
     example_options o;
     o.out_dir = NULL;
     o.width = 640;
@@ -90,12 +90,12 @@ static inline int example_parse(int argc, char **argv, example_options *o) {
 }
 
 /* Prints the library's last error after a failed call and returns 1. */
-static int example_fail(const char *what, gls_result r) {
+static inline int example_fail(const char *what, gls_result r) {
     fprintf(stderr, "%s failed: %s\n  %s\n", what, gls_result_string(r), gls_last_error_message());
     return 1;
 }
 
-static int example_mkdir_p(const char *dir) {
+static inline int example_mkdir_p(const char *dir) {
     char path[4096];
     size_t n = strlen(dir);
     if (n == 0 || n >= sizeof path) return -1;
@@ -111,7 +111,7 @@ static int example_mkdir_p(const char *dir) {
 }
 
 /* Applies --mode (if given) to the surface's output format. */
-static int example_apply_mode(gls_surface *surface, const example_options *o) {
+static inline int example_apply_mode(gls_surface *surface, const example_options *o) {
     uint32_t mode;
     gls_result r;
     if (!o->mode) return 0;
@@ -122,7 +122,7 @@ static int example_apply_mode(gls_surface *surface, const example_options *o) {
 
 /* Writes DIR/composite-NAME.png for each name in o->modes, then puts the
  * surface's own output format back. */
-static int example_save_modes(gls_surface *surface, const example_options *o) {
+static inline int example_save_modes(gls_surface *surface, const example_options *o) {
     uint32_t own, mode;
     gls_result r;
     if (!o->modes) return 0;
@@ -150,7 +150,7 @@ static int example_save_modes(gls_surface *surface, const example_options *o) {
 
 /* Writes left.png, right.png and composite.png into o->out_dir (if set),
  * and a composite-NAME.png per --modes entry. */
-static int example_save(gls_surface *surface, const example_options *o) {
+static inline int example_save(gls_surface *surface, const example_options *o) {
     static const struct { uint32_t image; const char *name; } files[] = {
         {GLS_IMAGE_LEFT, "left.png"}, {GLS_IMAGE_RIGHT, "right.png"}, {GLS_IMAGE_COMPOSITE, "composite.png"}};
     if (!o->out_dir) return 0;

@@ -271,6 +271,7 @@ int main(int argc, char **argv) {
     gls_surface *surface;
     r = gls_surface_create(display, config, opt.width, opt.height, &surface);
     if (r != GLS_OK) return example_fail("gls_surface_create", r);
+    if (example_apply_mode(surface, &opt)) return 1;
     if ((r = gls_make_current(surface)) != GLS_OK) return example_fail("gls_make_current", r);
 
     /* The mono camera: 50 degrees across, square pixels. */

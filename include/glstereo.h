@@ -143,6 +143,18 @@
 #define GLS_ADJUSTMENT_MAX 2.0
 
 /**
+ * Ends a surface attribute list.
+ */
+#define GLS_SURFACE_ATTRIB_NONE 0
+
+/**
+ * Surface attribute: 1 makes the surface auto-stereo capable (NVIDIA 3D
+ * Vision automatic stereo; the value of EGL_AUTO_STEREO_NV), 0 does not.
+ * Default: 0.
+ */
+#define GLS_SURFACE_AUTO_STEREO 12598
+
+/**
  * Native quad-buffer stereo ("quad"): both eyes go to the driver's left and
  * right buffers. Only on configs with native stereo; elsewhere a surface
  * falls back to a composite.
@@ -459,6 +471,13 @@ typedef struct gls_stereo_adjust {
    */
   double balance_adjustment;
 } gls_stereo_adjust;
+
+/**
+ * A mono program's frame: draws the whole frame (clear included) with the
+ * projection and draw buffers it finds current. `user_data` is the pointer
+ * given to gls_auto_stereo_frame().
+ */
+typedef void (*gls_draw_fn)(void *user_data);
 
 /**
  * The argument block of a gescape, as HP's `gescape_arg`: 64 ints, 64
@@ -1144,6 +1163,173 @@ gls_result gls_nv_stereo_matrix(const double *projection,
                                 double *column_major_out);
 
 /**
+ * Creates a surface as gls_surface_create() does, with creation attributes.
+ *
+ * With GLS_SURFACE_AUTO_STEREO = 1 the surface is auto-stereo capable:
+ * frames given to gls_auto_stereo_frame() are rendered once per eye while
+ * GL_3DVISION_STEREO_NV is enabled, which it is initially. Such a surface
+ * always has left and right buffers: from a mono configuration it gets
+ * glstereo's emulated quad buffer (GL_STEREO then reads GL_TRUE, and
+ * quad-buffer drawing works as well).
+ *
+ * @param display a live display. @param config a live configuration from it
+ * (not a native-stereo one when auto stereo is asked for).
+ * @param width, height as gls_surface_create().
+ * @param attribs (name, value) pairs ended by GLS_SURFACE_ATTRIB_NONE (0);
+ * NULL means no attributes. At most 256 pairs.
+ * @param surface_out receives the surface; must not be NULL.
+ * @return as gls_surface_create(), plus GLS_ERROR_INVALID_ENUM (an unknown
+ * attribute, named in the message), GLS_ERROR_INVALID_VALUE (a value other
+ * than 0 or 1, or no terminator), GLS_ERROR_INVALID_OPERATION (auto stereo
+ * on a native-stereo configuration). Any thread; the calling thread's
+ * current surface is unchanged.
+ */
+gls_result gls_surface_create_with_attribs(struct gls_display *display,
+                                           const struct gls_config *config,
+                                           uint32_t width,
+                                           uint32_t height,
+                                           const int32_t *attribs,
+                                           struct gls_surface **surface_out);
+
+/**
+ * A surface creation attribute, as the surface has it (eglQuerySurface).
+ *
+ * @param surface a live surface. @param attrib GLS_SURFACE_AUTO_STEREO.
+ * @param value_out receives the value (1 if auto-stereo capable, else 0); must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM (attrib). Any thread.
+ */
+gls_result gls_surface_get_attrib(const struct gls_surface *surface,
+                                  int32_t attrib,
+                                  int32_t *value_out);
+
+/**
+ * glStereoParameterfNV: sets one 3D Vision parameter of the current surface.
+ *
+ * - GL_STEREO_SEPARATION_NV: percent, 0…100, of the maximum separation:
+ *   at 100 far-away geometry is 7 % of the viewport width apart in the two
+ *   eyes (HP's default camera offset; see src/shims/nv3dvision.rs).
+ *   Default: 15.
+ * - GL_STEREO_CONVERGENCE_NV: the depth shown at the screen surface (zero
+ *   parallax): clip-space w, the distance from the camera, for
+ *   perspective; the window depth 0…1 for GL_STEREO_PROJECTION_ORTHO_NV.
+ *   Default: 0.
+ * - GL_STEREO_CUTOFF_NV: geometry at this depth or beyond never pops out
+ *   of the screen by more than far-away geometry recedes into it (the
+ *   separation is reduced when it would); 0 or less limits nothing.
+ *   Default: 0.
+ * - GL_STEREO_PROJECTION_NV: GL_STEREO_PROJECTION_PERSPECTIVE_NV (depth
+ *   from clip w) or GL_STEREO_PROJECTION_ORTHO_NV (depth from the window
+ *   depth, for glOrtho programs), the value rounded to an integer.
+ *   Default: PERSPECTIVE.
+ *
+ * Parameters are kept on every surface; on one that is not auto-stereo
+ * capable they have no effect on rendering (the spec's rule).
+ *
+ * @return GLS_OK; GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_INVALID_ENUM (an
+ * unknown pname, or a projection that is neither method);
+ * GLS_ERROR_INVALID_VALUE (separation outside 0…100; a NaN or infinite
+ * value). On error nothing changes and gls_get_error() reports
+ * GL_INVALID_ENUM or GL_INVALID_VALUE, as the extension specifies.
+ * Thread: the surface's.
+ */
+gls_result gls_stereo_parameterf_nv(uint32_t pname, float param);
+
+/**
+ * glStereoParameteriNV: as gls_stereo_parameterf_nv(), the integer taken
+ * as a float for separation, convergence and cutoff.
+ *
+ * @return as gls_stereo_parameterf_nv(). Thread: the surface's.
+ */
+gls_result gls_stereo_parameteri_nv(uint32_t pname, int32_t param);
+
+/**
+ * glEnable for the current surface: GL_3DVISION_STEREO_NV enables 3D
+ * Vision rendering (no effect on a surface that is not auto-stereo
+ * capable, as the extension says); every other cap goes to glEnable.
+ *
+ * @return GLS_OK or GLS_ERROR_NO_CURRENT_SURFACE (a cap GL does not know
+ * raises GL_INVALID_ENUM in GL, reported by gls_get_error()). Thread: the surface's.
+ */
+gls_result gls_enable(uint32_t cap);
+
+/**
+ * glDisable for the current surface: GL_3DVISION_STEREO_NV disables 3D
+ * Vision rendering (frames are then drawn once, mono); every other cap goes
+ * to glDisable.
+ *
+ * @return as gls_enable(). Thread: the surface's.
+ */
+gls_result gls_disable(uint32_t cap);
+
+/**
+ * glIsEnabled for the current surface: GL_3DVISION_STEREO_NV is answered
+ * from the 3D Vision state (initially 1 on an auto-stereo capable surface,
+ * 0 on any other, where it stays 0); every other cap goes to glIsEnabled.
+ *
+ * @return 1 or 0; 0 when there is no current surface (with a message for
+ * gls_last_error_message()). Thread: the surface's.
+ */
+uint8_t gls_is_enabled(uint32_t cap);
+
+/**
+ * glGetFloatv for the current surface: the 3D Vision state
+ * (GL_STEREO_SEPARATION_NV, GL_STEREO_CONVERGENCE_NV, GL_STEREO_CUTOFF_NV
+ * as set; GL_STEREO_PROJECTION_NV and GL_3DVISION_STEREO_NV converted as GL
+ * converts them) and the emulated default framebuffer's values (as
+ * gls_get_integerv()); every other pname goes to glGetFloatv.
+ *
+ * @param pname a GL state name. @param data receives the value(s); must not
+ * be NULL and must hold as many values as glGetFloatv writes for pname.
+ * @return GLS_OK, GLS_ERROR_NO_CURRENT_SURFACE or GLS_ERROR_NULL_POINTER.
+ * Thread: the surface's.
+ */
+gls_result gls_get_floatv(uint32_t pname, float *data);
+
+/**
+ * glGetBooleanv for the current surface: as gls_get_floatv(), each value
+ * converted to 0 (zero) or 1 (anything else), as GL converts them.
+ *
+ * @return as gls_get_floatv(). Thread: the surface's.
+ */
+gls_result gls_get_booleanv(uint32_t pname, uint8_t *data);
+
+/**
+ * Renders one mono frame with automatic stereo.
+ *
+ * On an auto-stereo capable current surface with GL_3DVISION_STEREO_NV
+ * enabled, `draw` is called twice: for the left eye, then the right. Before
+ * each call the library restores the matrix mode and modelview matrix found
+ * at this call, loads the eye's projection (the projection current at this
+ * call with x_clip' = x_clip + eye·s·(w_clip − C), eye = −1 left, +1 right;
+ * for GL_STEREO_PROJECTION_ORTHO_NV the window depth replaces w_clip) and
+ * selects that eye's buffers of the kinds selected now (GL_BACK →
+ * GL_BACK_LEFT, then GL_BACK_RIGHT). Afterwards it restores this
+ * projection and these draw buffers exactly.
+ *
+ * `draw` must draw the whole mono frame, clear included (the depth buffer
+ * is shared by both eyes), and must not change the projection matrix, the
+ * draw buffers or the current surface; doing so is reported as
+ * GLS_ERROR_INVALID_OPERATION (the right eye is then not drawn). It may
+ * change the modelview and any other state; the second call starts from the
+ * same modelview as the first.
+ *
+ * On a surface that is not auto-stereo capable, or with 3D Vision disabled,
+ * `draw` is called once and nothing else happens, so rendering is exactly
+ * mono. Reading back: glReadPixels of GL_BACK/GL_FRONT, and
+ * gls_surface_read_pixels() of GL_BACK, GL_FRONT or GL_LEFT, read the left
+ * eye (the extension's rule for calls that expect one surface).
+ *
+ * @param draw the frame; must not be NULL. @param user_data passed to draw.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_NO_CURRENT_SURFACE;
+ * GLS_ERROR_INVALID_OPERATION (a framebuffer object of the program bound
+ * for drawing, a callback that broke the contract above, or a call from
+ * inside draw); GLS_ERROR_INVALID_VALUE (a projection matrix that is not
+ * finite). Thread: the surface's.
+ */
+gls_result gls_auto_stereo_frame(gls_draw_fn draw, void *user_data);
+
+/**
  * The GLS_OUTPUT_* value of an output mode name: a canonical name
  * ("anaglyph-red-cyan", "side-by-side-half", "hdmi-frame-packing", …) or an
  * alias from VirtualGL (rc, gm, by, i, tb, ss) or OpenSceneGraph
@@ -1382,7 +1568,9 @@ uint32_t gls_get_error(void);
  * glGetIntegerv with the emulated default framebuffer's values: GL_STEREO
  * and GL_DOUBLEBUFFER of the configuration, GL_DRAW_BUFFER,
  * GL_DRAW_BUFFERi and GL_READ_BUFFER as set, and 0 for
- * GL_DRAW/READ_FRAMEBUFFER_BINDING while the emulated framebuffer is bound.
+ * GL_DRAW/READ_FRAMEBUFFER_BINDING while the emulated framebuffer is bound;
+ * the NV_3dvision_settings state (GL_STEREO_PROJECTION_NV, the separation,
+ * convergence and cutoff rounded to the nearest integer, GL_3DVISION_STEREO_NV).
  * Every other pname goes to glGetIntegerv.
  *
  * @param pname a GL state name. @param data receives the value(s); must not

@@ -14,6 +14,8 @@
 //! - [`gl`]: the GL function table, loaded from the backend;
 //! - [`backend`]: EGL, OSMesa (and GLX) contexts, chosen at run time;
 //! - [`stereo::emulated`]: the emulated quad buffer;
+//! - [`shims`]: legacy and vendor APIs (NV_3dvision_settings);
+//! - [`framing`]: how programs deliver eyes (automatic stereo of mono frames);
 //! - [`display`], [`surface`]: the objects a program uses;
 //! - [`capture`]: PNG files;
 //! - [`analysis`]: measured parallax and auto-convergence from the depth buffer;

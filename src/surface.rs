@@ -19,6 +19,7 @@ use crate::image::{Image, check_size};
 use crate::output::gl::{ComposePath, GlCompositor, Job, TexRect, preferred_path};
 use crate::output::options::{OutputOptions, OutputSettings};
 use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
+use crate::shims::nv3dvision::StereoSettings;
 use crate::stereo::buffers::{ColorBuffer, resolve_read_buffer};
 use crate::stereo::emulated::EmulatedFramebuffer;
 
@@ -118,6 +119,8 @@ struct SurfaceState {
     pending_gl_error: u32,
     /// The GL compositor (objects in the compositor context, made on first use).
     compositor: GlCompositor,
+    /// NV_3dvision_settings state (src/shims/nv3dvision.rs).
+    nv3dvision: StereoSettings,
 }
 
 /// A stereo (or mono) surface: emulated default framebuffer, two contexts.
@@ -197,6 +200,7 @@ impl Surface {
                 frames: 0,
                 pending_gl_error: GL_NO_ERROR,
                 compositor: GlCompositor::new(),
+                nv3dvision: StereoSettings::new(false),
             }),
         }))
     }
@@ -592,6 +596,34 @@ impl Surface {
         };
         set_opaque(&mut img);
         crate::capture::write_png(&img, path)
+    }
+
+    // --- NV_3dvision_settings hooks (logic in shims::nv3dvision, framing::auto) ---
+
+    /// Makes this surface auto-stereo capable (EGL_NV_3dvision_surface):
+    /// called once, at creation, by [`crate::framing::auto::create_surface`].
+    pub(crate) fn make_auto_stereo_capable(&self) {
+        self.state.lock().unwrap().nv3dvision = StereoSettings::new(true);
+    }
+
+    /// A copy of this surface's NV_3dvision_settings state (any thread).
+    pub fn nv3dvision(&self) -> StereoSettings {
+        self.state.lock().unwrap().nv3dvision
+    }
+
+    /// Runs `f` on this surface's NV_3dvision_settings state (this surface
+    /// must be current here). A failure of `f` is also queued as the
+    /// matching GL error for [`Surface::take_gl_error`].
+    pub fn with_nv3dvision<T>(
+        self: &Arc<Self>,
+        f: impl FnOnce(&mut StereoSettings) -> Result<T>,
+    ) -> Result<T> {
+        let mut st = self.current_state()?;
+        let r = f(&mut st.nv3dvision);
+        if let Err(e) = &r {
+            record_gl_error(&mut st, &Err(e.clone()));
+        }
+        r
     }
 
     /// Releases this surface if it is current on the calling thread.

@@ -24,3 +24,17 @@ fn c_surface_misuse_gets_documented_codes_and_the_process_goes_on() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains(" passed, 0 failed"), "{stdout}");
 }
+
+#[test]
+fn c_nv3dvision_program_uses_the_legacy_names_and_gets_the_spec_errors() {
+    let dir = common::scratch("nv3dvision_abi");
+    let exe = dir.join("nv3dvision_abi");
+    common::compile_c(
+        &[common::root().join("tests/c/nv3dvision_abi.c")],
+        &exe,
+        &["-lGL"],
+    );
+    let out = common::run_ok(Command::new(&exe).env("GLSTEREO_BACKEND", "egl"));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains(" passed, 0 failed"), "{stdout}");
+}

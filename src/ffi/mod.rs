@@ -18,6 +18,7 @@ pub mod display;
 pub(crate) mod handles;
 pub mod irisgl;
 pub mod math;
+pub mod nv3dvision;
 pub mod output;
 pub mod screen;
 pub mod starbase;

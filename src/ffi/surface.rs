@@ -202,7 +202,9 @@ pub extern "C" fn gls_get_error() -> u32 {
 /// glGetIntegerv with the emulated default framebuffer's values: GL_STEREO
 /// and GL_DOUBLEBUFFER of the configuration, GL_DRAW_BUFFER,
 /// GL_DRAW_BUFFERi and GL_READ_BUFFER as set, and 0 for
-/// GL_DRAW/READ_FRAMEBUFFER_BINDING while the emulated framebuffer is bound.
+/// GL_DRAW/READ_FRAMEBUFFER_BINDING while the emulated framebuffer is bound;
+/// the NV_3dvision_settings state (GL_STEREO_PROJECTION_NV, the separation,
+/// convergence and cutoff rounded to the nearest integer, GL_3DVISION_STEREO_NV).
 /// Every other pname goes to glGetIntegerv.
 ///
 /// @param pname a GL state name. @param data receives the value(s); must not
@@ -214,6 +216,11 @@ pub unsafe extern "C" fn gls_get_integerv(pname: u32, data: *mut i32) -> gls_res
     ffi_boundary!("gls_get_integerv", {
         let s = surface::require_current()?;
         let out = arg_out(data, "data")?;
+        if let Some(v) = s.with_nv3dvision(|nv| Ok(nv.query(pname)))? {
+            // SAFETY: checked non-NULL.
+            unsafe { write_out(out, v.as_integer()) };
+            return Ok(());
+        }
         match s.emulated_integer(pname)? {
             // SAFETY: checked non-NULL.
             Some(v) => unsafe { write_out(out, v) },

@@ -1,11 +1,18 @@
 //! Input framings: how a program delivers its two eyes. The first stage of
 //! the data flow (input framing → two eye images → output format).
 //!
+//! - This module: framings of frames the program draws itself (quad buffer,
+//!   HP sync-doubled, SGI STR_RECT/STR_TOP/STR_BOT, Xinerama side-by-side).
+//! - [`auto`]: automatic stereo of a mono renderer (NVIDIA 3D Vision): one
+//!   mono frame, drawn once per eye with a per-eye projection.
+//!
 //! Each framing names, for each eye, a rectangle of one colour buffer of
 //! the surface and the size the eye has once taken apart (an [`EyeSource`]).
 //! Eyes stretched by the display (sync-doubling) are resampled with the
 //! output formats' bilinear rule ([`crate::output::cpu::resample`]); the GL
 //! compositor samples the same rectangles.
+
+pub mod auto;
 
 use crate::error::{Error, Result};
 use crate::image::Image;
