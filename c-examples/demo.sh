@@ -32,5 +32,8 @@ echo "== oglplane on $GLSTEREO_BACKEND: one turn of the airplane, parallax measu
 echo "== autostereo on $GLSTEREO_BACKEND (a mono program, automatic stereo)"
 "$BUILD/autostereo$SUFFIX" --out "$OUT/autostereo" --frames 5
 
+echo "== xinerama (seed 001 passive stereo: one double-width mono frame) on $GLSTEREO_BACKEND"
+"$BUILD/xinerama$SUFFIX" --out "$OUT/xinerama" --size 320x240 --modes side-by-side
+
 echo
 echo "images are in $OUT/"

@@ -29,10 +29,12 @@
  *                      airplane's centre)
  *   --auto-converge    after each frame, put zero parallax at the measured
  *                      centre of interest
+ *   --interactive      in a window (GLSTEREO_BACKEND=glx): spin until the
+ *                      window is closed
  *
- * Keys (in a window, once the GLX backend exists; headless, --keys types
- * them): + or = stronger, - weaker, ] more positive balance, [ less,
- * a auto-convergence on/off. */
+ * Keys, in a window (headless, --keys types them): + or = stronger,
+ * - weaker, ] more positive balance, [ less, a auto-convergence on/off.
+ * The current values are in the window title and on stdout. */
 #include <GL/glx.h> /* GLX_* attribute names only */
 #include <math.h>
 
@@ -189,14 +191,16 @@ static int parse_number(const char *opt, const char *text, double lo, double hi,
     return 1;
 }
 
-#define OPTIONS \
-    "[--frames N] [--angle DEG] [--offset X] [--balance X] [--keys KEYS] [--zero-parallax D] [--auto-converge]"
+#define OPTIONS                                                                                     \
+    "[--frames N] [--angle DEG] [--offset X] [--balance X] [--keys KEYS] [--zero-parallax D] [--auto-converge] " \
+    "[--interactive]"
 
 int main(int argc, char **argv) {
     example_options opt = example_defaults();
     plane_settings settings = {{CAMERA_DISTANCE, GLS_ADJUSTMENT_DEFAULT, GLS_ADJUSTMENT_DEFAULT}, 0};
     const char *keys = "";
     double frames = 1.0, start_angle = -60.0;
+    int interactive = 0;
     for (int i = 1; i < argc; ++i) {
         int r = example_parse_common(&i, argc, argv, &opt);
         if (r == 1) continue;
@@ -208,6 +212,10 @@ int main(int argc, char **argv) {
         int ok = 1;
         if (strcmp(a, "--auto-converge") == 0) {
             settings.auto_converge = 1;
+            continue;
+        }
+        if (strcmp(a, "--interactive") == 0) {
+            interactive = 1;
             continue;
         }
         if (i + 1 >= argc) {
@@ -273,18 +281,27 @@ int main(int argc, char **argv) {
     if (r != GLS_OK) return example_fail("gls_surface_create", r);
     if (example_apply_mode(surface, &opt)) return 1;
     if ((r = gls_make_current(surface)) != GLS_OK) return example_fail("gls_make_current", r);
+    uint32_t backend = 0;
+    gls_display_get_backend(display, &backend);
+    if (interactive && backend != GLS_BACKEND_GLX) {
+        fprintf(stderr, "--interactive needs a window: run with GLSTEREO_BACKEND=glx and an X display\n");
+        return 2;
+    }
 
     /* The mono camera: 50 degrees across, square pixels. */
     const double half_width = NEAR_CLIP * tan(HFOV_DEGREES / 2.0 * 3.14159265358979323846 / 180.0);
-    const double half_height = half_width * opt.height / opt.width;
-    const gls_frustum mono = {-half_width, half_width, -half_height, half_height, NEAR_CLIP, FAR_CLIP};
+    double half_height = half_width * opt.height / opt.width;
+    gls_frustum mono = {-half_width, half_width, -half_height, half_height, NEAR_CLIP, FAR_CLIP};
     printf("oglplane: horizontal FOV %g deg, near %g, far %g, camera %g from the airplane's centre\n",
            HFOV_DEGREES, NEAR_CLIP, FAR_CLIP, CAMERA_DISTANCE);
 
     /* 3. HP's parameters for each eye (what gls_apply_stereo_eye loads). */
-    char status_line[160];
+    char status_line[160], title[200];
     plane_status(&settings, status_line, sizeof status_line);
     printf("oglplane: %s\n", status_line);
+    snprintf(title, sizeof title, "OGLPlane: %s", status_line);
+    gls_surface_set_title(surface, title);
+    fflush(stdout);
     for (uint32_t eye = GLS_EYE_LEFT; stereo && eye <= GLS_EYE_RIGHT; ++eye) {
         gls_frustum f;
         double offset;
@@ -298,7 +315,9 @@ int main(int argc, char **argv) {
     double centre_of_interest = 0.0;
     int measured = 0;
     double angle = start_angle;
-    for (long frame = 0; frame < (long)frames; ++frame) {
+    int quit = 0;
+    long frame;
+    for (frame = 0; !quit && (interactive || frame < (long)frames); ++frame) {
         angle = start_angle + ANGLE_STEP * (double)frame;
         /* 2. Clear both back buffers at once, then draw each eye. */
         gls_draw_buffer(GL_BACK);
@@ -316,7 +335,7 @@ int main(int argc, char **argv) {
             last = report;
             measured = 1;
             /* Where the subject is: converge there (next frame), or report it. */
-            if (settings.auto_converge || frame + 1 == (long)frames) {
+            if (settings.auto_converge || interactive || frame + 1 == (long)frames) {
                 if ((r = gls_stereo_auto_converge(&mono, &centre_of_interest)) != GLS_OK)
                     return example_fail("gls_stereo_auto_converge", r);
                 if (settings.auto_converge) settings.adj.zero_parallax_distance = centre_of_interest;
@@ -330,8 +349,28 @@ int main(int argc, char **argv) {
         }
         /* 4. One swap presents both eyes. */
         if ((r = gls_swap_buffers(surface)) != GLS_OK) return example_fail("gls_swap_buffers", r);
+
+        /* 5. The user's adjustments, from the window (none headless). */
+        gls_event ev;
+        while (gls_surface_poll_event(surface, &ev) == GLS_OK && ev.kind != GLS_EVENT_NONE) {
+            if (ev.kind == GLS_EVENT_KEY && ev.key < 128 && plane_key(&settings, (int)ev.key)) {
+                plane_status(&settings, status_line, sizeof status_line);
+                printf("oglplane: %s\n", status_line);
+                fflush(stdout);
+                snprintf(title, sizeof title, "OGLPlane: %s", status_line);
+                gls_surface_set_title(surface, title);
+            } else if (ev.kind == GLS_EVENT_CLOSE) {
+                quit = 1;
+            } else if (ev.kind == GLS_EVENT_RESIZE) {
+                glViewport(0, 0, (GLsizei)ev.width, (GLsizei)ev.height);
+                half_height = half_width * ev.height / ev.width;
+                mono.bottom = -half_height;
+                mono.top = half_height;
+            }
+        }
     }
-    printf("oglplane: %ld frame%s, last at angle %.1f deg\n", (long)frames, frames == 1 ? "" : "s", angle);
+    frames = (double)frame;
+    printf("oglplane: %ld frame%s, last at angle %.1f deg\n", frame, frame == 1 ? "" : "s", angle);
 
     if (measured) {
         char text[512];

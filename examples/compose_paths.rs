@@ -100,7 +100,7 @@ fn main() {
         "mode", "cpu min", "gl min", "cpu med", "gl med"
     );
     for mode in OutputMode::all().filter(|&m| m != OutputMode::Quad) {
-        s.set_output(mode);
+        s.set_output(mode).expect("set_output");
         let cpu = time_ms(&s, ComposePath::Cpu, n);
         let gl = time_ms(&s, ComposePath::Gl, n);
         println!(

@@ -366,6 +366,28 @@
 #define GLS_INPUT_STR_BOT 5
 
 /**
+ * No event.
+ */
+#define GLS_EVENT_NONE 0
+
+/**
+ * A key was pressed: `key` holds its X keysym (for Latin-1 keys, the
+ * character code, e.g. '+' = 0x2b).
+ */
+#define GLS_EVENT_KEY 1
+
+/**
+ * The user asked to close the window.
+ */
+#define GLS_EVENT_CLOSE 2
+
+/**
+ * The window was resized: `width` × `height` is the new size of each eye,
+ * in effect from the next frame (after the next gls_swap_buffers()).
+ */
+#define GLS_EVENT_RESIZE 3
+
+/**
  * The left eye.
  */
 #define GLS_EYE_LEFT 0
@@ -498,6 +520,57 @@ typedef union gls_gescape_arg {
    */
   char c[255];
 } gls_gescape_arg;
+
+/**
+ * A window event, filled by gls_surface_poll_event().
+ */
+typedef struct gls_event {
+  /**
+   * GLS_EVENT_NONE, GLS_EVENT_KEY, GLS_EVENT_CLOSE or GLS_EVENT_RESIZE.
+   */
+  uint32_t kind;
+  /**
+   * The keysym of a GLS_EVENT_KEY; 0 otherwise.
+   */
+  uint32_t key;
+  /**
+   * The new eye width of a GLS_EVENT_RESIZE; 0 otherwise.
+   */
+  uint32_t width;
+  /**
+   * The new eye height of a GLS_EVENT_RESIZE; 0 otherwise.
+   */
+  uint32_t height;
+} gls_event;
+
+/**
+ * Native handles (advanced): the backend objects behind a surface, for
+ * programs that mix glstereo with their own use of GLX, EGL or OSMesa.
+ * Fields a backend does not have are NULL / 0.
+ */
+typedef struct gls_native_handles {
+  /**
+   * GLS_BACKEND_GLX, GLS_BACKEND_EGL or GLS_BACKEND_OSMESA.
+   */
+  uint32_t backend;
+  /**
+   * GLX: the Xlib `Display*`; EGL: the `EGLDisplay`.
+   */
+  void *display;
+  /**
+   * GLX: the X `Window` (XID) the surface presents into.
+   */
+  uint64_t window;
+  /**
+   * The program's context: `GLXContext`, `EGLContext` or `OSMesaContext`.
+   */
+  void *context;
+  /**
+   * OSMesa: the buffer bound with OSMesaMakeCurrent (rendering goes to
+   * glstereo's framebuffer, not there).
+   */
+  void *osmesa_buffer;
+} gls_native_handles;
 
 /**
  * The parallax a rendered frame spans, measured from its depth buffer by
@@ -1660,7 +1733,8 @@ gls_result gls_surface_save_png(struct gls_surface *surface,
 
 /**
  * Sets the output format a surface's composite (its window, and
- * GLS_IMAGE_COMPOSITE captures) is made in.
+ * GLS_IMAGE_COMPOSITE captures) is made in. A window is resized to show the
+ * new composite pixel for pixel (e.g. twice as wide for side-by-side).
  *
  * GLS_OUTPUT_QUAD shows the eyes in the driver's own quad buffer on a
  * natively stereo configuration; on any other it falls back to
@@ -1730,6 +1804,48 @@ gls_result gls_surface_set_saturation(struct gls_surface *surface, float saturat
  * that way (nothing changes). Any thread.
  */
 gls_result gls_surface_set_input(struct gls_surface *surface, uint32_t input);
+
+/**
+ * Takes the next event of a surface's window without waiting. Headless
+ * surfaces have none.
+ *
+ * @param surface a live surface. @param event_out receives the event
+ * (type GLS_EVENT_NONE when there is none); must not be NULL.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any
+ * thread (events are read from the window's connection without blocking).
+ */
+gls_result gls_surface_poll_event(struct gls_surface *surface, struct gls_event *event_out);
+
+/**
+ * Whether the user asked to close the surface's window (the window
+ * manager's close button); the window stays until the surface is destroyed.
+ *
+ * @return true or false; false for a headless surface, NULL or a handle
+ * that is not live (with a message). Any thread.
+ */
+bool gls_surface_should_close(struct gls_surface *surface);
+
+/**
+ * Sets the title of the surface's window (programs show their stereo
+ * settings there, as OGLPlane does). No effect headless.
+ *
+ * @param surface a live surface. @param title UTF-8; must not be NULL.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+ * GLS_ERROR_DISPLAY_LOST. Any thread.
+ */
+gls_result gls_surface_set_title(struct gls_surface *surface, const char *title);
+
+/**
+ * Native handles (advanced, see gls_native_handles). The objects stay
+ * owned by glstereo: do not destroy them; they live as long as the surface.
+ * Making the context current yourself bypasses glstereo's bookkeeping:
+ * use gls_make_current().
+ *
+ * @param surface a live surface. @param handles_out must not be NULL.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any thread.
+ */
+gls_result gls_surface_get_native_handles(struct gls_surface *surface,
+                                          struct gls_native_handles *handles_out);
 
 /**
  * Measures the on-screen parallax of the frame being drawn on the current

@@ -8,7 +8,7 @@ use std::cell::RefCell;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::ThreadId;
 
-use crate::backend::{ContextRole, PlatformSurface};
+use crate::backend::{ContextRole, PlatformSurface, WindowEvent};
 use crate::config::{Config, StereoKind};
 use crate::display::Display;
 use crate::error::{Error, Result};
@@ -17,6 +17,7 @@ use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, check_size};
 use crate::output::gl::{ComposePath, GlCompositor, Job, TexRect, preferred_path};
+use crate::output::layout::{composite_size, eye_size_for_window};
 use crate::output::options::{OutputOptions, OutputSettings};
 use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
 use crate::shims::nv3dvision::StereoSettings;
@@ -109,6 +110,9 @@ struct SurfaceState {
     fb: EmulatedFramebuffer,
     /// How the program delivers its eyes.
     framing: InputFraming,
+    /// The window size seen at the last swap (None before the first, and
+    /// always for headless surfaces).
+    window: Option<(u32, u32)>,
     /// The output mode as set (may be `quad`).
     output: OutputMode,
     /// Swap, crosstalk, saturation.
@@ -169,7 +173,12 @@ impl Surface {
         // The environment's output settings apply to every new surface; a
         // bad value fails here, before anything is created.
         let settings = OutputSettings::from_env()?;
-        let platform = display.platform().create_surface(&config, width, height)?;
+        let mode = effective_mode(settings.mode.unwrap_or(DEFAULT_OUTPUT), &config);
+        // A window shows the composite pixel for pixel: side-by-side of W×H
+        // eyes is a 2W×H window (Xinerama's passive layout), and so on.
+        let (win_w, win_h) = composite_size(mode, width, height);
+        check_size(win_w, win_h)?;
+        let platform = display.platform().create_surface(&config, win_w, win_h)?;
         let shape = config.shape();
         let (fb, gl) = with_compositor_of(&*platform, || {
             let gl = display.gl()?;
@@ -195,6 +204,7 @@ impl Surface {
             state: Mutex::new(SurfaceState {
                 fb,
                 framing: InputFraming::QuadBuffer,
+                window: None,
                 output: settings.mode.unwrap_or(DEFAULT_OUTPUT),
                 options: settings.options,
                 frames: 0,
@@ -393,11 +403,33 @@ impl Surface {
         if let Some((width, height)) = self.platform.drawable_size() {
             let mode = self.effective_output();
             return self.with_compositor(|gl, st| {
+                let resized = st.window != Some((width, height));
                 let job = gl_job(st, mode);
                 // SAFETY: with_compositor made the compositor context current;
                 // the job's textures are this surface's.
                 unsafe { st.compositor.compose_window(gl, &job, 0, width, height)? };
-                self.platform.present()
+                self.platform.present()?;
+                if resized {
+                    // Mesa's software GLX learns a drawable's new size only
+                    // when the drawable is bound again after a swap: the
+                    // frame just shown was cut to the old size, so rebind
+                    // and show it again.
+                    self.platform.release_current()?;
+                    self.platform.make_current(ContextRole::Compositor)?;
+                    // SAFETY: as above.
+                    unsafe { st.compositor.compose_window(gl, &job, 0, width, height)? };
+                    self.platform.present()?;
+                    // A window resized (by its user or XResizeWindow) gets eye
+                    // buffers to match by the next frame.
+                    st.window = Some((width, height));
+                    let (ew, eh) = eye_size_for_window(mode, width, height);
+                    let (fw, fh) = st.framing.frame_size(ew, eh);
+                    if (fw, fh) != st.fb.size() {
+                        // SAFETY: the compositor context is current.
+                        unsafe { st.fb.resize(gl, fw, fh)? };
+                    }
+                }
+                Ok(())
             });
         }
         self.platform.present()
@@ -489,15 +521,64 @@ impl Surface {
     /// `quad` on a surface without native stereo falls back to
     /// [`DEFAULT_OUTPUT`] (anaglyph-red-cyan).
     pub fn effective_output(&self) -> OutputMode {
-        match self.output() {
-            OutputMode::Quad if self.config.stereo != StereoKind::Native => DEFAULT_OUTPUT,
-            m => m,
-        }
+        effective_mode(self.output(), &self.config)
     }
 
     /// Sets the output mode.
-    pub fn set_output(&self, mode: OutputMode) {
+    ///
+    /// A window is resized to the new mode's composite of the current eyes
+    /// (e.g. twice as wide for `side-by-side`), so it stays pixel for pixel.
+    pub fn set_output(&self, mode: OutputMode) -> Result<()> {
         self.state.lock().unwrap().output = mode;
+        self.fit_window()
+    }
+
+    /// The window size that shows the composite of the current eyes pixel
+    /// for pixel.
+    fn window_size_for(&self, st: &SurfaceState) -> (u32, u32) {
+        let (fw, fh) = st.fb.size();
+        let (ew, eh) = st.framing.eye_size(fw, fh);
+        composite_size(effective_mode(st.output, &self.config), ew, eh)
+    }
+
+    /// Resizes a window to show the composite pixel for pixel (after the
+    /// output mode or the input framing changed); nothing headless.
+    fn fit_window(&self) -> Result<()> {
+        if self.platform.drawable_size().is_none() {
+            return Ok(());
+        }
+        let (w, h) = self.window_size_for(&self.state.lock().unwrap());
+        check_size(w, h)?;
+        // The next swap sees the new size, rebinds the drawable and keeps
+        // the eyes (they already match the new composite).
+        self.platform.resize_window(w, h)
+    }
+
+    /// The next event of the surface's window (keys, close requests, resizes
+    /// with the new eye size); None when there is none or no window.
+    pub fn next_event(&self) -> Option<WindowEvent> {
+        match self.platform.next_event()? {
+            WindowEvent::Resized(w, h) => {
+                let (ew, eh) = eye_size_for_window(self.effective_output(), w, h);
+                Some(WindowEvent::Resized(ew, eh))
+            }
+            e => Some(e),
+        }
+    }
+
+    /// Whether the user asked to close the surface's window.
+    pub fn close_requested(&self) -> bool {
+        self.platform.close_requested()
+    }
+
+    /// Sets the window title (no effect headless).
+    pub fn set_title(&self, title: &str) -> Result<()> {
+        self.platform.set_title(title)
+    }
+
+    /// The backend's own handles of this surface.
+    pub fn native_handles(&self) -> crate::backend::NativeHandles {
+        self.platform.native_handles()
     }
 
     /// The output options.
@@ -523,7 +604,8 @@ impl Surface {
         let (w, h) = st.fb.size();
         framing.check(st.fb.shape(), w, h)?;
         st.framing = framing;
-        Ok(())
+        drop(st);
+        self.fit_window()
     }
 
     /// The composite in the surface's output mode, as a viewer sees it now.
@@ -655,6 +737,15 @@ fn gl_job(st: &SurfaceState, mode: OutputMode) -> Job {
         frame_index: st.frames.saturating_sub(1),
         eyes: [ls, rs].map(|s| TexRect::from_source(st.fb.texture(s.buffer), &s, h)),
         eye_size: st.framing.eye_size(w, h),
+    }
+}
+
+/// The mode a composite is made in: `quad` falls back to [`DEFAULT_OUTPUT`]
+/// on a configuration without native stereo.
+fn effective_mode(mode: OutputMode, config: &Config) -> OutputMode {
+    match mode {
+        OutputMode::Quad if config.stereo != StereoKind::Native => DEFAULT_OUTPUT,
+        m => m,
     }
 }
 

@@ -100,7 +100,8 @@ fn every_input_framing_composes_on_gl_as_extract_then_compose() {
 fn red_cyan_of_white_left_and_black_right_is_pure_red_on_gl() {
     let s = stereo_surface(BACKEND, 8, 6);
     show(&s, &solid(8, 6, [255; 3]), &solid(8, 6, [0; 3]));
-    s.set_output(OutputMode::from_name("anaglyph-red-cyan").unwrap());
+    s.set_output(OutputMode::from_name("anaglyph-red-cyan").unwrap())
+        .unwrap();
     let img = s.composite_image_via(ComposePath::Gl).unwrap();
     for (x, y) in [(0, 0), (7, 5), (3, 2)] {
         assert_eq!(img.get(x, y), [255, 0, 0, 255], "pixel ({x}, {y})");
@@ -113,7 +114,7 @@ fn red_cyan_of_the_redblue_overlap_is_black_on_gl() {
     // RedBlue's overlap: the left eye blue, the right eye red.
     let s = stereo_surface(BACKEND, 4, 4);
     show(&s, &solid(4, 4, [0, 0, 255]), &solid(4, 4, [255, 0, 0]));
-    s.set_output(OutputMode::from_name("rc").unwrap());
+    s.set_output(OutputMode::from_name("rc").unwrap()).unwrap();
     let img = s.composite_image_via(ComposePath::Gl).unwrap();
     assert_eq!(img.get(2, 2), [0, 0, 0, 255]);
     surface::make_current(None).unwrap();
@@ -125,7 +126,7 @@ fn side_by_side_puts_the_left_eye_in_the_left_half_on_gl() {
     let s = stereo_surface(BACKEND, w, h);
     let (l, r) = (noise(w, h, 8), noise(w, h, 9));
     show(&s, &l, &r);
-    s.set_output(OutputMode::SideBySide);
+    s.set_output(OutputMode::SideBySide).unwrap();
     let img = s.composite_image_via(ComposePath::Gl).unwrap();
     assert_eq!((img.width(), img.height()), (2 * w, h));
     for y in 0..h {
@@ -149,7 +150,7 @@ fn side_by_side_puts_the_left_eye_in_the_left_half_on_gl() {
 fn frame_sequential_alternates_eyes_across_swaps_on_gl() {
     let (w, h) = (10, 6);
     let s = stereo_surface(BACKEND, w, h);
-    s.set_output(OutputMode::FrameSequential);
+    s.set_output(OutputMode::FrameSequential).unwrap();
     let (l, r) = (solid(w, h, [200, 10, 10]), solid(w, h, [10, 10, 200]));
     for swap_eyes in [false, true] {
         s.set_options(OutputOptions {
@@ -179,7 +180,7 @@ fn quad_on_a_surface_without_native_stereo_composes_red_cyan_on_gl() {
     let s = stereo_surface(BACKEND, 8, 4);
     let (l, r) = (noise(8, 4, 20), noise(8, 4, 21));
     show(&s, &l, &r);
-    s.set_output(OutputMode::Quad);
+    s.set_output(OutputMode::Quad).unwrap();
     let img = s.composite_image_via(ComposePath::Gl).unwrap();
     let want = compose(
         OutputMode::from_name("anaglyph-red-cyan").unwrap(),
@@ -197,13 +198,13 @@ fn quad_on_a_surface_without_native_stereo_composes_red_cyan_on_gl() {
 fn a_composite_too_tall_fails_the_same_way_on_both_paths() {
     // 1x8192 eyes: hdmi-frame-packing would be 1x16725, over 16384.
     let s = stereo_surface(BACKEND, 1, 8192);
-    s.set_output(OutputMode::HdmiFramePacking);
+    s.set_output(OutputMode::HdmiFramePacking).unwrap();
     let gl = s.composite_image_via(ComposePath::Gl).unwrap_err();
     let cpu = s.composite_image_via(ComposePath::Cpu).unwrap_err();
     assert_eq!(gl.to_string(), cpu.to_string());
     assert!(gl.to_string().contains("16725"), "{gl}");
     // The surface still composes in another mode afterwards.
-    s.set_output(OutputMode::TopBottom);
+    s.set_output(OutputMode::TopBottom).unwrap();
     let img = s.composite_image_via(ComposePath::Gl).unwrap();
     assert_eq!((img.width(), img.height()), (1, 16384));
     surface::make_current(None).unwrap();
@@ -227,7 +228,7 @@ fn the_preferred_path_gives_the_reference_image() {
     ] {
         s.set_options(o).unwrap();
         for mode in composites() {
-            s.set_output(mode);
+            s.set_output(mode).unwrap();
             let got = s.composite_image().unwrap();
             let want = compose(mode, &o, &l, &r, s.frames() - 1).unwrap();
             assert_within(

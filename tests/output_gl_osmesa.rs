@@ -70,7 +70,8 @@ fn red_cyan_of_white_left_and_black_right_is_pure_red_on_osmesa() {
     let white = glstereo::image::Image::from_fn(5, 3, |_, _| [255; 4]);
     let black = glstereo::image::Image::from_fn(5, 3, |_, _| [0, 0, 0, 255]);
     show(&s, &white, &black);
-    s.set_output(OutputMode::from_name("anaglyph-red-cyan").unwrap());
+    s.set_output(OutputMode::from_name("anaglyph-red-cyan").unwrap())
+        .unwrap();
     let img = s.composite_image_via(ComposePath::Gl).unwrap();
     assert_eq!(img.get(2, 1), [255, 0, 0, 255]);
     surface::make_current(None).unwrap();

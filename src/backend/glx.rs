@@ -509,8 +509,10 @@ impl GlxSurface {
                     match ty {
                         xlib::ConfigureNotify => {
                             let c = ev.configure;
-                            if c.width > 0 && c.height > 0 {
-                                st.size = (c.width as u32, c.height as u32);
+                            let size = (c.width as u32, c.height as u32);
+                            if c.width > 0 && c.height > 0 && size != st.size {
+                                st.size = size;
+                                st.events.push_back(WindowEvent::Resized(size.0, size.1));
                             }
                         }
                         xlib::ClientMessage => {

@@ -105,6 +105,9 @@ pub enum WindowEvent {
     Key(u32),
     /// The user asked to close the window (the window manager's close button).
     CloseRequested,
+    /// The window was resized: from the platform, the window size; from a
+    /// surface, the new size of each eye (in effect from the next frame).
+    Resized(u32, u32),
 }
 
 /// The backend's own handles of a surface, for programs that mix glstereo

@@ -8,6 +8,7 @@ use super::boundary::{arg_out, arg_ref, arg_str, ffi_boundary, write_out};
 use super::display::{gls_config, gls_display};
 use super::handles::{self, Kind};
 use super::types::*;
+use crate::backend::{NativeHandles, WindowEvent};
 use crate::config::Config;
 use crate::display::Display;
 use crate::error::Error;
@@ -388,7 +389,8 @@ pub const GLS_INPUT_STR_TOP: u32 = 4;
 pub const GLS_INPUT_STR_BOT: u32 = 5;
 
 /// Sets the output format a surface's composite (its window, and
-/// GLS_IMAGE_COMPOSITE captures) is made in.
+/// GLS_IMAGE_COMPOSITE captures) is made in. A window is resized to show the
+/// new composite pixel for pixel (e.g. twice as wide for side-by-side).
 ///
 /// GLS_OUTPUT_QUAD shows the eyes in the driver's own quad buffer on a
 /// natively stereo configuration; on any other it falls back to
@@ -404,8 +406,7 @@ pub const GLS_INPUT_STR_BOT: u32 = 5;
 pub extern "C" fn gls_surface_set_output(surface: *mut gls_surface, output: u32) -> gls_result {
     ffi_boundary!("gls_surface_set_output", {
         let s = surface_arg(surface)?;
-        s.set_output(crate::output::OutputMode::try_from(output)?);
-        Ok(())
+        s.set_output(crate::output::OutputMode::try_from(output)?)
     })
 }
 
@@ -521,5 +522,166 @@ pub extern "C" fn gls_surface_set_input(surface: *mut gls_surface, input: u32) -
             }
         };
         s.set_framing(framing)
+    })
+}
+
+/// No event.
+pub const GLS_EVENT_NONE: u32 = 0;
+/// A key was pressed: `key` holds its X keysym (for Latin-1 keys, the
+/// character code, e.g. '+' = 0x2b).
+pub const GLS_EVENT_KEY: u32 = 1;
+/// The user asked to close the window.
+pub const GLS_EVENT_CLOSE: u32 = 2;
+/// The window was resized: `width` × `height` is the new size of each eye,
+/// in effect from the next frame (after the next gls_swap_buffers()).
+pub const GLS_EVENT_RESIZE: u32 = 3;
+
+/// A window event, filled by gls_surface_poll_event().
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct gls_event {
+    /// GLS_EVENT_NONE, GLS_EVENT_KEY, GLS_EVENT_CLOSE or GLS_EVENT_RESIZE.
+    pub kind: u32,
+    /// The keysym of a GLS_EVENT_KEY; 0 otherwise.
+    pub key: u32,
+    /// The new eye width of a GLS_EVENT_RESIZE; 0 otherwise.
+    pub width: u32,
+    /// The new eye height of a GLS_EVENT_RESIZE; 0 otherwise.
+    pub height: u32,
+}
+
+/// Takes the next event of a surface's window without waiting. Headless
+/// surfaces have none.
+///
+/// @param surface a live surface. @param event_out receives the event
+/// (type GLS_EVENT_NONE when there is none); must not be NULL.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any
+/// thread (events are read from the window's connection without blocking).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_poll_event(
+    surface: *mut gls_surface,
+    event_out: *mut gls_event,
+) -> gls_result {
+    ffi_boundary!("gls_surface_poll_event", {
+        let s = surface_arg(surface)?;
+        let out = arg_out(event_out, "event_out")?;
+        let ev = match s.next_event() {
+            None => gls_event::default(),
+            Some(WindowEvent::Key(k)) => gls_event {
+                kind: GLS_EVENT_KEY,
+                key: k,
+                ..Default::default()
+            },
+            Some(WindowEvent::CloseRequested) => gls_event {
+                kind: GLS_EVENT_CLOSE,
+                ..Default::default()
+            },
+            Some(WindowEvent::Resized(w, h)) => gls_event {
+                kind: GLS_EVENT_RESIZE,
+                width: w,
+                height: h,
+                ..Default::default()
+            },
+        };
+        // SAFETY: checked non-NULL.
+        unsafe { write_out(out, ev) };
+        Ok(())
+    })
+}
+
+/// Whether the user asked to close the surface's window (the window
+/// manager's close button); the window stays until the surface is destroyed.
+///
+/// @return true or false; false for a headless surface, NULL or a handle
+/// that is not live (with a message). Any thread.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_surface_should_close(surface: *mut gls_surface) -> bool {
+    ffi_boundary!("gls_surface_should_close", false => { Ok(surface_arg(surface)?.close_requested()) })
+}
+
+/// Sets the title of the surface's window (programs show their stereo
+/// settings there, as OGLPlane does). No effect headless.
+///
+/// @param surface a live surface. @param title UTF-8; must not be NULL.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+/// GLS_ERROR_DISPLAY_LOST. Any thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_set_title(
+    surface: *mut gls_surface,
+    title: *const c_char,
+) -> gls_result {
+    ffi_boundary!("gls_surface_set_title", {
+        let s = surface_arg(surface)?;
+        // SAFETY: NUL-terminated (contract).
+        let title = unsafe { arg_str(title, "title")? };
+        s.set_title(title)
+    })
+}
+
+/// Native handles (advanced): the backend objects behind a surface, for
+/// programs that mix glstereo with their own use of GLX, EGL or OSMesa.
+/// Fields a backend does not have are NULL / 0.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct gls_native_handles {
+    /// GLS_BACKEND_GLX, GLS_BACKEND_EGL or GLS_BACKEND_OSMESA.
+    pub backend: u32,
+    /// GLX: the Xlib `Display*`; EGL: the `EGLDisplay`.
+    pub display: *mut c_void,
+    /// GLX: the X `Window` (XID) the surface presents into.
+    pub window: u64,
+    /// The program's context: `GLXContext`, `EGLContext` or `OSMesaContext`.
+    pub context: *mut c_void,
+    /// OSMesa: the buffer bound with OSMesaMakeCurrent (rendering goes to
+    /// glstereo's framebuffer, not there).
+    pub osmesa_buffer: *mut c_void,
+}
+
+/// Native handles (advanced, see gls_native_handles). The objects stay
+/// owned by glstereo: do not destroy them; they live as long as the surface.
+/// Making the context current yourself bypasses glstereo's bookkeeping:
+/// use gls_make_current().
+///
+/// @param surface a live surface. @param handles_out must not be NULL.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_surface_get_native_handles(
+    surface: *mut gls_surface,
+    handles_out: *mut gls_native_handles,
+) -> gls_result {
+    ffi_boundary!("gls_surface_get_native_handles", {
+        let s = surface_arg(surface)?;
+        let out = arg_out(handles_out, "handles_out")?;
+        let null = std::ptr::null_mut();
+        let h = match s.native_handles() {
+            NativeHandles::Glx {
+                display,
+                window,
+                context,
+            } => gls_native_handles {
+                backend: super::display::GLS_BACKEND_GLX,
+                display,
+                window,
+                context,
+                osmesa_buffer: null,
+            },
+            NativeHandles::Egl { display, context } => gls_native_handles {
+                backend: super::display::GLS_BACKEND_EGL,
+                display,
+                window: 0,
+                context,
+                osmesa_buffer: null,
+            },
+            NativeHandles::OsMesa { context, buffer } => gls_native_handles {
+                backend: super::display::GLS_BACKEND_OSMESA,
+                display: null,
+                window: 0,
+                context,
+                osmesa_buffer: buffer,
+            },
+        };
+        // SAFETY: checked non-NULL.
+        unsafe { write_out(out, h) };
+        Ok(())
     })
 }

@@ -86,6 +86,16 @@ impl InputFraming {
         }
     }
 
+    /// The frame size that holds two eyes of `eye_width` × `eye_height` this
+    /// way (the inverse of [`InputFraming::eye_size`]): twice as wide for
+    /// side-by-side, the eye size for the others.
+    pub fn frame_size(self, eye_width: u32, eye_height: u32) -> (u32, u32) {
+        match self {
+            InputFraming::SideBySide => (eye_width.saturating_mul(2), eye_height),
+            _ => (eye_width, eye_height),
+        }
+    }
+
     /// Checks that a `width` × `height` frame can be taken apart this way.
     pub fn check(self, shape: FramebufferShape, width: u32, height: u32) -> Result<()> {
         let too_small = match self {

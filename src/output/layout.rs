@@ -91,6 +91,28 @@ pub fn composite_size(mode: OutputMode, eye_width: u32, eye_height: u32) -> (u32
     }
 }
 
+/// The eye size whose composite fills a window of `ww` × `wh` pixels: the
+/// inverse of [`composite_size`] (each eye half the width for
+/// `side-by-side`, half the height for `top-bottom`, the largest H with
+/// 2H + gap(H) ≤ wh for `hdmi-frame-packing`, the window size otherwise),
+/// at least 1 × 1. A window resized by its user gets eyes of this size.
+pub fn eye_size_for_window(mode: OutputMode, ww: u32, wh: u32) -> (u32, u32) {
+    let (w, h) = match mode {
+        OutputMode::SideBySide => (ww / 2, wh),
+        OutputMode::TopBottom => (ww, wh / 2),
+        OutputMode::HdmiFramePacking => {
+            // 2H + gap(H) is increasing in H: walk down from the upper bound.
+            let mut h = wh / 2;
+            while h > 1 && 2 * h + hdmi_gap(h) > wh {
+                h -= 1;
+            }
+            (ww, h)
+        }
+        _ => (ww, wh),
+    };
+    (w.max(1), h.max(1))
+}
+
 /// The two placements of the modes that put each eye in its own rectangle
 /// (left first); None for every other mode. Output pixels outside both
 /// rectangles are black (0, 0, 0, 255).
@@ -425,5 +447,16 @@ mod tests {
             );
             assert!(f.width == ww || f.height == wh, "{f:?}");
         }
+    }
+
+    #[test]
+    fn eye_size_for_window_inverts_composite_size() {
+        for mode in OutputMode::all() {
+            for (w, h) in [(640, 480), (1280, 720), (1920, 1080), (33, 17), (1, 1)] {
+                let (cw, ch) = composite_size(mode, w, h);
+                assert_eq!(eye_size_for_window(mode, cw, ch), (w, h), "{mode} {w}x{h}");
+            }
+        }
+        assert_eq!(eye_size_for_window(OutputMode::SideBySide, 1, 1), (1, 1));
     }
 }

@@ -102,7 +102,7 @@ pub fn composites() -> impl Iterator<Item = OutputMode> {
 pub fn check_all_modes(s: &Arc<Surface>, o: &OutputOptions, l: &Image, r: &Image, what: &str) {
     s.set_options(*o).unwrap();
     for mode in composites() {
-        s.set_output(mode);
+        s.set_output(mode).unwrap();
         let got = s
             .composite_image_via(ComposePath::Gl)
             .unwrap_or_else(|e| panic!("{what} {mode}: {e}"));

@@ -69,3 +69,32 @@ impl Drop for Xvfb {
         self.kill();
     }
 }
+
+/// What is on the screen of `display` in the rectangle (x, y, w, h) of the
+/// root window, as RGBA (alpha 255). Windows without a window manager sit at
+/// (0, 0), so a window's pixels are the rectangle at the origin.
+pub fn screenshot(display: &str, x: i32, y: i32, w: u32, h: u32) -> glstereo::image::Image {
+    use x11_dl::xlib::{self, Xlib};
+    let xl = Xlib::open().expect("libX11");
+    let name = std::ffi::CString::new(display).unwrap();
+    // SAFETY: plain Xlib calls on a connection opened and closed here; the
+    // image is read within its bounds and destroyed.
+    unsafe {
+        let dpy = (xl.XOpenDisplay)(name.as_ptr());
+        assert!(!dpy.is_null(), "cannot open {display} for a screenshot");
+        let root = (xl.XDefaultRootWindow)(dpy);
+        let img = (xl.XGetImage)(dpy, root, x, y, w, h, !0, xlib::ZPixmap);
+        assert!(!img.is_null(), "XGetImage failed");
+        let mut out = glstereo::image::Image::new(w, h);
+        for py in 0..h {
+            for px in 0..w {
+                let p = ((*img).funcs.get_pixel.unwrap())(img, px as i32, py as i32);
+                let (r, g, b) = ((p >> 16) & 0xff, (p >> 8) & 0xff, p & 0xff);
+                out.set(px, py, [r as u8, g as u8, b as u8, 255]);
+            }
+        }
+        ((*img).funcs.destroy_image.unwrap())(img);
+        (xl.XCloseDisplay)(dpy);
+        out
+    }
+}
