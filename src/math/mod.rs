@@ -84,6 +84,15 @@ pub(crate) fn finite(name: &str, v: f64) -> Result<f64> {
     }
 }
 
+/// Checks that every element of a matrix parameter is finite (the message
+/// names the element, e.g. `projection[12]`).
+pub(crate) fn finite_matrix(name: &str, m: &glam::DMat4) -> Result<()> {
+    for (i, v) in m.to_cols_array().iter().enumerate() {
+        finite(&format!("{name}[{i}]"), *v)?;
+    }
+    Ok(())
+}
+
 /// Checks that a parameter is finite and > 0.
 pub(crate) fn positive(name: &str, v: f64) -> Result<f64> {
     finite(name, v)?;

@@ -5,7 +5,7 @@
 use glam::{DMat4, DVec4};
 
 use super::frustum::{EyeProjection, Frustum};
-use super::{Eye, finite, non_negative, positive};
+use super::{Eye, finite, finite_matrix, non_negative, positive};
 use crate::error::Result;
 
 /// SGI IRIS GL (seed 002 §7): `window(−top·aspect ± half_sep·near/distance,
@@ -134,9 +134,7 @@ pub fn nv_clip_shift(
 ) -> Result<DMat4> {
     finite("separation", separation)?;
     finite("convergence", convergence)?;
-    for (i, v) in projection.to_cols_array().iter().enumerate() {
-        finite(&format!("projection[{i}]"), *v)?;
-    }
+    finite_matrix("projection", projection)?;
     let k = eye.sign() * separation;
     let row_w = projection.row(3) - DVec4::new(0.0, 0.0, 0.0, convergence);
     let row_x = projection.row(0) + k * row_w;

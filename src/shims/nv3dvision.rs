@@ -350,11 +350,9 @@ pub fn ortho_clip_shift(
     convergence: f64,
     eye: Eye,
 ) -> Result<DMat4> {
-    finite_f64("separation", separation)?;
-    finite_f64("convergence", convergence)?;
-    for (i, v) in projection.to_cols_array().iter().enumerate() {
-        finite_f64(&format!("projection[{i}]"), *v)?;
-    }
+    crate::math::finite("separation", separation)?;
+    crate::math::finite("convergence", convergence)?;
+    crate::math::finite_matrix("projection", projection)?;
     let k = eye.sign() * separation;
     let depth: DVec4 = (projection.row(2) + projection.row(3)) * 0.5;
     let row_x = projection.row(0) + k * (depth - convergence * projection.row(3));
@@ -364,16 +362,6 @@ pub fn ortho_clip_shift(
     m.z_axis.x = row_x.z;
     m.w_axis.x = row_x.w;
     Ok(m)
-}
-
-fn finite_f64(name: &str, v: f64) -> Result<f64> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(Error::invalid_value(format!(
-            "{name} must be a finite number, got {v}"
-        )))
-    }
 }
 
 fn finite_param(pname: u32, v: f32) -> Result<f32> {
