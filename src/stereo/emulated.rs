@@ -21,6 +21,35 @@ use crate::stereo::buffers::{
 /// Largest number of fragment outputs the draw state tracks.
 pub const MAX_DRAW_BUFFERS: usize = 8;
 
+/// What glGetIntegerv(`pname`) reports about an emulated default
+/// framebuffer of `shape`, or None where the driver's own answer stands.
+/// `draw` and `read` are the emulated framebuffer when its object is the
+/// one bound to that target, None when the program has bound its own.
+///
+/// Answered: GL_STEREO and GL_DOUBLEBUFFER (from the shape);
+/// GL_DRAW_BUFFER, GL_DRAW_BUFFERi and GL_READ_BUFFER (as the program set
+/// them); GL_DRAW_FRAMEBUFFER_BINDING and GL_READ_FRAMEBUFFER_BINDING (0:
+/// the emulation's framebuffer object is the default framebuffer).
+pub fn default_framebuffer_query(
+    pname: u32,
+    shape: FramebufferShape,
+    draw: Option<&EmulatedFramebuffer>,
+    read: Option<&EmulatedFramebuffer>,
+) -> Option<i32> {
+    match (pname, draw, read) {
+        (GL_STEREO, _, _) => Some(shape.stereo as i32),
+        (GL_DOUBLEBUFFER, _, _) => Some(shape.double_buffered as i32),
+        (GL_DRAW_FRAMEBUFFER_BINDING, Some(_), _) => Some(0),
+        (GL_READ_FRAMEBUFFER_BINDING, _, Some(_)) => Some(0),
+        (GL_DRAW_BUFFER, Some(fb), _) => Some(fb.draw_buffer_query(0) as i32),
+        (p, Some(fb), _) if (GL_DRAW_BUFFER0..=GL_DRAW_BUFFER15).contains(&p) => {
+            Some(fb.draw_buffer_query((p - GL_DRAW_BUFFER0) as usize) as i32)
+        }
+        (GL_READ_BUFFER, _, Some(fb)) => Some(fb.read_buffer_query() as i32),
+        _ => None,
+    }
+}
+
 /// The draw-buffer state as the program set it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum DrawState {
@@ -100,12 +129,10 @@ impl EmulatedFramebuffer {
             gl.take_error();
             gl.GenFramebuffers(1, &mut fb.read_fbo);
             for b in shape.allocated().iter() {
-                let mut tex = 0;
-                gl.GenTextures(1, &mut tex);
-                fb.textures[fb.slot_of[b.index()]] = tex;
+                fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }
             if depth_bits > 0 || stencil_bits > 0 {
-                gl.GenRenderbuffers(1, &mut fb.depth_stencil);
+                fb.depth_stencil = gl.gen_renderbuffer();
             }
             if let Err(e) = fb.allocate_storage(gl) {
                 fb.delete(gl);
@@ -168,6 +195,18 @@ impl EmulatedFramebuffer {
         }
     }
 
+    /// Deletes the textures, the renderbuffer and the read framebuffer
+    /// (the application's framebuffer object goes with its context). The
+    /// context the framebuffer was allocated in must be current.
+    ///
+    /// # Safety
+    /// That context (or one sharing its objects, for everything but the
+    /// read framebuffer) must be current on this thread.
+    pub unsafe fn release(&mut self, gl: &Gl) {
+        // SAFETY: contract.
+        unsafe { self.delete(gl) }
+    }
+
     /// Deletes the shared objects (compositor context current).
     unsafe fn delete(&mut self, gl: &Gl) {
         // SAFETY: a context is current (contract of the callers).
@@ -219,14 +258,42 @@ impl EmulatedFramebuffer {
         // SAFETY: the application context is current (contract).
         unsafe {
             gl.take_error();
-            gl.GenFramebuffers(1, &mut self.app_fbo);
+            self.create_app_fbo(gl)?;
             gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
-            self.attach_storage(gl)?;
-            self.apply_draw(gl);
-            self.apply_read(gl);
             gl.Viewport(0, 0, self.width as i32, self.height as i32);
             gl.Scissor(0, 0, self.width as i32, self.height as i32);
             gl.check("binding the stereo framebuffer")
+        }
+    }
+
+    /// Creates the application's framebuffer object in the context current
+    /// on this thread, attaches the buffers and applies the draw/read
+    /// state, and leaves that context's framebuffer bindings as they were:
+    /// the caller decides what to bind (the LD_PRELOAD interposer binds it
+    /// in place of the program's framebuffer 0). Touches no other state.
+    ///
+    /// # Safety
+    /// A context sharing objects with the one the framebuffer was allocated
+    /// in must be current on this thread.
+    pub unsafe fn create_app_fbo(&mut self, gl: &Gl) -> Result<()> {
+        // SAFETY: contract.
+        unsafe {
+            let prev_draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+            let prev_read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
+            gl.GenFramebuffers(1, &mut self.app_fbo);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
+            let attached = self.attach_storage(gl);
+            if attached.is_ok() {
+                self.apply_draw(gl);
+                self.apply_read(gl);
+            }
+            gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, prev_draw);
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, prev_read);
+            if attached.is_err() {
+                gl.DeleteFramebuffers(1, &self.app_fbo);
+                self.app_fbo = 0;
+            }
+            attached
         }
     }
 
