@@ -84,22 +84,43 @@ fn expected_eyes() -> (Image, Image) {
     )
 }
 
-/// Runs the legacy program under glstereo-run in `mode` with a capture
-/// directory; returns the window as the server shows it, the capture
-/// directory, and the program's report line.
-fn run_legacy(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
-    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+/// How a test finds the program's window.
+#[derive(Clone, Copy)]
+enum Window {
+    /// The program prints "ready 0x<id>".
+    Printed,
+    /// The top-level window with this title.
+    Titled(&'static str),
+}
+
+/// Runs `exe args` under glstereo-run in `mode` with a capture directory;
+/// returns the window as the server shows it, the capture directory, and
+/// the program's first report line.
+fn run_under_layer(
+    x: &Xvfb,
+    exe: &std::path::Path,
+    args: &[String],
+    window: Window,
+    mode: &str,
+    capture: &str,
+) -> (Image, PathBuf, String) {
     let dir = common::scratch(capture);
     let mut cmd = Command::new(&built().run);
     cmd.args(["-m", mode, "--capture"])
         .arg(&dir)
-        .arg(&exe)
-        .args([W.to_string(), H.to_string()])
+        .arg(exe)
+        .args(args)
         .env("DISPLAY", &x.display);
     let mut p = Running::start(cmd);
     let id = p.ready();
-    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id");
-    let shot = Screen::open(&x.display).grab(window);
+    let screen = Screen::open(&x.display);
+    let window = match window {
+        Window::Printed => u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id"),
+        Window::Titled(t) => screen
+            .find_window(t)
+            .unwrap_or_else(|| panic!("no window titled {t}")),
+    };
+    let shot = screen.grab(window);
     let report = p.stdout.first().cloned().unwrap_or_default();
     let stderr = p.finish();
     assert!(
@@ -107,6 +128,110 @@ fn run_legacy(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
         "the layer complained: {stderr}"
     );
     (shot, dir, report)
+}
+
+fn run_legacy(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let size = [W.to_string(), H.to_string()];
+    run_under_layer(x, &exe, &size, Window::Printed, mode, capture)
+}
+
+fn run_glut(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
+    let exe = program("glut_stereo", &["-lglut", "-lGL"]);
+    run_under_layer(x, &exe, &[], Window::Titled("glut_stereo"), mode, capture)
+}
+
+/// The capture's eyes are the RedBlue eyes, and the window is the CPU
+/// reference composite of them in `mode`.
+fn check_mode(shot: &Image, dir: &std::path::Path, mode: OutputMode, what: &str) {
+    let left = common::png(&dir.join("left-000001.png"));
+    let right = common::png(&dir.join("right-000001.png"));
+    let (want_l, want_r) = expected_eyes();
+    for (px, py) in sample_pixels() {
+        assert_eq!(left.get(px, py), want_l.get(px, py), "{what}: left eye");
+        assert_eq!(right.get(px, py), want_r.get(px, py), "{what}: right eye");
+    }
+    let reference =
+        glstereo::output::compose(mode, &OutputOptions::default(), &left, &right, 0).unwrap();
+    assert_close(shot, &reference, what);
+    assert_close(
+        &common::png(&dir.join("composite-000001.png")),
+        shot,
+        &format!("{what}: captured composite vs window"),
+    );
+}
+
+/// The three modes every program is checked in, and a hand-made check of each.
+const MODES: [(OutputMode, &str); 3] = [
+    (
+        OutputMode::Anaglyph(
+            glstereo::output::AnaglyphColors::RedCyan,
+            glstereo::output::AnaglyphMethod::FullColor,
+        ),
+        "anaglyph-red-cyan",
+    ),
+    (OutputMode::SideBySideHalf, "side-by-side-half"),
+    (OutputMode::Rows, "rows"),
+];
+
+/// What a person checks on the screen, computed by hand from the RedBlue
+/// frame (not from the library).
+fn check_by_hand(shot: &Image, mode: OutputMode, what: &str) {
+    let s = sample_pixels();
+    match mode {
+        OutputMode::Rows => {
+            // Rows alternate eyes from the top row (left) down.
+            let (lx, ly) = s[1]; // left rectangle only
+            let even = ly & !1;
+            assert_eq!(
+                shot.get(lx, even),
+                [0, 0, 255, 255],
+                "{what}: even row is left"
+            );
+            assert_eq!(
+                shot.get(lx, even + 1),
+                [51, 51, 51, 255],
+                "{what}: odd row is right"
+            );
+        }
+        OutputMode::SideBySideHalf => {
+            // Left half: the left eye squeezed; its blue square spans x
+            // -0.8..0.2 of the eye, so -0.9..-0.4 of the window.
+            let at = |nx: f64, ny: f64| {
+                shot.get(
+                    ((nx + 1.0) / 2.0 * W as f64) as u32,
+                    ((1.0 - ny) / 2.0 * H as f64) as u32,
+                )
+            };
+            assert_eq!(
+                at(-0.65, -0.5),
+                [0, 0, 255, 255],
+                "{what}: left eye in the left half"
+            );
+            assert_eq!(
+                at(0.75, 0.5),
+                [255, 0, 0, 255],
+                "{what}: right eye in the right half"
+            );
+            assert_eq!(
+                at(0.75, -0.5),
+                [51, 51, 51, 255],
+                "{what}: right eye background"
+            );
+        }
+        _ => {
+            // Red from the left eye, green and blue from the right.
+            let want = [
+                [51, 51, 51, 255], // background: grey in both eyes
+                [0, 51, 51, 255],  // left blue rectangle: R 0 (left), G B grey (right)
+                [0, 0, 0, 255],    // overlap: left blue (R 0), right red (G B 0)
+                [51, 0, 0, 255],   // right red rectangle: R grey (left), G B 0
+            ];
+            for ((px, py), want) in s.into_iter().zip(want) {
+                assert_eq!(shot.get(px, py), want, "{what}: window pixel ({px},{py})");
+            }
+        }
+    }
 }
 
 fn assert_close(got: &Image, want: &Image, what: &str) {
@@ -126,77 +251,120 @@ fn assert_close(got: &Image, want: &Image, what: &str) {
 }
 
 #[test]
-fn legacy_glx_program_shows_the_red_cyan_anaglyph_of_both_eyes() {
+fn legacy_glx_program_shows_its_two_eyes_in_each_mode() {
     let x = Xvfb::start(640, 480);
-    let (shot, dir, report) = run_legacy(&x, "anaglyph-red-cyan", "legacy_anaglyph");
-    assert!(
-        report.contains("glx_stereo 1 gl_stereo 1 framebuffer 0 draw_buffer 0x405 error 0x0"),
-        "what the program saw: {report}"
-    );
-    // Red from the left eye, green and blue from the right, by hand.
-    let want = [
-        [51, 51, 51, 255], // background: grey in both eyes
-        [0, 51, 51, 255],  // left blue rectangle: R 0 from the left, G B grey from the right
-        [0, 0, 0, 255],    // overlap: left blue (R 0), right red (G B 0)
-        [51, 0, 0, 255],   // right red rectangle: R grey from the left, G B 0
-    ];
-    for ((px, py), want) in sample_pixels().into_iter().zip(want) {
-        assert_eq!(shot.get(px, py), want, "window pixel ({px},{py})");
-    }
-    // The capture holds the eyes as drawn, and the composite the window shows.
-    let (left, right) = expected_eyes();
-    for (px, py) in sample_pixels() {
-        assert_eq!(
-            common::png(&dir.join("left-000001.png")).get(px, py),
-            left.get(px, py)
+    for (mode, name) in MODES {
+        let (shot, dir, report) = run_legacy(&x, name, &format!("legacy_{name}"));
+        assert!(
+            report.contains("glx_stereo 1 gl_stereo 1 framebuffer 0 draw_buffer 0x405 error 0x0"),
+            "what the program saw: {report}"
         );
-        assert_eq!(
-            common::png(&dir.join("right-000001.png")).get(px, py),
-            right.get(px, py)
-        );
+        check_by_hand(&shot, mode, name);
+        check_mode(&shot, &dir, mode, name);
     }
-    assert_close(
-        &common::png(&dir.join("composite-000001.png")),
-        &shot,
-        "capture vs window",
-    );
 }
 
 #[test]
-fn legacy_glx_program_window_matches_the_reference_composite_in_each_mode() {
+fn freeglut_stereo_program_shows_its_two_eyes_in_each_mode() {
     let x = Xvfb::start(640, 480);
-    for (mode, name) in [
-        (OutputMode::SideBySideHalf, "side-by-side-half"),
-        (OutputMode::Rows, "rows"),
-        (OutputMode::Columns, "columns"),
-    ] {
-        let (shot, dir, _) = run_legacy(&x, name, &format!("legacy_{name}"));
-        // The eyes the program drew (checked against the seed's frame), and
-        // the window against the CPU reference composite of them.
-        let left = common::png(&dir.join("left-000001.png"));
-        let right = common::png(&dir.join("right-000001.png"));
-        let (want_l, want_r) = expected_eyes();
-        for (px, py) in sample_pixels() {
-            assert_eq!(left.get(px, py), want_l.get(px, py), "{name} left eye");
-            assert_eq!(right.get(px, py), want_r.get(px, py), "{name} right eye");
-        }
-        let reference =
-            glstereo::output::compose(mode, &OutputOptions::default(), &left, &right, 0).unwrap();
-        assert_close(&shot, &reference, name);
-        // And by hand: rows alternate eyes from the top row (left) down.
-        if mode == OutputMode::Rows {
-            let (lx, ly) = sample_pixels()[1]; // left rectangle only
-            let even = ly & !1;
-            assert_eq!(
-                shot.get(lx, even),
-                [0, 0, 255, 255],
-                "rows: even row is left"
-            );
-            assert_eq!(
-                shot.get(lx, even + 1),
-                [51, 51, 51, 255],
-                "rows: odd row is right"
-            );
-        }
+    for (mode, name) in MODES {
+        let (shot, dir, report) = run_glut(&x, name, &format!("glut_{name}"));
+        assert!(
+            report.contains("gl_stereo 1 glut_window_stereo 1 error 0x0"),
+            "what the program saw: {report}"
+        );
+        check_by_hand(&shot, mode, name);
+        check_mode(&shot, &dir, mode, name);
     }
+}
+
+#[test]
+fn draw_buffer_rules_hold_through_the_layer_on_stereo_visuals() {
+    let x = Xvfb::start(320, 240);
+    let exe = program("glx_draw_buffers", &["-lGL", "-lX11"]);
+    let out = common::run_ok(
+        Command::new(&built().run)
+            .arg(&exe)
+            .arg("stereo")
+            .env("DISPLAY", &x.display),
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let summary = stdout.lines().last().unwrap_or("");
+    let passed: u32 = summary
+        .split_whitespace()
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(0);
+    assert!(
+        summary.ends_with(" passed, 0 failed") && passed > 150,
+        "{summary}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Runs `exe` (which prints "ready 0x<window>") with or without the layer;
+/// returns its window and its report line.
+fn run_mono(x: &Xvfb, layer: Option<&std::path::Path>) -> (Image, String) {
+    let exe = program("mono_glx", &["-lGL", "-lX11"]);
+    let mut cmd = match layer {
+        Some(capture) => {
+            let mut c = Command::new(&built().run);
+            c.arg("--capture").arg(capture).arg(&exe);
+            c
+        }
+        None => Command::new(&exe),
+    };
+    cmd.env("DISPLAY", &x.display);
+    let mut p = Running::start(cmd);
+    let id = p.ready();
+    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id");
+    let shot = Screen::open(&x.display).grab(window);
+    let report = p.stdout.first().cloned().unwrap_or_default();
+    let stderr = p.finish();
+    assert!(stderr.is_empty(), "stderr: {stderr}");
+    (shot, report)
+}
+
+#[test]
+fn a_mono_program_runs_as_it_would_without_the_layer() {
+    let x = Xvfb::start(320, 240);
+    let capture = common::scratch("mono_capture");
+    let (without, report_without) = run_mono(&x, None);
+    let (with, report_with) = run_mono(&x, Some(&capture));
+    assert_eq!(
+        report_without, "stereo 0 draw_buffer 0x405 read_buffer 0x405 framebuffer 0 error 0x0",
+        "the driver's own answers"
+    );
+    assert_eq!(
+        report_with, report_without,
+        "what GL reports under the layer"
+    );
+    assert_eq!(
+        with.max_difference(&without).map(|d| d.0),
+        Some(0),
+        "the window differs under the layer (difference, x, y, channel): {:?}",
+        with.max_difference(&without)
+    );
+    // The picture is not trivial (the test would catch a blank window).
+    assert_ne!(with.get(40, 90), with.get(150, 5));
+    // No stereo: nothing presented by the layer, nothing captured.
+    assert_eq!(std::fs::read_dir(&capture).unwrap().count(), 0);
+
+    // GL's answers for the draw-buffer probes on mono visuals are the
+    // driver's, byte for byte (Mesa's single-buffered windows even accept
+    // GL_BACK, which the GL rules forbid: the layer leaves that alone).
+    let exe = program("glx_draw_buffers", &["-lGL", "-lX11"]);
+    let plain = common::run_ok(Command::new(&exe).arg("mono").env("DISPLAY", &x.display));
+    let layered = common::run_ok(
+        Command::new(&built().run)
+            .arg(&exe)
+            .arg("mono")
+            .env("DISPLAY", &x.display),
+    );
+    let (plain, layered) = (
+        String::from_utf8_lossy(&plain.stdout),
+        String::from_utf8_lossy(&layered.stdout),
+    );
+    assert!(plain.lines().count() > 50, "{plain}");
+    assert_eq!(layered, plain);
 }

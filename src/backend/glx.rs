@@ -168,10 +168,7 @@ pub(crate) fn trap_x_errors<T>(
     TRAPPED.store(0, Ordering::SeqCst);
     TRAP_DISPLAY.store(display as usize, Ordering::SeqCst);
     // SAFETY: a valid display; XNextRequest only reads its request counter.
-    TRAP_SERIAL.store(
-        unsafe { (xlib.XNextRequest)(display) },
-        Ordering::SeqCst,
-    );
+    TRAP_SERIAL.store(unsafe { (xlib.XNextRequest)(display) }, Ordering::SeqCst);
     // SAFETY: installs a handler that records or forwards; restored below.
     let old = unsafe { (xlib.XSetErrorHandler)(Some(on_x_error)) };
     *TRAP_PREVIOUS.lock().unwrap_or_else(|e| e.into_inner()) = old;

@@ -15,7 +15,7 @@
 //!   compose into its real back buffer and swap, then the program's
 //!   context is made current again.
 
-use std::cell::RefCell;
+use std::cell::Cell;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -126,25 +126,38 @@ pub struct Current {
 }
 
 thread_local! {
-    /// The stereo context current on this thread (None: a mono context or none).
-    static CURRENT: RefCell<Option<Current>> = const { RefCell::new(None) };
+    /// The stereo context current on this thread: a leaked `Box<Current>`,
+    /// NULL for a mono context or none. A plain pointer has no destructor,
+    /// so the slot stays usable while the process exits: programs call GLX
+    /// from `atexit` handlers (freeglut destroys its windows there), which
+    /// run after thread-local destructors.
+    static CURRENT: Cell<*mut Current> = const { Cell::new(std::ptr::null_mut()) };
 }
 
 /// Whether a stereo context is current on this thread (the fast test every
 /// interposed GL call makes first).
 pub fn stereo_current() -> bool {
-    CURRENT.with(|c| c.borrow().is_some())
+    CURRENT.with(|c| !c.get().is_null())
 }
 
 /// The stereo context current on this thread.
 pub fn current() -> Option<Current> {
-    CURRENT.with(|c| c.borrow().clone())
+    CURRENT.with(|c| {
+        let p = c.get();
+        // SAFETY: NULL or a Box this thread leaked in set_current and still owns.
+        (!p.is_null()).then(|| unsafe { (*p).clone() })
+    })
 }
 
 /// Records what is current on this thread now.
 pub fn set_current(new: Option<Current>) {
     let me = std::thread::current().id();
-    let old = CURRENT.with(|c| std::mem::replace(&mut *c.borrow_mut(), new.clone()));
+    let fresh = new
+        .clone()
+        .map_or(std::ptr::null_mut(), |n| Box::into_raw(Box::new(n)));
+    let old = CURRENT.with(|c| c.replace(fresh));
+    // SAFETY: NULL or the Box set_current leaked before; reclaimed once.
+    let old = (!old.is_null()).then(|| *unsafe { Box::from_raw(old) });
     if let Some(old) = old {
         let still = new.as_ref().is_some_and(|n| Arc::ptr_eq(&n.sc, &old.sc));
         if !still {
