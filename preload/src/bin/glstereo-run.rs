@@ -194,8 +194,8 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
 }
 
 /// The preload library: $GLSTEREO_PRELOAD_LIB, else beside this program
-/// (the build tree, target/<profile>/), else in ../lib or ../lib64 (an
-/// installed prefix).
+/// (the build tree, target/<profile>/), else in ../lib, ../lib64 or
+/// ../lib/<arch>-linux-gnu (an installed prefix).
 fn find_preload() -> Result<PathBuf, String> {
     if let Some(p) = std::env::var_os(ENV_PRELOAD_LIB).filter(|p| !p.is_empty()) {
         let p = PathBuf::from(p);
@@ -209,10 +209,12 @@ fn find_preload() -> Result<PathBuf, String> {
         .and_then(|e| e.canonicalize())
         .map_err(|e| format!("cannot locate glstereo-run itself: {e}"))?;
     let dir = exe.parent().unwrap_or(Path::new("/"));
+    let multiarch = format!("../lib/{}-linux-gnu", std::env::consts::ARCH);
     let candidates = [
         dir.join(PRELOAD),
         dir.join("../lib").join(PRELOAD),
         dir.join("../lib64").join(PRELOAD),
+        dir.join(multiarch).join(PRELOAD),
     ];
     candidates
         .iter()
