@@ -36,7 +36,7 @@ use crate::gl::enums::*;
 use crate::image::Image;
 use crate::output::gl::{GlCompositor, Job};
 use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
-use crate::stereo::emulated::EmulatedFramebuffer;
+use crate::stereo::emulated::{BufferFormats, EmulatedFramebuffer};
 
 /// GLX_WIDTH / GLX_HEIGHT for glXQueryDrawable.
 const GLX_WIDTH: i32 = 0x801D;
@@ -107,8 +107,7 @@ pub struct StereoContext {
     ctx: usize,
     ours: usize,
     shape: FramebufferShape,
-    depth_bits: u32,
-    stencil_bits: u32,
+    formats: BufferFormats,
     state: Mutex<CtxState>,
 }
 
@@ -268,22 +267,21 @@ pub(super) fn drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(
 
 impl StereoContext {
     /// The stereo state of program context `ctx`, presented with the
-    /// layer's context `ours` (which shares its objects).
+    /// layer's context `ours` (which shares its objects); its emulated
+    /// buffers have `shape` and `formats` (those of the program's visual).
     pub fn new(
         display: usize,
         ctx: usize,
         ours: usize,
         shape: FramebufferShape,
-        depth_bits: u32,
-        stencil_bits: u32,
+        formats: BufferFormats,
     ) -> Arc<StereoContext> {
         Arc::new(StereoContext {
             display,
             ctx,
             ours,
             shape,
-            depth_bits,
-            stencil_bits,
+            formats,
             state: Mutex::new(CtxState {
                 fbs: HashMap::new(),
                 pending: Vec::new(),
@@ -445,14 +443,7 @@ impl StereoContext {
                 None => {
                     // SAFETY: the layer's context is current.
                     let fb = unsafe {
-                        EmulatedFramebuffer::allocate(
-                            gl,
-                            self.shape,
-                            w,
-                            h,
-                            self.depth_bits,
-                            self.stencil_bits,
-                        )?
+                        EmulatedFramebuffer::allocate_with(gl, self.shape, w, h, self.formats)?
                     };
                     st.fbs.insert(
                         d,

@@ -22,8 +22,11 @@ use super::real::{Real, real};
 use super::registry;
 use super::settings;
 use crate::backend::glx::trap_x_errors;
-use crate::config::glx::{GLX_DEPTH_SIZE, GLX_DOUBLEBUFFER, GLX_STENCIL_SIZE, GLX_STEREO};
+use crate::config::glx::{
+    GLX_ALPHA_SIZE, GLX_DEPTH_SIZE, GLX_DOUBLEBUFFER, GLX_STENCIL_SIZE, GLX_STEREO,
+};
 use crate::stereo::buffers::FramebufferShape;
+use crate::stereo::emulated::BufferFormats;
 
 const GLX_DRAWABLE_TYPE: c_int = 0x8010;
 const GLX_RENDER_TYPE: c_int = 0x8011;
@@ -303,14 +306,13 @@ fn adopt(
         stereo: true,
         double_buffered: attrib(GLX_DOUBLEBUFFER) != 0,
     };
-    let sc = StereoContext::new(
-        dpy as usize,
-        ctx as usize,
-        ours as usize,
-        shape,
-        attrib(GLX_DEPTH_SIZE).max(0) as u32,
-        attrib(GLX_STENCIL_SIZE).max(0) as u32,
+    let bits = |a| attrib(a).max(0) as u32;
+    let formats = BufferFormats::matching(
+        bits(GLX_ALPHA_SIZE),
+        bits(GLX_DEPTH_SIZE),
+        bits(GLX_STENCIL_SIZE),
     );
+    let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
     registry::with(|reg| reg.add_context(ctx as usize, sc));
 }
 

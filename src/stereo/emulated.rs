@@ -63,6 +63,56 @@ enum DrawState {
     },
 }
 
+/// The storage formats of an emulated framebuffer's buffers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BufferFormats {
+    /// Internal format of each colour texture: GL_RGBA8, or GL_RGB8 for a
+    /// visual without alpha (which reads alpha as 1.0 and blends with a
+    /// destination alpha of 1.0, as a default framebuffer without alpha
+    /// bits does).
+    pub color: u32,
+    /// Internal format of the one depth/stencil renderbuffer:
+    /// GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT24, or 0 for none.
+    pub depth: u32,
+}
+
+impl BufferFormats {
+    /// What [`EmulatedFramebuffer::allocate`] uses: RGBA8 colour, and one
+    /// D24S8 buffer when depth or stencil is asked for.
+    pub fn surface(depth_bits: u32, stencil_bits: u32) -> BufferFormats {
+        BufferFormats {
+            color: GL_RGBA8,
+            depth: if depth_bits > 0 || stencil_bits > 0 {
+                GL_DEPTH24_STENCIL8
+            } else {
+                0
+            },
+        }
+    }
+
+    /// Formats that behave as a visual with these bits: RGB8 colour when it
+    /// has no alpha, a depth-only buffer when it has depth but no stencil
+    /// (the stencil test then passes, as GL says without a stencil buffer).
+    pub fn matching(alpha_bits: u32, depth_bits: u32, stencil_bits: u32) -> BufferFormats {
+        BufferFormats {
+            color: if alpha_bits > 0 { GL_RGBA8 } else { GL_RGB8 },
+            depth: match (depth_bits > 0, stencil_bits > 0) {
+                (true, false) => GL_DEPTH_COMPONENT24,
+                (false, false) => 0,
+                _ => GL_DEPTH24_STENCIL8,
+            },
+        }
+    }
+
+    fn depth_attachment(self) -> u32 {
+        if self.depth == GL_DEPTH_COMPONENT24 {
+            GL_DEPTH_ATTACHMENT
+        } else {
+            GL_DEPTH_STENCIL_ATTACHMENT
+        }
+    }
+}
+
 /// The GL objects and state of one emulated default framebuffer.
 #[derive(Debug)]
 pub struct EmulatedFramebuffer {
@@ -73,6 +123,8 @@ pub struct EmulatedFramebuffer {
     textures: [u32; 4],
     /// Depth/stencil renderbuffer (0 when the config has neither).
     depth_stencil: u32,
+    /// Storage formats.
+    formats: BufferFormats,
     /// Slot of each colour buffer, by [`ColorBuffer::index`].
     slot_of: [usize; 4],
     /// The framebuffer object in the application context (0 until attached).
@@ -99,6 +151,23 @@ impl EmulatedFramebuffer {
         depth_bits: u32,
         stencil_bits: u32,
     ) -> Result<EmulatedFramebuffer> {
+        let formats = BufferFormats::surface(depth_bits, stencil_bits);
+        // SAFETY: forwarded contract.
+        unsafe { Self::allocate_with(gl, shape, width, height, formats) }
+    }
+
+    /// [`EmulatedFramebuffer::allocate`] with chosen storage formats. A
+    /// driver that cannot render to GL_RGB8 textures gets GL_RGBA8.
+    ///
+    /// # Safety
+    /// A context of `gl`'s backend must be current on this thread.
+    pub unsafe fn allocate_with(
+        gl: &Gl,
+        shape: FramebufferShape,
+        width: u32,
+        height: u32,
+        formats: BufferFormats,
+    ) -> Result<EmulatedFramebuffer> {
         let initial = shape.initial_buffer();
         let mut fb = EmulatedFramebuffer {
             shape,
@@ -106,6 +175,7 @@ impl EmulatedFramebuffer {
             height,
             textures: [0; 4],
             depth_stencil: 0,
+            formats,
             slot_of: [0, 1, 2, 3],
             app_fbo: 0,
             read_fbo: 0,
@@ -131,15 +201,44 @@ impl EmulatedFramebuffer {
             for b in shape.allocated().iter() {
                 fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }
-            if depth_bits > 0 || stencil_bits > 0 {
+            if formats.depth != 0 {
                 fb.depth_stencil = gl.gen_renderbuffer();
             }
-            if let Err(e) = fb.allocate_storage(gl) {
+            let mut stored = fb.allocate_storage(gl);
+            if stored.is_ok() && formats.color != GL_RGBA8 && !fb.color_renderable(gl) {
+                fb.formats.color = GL_RGBA8;
+                stored = fb.allocate_storage(gl);
+            }
+            if let Err(e) = stored {
                 fb.delete(gl);
                 return Err(e);
             }
         }
         Ok(fb)
+    }
+
+    /// Whether the colour textures' format can be rendered to here.
+    unsafe fn color_renderable(&self, gl: &Gl) -> bool {
+        // SAFETY: a context is current (contract of the callers).
+        unsafe {
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.read_fbo);
+            gl.FramebufferTexture2D(
+                GL_FRAMEBUFFER,
+                GL_COLOR_ATTACHMENT0,
+                GL_TEXTURE_2D,
+                self.textures[0],
+                0,
+            );
+            let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+            gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+            status == GL_FRAMEBUFFER_COMPLETE
+        }
+    }
+
+    /// The storage formats in use.
+    pub fn formats(&self) -> BufferFormats {
+        self.formats
     }
 
     /// (Re)allocates texture and renderbuffer storage at the current size and clears it.
@@ -157,7 +256,7 @@ impl EmulatedFramebuffer {
                 gl.TexImage2D(
                     GL_TEXTURE_2D,
                     0,
-                    GL_RGBA8 as i32,
+                    self.formats.color as i32,
                     w,
                     h,
                     0,
@@ -169,7 +268,7 @@ impl EmulatedFramebuffer {
             gl.BindTexture(GL_TEXTURE_2D, 0);
             if self.depth_stencil != 0 {
                 gl.BindRenderbuffer(GL_RENDERBUFFER, self.depth_stencil);
-                gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
+                gl.RenderbufferStorage(GL_RENDERBUFFER, self.formats.depth, w, h);
                 gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
             }
             gl.check("allocating the stereo buffers")?;
@@ -312,7 +411,7 @@ impl EmulatedFramebuffer {
             if self.depth_stencil != 0 {
                 gl.FramebufferRenderbuffer(
                     GL_FRAMEBUFFER,
-                    GL_DEPTH_STENCIL_ATTACHMENT,
+                    self.formats.depth_attachment(),
                     GL_RENDERBUFFER,
                     self.depth_stencil,
                 );
@@ -599,7 +698,7 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
             gl.FramebufferRenderbuffer(
                 GL_READ_FRAMEBUFFER,
-                GL_DEPTH_STENCIL_ATTACHMENT,
+                self.formats.depth_attachment(),
                 GL_RENDERBUFFER,
                 self.depth_stencil,
             );
@@ -616,7 +715,7 @@ impl EmulatedFramebuffer {
             );
             gl.FramebufferRenderbuffer(
                 GL_READ_FRAMEBUFFER,
-                GL_DEPTH_STENCIL_ATTACHMENT,
+                self.formats.depth_attachment(),
                 GL_RENDERBUFFER,
                 0,
             );

@@ -373,6 +373,36 @@ static void framebuffer_bindings(void)
     drain_errors("bindings");
 }
 
+/* A visual without alpha reads alpha 1.0; without stencil, the stencil
+ * test passes (GL's rules for a buffer the framebuffer lacks). */
+static void missing_buffers(struct shape s)
+{
+    GLint alpha_bits = get_int(GL_ALPHA_BITS), stencil_bits = get_int(GL_STENCIL_BITS);
+    printf("%s: GL_ALPHA_BITS %d GL_STENCIL_BITS %d\n", s.name, alpha_bits, stencil_bits);
+    glDrawBuffer(s.dbl ? GL_BACK_LEFT : GL_FRONT_LEFT);
+    glReadBuffer(s.dbl ? GL_BACK_LEFT : GL_FRONT_LEFT);
+    glClearColor(0.2f, 0.4f, 0.6f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    unsigned char px[4];
+    glReadPixels(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    printf("%s: cleared to alpha 0, reads %d\n", s.name, px[3]);
+    EXPECT(px[3] == (alpha_bits == 0 ? 255 : 0), "%s: alpha %d with %d alpha bits", s.name, px[3],
+           alpha_bits);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_NEVER, 0, 0xff);
+    glColor3f(1.0f, 1.0f, 1.0f);
+    glRectf(-1.0f, -1.0f, 1.0f, 1.0f);
+    glDisable(GL_STENCIL_TEST);
+    glReadPixels(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    int drawn = px[0] == 255;
+    printf("%s: drawn through GL_NEVER stencil %d\n", s.name, drawn);
+    EXPECT(drawn == (stencil_bits == 0), "%s: stencil test with %d stencil bits", s.name,
+           stencil_bits);
+    glDrawBuffer(s.dbl ? GL_BACK : GL_FRONT);
+    glReadBuffer(s.dbl ? GL_BACK : GL_FRONT);
+    drain_errors("missing buffers");
+}
+
 static int run(Display *display, struct shape s)
 {
     int attrs[16], n = 0;
@@ -420,6 +450,7 @@ static int run(Display *display, struct shape s)
 
     draw_buffer_table(s);
     draw_buffers_rules(s);
+    missing_buffers(s);
     if (s.stereo && s.dbl) {
         read_buffer_names();
         one_swap_presents_both_eyes(display, win);
