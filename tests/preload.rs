@@ -368,3 +368,75 @@ fn a_mono_program_runs_as_it_would_without_the_layer() {
     assert!(plain.lines().count() > 50, "{plain}");
     assert_eq!(layered, plain);
 }
+
+#[test]
+fn the_stereo_buffers_follow_a_resized_window() {
+    let x = Xvfb::start(640, 480);
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let dir = common::scratch("legacy_resize");
+    let mut cmd = Command::new(&built().run);
+    cmd.args(["-m", "rows", "--capture"])
+        .arg(&dir)
+        .arg(&exe)
+        .args(["160", "120"])
+        .env("DISPLAY", &x.display);
+    let mut p = Running::start(cmd);
+    let id = p.ready();
+    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).unwrap();
+    // The program resizes its window and redraws (its reshape sets the viewport).
+    p.send("resize 200 90");
+    p.ready();
+    let shot = Screen::open(&x.display).grab(window);
+    let stderr = p.finish();
+    glstereo::capture::write_png(&shot, &dir.join("window.png")).unwrap();
+    assert!(!stderr.contains("glstereo:"), "{stderr}");
+    assert_eq!((shot.width(), shot.height()), (200, 90));
+    let left = common::png(&dir.join("left-000002.png"));
+    let right = common::png(&dir.join("right-000002.png"));
+    assert_eq!(
+        (left.width(), left.height()),
+        (200, 90),
+        "the eyes are the window's new size"
+    );
+    // The second frame fills the new window: the left eye's blue square
+    // spans x 10%..60% and y 40%..90% of it.
+    assert_eq!(
+        left.get(70, 60),
+        [0, 0, 255, 255],
+        "left eye at the new size"
+    );
+    assert_eq!(
+        right.get(150, 20),
+        [255, 0, 0, 255],
+        "right eye at the new size"
+    );
+    let reference = glstereo::output::compose(
+        OutputMode::Rows,
+        &OutputOptions::default(),
+        &left,
+        &right,
+        1,
+    )
+    .unwrap();
+    assert_close(&shot, &reference, "the resized window");
+}
+
+#[test]
+fn a_single_buffered_stereo_program_is_shown_when_it_flushes() {
+    let x = Xvfb::start(640, 480);
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let args = [W.to_string(), H.to_string(), "single".to_owned()];
+    let (shot, _, report) = run_under_layer(
+        &x,
+        &exe,
+        &args,
+        Window::Printed,
+        "anaglyph-red-cyan",
+        "legacy_single",
+    );
+    assert!(
+        report.contains("glx_stereo 1 gl_stereo 1 framebuffer 0 draw_buffer 0x404 error 0x0"),
+        "{report}"
+    );
+    check_by_hand(&shot, MODES[0].0, "single-buffered anaglyph");
+}

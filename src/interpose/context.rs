@@ -565,8 +565,10 @@ impl StereoContext {
         // SAFETY: the layer's context is current on the drawable; the job's
         // textures are shared with it.
         let composed = unsafe { compositor.compose_window(gl, &job, 0, width, height) };
-        // SAFETY: valid display and drawable, current in our context.
-        unsafe { (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable) };
+        // Read the eyes back before the swap: with Mesa's software GLX,
+        // binding framebuffer 0 after a swap (as reading back ends by doing)
+        // fixes the window's size until the next swap, so a resize that
+        // follows would be missed for a frame.
         if let Some(sink) = capture::sink() {
             let (w, h) = drawn.fb.size();
             let mut left = Image::new(w, h);
@@ -587,6 +589,20 @@ impl StereoContext {
                 options: s.options,
                 frame_index,
             });
+        }
+        // SAFETY: valid display and drawable, current in our context.
+        unsafe {
+            if self.shape.double_buffered {
+                (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable);
+            } else {
+                // A single-buffered window was drawn in its front buffer.
+                gl.Finish();
+            }
+            // The frame is on the server when presenting returns: Mesa's
+            // software swap sends the image in several requests without
+            // waiting, and another client (a screenshot, a compositor)
+            // could otherwise see it half drawn. One round trip.
+            (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False);
         }
         if drawn.fb.size() != (width, height) {
             // SAFETY: the layer's context is current.

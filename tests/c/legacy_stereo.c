@@ -4,32 +4,37 @@
  * glXSwapBuffers. Unmodified: it knows nothing of glstereo and links only
  * -lGL -lX11. Run it under glstereo-run.
  *
- *   legacy_stereo [WIDTH HEIGHT]
+ *   legacy_stereo [WIDTH HEIGHT [single]]
  *
  * It draws the RedBlue frame (grey 0.2 background; left eye: blue rectangle
  * (-0.8,-0.8)-(0.2,0.2); right eye: red rectangle (-0.2,-0.2)-(0.8,0.8)),
- * swaps, prints "ready 0x<window>" and what GL reported, then waits for a
- * line on stdin (the test grabs the window meanwhile) and exits 0. Without
- * a stereo visual it says so on stderr and exits 2, as the guide advises.
+ * swaps, prints what GL reported and "ready 0x<window>", then reads a line
+ * on stdin (the test grabs the window meanwhile): "resize W H" resizes the
+ * window, sets the viewport as a reshape handler would, draws and presents
+ * again; anything else (or EOF) exits 0. With "single" the visual is
+ * single-buffered: it draws GL_FRONT_LEFT / GL_FRONT_RIGHT and calls
+ * glFlush instead of swapping. Without a stereo visual it says so on stderr
+ * and exits 2, as the guide advises.
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <GL/gl.h>
 #include <GL/glx.h>
 #include <X11/Xlib.h>
 
-static void redblue_frame(void)
+static void redblue_frame(int single)
 {
-    glDrawBuffer(GL_BACK);
+    glDrawBuffer(single ? GL_FRONT : GL_BACK);
     glClearColor(0.2f, 0.2f, 0.2f, 0.0f);
     glClear(GL_COLOR_BUFFER_BIT);
 
-    glDrawBuffer(GL_BACK_LEFT);
+    glDrawBuffer(single ? GL_FRONT_LEFT : GL_BACK_LEFT);
     glColor3f(0.0f, 0.0f, 1.0f);
     glRectf(-0.8f, -0.8f, 0.2f, 0.2f);
 
-    glDrawBuffer(GL_BACK_RIGHT);
+    glDrawBuffer(single ? GL_FRONT_RIGHT : GL_BACK_RIGHT);
     glColor3f(1.0f, 0.0f, 0.0f);
     glRectf(-0.2f, -0.2f, 0.8f, 0.8f);
 }
@@ -38,8 +43,12 @@ int main(int argc, char **argv)
 {
     int width = argc > 2 ? atoi(argv[1]) : 160;
     int height = argc > 2 ? atoi(argv[2]) : 120;
+    int single = argc > 3 && strcmp(argv[3], "single") == 0;
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 1, GLX_GREEN_SIZE, 1,
                         GLX_BLUE_SIZE, 1, GLX_DEPTH_SIZE, 1, GLX_STEREO, None};
+    if (single) {
+        attributes[1] = GLX_USE_GL; /* no GLX_DOUBLEBUFFER */
+    }
     Display *display = XOpenDisplay(NULL);
     if (display == NULL) {
         fprintf(stderr, "cannot open the X display\n");
@@ -74,18 +83,29 @@ int main(int argc, char **argv)
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
     glGetIntegerv(GL_DRAW_BUFFER, &draw);
 
-    redblue_frame();
-    glXSwapBuffers(display, win);
-    glFinish();
+    for (;;) {
+        redblue_frame(single);
+        if (single) {
+            glFlush();
+        } else {
+            glXSwapBuffers(display, win);
+        }
+        glFinish();
 
-    printf("glx_stereo %d gl_stereo %d framebuffer %d draw_buffer 0x%x error 0x%x\n", glx_stereo,
-           stereo, fb, (unsigned)draw, glGetError());
-    printf("ready 0x%lx\n", (unsigned long)win);
-    fflush(stdout);
+        printf("glx_stereo %d gl_stereo %d framebuffer %d draw_buffer 0x%x error 0x%x\n",
+               glx_stereo, stereo, fb, (unsigned)draw, glGetError());
+        printf("ready 0x%lx\n", (unsigned long)win);
+        fflush(stdout);
 
-    char line[64];
-    if (fgets(line, sizeof line, stdin) == NULL) {
-        /* EOF: exit as well. */
+        char line[64];
+        int w, h;
+        if (fgets(line, sizeof line, stdin) == NULL ||
+            sscanf(line, "resize %d %d", &w, &h) != 2) {
+            break;
+        }
+        XResizeWindow(display, win, (unsigned)w, (unsigned)h);
+        XSync(display, False);
+        glViewport(0, 0, w, h);
     }
     glXMakeCurrent(display, None, NULL);
     glXDestroyContext(display, ctx);

@@ -130,6 +130,13 @@ impl Running {
         }
     }
 
+    /// Sends a line to the program's stdin.
+    pub fn send(&mut self, line: &str) {
+        let stdin = self.stdin.as_mut().expect("stdin open");
+        writeln!(stdin, "{line}").expect("the program reads stdin");
+        stdin.flush().expect("flush");
+    }
+
     /// Lets the program exit (a line on stdin) and returns its stderr,
     /// failing unless it exits with status 0 within 60 s.
     pub fn finish(mut self) -> String {
