@@ -282,24 +282,28 @@ fn freeglut_stereo_program_shows_its_two_eyes_in_each_mode() {
 fn draw_buffer_rules_hold_through_the_layer_on_stereo_visuals() {
     let x = Xvfb::start(320, 240);
     let exe = program("glx_draw_buffers", &["-lGL", "-lX11"]);
-    let out = common::run_ok(
-        Command::new(&built().run)
-            .arg(&exe)
-            .arg("stereo")
-            .env("DISPLAY", &x.display),
-    );
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let summary = stdout.lines().last().unwrap_or("");
-    let passed: u32 = summary
-        .split_whitespace()
-        .next()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(0);
-    assert!(
-        summary.ends_with(" passed, 0 failed") && passed > 150,
-        "{summary}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    // glXChooseVisual visuals (double and single), and a core-profile
+    // context of a glXChooseFBConfig configuration.
+    for (what, at_least) in [("stereo", 150), ("core", 100)] {
+        let out = common::run_ok(
+            Command::new(&built().run)
+                .arg(&exe)
+                .arg(what)
+                .env("DISPLAY", &x.display),
+        );
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let summary = stdout.lines().last().unwrap_or("");
+        let passed: u32 = summary
+            .split_whitespace()
+            .next()
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(0);
+        assert!(
+            summary.ends_with(" passed, 0 failed") && passed > at_least,
+            "{what}: {summary}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
 }
 
 /// Runs `exe` (which prints "ready 0x<window>") with or without the layer;

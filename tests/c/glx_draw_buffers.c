@@ -14,6 +14,9 @@
  * and texture names it never generated.
  *
  *   glx_draw_buffers stereo   checks the rules on the stereo visuals
+ *   glx_draw_buffers core     the same on a GL 3.3 core-profile context made
+ *                             with glXChooseFBConfig(GLX_STEREO True) and
+ *                             glXCreateContextAttribsARB
  *   glx_draw_buffers mono     runs the same probes on the mono visuals and
  *                             prints what the driver answered, one line per
  *                             probe (the test compares it with a run
@@ -464,15 +467,71 @@ static int run(Display *display, struct shape s)
     return 1;
 }
 
+typedef GLXContext (*CreateContextAttribs)(Display *, GLXFBConfig, GLXContext, Bool,
+                                           const int *);
+
+/* A double-buffered stereo configuration and a core-profile context. */
+static int run_core(Display *display)
+{
+    const struct shape s = {1, 1, "stereo core profile"};
+    int attrs[] = {GLX_RENDER_TYPE, GLX_RGBA_BIT, GLX_DOUBLEBUFFER, True, GLX_STEREO, True,
+                   GLX_RED_SIZE, 8, None};
+    int n = 0;
+    GLXFBConfig *configs = glXChooseFBConfig(display, DefaultScreen(display), attrs, &n);
+    if (configs == NULL || n == 0) {
+        fprintf(stderr, "no stereo FBConfig\n");
+        return 0;
+    }
+    int stereo = -1;
+    glXGetFBConfigAttrib(display, configs[0], GLX_STEREO, &stereo);
+    CHECK(stereo == 1, "GLX_STEREO of the chosen configuration: %d", stereo);
+    XVisualInfo *vi = glXGetVisualFromFBConfig(display, configs[0]);
+    CHECK(vi != NULL, "visual of the configuration");
+    if (vi == NULL) return 0;
+    Window root = RootWindow(display, vi->screen);
+    XSetWindowAttributes wa = {0};
+    wa.colormap = XCreateColormap(display, root, vi->visual, AllocNone);
+    Window win = XCreateWindow(display, root, 0, 0, W, H, 0, vi->depth, InputOutput, vi->visual,
+                               CWColormap, &wa);
+    XMapWindow(display, win);
+    XSync(display, False);
+    CreateContextAttribs create = (CreateContextAttribs)glXGetProcAddressARB(
+        (const GLubyte *)"glXCreateContextAttribsARB");
+    const int ctx_attrs[] = {0x2091 /* MAJOR */, 3, 0x2092 /* MINOR */, 3,
+                             0x9126 /* PROFILE_MASK */, 0x1 /* CORE */, None};
+    GLXContext ctx = create ? create(display, configs[0], NULL, True, ctx_attrs) : NULL;
+    CHECK(ctx != NULL && glXMakeContextCurrent(display, win, win, ctx), "core context current");
+    if (ctx == NULL) return 0;
+    draw_buffers = (DrawBuffers)glXGetProcAddressARB((const GLubyte *)"glDrawBuffers");
+    GLint profile = 0;
+    glGetIntegerv(0x9126 /* GL_CONTEXT_PROFILE_MASK */, &profile);
+    CHECK(profile == 1, "a core-profile context (mask %d)", profile);
+    GLboolean st = GL_FALSE;
+    glGetBooleanv(GL_STEREO, &st);
+    CHECK(st == GL_TRUE, "GL_STEREO in the core context");
+    draw_buffer_table(s);
+    draw_buffers_rules(s);
+    read_buffer_names();
+    one_swap_presents_both_eyes(display, win);
+    glXMakeContextCurrent(display, None, None, NULL);
+    glXDestroyContext(display, ctx);
+    XDestroyWindow(display, win);
+    XFreeColormap(display, wa.colormap);
+    XFree(vi);
+    XFree(configs);
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     int stereo = argc > 1 && strcmp(argv[1], "stereo") == 0;
     int mono = argc > 1 && strcmp(argv[1], "mono") == 0;
-    if (!stereo && !mono) {
-        fprintf(stderr, "usage: glx_draw_buffers stereo|mono\n");
+    int core = argc > 1 && strcmp(argv[1], "core") == 0;
+    if (!stereo && !mono && !core) {
+        fprintf(stderr, "usage: glx_draw_buffers stereo|mono|core\n");
         return 1;
     }
-    checking = stereo;
+    checking = stereo || core;
     Display *display = XOpenDisplay(NULL);
     if (display == NULL) {
         fprintf(stderr, "cannot open the X display\n");
@@ -482,9 +541,13 @@ int main(int argc, char **argv)
                                    {1, 0, "stereo single-buffered"},
                                    {0, 1, "mono double-buffered"},
                                    {0, 0, "mono single-buffered"}};
-    for (unsigned i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
-        if (shapes[i].stereo != stereo) continue;
-        if (!run(display, shapes[i])) return 2;
+    if (core) {
+        if (!run_core(display)) return 2;
+    } else {
+        for (unsigned i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
+            if (shapes[i].stereo != stereo) continue;
+            if (!run(display, shapes[i])) return 2;
+        }
     }
     XCloseDisplay(display);
     return SUMMARY();
