@@ -17,10 +17,12 @@
 //! unchanged. Types: `Display*`, `XVisualInfo*`, `GLXContext` and
 //! `GLXFBConfig` are passed as `void *`, X drawables as `unsigned long`,
 //! GL enums as `uint32_t`. Thread rules are GLX's and GL's: GL calls apply
-//! to the context current on the calling thread. None of them sets
-//! gls_last_error_message(): problems the layer cannot report through GL
-//! (no GL 3.0, a context it cannot create) are written to stderr once,
-//! prefixed `glstereo:`, and the context then runs in mono.
+//! to the context current on the calling thread. They report as the
+//! functions they replace do (return values, GL errors); problems the layer
+//! cannot report that way (no GL 3.0, a context it cannot create) are
+//! written to stderr once, prefixed `glstereo:`, and the context then runs
+//! in mono. An internal failure (a bug) is caught at the boundary, leaves a
+//! message for gls_last_error_message() and returns NULL, False or 0.
 
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
 

@@ -57,7 +57,8 @@ pub(super) struct Drawn {
     viewport_checked: bool,
 }
 
-/// The mutable part of a stereo context.
+/// The mutable part of a stereo context. Lock order: the registry's lock
+/// may be held when a state is locked, never the other way round.
 pub(super) struct CtxState {
     pub(super) fbs: HashMap<u64, Drawn>,
     /// GL errors raised by the emulation (or saved from the driver before
@@ -218,7 +219,8 @@ impl Saved {
 
 /// The size of a drawable: XGetGeometry of its X drawable (the window
 /// behind a GLX window), else glXQueryDrawable (pbuffers). X errors of
-/// these requests are trapped, never reach the program.
+/// these requests are trapped, never reach the program. Takes the
+/// registry's lock: never call it with a context's state locked.
 pub(super) fn drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(u32, u32)> {
     let dpy = display as *mut xlib::Display;
     let x = registry::with(|reg| reg.x_drawable(display, drawable));
@@ -376,6 +378,11 @@ impl StereoContext {
     pub fn bind(self: &Arc<Self>, draw: u64, read: u64) -> Result<()> {
         let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
         let gl = &r.gl;
+        // Sizes first: the registry lock is never taken under a state lock.
+        let mut wanted = vec![(draw, drawable_size(r, self.display, draw)?)];
+        if read != draw && read != 0 {
+            wanted.push((read, drawable_size(r, self.display, read)?));
+        }
         let mut st = self.lock();
         if st.usable.is_none() {
             // SAFETY: the program's context is current.
@@ -388,10 +395,6 @@ impl StereoContext {
                  so its stereo buffers cannot be emulated"
                     .into(),
             ));
-        }
-        let mut wanted = vec![(draw, drawable_size(r, self.display, draw)?)];
-        if read != draw && read != 0 {
-            wanted.push((read, drawable_size(r, self.display, read)?));
         }
         let stale: Vec<(u64, (u32, u32))> = wanted
             .iter()
@@ -469,20 +472,21 @@ impl StereoContext {
     /// draws (as a real default framebuffer follows its window).
     pub fn viewport_hint(self: &Arc<Self>, cur: &Current, width: i32, height: i32) -> Result<()> {
         let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
-        let mut st = self.lock();
-        let Some(drawn) = st.fbs.get_mut(&cur.draw) else {
-            return Ok(());
+        let current_size = {
+            let mut st = self.lock();
+            let Some(drawn) = st.fbs.get_mut(&cur.draw) else {
+                return Ok(());
+            };
+            let asked = (width.max(0) as u32, height.max(0) as u32);
+            if drawn.viewport_checked || drawn.fb.size() == asked {
+                return Ok(());
+            }
+            drawn.viewport_checked = true;
+            drawn.fb.size()
         };
-        if drawn.viewport_checked || drawn.fb.size() == (width.max(0) as u32, height.max(0) as u32)
-        {
+        if drawable_size(r, self.display, cur.draw)? == current_size {
             return Ok(());
         }
-        drawn.viewport_checked = true;
-        let size = drawable_size(r, self.display, cur.draw)?;
-        if size == drawn.fb.size() {
-            return Ok(());
-        }
-        drop(st);
         self.bind(cur.draw, cur.read)
     }
 
@@ -511,6 +515,13 @@ impl StereoContext {
                 ));
             }
         }
+        let window = match drawable_size(r, self.display, drawable) {
+            Ok(size) => size,
+            Err(e) => {
+                saved.restore(r, self.display);
+                return Err(e);
+            }
+        };
         let mut st = self.lock();
         let Some(drawn) = st.fbs.get_mut(&drawable) else {
             drop(st);
@@ -532,23 +543,23 @@ impl StereoContext {
         let frame_index = drawn.frames - 1;
         let result = self
             .make_ours_current(r, drawable)
-            .and_then(|()| self.compose_and_swap(r, &mut st, drawable, frame_index));
+            .and_then(|()| self.compose_and_swap(r, &mut st, drawable, window, frame_index));
         drop(st);
         saved.restore(r, self.display);
         result
     }
 
-    /// In the layer's context, current on `drawable`: composes, swaps,
-    /// captures, and follows a resized window.
+    /// In the layer's context, current on `drawable` (of the given size):
+    /// composes, captures, swaps, and follows a resized window.
     fn compose_and_swap(
         &self,
         r: &Real,
         st: &mut CtxState,
         drawable: u64,
+        (width, height): (u32, u32),
         frame_index: u64,
     ) -> Result<()> {
         let gl = &r.gl;
-        let (width, height) = drawable_size(r, self.display, drawable)?;
         let s = settings::get();
         let mode = s.window_mode();
         let CtxState {

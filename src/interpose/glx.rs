@@ -501,8 +501,13 @@ pub unsafe fn swap_buffers(dpy: *mut Display, drawable: c_ulong) {
     let here = current().filter(|c| c.display == dpy as usize && c.draw == drawable);
     let target = match here {
         Some(c) => Some((c.sc, true)),
-        None => registry::with(|reg| reg.context_with_drawable(dpy as usize, drawable))
-            .map(|sc| (sc, false)),
+        // The stereo context this drawable was bound to last (the
+        // contexts' states are read after the registry's lock is released).
+        None => registry::with(|reg| reg.contexts_of(dpy as usize))
+            .into_iter()
+            .filter_map(|sc| sc.last_bound(drawable).map(|t| (t, sc)))
+            .max_by_key(|(t, _)| *t)
+            .map(|(_, sc)| (sc, false)),
     };
     if let Some((sc, here)) = target {
         if !here && sc.current_elsewhere() {

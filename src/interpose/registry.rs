@@ -33,7 +33,7 @@ pub struct FakeConfig {
 const FAKE_MAGIC: u64 = 0x676c_7353_5445_5245;
 
 /// The bookkeeping, behind one lock (GLX calls are rare; GL calls never
-/// take this lock).
+/// take this lock). It is never taken while a context's state is locked.
 #[derive(Default)]
 pub struct Registry {
     /// `XVisualInfo*` handed out for a stereo request → its visual ID.
@@ -113,19 +113,13 @@ impl Registry {
         self.contexts.remove(&ctx)
     }
 
-    /// A stereo context of `display` with an emulated framebuffer for
-    /// `drawable` (the one bound to it most recently).
-    pub fn context_with_drawable(
-        &self,
-        display: usize,
-        drawable: u64,
-    ) -> Option<Arc<StereoContext>> {
+    /// The stereo contexts of `display`.
+    pub fn contexts_of(&self, display: usize) -> Vec<Arc<StereoContext>> {
         self.contexts
             .values()
             .filter(|sc| sc.display() == display)
-            .filter_map(|sc| sc.last_bound(drawable).map(|t| (t, sc)))
-            .max_by_key(|(t, _)| *t)
-            .map(|(_, sc)| sc.clone())
+            .cloned()
+            .collect()
     }
 
     /// Records the X window behind a GLX window.
