@@ -33,6 +33,23 @@ use super::boundary::ffi_boundary;
 use crate::interpose::gl as igl;
 use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
 
+/// The gls_glx_* and gls_gl_* functions stand in for the legacy GLX and GL
+/// functions a stereo program calls: `<glstereo/compat.h>` maps their
+/// names onto these for programs rebuilt from source (link -lglstereo
+/// -lGL -lX11), and libglstereo_preload.so exports them under the real
+/// names for unmodified binaries (glstereo-run). Each takes the arguments
+/// of the function it replaces (`Display*`, `XVisualInfo*`, `GLXContext`,
+/// `GLXFBConfig` as `void *`; drawables as `unsigned long`; GL enums as
+/// `uint32_t`), returns what it returns and raises the GL errors it
+/// raises; thread rules are GLX's and GL's (GL calls apply to the context
+/// current on the calling thread). What the layer cannot report that way
+/// (no GL 3.0, a context it cannot create) goes to stderr once, prefixed
+/// `glstereo:`, and that context runs in mono; an internal failure is
+/// caught, leaves a message for gls_last_error_message() and returns NULL,
+/// False or 0. Output settings come from GLSTEREO_MODE,
+/// GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK, GLSTEREO_SATURATION and
+/// GLSTEREO_CAPTURE_DIR, read once.
+///
 /// `glXChooseVisual`: a GLX_STEREO request gets the server's matching
 /// mono visual, which the layer then treats as stereo (glXGetConfig
 /// reports GLX_STEREO true; contexts created with it are stereo). The
