@@ -2086,6 +2086,17 @@ void gls_gl_get_framebuffer_attachment_parameteriv_ext(uint32_t target,
                                                        int32_t *params);
 
 /**
+ * `glPushAttrib`: GL_COLOR_BUFFER_BIT also saves the emulated draw buffer,
+ * GL_PIXEL_MODE_BIT the emulated read buffer.
+ */
+void gls_gl_push_attrib(uint32_t mask);
+
+/**
+ * `glPopAttrib`: restores what gls_gl_push_attrib() saved.
+ */
+void gls_gl_pop_attrib(void);
+
+/**
  * `glViewport`: also notices a resized window (the emulated buffers follow
  * it before the program draws).
  */

@@ -193,6 +193,14 @@ static inline void gls_compat_glGetFramebufferAttachmentParameteriv(GLenum targe
 {
     gls_gl_get_framebuffer_attachment_parameteriv(target, attachment, pname, params);
 }
+static inline void gls_compat_glPushAttrib(GLbitfield mask)
+{
+    gls_gl_push_attrib(mask);
+}
+static inline void gls_compat_glPopAttrib(void)
+{
+    gls_gl_pop_attrib();
+}
 static inline void gls_compat_glViewport(GLint x, GLint y, GLsizei width, GLsizei height)
 {
     gls_gl_viewport(x, y, width, height);
@@ -241,6 +249,8 @@ static inline void gls_compat_glFinish(void)
 #define glBindFramebuffer gls_compat_glBindFramebuffer
 #define glDeleteFramebuffers gls_compat_glDeleteFramebuffers
 #define glGetFramebufferAttachmentParameteriv gls_compat_glGetFramebufferAttachmentParameteriv
+#define glPushAttrib gls_compat_glPushAttrib
+#define glPopAttrib gls_compat_glPopAttrib
 #define glViewport gls_compat_glViewport
 #define glFlush gls_compat_glFlush
 #define glFinish gls_compat_glFinish

@@ -70,6 +70,8 @@ export! {
     glDeleteFramebuffersEXT => gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *const u32);
     glGetFramebufferAttachmentParameteriv => gls_gl_get_framebuffer_attachment_parameteriv(target: u32, attachment: u32, pname: u32, params: *mut i32);
     glGetFramebufferAttachmentParameterivEXT => gls_gl_get_framebuffer_attachment_parameteriv_ext(target: u32, attachment: u32, pname: u32, params: *mut i32);
+    glPushAttrib => gls_gl_push_attrib(mask: u32);
+    glPopAttrib => gls_gl_pop_attrib();
     glViewport => gls_gl_viewport(x: i32, y: i32, width: i32, height: i32);
     glFlush => gls_gl_flush();
     glFinish => gls_gl_finish();

@@ -571,6 +571,25 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv_ext(
     })
 }
 
+/// `glPushAttrib`: GL_COLOR_BUFFER_BIT also saves the emulated draw buffer,
+/// GL_PIXEL_MODE_BIT the emulated read buffer.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_push_attrib(mask: u32) {
+    ffi_boundary!("gls_gl_push_attrib", () => {
+        igl::push_attrib(mask);
+        Ok(())
+    })
+}
+
+/// `glPopAttrib`: restores what gls_gl_push_attrib() saved.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_pop_attrib() {
+    ffi_boundary!("gls_gl_pop_attrib", () => {
+        igl::pop_attrib();
+        Ok(())
+    })
+}
+
 /// `glViewport`: also notices a resized window (the emulated buffers follow
 /// it before the program draws).
 #[unsafe(no_mangle)]
@@ -669,6 +688,8 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glGetFramebufferAttachmentParameterivEXT" => {
             gls_gl_get_framebuffer_attachment_parameteriv_ext as *mut c_void
         }
+        b"glPushAttrib" => gls_gl_push_attrib as *mut c_void,
+        b"glPopAttrib" => gls_gl_pop_attrib as *mut c_void,
         b"glViewport" => gls_gl_viewport as *mut c_void,
         b"glFlush" => gls_gl_flush as *mut c_void,
         b"glFinish" => gls_gl_finish as *mut c_void,

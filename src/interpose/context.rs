@@ -36,7 +36,7 @@ use crate::gl::enums::*;
 use crate::image::Image;
 use crate::output::gl::{GlCompositor, Job};
 use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
-use crate::stereo::emulated::{BufferFormats, EmulatedFramebuffer};
+use crate::stereo::emulated::{BufferFormats, DrawSelection, EmulatedFramebuffer, ReadSelection};
 
 /// GLX_WIDTH / GLX_HEIGHT for glXQueryDrawable.
 const GLX_WIDTH: i32 = 0x801D;
@@ -73,6 +73,16 @@ pub(super) struct CtxState {
     owner: Option<ThreadId>,
     /// glXDestroyContext was called while it was current here.
     destroyed: bool,
+    /// One entry per level of the context's attribute stack (glPushAttrib):
+    /// the emulated draw/read selections the pushed bits cover.
+    pub(super) attribs: Vec<SavedSelections>,
+}
+
+/// The emulated buffer selections saved by one glPushAttrib: the draw
+/// selection with GL_COLOR_BUFFER_BIT, the read one with GL_PIXEL_MODE_BIT.
+pub(super) struct SavedSelections {
+    pub(super) draw: Option<(u64, DrawSelection)>,
+    pub(super) read: Option<(u64, ReadSelection)>,
 }
 
 impl CtxState {
@@ -291,6 +301,7 @@ impl StereoContext {
                 usable: None,
                 owner: None,
                 destroyed: false,
+                attribs: Vec::new(),
             }),
         })
     }

@@ -22,6 +22,9 @@
 //!   glDeleteFramebuffers never deletes it, and when it deletes the
 //!   program's bound framebuffer the binding reverts to the emulated one,
 //!   as it would revert to framebuffer 0.
+//! - glPushAttrib / glPopAttrib save and restore the emulated draw buffer
+//!   (GL_COLOR_BUFFER_BIT) and read buffer (GL_PIXEL_MODE_BIT), as they do
+//!   a real default framebuffer's;
 //! - glViewport notices a resized window before the program draws into it;
 //!   glFlush / glFinish show the front buffers when the program draws to
 //!   them (single-buffered visuals, or glDrawBuffer(GL_FRONT…)).
@@ -40,6 +43,10 @@ const GL_SAMPLE_BUFFERS: u32 = 0x80A8;
 const GL_SAMPLES: u32 = 0x80A9;
 const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE: u32 = 0x8CD0;
 const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME: u32 = 0x8CD1;
+/// glPushAttrib bits that cover the draw buffer and the read buffer.
+const GL_COLOR_BUFFER_BIT_ATTRIB: u32 = 0x4000;
+const GL_PIXEL_MODE_BIT: u32 = 0x0020;
+const GL_ATTRIB_STACK_DEPTH: u32 = 0x0BB0;
 
 fn real_or_none() -> Option<&'static Real> {
     match real() {
@@ -509,6 +516,84 @@ pub fn flush(finish: bool) {
     if fronts {
         if let Err(e) = cur.sc.present(cur.draw, false, true) {
             super::warn(&format!("showing the front buffers: {e}"));
+        }
+    }
+}
+
+/// glPushAttrib.
+pub fn push_attrib(mask: u32) {
+    let Some(r) = real_or_none() else { return };
+    let Some(push) = r.extra.push_attrib else {
+        return;
+    };
+    let Some(cur) = current() else {
+        // SAFETY: forwarded call.
+        return unsafe { push(mask) };
+    };
+    let gl = &r.gl;
+    // SAFETY: the program's context is current; forwarded call.
+    let pushed = unsafe {
+        let before = gl.integer(GL_ATTRIB_STACK_DEPTH);
+        push(mask);
+        gl.integer(GL_ATTRIB_STACK_DEPTH) == before + 1
+    };
+    if !pushed {
+        // Stack overflow (or a core context): GL pushed nothing.
+        return;
+    }
+    let read_d = read_drawable(&cur);
+    let mut st = cur.sc.lock();
+    let saved = super::context::SavedSelections {
+        draw: (mask & GL_COLOR_BUFFER_BIT_ATTRIB != 0)
+            .then(|| {
+                st.fbs
+                    .get(&cur.draw)
+                    .map(|d| (cur.draw, d.fb.draw_selection()))
+            })
+            .flatten(),
+        read: (mask & GL_PIXEL_MODE_BIT != 0)
+            .then(|| st.fbs.get(&read_d).map(|d| (read_d, d.fb.read_selection())))
+            .flatten(),
+    };
+    st.attribs.push(saved);
+}
+
+/// glPopAttrib: GL restores its own state; the emulated selections the
+/// matching push saved are put back when the emulated framebuffer is the
+/// one bound.
+pub fn pop_attrib() {
+    let Some(r) = real_or_none() else { return };
+    let Some(pop) = r.extra.pop_attrib else {
+        return;
+    };
+    let Some(cur) = current() else {
+        // SAFETY: forwarded call.
+        return unsafe { pop() };
+    };
+    let gl = &r.gl;
+    // SAFETY: the program's context is current; forwarded call.
+    let popped = unsafe {
+        let before = gl.integer(GL_ATTRIB_STACK_DEPTH);
+        pop();
+        gl.integer(GL_ATTRIB_STACK_DEPTH) + 1 == before
+    };
+    if !popped {
+        return;
+    }
+    let mut st = cur.sc.lock();
+    let Some(saved) = st.attribs.pop() else {
+        return;
+    };
+    if let Some((d, sel)) = saved.draw {
+        if let Some(fb) = bound(gl, &mut st.fbs, d, GL_DRAW_FRAMEBUFFER_BINDING) {
+            // SAFETY: the program's context is current.
+            unsafe { fb.restore_draw_selection(gl, sel) };
+        }
+    }
+    if let Some((d, sel)) = saved.read {
+        if let Some(fb) = bound(gl, &mut st.fbs, d, GL_READ_FRAMEBUFFER_BINDING) {
+            // SAFETY: the program's context is current.
+            unsafe { fb.restore_read_selection(gl, sel) };
         }
     }
 }

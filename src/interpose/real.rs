@@ -37,6 +37,10 @@ pub struct Extra {
     pub draw_buffers_arb: Option<unsafe extern "system" fn(i32, *const u32)>,
     /// `glGetFramebufferAttachmentParameterivEXT`.
     pub get_attachment_ext: Option<unsafe extern "system" fn(u32, u32, u32, *mut i32)>,
+    /// `glPushAttrib` (compatibility profile).
+    pub push_attrib: Option<unsafe extern "system" fn(u32)>,
+    /// `glPopAttrib` (compatibility profile).
+    pub pop_attrib: Option<unsafe extern "system" fn()>,
     /// The SGIX FBConfig functions (GLX_SGIX_fbconfig), which take configs too.
     pub sgix: Sgix,
 }
@@ -131,6 +135,8 @@ fn load() -> Result<Real, String> {
         delete_framebuffers_ext: lookup!(c"glDeleteFramebuffersEXT"),
         draw_buffers_arb: lookup!(c"glDrawBuffersARB"),
         get_attachment_ext: lookup!(c"glGetFramebufferAttachmentParameterivEXT"),
+        push_attrib: lookup!(c"glPushAttrib"),
+        pop_attrib: lookup!(c"glPopAttrib"),
         sgix: Sgix {
             choose: lookup!(c"glXChooseFBConfigSGIX"),
             get_attrib: lookup!(c"glXGetFBConfigAttribSGIX"),

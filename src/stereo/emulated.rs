@@ -50,6 +50,17 @@ pub fn default_framebuffer_query(
     }
 }
 
+/// A saved draw-buffer selection of an [`EmulatedFramebuffer`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrawSelection(DrawState);
+
+/// A saved read-buffer selection of an [`EmulatedFramebuffer`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReadSelection {
+    name: u32,
+    buffer: Option<ColorBuffer>,
+}
+
 /// The draw-buffer state as the program set it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum DrawState {
@@ -542,6 +553,42 @@ impl EmulatedFramebuffer {
         // SAFETY: contract.
         unsafe { self.apply_read(gl) };
         Ok(())
+    }
+
+    /// The draw-buffer selection as the program set it, to put back later
+    /// ([`EmulatedFramebuffer::restore_draw_selection`]; glPushAttrib).
+    pub fn draw_selection(&self) -> DrawSelection {
+        DrawSelection(self.draw)
+    }
+
+    /// The read-buffer selection as the program set it.
+    pub fn read_selection(&self) -> ReadSelection {
+        ReadSelection {
+            name: self.read_name,
+            buffer: self.read,
+        }
+    }
+
+    /// Puts back a draw-buffer selection taken earlier (glPopAttrib), and
+    /// applies it.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn restore_draw_selection(&mut self, gl: &Gl, sel: DrawSelection) {
+        self.draw = sel.0;
+        // SAFETY: contract.
+        unsafe { self.apply_draw(gl) };
+    }
+
+    /// Puts back a read-buffer selection taken earlier, and applies it.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn restore_read_selection(&mut self, gl: &Gl, sel: ReadSelection) {
+        self.read_name = sel.name;
+        self.read = sel.buffer;
+        // SAFETY: contract.
+        unsafe { self.apply_read(gl) };
     }
 
     /// GL_DRAW_BUFFER (i = None) or GL_DRAW_BUFFERi as the program set it.

@@ -302,6 +302,43 @@ static void draw_buffers_rules(struct shape s)
     drain_errors("draw buffers");
 }
 
+/* glPushAttrib/glPopAttrib save and restore the draw buffer
+ * (GL_COLOR_BUFFER_BIT) and the read buffer (GL_PIXEL_MODE_BIT). */
+static void attribute_stack(void)
+{
+    glDrawBuffer(GL_BACK_LEFT);
+    glReadBuffer(GL_FRONT_RIGHT);
+    glPushAttrib(GL_COLOR_BUFFER_BIT | GL_PIXEL_MODE_BIT);
+    glDrawBuffer(GL_BACK_RIGHT);
+    glReadBuffer(GL_BACK_LEFT);
+    CHECK(get_int(GL_DRAW_BUFFER) == GL_BACK_RIGHT, "changed inside the push");
+    glPopAttrib();
+    CHECK(get_int(GL_DRAW_BUFFER) == GL_BACK_LEFT, "glPopAttrib restores GL_DRAW_BUFFER: 0x%x",
+          get_int(GL_DRAW_BUFFER));
+    CHECK(get_int(GL_READ_BUFFER) == GL_FRONT_RIGHT, "glPopAttrib restores GL_READ_BUFFER: 0x%x",
+          get_int(GL_READ_BUFFER));
+    glDrawBuffer(GL_BACK);
+    clear(0, 0, 0);
+    glDrawBuffer(GL_BACK_LEFT);
+    glPushAttrib(GL_ALL_ATTRIB_BITS);
+    glDrawBuffer(GL_BACK);
+    glPopAttrib();
+    clear(1, 0, 0);
+    unsigned char px[3];
+    pixel(BL, px);
+    CHECK(is(px, 255, 0, 0), "after the pop, drawing reaches back-left");
+    pixel(BR, px);
+    CHECK(is(px, 0, 0, 0), "and not back-right");
+    /* A push without the colour bit leaves the draw buffer alone. */
+    glPushAttrib(GL_CURRENT_BIT);
+    glDrawBuffer(GL_BACK_RIGHT);
+    glPopAttrib();
+    CHECK(get_int(GL_DRAW_BUFFER) == GL_BACK_RIGHT, "GL_CURRENT_BIT does not cover it");
+    glDrawBuffer(GL_BACK);
+    glReadBuffer(GL_BACK);
+    drain_errors("attribute stack");
+}
+
 static void one_swap_presents_both_eyes(Display *display, Window win)
 {
     glDrawBuffer(GL_BACK_LEFT);
@@ -456,6 +493,7 @@ static int run(Display *display, struct shape s)
     missing_buffers(s);
     if (s.stereo && s.dbl) {
         read_buffer_names();
+        attribute_stack();
         one_swap_presents_both_eyes(display, win);
         framebuffer_bindings();
     }

@@ -84,7 +84,8 @@ fn help() -> String {
          \n\
          Options:\n\
          \x20 -m, --mode MODE     how the window shows the eyes (sets GLSTEREO_MODE;\n\
-         \x20                     default: $GLSTEREO_MODE, else anaglyph-red-cyan)\n\
+         \x20                     default: $GLSTEREO_MODE, else anaglyph-red-cyan;\n\
+         \x20                     -st MODE as in vglrun)\n\
          \x20 -s, --swap-eyes     exchange left and right (GLSTEREO_SWAP_EYES=1)\n\
          \x20 -c, --capture DIR   write every presented frame to DIR as left-NNNNNN.png,\n\
          \x20                     right-NNNNNN.png and composite-NNNNNN.png (made if\n\
