@@ -444,3 +444,65 @@ fn a_single_buffered_stereo_program_is_shown_when_it_flushes() {
     );
     check_by_hand(&shot, MODES[0].0, "single-buffered anaglyph");
 }
+
+#[test]
+fn glstereo_run_checks_its_options_before_the_program_starts_and_sets_the_environment() {
+    let dir = common::scratch("glstereo_run_options");
+    let marker = dir.join("ran");
+    let touch = format!("touch '{}'", marker.display());
+    // A mode that does not exist: exit 2, the valid names, the program never runs.
+    let out = Command::new(&built().run)
+        .args(["-m", "nonsense", "sh", "-c", &touch])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("unknown output mode \"nonsense\"") && stderr.contains("side-by-side-half"),
+        "{stderr}"
+    );
+    assert!(!marker.exists(), "the program must not run");
+    // A bad setting in the environment is caught the same way.
+    let out = Command::new(&built().run)
+        .args(["sh", "-c", &touch])
+        .env("GLSTEREO_SWAP_EYES", "maybe")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("GLSTEREO_SWAP_EYES"));
+    assert!(!marker.exists());
+    // No program; a program that does not exist.
+    let out = Command::new(&built().run)
+        .args(["-m", "rows"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = Command::new(&built().run)
+        .arg(dir.join("no-such-program"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(127));
+
+    // What the program gets: the preload library first (an existing
+    // LD_PRELOAD kept after it), the canonical mode, swap, the capture
+    // directory (made, absolute).
+    let capture = dir.join("frames");
+    let out = common::run_ok(
+        Command::new(&built().run)
+            .args(["-st", "rc", "--swap-eyes", "--capture"])
+            .arg(&capture)
+            .args([
+                "sh",
+                "-c",
+                "echo \"$LD_PRELOAD|$GLSTEREO_MODE|$GLSTEREO_SWAP_EYES|$GLSTEREO_CAPTURE_DIR\"",
+            ])
+            .env("LD_PRELOAD", "libother.so"),
+    );
+    let line = String::from_utf8_lossy(&out.stdout).trim().to_owned();
+    let want = format!(
+        "{}:libother.so|anaglyph-red-cyan|1|{}",
+        built().preload.canonicalize().unwrap().display(),
+        capture.canonicalize().unwrap().display()
+    );
+    assert_eq!(line, want);
+}
