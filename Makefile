@@ -13,7 +13,7 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make
 
-.PHONY: all deps build header examples demo test lint clean
+.PHONY: all deps build header examples demo test lint clean install uninstall
 
 all: build examples
 
@@ -54,7 +54,50 @@ lint:
 	$(CARGO) clippy $(CARGO_PROFILE_FLAG) --all-targets -- -D warnings
 
 test: deps lint
+	$(CARGO) build $(CARGO_PROFILE_FLAG) -p glstereo-preload
 	$(CARGO) test $(CARGO_PROFILE_FLAG) --no-fail-fast
+
+# --- install: `make install PREFIX=/usr/local` (DESTDIR for staging) -------
+# The libraries (libglstereo.so with its soname, libglstereo.a,
+# libglstereo_preload.so), the headers, glstereo.pc, glstereo-run and its
+# manual. Built with INSTALL_PROFILE (default release); needs no root
+# unless PREFIX does.
+PREFIX          ?= /usr/local
+DESTDIR         ?=
+INSTALL_PROFILE ?= release
+INSTALL_LIBDIR  ?= $(PREFIX)/lib
+INSTALL_INCDIR  ?= $(PREFIX)/include
+INSTALL_BINDIR  ?= $(PREFIX)/bin
+INSTALL_MANDIR  ?= $(PREFIX)/share/man
+VERSION         := $(shell sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -n 1)
+INSTALL_BUILT   := $(CURDIR)/target/$(if $(filter dev debug,$(INSTALL_PROFILE)),debug,$(INSTALL_PROFILE))
+INSTALL_CARGO   := --profile $(if $(filter debug,$(INSTALL_PROFILE)),dev,$(INSTALL_PROFILE))
+
+install:
+	$(CARGO) build $(INSTALL_CARGO) -p glstereo -p glstereo-preload
+	install -d $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig $(DESTDIR)$(INSTALL_INCDIR)/glstereo \
+	  $(DESTDIR)$(INSTALL_BINDIR) $(DESTDIR)$(INSTALL_MANDIR)/man1
+	install -m 755 $(INSTALL_BUILT)/libglstereo.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.$(VERSION)
+	ln -sf libglstereo.so.$(VERSION) $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.0
+	ln -sf libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so
+	install -m 644 $(INSTALL_BUILT)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a
+	install -m 755 $(INSTALL_BUILT)/libglstereo_preload.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so
+	install -m 644 include/glstereo.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h
+	install -m 644 include/glstereo/*.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(INSTALL_LIBDIR)|' \
+	  -e 's|@INCLUDEDIR@|$(INSTALL_INCDIR)|' -e 's|@VERSION@|$(VERSION)|' \
+	  glstereo.pc.in > $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig/glstereo.pc
+	install -m 755 $(INSTALL_BUILT)/glstereo-run $(DESTDIR)$(INSTALL_BINDIR)/glstereo-run
+	install -m 644 docs/glstereo-run.1 $(DESTDIR)$(INSTALL_MANDIR)/man1/glstereo-run.1
+
+uninstall:
+	rm -f $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.$(VERSION) \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig/glstereo.pc $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h \
+	  $(DESTDIR)$(INSTALL_BINDIR)/glstereo-run $(DESTDIR)$(INSTALL_MANDIR)/man1/glstereo-run.1
+	rm -rf $(DESTDIR)$(INSTALL_INCDIR)/glstereo
+# ----------------------------------------------------------------------------
 
 clean:
 	$(CARGO) clean

@@ -14,8 +14,11 @@ fn main() {
     println!("cargo:rerun-if-changed=cbindgen.toml");
     println!("cargo:rerun-if-changed=src/ffi");
     println!("cargo:rerun-if-env-changed=GLSTEREO_WRITE_HEADER");
-    // A soname, so the library installs and links like any C library.
-    println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,libglstereo.so.0");
+    // A soname, so the library installs and links like any C library. Not
+    // `rustc-cdylib-link-arg`: cargo passes that one on to every cdylib that
+    // depends on this crate (cargo issue #9562), which would give
+    // libglstereo_preload.so this soname too.
+    println!("cargo:rustc-link-arg=-Wl,-soname,libglstereo.so.0");
 
     let mut config = cbindgen::Config::from_file(crate_dir.join("cbindgen.toml"))
         .expect("cbindgen.toml is readable and valid");

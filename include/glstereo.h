@@ -1929,6 +1929,312 @@ gls_result gls_parallax_report_describe(const struct gls_parallax_report *report
                                         size_t len,
                                         size_t *length_out);
 
+/**
+ * The gls_glx_* and gls_gl_* functions stand in for the legacy GLX and GL
+ * functions a stereo program calls: `<glstereo/compat.h>` maps their
+ * names onto these for programs rebuilt from source (link -lglstereo
+ * -lGL -lX11), and libglstereo_preload.so exports them under the real
+ * names for unmodified binaries (glstereo-run). Each takes the arguments
+ * of the function it replaces (`Display*`, `XVisualInfo*`, `GLXContext`,
+ * `GLXFBConfig` as `void *`; drawables as `unsigned long`; GL enums as
+ * `uint32_t`), returns what it returns and raises the GL errors it
+ * raises; thread rules are GLX's and GL's (GL calls apply to the context
+ * current on the calling thread). What the layer cannot report that way
+ * (no GL 3.0, a context it cannot create) goes to stderr once, prefixed
+ * `glstereo:`, and that context runs in mono; an internal failure is
+ * caught, leaves a message for gls_last_error_message() and returns NULL,
+ * False or 0. Output settings come from GLSTEREO_MODE,
+ * GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK, GLSTEREO_SATURATION and
+ * GLSTEREO_CAPTURE_DIR, read once.
+ *
+ * `glXChooseVisual`: a GLX_STEREO request gets the server's matching
+ * mono visual, which the layer then treats as stereo (glXGetConfig
+ * reports GLX_STEREO true; contexts created with it are stereo). The
+ * result is freed with XFree as usual; NULL when nothing matches.
+ */
+void *gls_glx_choose_visual(void *dpy, int screen, int *attribs);
+
+/**
+ * `glXGetConfig`: GLX_STEREO is 1 for a visual handed out for a stereo
+ * request; everything else is the real visual's. Returns 0 (Success) or
+ * a GLX error code.
+ */
+int gls_glx_get_config(void *dpy, void *vis, int attrib, int *value);
+
+/**
+ * `glXChooseFBConfig`: with GLX_STEREO True, the configurations matching
+ * the rest of the list, as stereo configurations of the layer's (handles
+ * every GLX function here accepts; GLX_STEREO reads 1). Freed with XFree.
+ */
+void **gls_glx_choose_fbconfig(void *dpy, int screen, const int *attribs, int *nelements);
+
+/**
+ * `glXChooseFBConfigSGIX`: as gls_glx_choose_fbconfig().
+ */
+void **gls_glx_choose_fbconfig_sgix(void *dpy, int screen, const int *attribs, int *nelements);
+
+/**
+ * `glXGetFBConfigs`: the server's configurations in their order, followed
+ * by a stereo twin of each RGBA window configuration. Freed with XFree.
+ */
+void **gls_glx_get_fbconfigs(void *dpy, int screen, int *nelements);
+
+/**
+ * `glXGetFBConfigAttrib`: GLX_STEREO is 1 for a stereo configuration;
+ * everything else is the real configuration's.
+ */
+int gls_glx_get_fbconfig_attrib(void *dpy, void *config, int attribute, int *value);
+
+/**
+ * `glXGetFBConfigAttribSGIX`: as gls_glx_get_fbconfig_attrib().
+ */
+int gls_glx_get_fbconfig_attrib_sgix(void *dpy, void *config, int attribute, int *value);
+
+/**
+ * `glXGetVisualFromFBConfig`: the visual of a configuration; for a stereo
+ * configuration the visual is treated as stereo (see
+ * gls_glx_choose_visual()). Freed with XFree.
+ */
+void *gls_glx_get_visual_from_fbconfig(void *dpy, void *config);
+
+/**
+ * `glXGetVisualFromFBConfigSGIX`: as gls_glx_get_visual_from_fbconfig().
+ */
+void *gls_glx_get_visual_from_fbconfig_sgix(void *dpy, void *config);
+
+/**
+ * `glXCreateContext`: with a stereo visual, a stereo context (the layer
+ * also creates a context of its own sharing its objects, to present).
+ */
+void *gls_glx_create_context(void *dpy, void *vis, void *share_list, int direct);
+
+/**
+ * `glXCreateNewContext`: with a stereo configuration, a stereo context.
+ */
+void *gls_glx_create_new_context(void *dpy,
+                                 void *config,
+                                 int render_type,
+                                 void *share_list,
+                                 int direct);
+
+/**
+ * `glXCreateContextWithConfigSGIX`: as gls_glx_create_new_context().
+ */
+void *gls_glx_create_context_with_config_sgix(void *dpy,
+                                              void *config,
+                                              int render_type,
+                                              void *share_list,
+                                              int direct);
+
+/**
+ * `glXCreateContextAttribsARB` (GLX_ARB_create_context): with a stereo
+ * configuration, a stereo context of any version and profile (3.0 or
+ * newer hosts the emulation; older ones run in mono, said on stderr).
+ */
+void *gls_glx_create_context_attribs_arb(void *dpy,
+                                         void *config,
+                                         void *share_context,
+                                         int direct,
+                                         const int *attrib_list);
+
+/**
+ * `glXDestroyContext`, with the layer's context of a stereo one (after it
+ * is released, when it is current).
+ */
+void gls_glx_destroy_context(void *dpy, void *ctx);
+
+/**
+ * `glXMakeCurrent`: for a stereo context, binds the drawable's emulated
+ * framebuffer (made, or resized to the drawable, first) where the program
+ * has framebuffer 0. Returns True or False as the real call does.
+ */
+int gls_glx_make_current(void *dpy, unsigned long drawable, void *ctx);
+
+/**
+ * `glXMakeContextCurrent`: as gls_glx_make_current(), with separate
+ * draw and read drawables.
+ */
+int gls_glx_make_context_current(void *dpy, unsigned long draw, unsigned long read, void *ctx);
+
+/**
+ * `glXSwapBuffers`: for a stereo drawable, each eye's back buffer becomes
+ * its front buffer, and the front buffers are shown composed in
+ * GLSTEREO_MODE (and captured with GLSTEREO_CAPTURE_DIR).
+ */
+void gls_glx_swap_buffers(void *dpy, unsigned long drawable);
+
+/**
+ * `glXCreateWindow` (a stereo configuration makes a window of its real one).
+ */
+unsigned long gls_glx_create_window(void *dpy,
+                                    void *config,
+                                    unsigned long win,
+                                    const int *attrib_list);
+
+/**
+ * `glXDestroyWindow`.
+ */
+void gls_glx_destroy_window(void *dpy, unsigned long window);
+
+/**
+ * `glXCreatePixmap` (mono: the real configuration of a stereo one).
+ */
+unsigned long gls_glx_create_pixmap(void *dpy,
+                                    void *config,
+                                    unsigned long pixmap,
+                                    const int *attrib_list);
+
+/**
+ * `glXCreatePbuffer` (mono: the real configuration of a stereo one).
+ */
+unsigned long gls_glx_create_pbuffer(void *dpy, void *config, const int *attrib_list);
+
+/**
+ * `glXCreateGLXPixmapWithConfigSGIX`: as gls_glx_create_pixmap().
+ */
+unsigned long gls_glx_create_glx_pixmap_with_config_sgix(void *dpy,
+                                                         void *config,
+                                                         unsigned long pixmap);
+
+/**
+ * `glXCreateGLXPbufferSGIX`: as gls_glx_create_pbuffer().
+ */
+unsigned long gls_glx_create_glx_pbuffer_sgix(void *dpy,
+                                              void *config,
+                                              uint32_t width,
+                                              uint32_t height,
+                                              const int *attrib_list);
+
+/**
+ * `glDrawBuffer`: on the emulated default framebuffer, any of GL_NONE,
+ * GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT, GL_BACK_RIGHT, GL_FRONT,
+ * GL_BACK, GL_LEFT, GL_RIGHT, GL_FRONT_AND_BACK; GL_INVALID_ENUM for a
+ * value that names no buffer, GL_INVALID_OPERATION for a buffer the
+ * visual lacks (an aux buffer, an attachment); nothing changes on error.
+ */
+void gls_gl_draw_buffer(uint32_t buf);
+
+/**
+ * `glDrawBuffers`: on the emulated default framebuffer each entry is
+ * GL_NONE or one of the four buffers (GL_BACK alone); GL errors as GL's.
+ */
+void gls_gl_draw_buffers(int32_t n, const uint32_t *bufs);
+
+/**
+ * `glDrawBuffersARB`: as gls_gl_draw_buffers().
+ */
+void gls_gl_draw_buffers_arb(int32_t n, const uint32_t *bufs);
+
+/**
+ * `glReadBuffer`: on the emulated default framebuffer, the names
+ * glDrawBuffer accepts (GL_FRONT, GL_LEFT and GL_FRONT_AND_BACK read
+ * front-left; GL_BACK back-left; GL_RIGHT front-right); errors as
+ * gls_gl_draw_buffer().
+ */
+void gls_gl_read_buffer(uint32_t src);
+
+/**
+ * `glGetError`: the emulation's errors first (each code once), then the driver's.
+ */
+uint32_t gls_gl_get_error(void);
+
+/**
+ * `glGetIntegerv`: GL_STEREO, GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i),
+ * GL_READ_BUFFER and the framebuffer bindings as a stereo visual would
+ * answer; colour, depth and stencil bits as the window's visual.
+ */
+void gls_gl_get_integerv(uint32_t pname, int32_t *data);
+
+/**
+ * `glGetBooleanv`: as gls_gl_get_integerv().
+ */
+void gls_gl_get_booleanv(uint32_t pname, uint8_t *data);
+
+/**
+ * `glGetFloatv`: as gls_gl_get_integerv().
+ */
+void gls_gl_get_floatv(uint32_t pname, float *data);
+
+/**
+ * `glGetDoublev`: as gls_gl_get_integerv().
+ */
+void gls_gl_get_doublev(uint32_t pname, double *data);
+
+/**
+ * `glBindFramebuffer`: framebuffer 0 is the emulated default framebuffer.
+ */
+void gls_gl_bind_framebuffer(uint32_t target, uint32_t framebuffer);
+
+/**
+ * `glBindFramebufferEXT`: as gls_gl_bind_framebuffer().
+ */
+void gls_gl_bind_framebuffer_ext(uint32_t target, uint32_t framebuffer);
+
+/**
+ * `glDeleteFramebuffers`: never deletes the emulated framebuffer; a
+ * deleted bound framebuffer reverts to the emulated one.
+ */
+void gls_gl_delete_framebuffers(int32_t n, const uint32_t *framebuffers);
+
+/**
+ * `glDeleteFramebuffersEXT`: as gls_gl_delete_framebuffers().
+ */
+void gls_gl_delete_framebuffers_ext(int32_t n, const uint32_t *framebuffers);
+
+/**
+ * `glGetFramebufferAttachmentParameteriv`: on the emulated default
+ * framebuffer, GL_FRONT_LEFT … GL_BACK_RIGHT, GL_DEPTH and GL_STENCIL
+ * answer as the window's buffers do (a buffer the visual lacks has type
+ * GL_NONE); other attachments are GL_INVALID_ENUM.
+ */
+void gls_gl_get_framebuffer_attachment_parameteriv(uint32_t target,
+                                                   uint32_t attachment,
+                                                   uint32_t pname,
+                                                   int32_t *params);
+
+/**
+ * `glGetFramebufferAttachmentParameterivEXT`: as
+ * gls_gl_get_framebuffer_attachment_parameteriv().
+ */
+void gls_gl_get_framebuffer_attachment_parameteriv_ext(uint32_t target,
+                                                       uint32_t attachment,
+                                                       uint32_t pname,
+                                                       int32_t *params);
+
+/**
+ * `glPushAttrib`: GL_COLOR_BUFFER_BIT also saves the emulated draw buffer,
+ * GL_PIXEL_MODE_BIT the emulated read buffer.
+ */
+void gls_gl_push_attrib(uint32_t mask);
+
+/**
+ * `glPopAttrib`: restores what gls_gl_push_attrib() saved.
+ */
+void gls_gl_pop_attrib(void);
+
+/**
+ * `glViewport`: also notices a resized window (the emulated buffers follow
+ * it before the program draws).
+ */
+void gls_gl_viewport(int32_t x, int32_t y, int32_t width, int32_t height);
+
+/**
+ * `glFlush`: also shows the front buffers when the program draws to them.
+ */
+void gls_gl_flush(void);
+
+/**
+ * `glFinish`: as gls_gl_flush().
+ */
+void gls_gl_finish(void);
+
+/**
+ * `glXGetProcAddress` / `glXGetProcAddressARB`: these functions for the
+ * names they replace (so programs that look GL and GLX functions up get
+ * the stereo versions), the real libGL's for every other name.
+ */
+void *gls_glx_get_proc_address(const unsigned char *name);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -37,6 +37,7 @@ pub mod ffi;
 pub mod framing;
 pub mod gl;
 pub mod image;
+pub mod interpose;
 pub mod math;
 pub mod output;
 pub mod shims;

@@ -16,13 +16,13 @@ use crate::framing::{EyeSource, InputFraming};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, check_size};
-use crate::output::gl::{ComposePath, GlCompositor, Job, TexRect, preferred_path};
+use crate::output::gl::{ComposePath, GlCompositor, Job, preferred_path};
 use crate::output::layout::{composite_size, eye_size_for_window};
 use crate::output::options::{OutputOptions, OutputSettings};
 use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
 use crate::shims::nv3dvision::StereoSettings;
-use crate::stereo::buffers::{ColorBuffer, resolve_read_buffer};
-use crate::stereo::emulated::EmulatedFramebuffer;
+use crate::stereo::buffers::{ColorBuffer, gl_error_code, resolve_read_buffer};
+use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
 
 thread_local! {
     /// The surface current on this thread and which of its contexts.
@@ -342,18 +342,12 @@ impl Surface {
             )
         };
         let ours = st.fb.app_fbo();
-        Ok(match pname {
-            GL_STEREO => Some((self.config.stereo != StereoKind::None) as i32),
-            GL_DOUBLEBUFFER => Some(self.config.request.double_buffer as i32),
-            GL_DRAW_FRAMEBUFFER_BINDING if draw_fbo == ours => Some(0),
-            GL_READ_FRAMEBUFFER_BINDING if read_fbo == ours => Some(0),
-            GL_DRAW_BUFFER if draw_fbo == ours => Some(st.fb.draw_buffer_query(0) as i32),
-            p if (GL_DRAW_BUFFER0..=GL_DRAW_BUFFER15).contains(&p) && draw_fbo == ours => {
-                Some(st.fb.draw_buffer_query((p - GL_DRAW_BUFFER0) as usize) as i32)
-            }
-            GL_READ_BUFFER if read_fbo == ours => Some(st.fb.read_buffer_query() as i32),
-            _ => None,
-        })
+        Ok(default_framebuffer_query(
+            pname,
+            self.config.shape(),
+            Some(&st.fb).filter(|_| draw_fbo == ours),
+            Some(&st.fb).filter(|_| read_fbo == ours),
+        ))
     }
 
     /// glBindFramebuffer with 0 meaning the emulated default framebuffer.
@@ -729,15 +723,13 @@ pub enum CaptureImage {
 
 /// The GL compositor's job for the front buffers as they are now.
 fn gl_job(st: &SurfaceState, mode: OutputMode) -> Job {
-    let (w, h) = st.fb.size();
-    let [ls, rs] = st.framing.sources(st.fb.shape(), w, h);
-    Job {
+    Job::front_buffers(
+        &st.fb,
+        st.framing,
         mode,
-        options: st.options,
-        frame_index: st.frames.saturating_sub(1),
-        eyes: [ls, rs].map(|s| TexRect::from_source(st.fb.texture(s.buffer), &s, h)),
-        eye_size: st.framing.eye_size(w, h),
-    }
+        st.options,
+        st.frames.saturating_sub(1),
+    )
 }
 
 /// The mode a composite is made in: `quad` falls back to [`DEFAULT_OUTPUT`]
@@ -757,13 +749,8 @@ fn set_opaque(img: &mut Image) {
 
 fn record_gl_error(st: &mut SurfaceState, r: &Result<()>) {
     if let Err(e) = r {
-        let code = match e {
-            Error::InvalidEnum { .. } => GL_INVALID_ENUM,
-            Error::InvalidValue(_) => GL_INVALID_VALUE,
-            _ => GL_INVALID_OPERATION,
-        };
         if st.pending_gl_error == GL_NO_ERROR {
-            st.pending_gl_error = code;
+            st.pending_gl_error = gl_error_code(e);
         }
     }
 }

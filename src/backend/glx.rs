@@ -14,7 +14,7 @@
 
 use std::collections::VecDeque;
 use std::ffi::{CStr, CString, c_int, c_void};
-use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicI32, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use x11_dl::glx::{self, Glx};
@@ -123,15 +123,63 @@ unsafe extern "C" fn on_io_error_exit(display: *mut xlib::Display, state: *mut c
 static TRAPPED: AtomicI32 = AtomicI32::new(0);
 /// Serialises traps: the error handler is process-wide.
 static TRAP_LOCK: Mutex<()> = Mutex::new(());
+/// The connection a trap covers, and the serial of its first request.
+static TRAP_DISPLAY: AtomicUsize = AtomicUsize::new(0);
+static TRAP_SERIAL: AtomicU64 = AtomicU64::new(0);
+/// The error handler the trap replaced (Xlib's default when none was set).
+static TRAP_PREVIOUS: Mutex<Option<XErrorHandler>> = Mutex::new(None);
+
+type XErrorHandler = unsafe extern "C" fn(*mut xlib::Display, *mut xlib::XErrorEvent) -> c_int;
 
 unsafe extern "C" fn on_x_error(
-    _display: *mut xlib::Display,
+    display: *mut xlib::Display,
     event: *mut xlib::XErrorEvent,
 ) -> c_int {
     // SAFETY: Xlib passes a valid event.
-    let code = unsafe { (*event).error_code } as i32;
-    let _ = TRAPPED.compare_exchange(0, code, Ordering::SeqCst, Ordering::SeqCst);
-    0
+    let (code, serial) = unsafe { ((*event).error_code as i32, (*event).serial) };
+    if display as usize == TRAP_DISPLAY.load(Ordering::SeqCst)
+        && serial >= TRAP_SERIAL.load(Ordering::SeqCst)
+    {
+        let _ = TRAPPED.compare_exchange(0, code, Ordering::SeqCst, Ordering::SeqCst);
+        return 0;
+    }
+    // An error of a request the trap does not cover (another connection,
+    // or a request sent before it): handled as it would be without the trap.
+    let previous = *TRAP_PREVIOUS.lock().unwrap_or_else(|e| e.into_inner());
+    match previous {
+        // SAFETY: the process's handler, with Xlib's signature.
+        Some(h) => unsafe { h(display, event) },
+        None => 0,
+    }
+}
+
+/// Runs `f`, whose X requests go to `display`, with the protocol errors of
+/// those requests trapped, and returns the first error code (0 = none).
+/// Errors of earlier requests on the connection, and of other connections,
+/// still reach the process's own error handler: a program's connection can
+/// be used (the LD_PRELOAD interposer does) without hiding the program's
+/// errors from it. Ends with an XSync, so every error of `f` has arrived.
+pub(crate) fn trap_x_errors<T>(
+    xlib: &Xlib,
+    display: *mut xlib::Display,
+    f: impl FnOnce() -> T,
+) -> (T, i32) {
+    let _guard = TRAP_LOCK.lock().unwrap_or_else(|e| e.into_inner());
+    TRAPPED.store(0, Ordering::SeqCst);
+    TRAP_DISPLAY.store(display as usize, Ordering::SeqCst);
+    // SAFETY: a valid display; XNextRequest only reads its request counter.
+    TRAP_SERIAL.store(unsafe { (xlib.XNextRequest)(display) }, Ordering::SeqCst);
+    // SAFETY: installs a handler that records or forwards; restored below.
+    let old = unsafe { (xlib.XSetErrorHandler)(Some(on_x_error)) };
+    *TRAP_PREVIOUS.lock().unwrap_or_else(|e| e.into_inner()) = old;
+    let v = f();
+    // SAFETY: valid display; XSync delivers pending errors to the handler.
+    unsafe {
+        (xlib.XSync)(display, xlib::False);
+        (xlib.XSetErrorHandler)(old);
+    }
+    TRAP_DISPLAY.store(0, Ordering::SeqCst);
+    (v, TRAPPED.swap(0, Ordering::SeqCst))
 }
 
 /// One X connection with GLX, shared by the display and its surfaces.
@@ -167,17 +215,7 @@ impl GlxShared {
 
     /// Runs `f` with X protocol errors trapped; returns the first error code.
     fn trap<T>(&self, f: impl FnOnce() -> T) -> (T, i32) {
-        let _guard = TRAP_LOCK.lock().unwrap_or_else(|e| e.into_inner());
-        TRAPPED.store(0, Ordering::SeqCst);
-        // SAFETY: installs a handler that only records the code; restored below.
-        let old = unsafe { (self.xlib.XSetErrorHandler)(Some(on_x_error)) };
-        let v = f();
-        // SAFETY: valid display; XSync delivers pending errors to the handler.
-        unsafe {
-            (self.xlib.XSync)(self.display, xlib::False);
-            (self.xlib.XSetErrorHandler)(old);
-        }
-        (v, TRAPPED.swap(0, Ordering::SeqCst))
+        trap_x_errors(&self.xlib, self.display, f)
     }
 
     /// glXChooseVisual for a request; None when the server has no match.

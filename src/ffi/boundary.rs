@@ -20,13 +20,17 @@ pub(crate) fn set_last_error(function: &str, err: &Error) {
     // Interior NULs cannot occur in our messages, but a user-supplied string
     // (a path, a mode name) could carry one: replace rather than lose the message.
     let c = CString::new(text.replace('\0', "\\0")).unwrap_or_default();
-    LAST_ERROR.with(|slot| *slot.borrow_mut() = c);
+    // try_with: while the process exits (atexit handlers calling in after
+    // thread-local destructors ran) the message is dropped, never a panic.
+    let _ = LAST_ERROR.try_with(|slot| *slot.borrow_mut() = c);
 }
 
 /// A pointer to this thread's last error message. Valid until the next
 /// failing call on this thread; an empty string before any failure.
 pub(crate) fn last_error_ptr() -> *const std::ffi::c_char {
-    LAST_ERROR.with(|slot| slot.borrow().as_ptr())
+    LAST_ERROR
+        .try_with(|slot| slot.borrow().as_ptr())
+        .unwrap_or(c"".as_ptr())
 }
 
 fn panic_message(payload: Box<dyn std::any::Any + Send>) -> String {

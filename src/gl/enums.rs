@@ -82,6 +82,7 @@ pub const GL_LINEAR: u32 = 0x2601;
 pub const GL_CLAMP_TO_EDGE: u32 = 0x812F;
 pub const GL_RGBA: u32 = 0x1908;
 pub const GL_RGBA8: u32 = 0x8058;
+pub const GL_RGB8: u32 = 0x8051;
 pub const GL_UNSIGNED_BYTE: u32 = 0x1401;
 pub const GL_FLOAT: u32 = 0x1406;
 pub const GL_DEPTH_COMPONENT: u32 = 0x1902;

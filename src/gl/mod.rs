@@ -13,6 +13,7 @@
 pub mod enums;
 
 use std::ffi::{CStr, c_char, c_void};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 use crate::error::{Error, Result};
 
@@ -42,6 +43,8 @@ macro_rules! gl_table {
         pub struct Gl {
             $( $method: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
             version: (u32, u32),
+            /// The next reserved name, when shared objects are named from the top ([`Gl::reserve_names`]).
+            reserved: Option<AtomicU32>,
         }
 
         impl Gl {
@@ -65,6 +68,7 @@ macro_rules! gl_table {
                         unsafe { std::mem::transmute::<*const c_void, unsafe extern "system" fn($($ty),*) $(-> $ret)?>(p) }
                     }, )*
                     version: (0, 0),
+                    reserved: None,
                 })
             }
 
@@ -123,6 +127,7 @@ gl_table! {
     BindFramebuffer = "glBindFramebuffer"(target: GLenum, fb: GLuint);
     FramebufferTexture2D = "glFramebufferTexture2D"(target: GLenum, attachment: GLenum, textarget: GLenum, tex: GLuint, level: GLint);
     FramebufferRenderbuffer = "glFramebufferRenderbuffer"(target: GLenum, attachment: GLenum, rbtarget: GLenum, rb: GLuint);
+    GetFramebufferAttachmentParameteriv = "glGetFramebufferAttachmentParameteriv"(target: GLenum, attachment: GLenum, pname: GLenum, out: *mut GLint);
     CheckFramebufferStatus = "glCheckFramebufferStatus"(target: GLenum) -> GLenum;
     BlitFramebuffer = "glBlitFramebuffer"(sx0: GLint, sy0: GLint, sx1: GLint, sy1: GLint, dx0: GLint, dy0: GLint, dx1: GLint, dy1: GLint, mask: GLbitfield, filter: GLenum);
     GenRenderbuffers = "glGenRenderbuffers"(n: GLsizei, out: *mut GLuint);
@@ -198,6 +203,63 @@ impl Gl {
         self.version
     }
 
+    /// From now on, [`Gl::gen_texture`] and [`Gl::gen_renderbuffer`] name
+    /// objects downward from [`RESERVED_NAME_TOP`] instead of asking the
+    /// driver. For objects made in a share group that an unmodified program
+    /// also uses (the LD_PRELOAD interposer): legacy programs often bind
+    /// texture names they never generated (`glBindTexture(GL_TEXTURE_2D, 1)`
+    /// is legal in the compatibility profile), so the library's objects must
+    /// not take the small names glGen* hands out first. Needs a
+    /// compatibility-profile context (binding an unused name creates it).
+    pub fn reserve_names(&mut self) {
+        self.reserved = Some(AtomicU32::new(RESERVED_NAME_TOP));
+    }
+
+    fn next_reserved(&self) -> Option<u32> {
+        self.reserved
+            .as_ref()
+            .map(|next| next.fetch_sub(1, Ordering::Relaxed))
+    }
+
+    /// One new texture name, bound to GL_TEXTURE_2D (the binding is left
+    /// at 0). See [`Gl::reserve_names`].
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn gen_texture(&self) -> u32 {
+        let mut name = 0;
+        // SAFETY: contract; one name written.
+        unsafe {
+            match self.next_reserved() {
+                Some(n) => name = n,
+                None => self.GenTextures(1, &mut name),
+            }
+            // Binding creates the object (and marks a reserved name used).
+            self.BindTexture(enums::GL_TEXTURE_2D, name);
+            self.BindTexture(enums::GL_TEXTURE_2D, 0);
+        }
+        name
+    }
+
+    /// One new renderbuffer name (created; the binding is left at 0). See
+    /// [`Gl::reserve_names`].
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn gen_renderbuffer(&self) -> u32 {
+        let mut name = 0;
+        // SAFETY: contract; one name written.
+        unsafe {
+            match self.next_reserved() {
+                Some(n) => name = n,
+                None => self.GenRenderbuffers(1, &mut name),
+            }
+            self.BindRenderbuffer(enums::GL_RENDERBUFFER, name);
+            self.BindRenderbuffer(enums::GL_RENDERBUFFER, 0);
+        }
+        name
+    }
+
     /// glGetString as a Rust string ("" when NULL).
     ///
     /// # Safety
@@ -260,6 +322,21 @@ impl Gl {
             e => Err(Error::Gl(format!("{what}: GL error {e:#06x}"))),
         }
     }
+}
+
+/// The first name [`Gl::reserve_names`] hands out; later ones count down.
+/// Mesa hands out `highest name in use + 1` while that fits and otherwise
+/// the lowest free names, so names at the very top leave the program's own
+/// glGen* results small, as they are without the library.
+pub const RESERVED_NAME_TOP: u32 = 0xFFFF_FFFE;
+
+/// Parses the GL_VERSION string of the current context into (major, minor).
+///
+/// # Safety
+/// A context of this backend must be current.
+pub unsafe fn current_version(gl: &Gl) -> Option<(u32, u32)> {
+    // SAFETY: contract.
+    parse_version(&unsafe { gl.string(enums::GL_VERSION) })
 }
 
 /// Parses "4.5 (Compatibility Profile) Mesa 22.3.6" or "OpenGL ES 3.2 …" into (4, 5).

@@ -107,6 +107,28 @@ pub struct Job {
     pub eye_size: (u32, u32),
 }
 
+impl Job {
+    /// The job for an emulated framebuffer's front buffers as they are
+    /// now, taken apart by `framing` (the eyes as displayed).
+    pub fn front_buffers(
+        fb: &crate::stereo::emulated::EmulatedFramebuffer,
+        framing: crate::framing::InputFraming,
+        mode: OutputMode,
+        options: OutputOptions,
+        frame_index: u64,
+    ) -> Job {
+        let (w, h) = fb.size();
+        let [ls, rs] = framing.sources(fb.shape(), w, h);
+        Job {
+            mode,
+            options,
+            frame_index,
+            eyes: [ls, rs].map(|s| TexRect::from_source(fb.texture(s.buffer), &s, h)),
+            eye_size: framing.eye_size(w, h),
+        }
+    }
+}
+
 /// Which way a capture of the composite is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ComposePath {
@@ -392,7 +414,7 @@ impl Canvas {
         unsafe {
             if self.fbo == 0 {
                 gl.GenFramebuffers(1, &mut self.fbo);
-                gl.GenTextures(1, &mut self.texture);
+                self.texture = gl.gen_texture();
             }
             gl.BindTexture(GL_TEXTURE_2D, self.texture);
             for (pname, v) in [

@@ -170,6 +170,16 @@ fn is_other_buffer_name(buf: u32) -> bool {
 const DRAW_BUFFER_NAMES: &str = "use GL_NONE, GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT, GL_BACK_RIGHT, \
      GL_FRONT, GL_BACK, GL_LEFT, GL_RIGHT or GL_FRONT_AND_BACK";
 
+/// The GL error a failed emulated call raises: GL_INVALID_ENUM,
+/// GL_INVALID_VALUE, or GL_INVALID_OPERATION for every other failure.
+pub fn gl_error_code(e: &Error) -> u32 {
+    match e {
+        Error::InvalidEnum { .. } => GL_INVALID_ENUM,
+        Error::InvalidValue(_) => GL_INVALID_VALUE,
+        _ => GL_INVALID_OPERATION,
+    }
+}
+
 /// Human-readable name of a buffer enum, for messages.
 pub fn buffer_name(buf: u32) -> String {
     match buf {

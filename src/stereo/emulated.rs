@@ -21,6 +21,46 @@ use crate::stereo::buffers::{
 /// Largest number of fragment outputs the draw state tracks.
 pub const MAX_DRAW_BUFFERS: usize = 8;
 
+/// What glGetIntegerv(`pname`) reports about an emulated default
+/// framebuffer of `shape`, or None where the driver's own answer stands.
+/// `draw` and `read` are the emulated framebuffer when its object is the
+/// one bound to that target, None when the program has bound its own.
+///
+/// Answered: GL_STEREO and GL_DOUBLEBUFFER (from the shape);
+/// GL_DRAW_BUFFER, GL_DRAW_BUFFERi and GL_READ_BUFFER (as the program set
+/// them); GL_DRAW_FRAMEBUFFER_BINDING and GL_READ_FRAMEBUFFER_BINDING (0:
+/// the emulation's framebuffer object is the default framebuffer).
+pub fn default_framebuffer_query(
+    pname: u32,
+    shape: FramebufferShape,
+    draw: Option<&EmulatedFramebuffer>,
+    read: Option<&EmulatedFramebuffer>,
+) -> Option<i32> {
+    match (pname, draw, read) {
+        (GL_STEREO, _, _) => Some(shape.stereo as i32),
+        (GL_DOUBLEBUFFER, _, _) => Some(shape.double_buffered as i32),
+        (GL_DRAW_FRAMEBUFFER_BINDING, Some(_), _) => Some(0),
+        (GL_READ_FRAMEBUFFER_BINDING, _, Some(_)) => Some(0),
+        (GL_DRAW_BUFFER, Some(fb), _) => Some(fb.draw_buffer_query(0) as i32),
+        (p, Some(fb), _) if (GL_DRAW_BUFFER0..=GL_DRAW_BUFFER15).contains(&p) => {
+            Some(fb.draw_buffer_query((p - GL_DRAW_BUFFER0) as usize) as i32)
+        }
+        (GL_READ_BUFFER, _, Some(fb)) => Some(fb.read_buffer_query() as i32),
+        _ => None,
+    }
+}
+
+/// A saved draw-buffer selection of an [`EmulatedFramebuffer`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrawSelection(DrawState);
+
+/// A saved read-buffer selection of an [`EmulatedFramebuffer`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReadSelection {
+    name: u32,
+    buffer: Option<ColorBuffer>,
+}
+
 /// The draw-buffer state as the program set it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum DrawState {
@@ -34,6 +74,56 @@ enum DrawState {
     },
 }
 
+/// The storage formats of an emulated framebuffer's buffers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BufferFormats {
+    /// Internal format of each colour texture: GL_RGBA8, or GL_RGB8 for a
+    /// visual without alpha (which reads alpha as 1.0 and blends with a
+    /// destination alpha of 1.0, as a default framebuffer without alpha
+    /// bits does).
+    pub color: u32,
+    /// Internal format of the one depth/stencil renderbuffer:
+    /// GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT24, or 0 for none.
+    pub depth: u32,
+}
+
+impl BufferFormats {
+    /// What [`EmulatedFramebuffer::allocate`] uses: RGBA8 colour, and one
+    /// D24S8 buffer when depth or stencil is asked for.
+    pub fn surface(depth_bits: u32, stencil_bits: u32) -> BufferFormats {
+        BufferFormats {
+            color: GL_RGBA8,
+            depth: if depth_bits > 0 || stencil_bits > 0 {
+                GL_DEPTH24_STENCIL8
+            } else {
+                0
+            },
+        }
+    }
+
+    /// Formats that behave as a visual with these bits: RGB8 colour when it
+    /// has no alpha, a depth-only buffer when it has depth but no stencil
+    /// (the stencil test then passes, as GL says without a stencil buffer).
+    pub fn matching(alpha_bits: u32, depth_bits: u32, stencil_bits: u32) -> BufferFormats {
+        BufferFormats {
+            color: if alpha_bits > 0 { GL_RGBA8 } else { GL_RGB8 },
+            depth: match (depth_bits > 0, stencil_bits > 0) {
+                (true, false) => GL_DEPTH_COMPONENT24,
+                (false, false) => 0,
+                _ => GL_DEPTH24_STENCIL8,
+            },
+        }
+    }
+
+    fn depth_attachment(self) -> u32 {
+        if self.depth == GL_DEPTH_COMPONENT24 {
+            GL_DEPTH_ATTACHMENT
+        } else {
+            GL_DEPTH_STENCIL_ATTACHMENT
+        }
+    }
+}
+
 /// The GL objects and state of one emulated default framebuffer.
 #[derive(Debug)]
 pub struct EmulatedFramebuffer {
@@ -44,6 +134,8 @@ pub struct EmulatedFramebuffer {
     textures: [u32; 4],
     /// Depth/stencil renderbuffer (0 when the config has neither).
     depth_stencil: u32,
+    /// Storage formats.
+    formats: BufferFormats,
     /// Slot of each colour buffer, by [`ColorBuffer::index`].
     slot_of: [usize; 4],
     /// The framebuffer object in the application context (0 until attached).
@@ -70,6 +162,23 @@ impl EmulatedFramebuffer {
         depth_bits: u32,
         stencil_bits: u32,
     ) -> Result<EmulatedFramebuffer> {
+        let formats = BufferFormats::surface(depth_bits, stencil_bits);
+        // SAFETY: forwarded contract.
+        unsafe { Self::allocate_with(gl, shape, width, height, formats) }
+    }
+
+    /// [`EmulatedFramebuffer::allocate`] with chosen storage formats. A
+    /// driver that cannot render to GL_RGB8 textures gets GL_RGBA8.
+    ///
+    /// # Safety
+    /// A context of `gl`'s backend must be current on this thread.
+    pub unsafe fn allocate_with(
+        gl: &Gl,
+        shape: FramebufferShape,
+        width: u32,
+        height: u32,
+        formats: BufferFormats,
+    ) -> Result<EmulatedFramebuffer> {
         let initial = shape.initial_buffer();
         let mut fb = EmulatedFramebuffer {
             shape,
@@ -77,6 +186,7 @@ impl EmulatedFramebuffer {
             height,
             textures: [0; 4],
             depth_stencil: 0,
+            formats,
             slot_of: [0, 1, 2, 3],
             app_fbo: 0,
             read_fbo: 0,
@@ -100,19 +210,46 @@ impl EmulatedFramebuffer {
             gl.take_error();
             gl.GenFramebuffers(1, &mut fb.read_fbo);
             for b in shape.allocated().iter() {
-                let mut tex = 0;
-                gl.GenTextures(1, &mut tex);
-                fb.textures[fb.slot_of[b.index()]] = tex;
+                fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }
-            if depth_bits > 0 || stencil_bits > 0 {
-                gl.GenRenderbuffers(1, &mut fb.depth_stencil);
+            if formats.depth != 0 {
+                fb.depth_stencil = gl.gen_renderbuffer();
             }
-            if let Err(e) = fb.allocate_storage(gl) {
+            let mut stored = fb.allocate_storage(gl);
+            if stored.is_ok() && formats.color != GL_RGBA8 && !fb.color_renderable(gl) {
+                fb.formats.color = GL_RGBA8;
+                stored = fb.allocate_storage(gl);
+            }
+            if let Err(e) = stored {
                 fb.delete(gl);
                 return Err(e);
             }
         }
         Ok(fb)
+    }
+
+    /// Whether the colour textures' format can be rendered to here.
+    unsafe fn color_renderable(&self, gl: &Gl) -> bool {
+        // SAFETY: a context is current (contract of the callers).
+        unsafe {
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.read_fbo);
+            gl.FramebufferTexture2D(
+                GL_FRAMEBUFFER,
+                GL_COLOR_ATTACHMENT0,
+                GL_TEXTURE_2D,
+                self.textures[0],
+                0,
+            );
+            let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+            gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+            status == GL_FRAMEBUFFER_COMPLETE
+        }
+    }
+
+    /// The storage formats in use.
+    pub fn formats(&self) -> BufferFormats {
+        self.formats
     }
 
     /// (Re)allocates texture and renderbuffer storage at the current size and clears it.
@@ -130,7 +267,7 @@ impl EmulatedFramebuffer {
                 gl.TexImage2D(
                     GL_TEXTURE_2D,
                     0,
-                    GL_RGBA8 as i32,
+                    self.formats.color as i32,
                     w,
                     h,
                     0,
@@ -142,7 +279,7 @@ impl EmulatedFramebuffer {
             gl.BindTexture(GL_TEXTURE_2D, 0);
             if self.depth_stencil != 0 {
                 gl.BindRenderbuffer(GL_RENDERBUFFER, self.depth_stencil);
-                gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
+                gl.RenderbufferStorage(GL_RENDERBUFFER, self.formats.depth, w, h);
                 gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
             }
             gl.check("allocating the stereo buffers")?;
@@ -166,6 +303,18 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
             gl.check("clearing the stereo buffers")
         }
+    }
+
+    /// Deletes the textures, the renderbuffer and the read framebuffer
+    /// (the application's framebuffer object goes with its context). The
+    /// context the framebuffer was allocated in must be current.
+    ///
+    /// # Safety
+    /// That context (or one sharing its objects, for everything but the
+    /// read framebuffer) must be current on this thread.
+    pub unsafe fn release(&mut self, gl: &Gl) {
+        // SAFETY: contract.
+        unsafe { self.delete(gl) }
     }
 
     /// Deletes the shared objects (compositor context current).
@@ -219,14 +368,42 @@ impl EmulatedFramebuffer {
         // SAFETY: the application context is current (contract).
         unsafe {
             gl.take_error();
-            gl.GenFramebuffers(1, &mut self.app_fbo);
+            self.create_app_fbo(gl)?;
             gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
-            self.attach_storage(gl)?;
-            self.apply_draw(gl);
-            self.apply_read(gl);
             gl.Viewport(0, 0, self.width as i32, self.height as i32);
             gl.Scissor(0, 0, self.width as i32, self.height as i32);
             gl.check("binding the stereo framebuffer")
+        }
+    }
+
+    /// Creates the application's framebuffer object in the context current
+    /// on this thread, attaches the buffers and applies the draw/read
+    /// state, and leaves that context's framebuffer bindings as they were:
+    /// the caller decides what to bind (the LD_PRELOAD interposer binds it
+    /// in place of the program's framebuffer 0). Touches no other state.
+    ///
+    /// # Safety
+    /// A context sharing objects with the one the framebuffer was allocated
+    /// in must be current on this thread.
+    pub unsafe fn create_app_fbo(&mut self, gl: &Gl) -> Result<()> {
+        // SAFETY: contract.
+        unsafe {
+            let prev_draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+            let prev_read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
+            gl.GenFramebuffers(1, &mut self.app_fbo);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
+            let attached = self.attach_storage(gl);
+            if attached.is_ok() {
+                self.apply_draw(gl);
+                self.apply_read(gl);
+            }
+            gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, prev_draw);
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, prev_read);
+            if attached.is_err() {
+                gl.DeleteFramebuffers(1, &self.app_fbo);
+                self.app_fbo = 0;
+            }
+            attached
         }
     }
 
@@ -245,7 +422,7 @@ impl EmulatedFramebuffer {
             if self.depth_stencil != 0 {
                 gl.FramebufferRenderbuffer(
                     GL_FRAMEBUFFER,
-                    GL_DEPTH_STENCIL_ATTACHMENT,
+                    self.formats.depth_attachment(),
                     GL_RENDERBUFFER,
                     self.depth_stencil,
                 );
@@ -376,6 +553,42 @@ impl EmulatedFramebuffer {
         // SAFETY: contract.
         unsafe { self.apply_read(gl) };
         Ok(())
+    }
+
+    /// The draw-buffer selection as the program set it, to put back later
+    /// ([`EmulatedFramebuffer::restore_draw_selection`]; glPushAttrib).
+    pub fn draw_selection(&self) -> DrawSelection {
+        DrawSelection(self.draw)
+    }
+
+    /// The read-buffer selection as the program set it.
+    pub fn read_selection(&self) -> ReadSelection {
+        ReadSelection {
+            name: self.read_name,
+            buffer: self.read,
+        }
+    }
+
+    /// Puts back a draw-buffer selection taken earlier (glPopAttrib), and
+    /// applies it.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn restore_draw_selection(&mut self, gl: &Gl, sel: DrawSelection) {
+        self.draw = sel.0;
+        // SAFETY: contract.
+        unsafe { self.apply_draw(gl) };
+    }
+
+    /// Puts back a read-buffer selection taken earlier, and applies it.
+    ///
+    /// # Safety
+    /// The surface's application context must be current on this thread.
+    pub unsafe fn restore_read_selection(&mut self, gl: &Gl, sel: ReadSelection) {
+        self.read_name = sel.name;
+        self.read = sel.buffer;
+        // SAFETY: contract.
+        unsafe { self.apply_read(gl) };
     }
 
     /// GL_DRAW_BUFFER (i = None) or GL_DRAW_BUFFERi as the program set it.
@@ -532,7 +745,7 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
             gl.FramebufferRenderbuffer(
                 GL_READ_FRAMEBUFFER,
-                GL_DEPTH_STENCIL_ATTACHMENT,
+                self.formats.depth_attachment(),
                 GL_RENDERBUFFER,
                 self.depth_stencil,
             );
@@ -549,7 +762,7 @@ impl EmulatedFramebuffer {
             );
             gl.FramebufferRenderbuffer(
                 GL_READ_FRAMEBUFFER,
-                GL_DEPTH_STENCIL_ATTACHMENT,
+                self.formats.depth_attachment(),
                 GL_RENDERBUFFER,
                 0,
             );

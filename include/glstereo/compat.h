@@ -1,0 +1,258 @@
+/*
+ * glstereo/compat.h: stereo for a GLX program rebuilt from source, with no
+ * change to its code. Hand-written compat header: it maps the legacy GLX
+ * and GL names a stereo program touches onto the gls_glx_* / gls_gl_*
+ * functions of <glstereo.h> (the same implementation libglstereo_preload.so
+ * gives unmodified binaries under glstereo-run); the library exports only
+ * gls_ names. C99 or C++.
+ *
+ * Use: include it after every GL and GLX header of the file, and link with
+ * -lglstereo as well as what the program linked before:
+ *
+ *     #include <GL/gl.h>
+ *     #include <GL/glx.h>
+ *     #include <glstereo/compat.h>
+ *
+ *     cc prog.c $(pkg-config --cflags --libs glstereo) -lGL -lX11
+ *
+ * What the program then gets (seed 000 §3-4, on any X server):
+ *
+ *   glXChooseVisual(dpy, screen, {..., GLX_STEREO, None})
+ *   glXChooseFBConfig(dpy, screen, {..., GLX_STEREO, True, None}, &n)
+ *     succeed where the server has no stereo visual (Mesa has none); the
+ *     visual or configuration reports GLX_STEREO true.
+ *   glXCreateContext / glXCreateNewContext / glXCreateContextAttribsARB
+ *     with it make a stereo context; glXMakeCurrent gives it an emulated
+ *     default framebuffer with GL_FRONT_LEFT, GL_BACK_LEFT, GL_FRONT_RIGHT
+ *     and GL_BACK_RIGHT (and one depth/stencil buffer both eyes share),
+ *     sized to the window and following it.
+ *   glDrawBuffer(GL_BACK_LEFT) ... glDrawBuffer(GL_BACK_RIGHT) ...
+ *     draw each eye; glGetBooleanv(GL_STEREO) is true; every GL rule of
+ *     glDrawBuffer / glDrawBuffers / glReadBuffer holds, with GL's errors
+ *     from glGetError.
+ *   glXSwapBuffers(dpy, win)
+ *     makes both back buffers the front ones and shows them in the window
+ *     composed as GLSTEREO_MODE says (default anaglyph-red-cyan; every
+ *     mode of glstereo-run --help), with GLSTEREO_SWAP_EYES and friends;
+ *     GLSTEREO_CAPTURE_DIR writes each frame's eyes and composite.
+ *
+ * A program (or context) that never asks for stereo is served by the real
+ * libGL as before. glXGetProcAddress returns the gls_ versions for these
+ * names, so functions looked up at run time are covered too.
+ */
+#ifndef GLSTEREO_COMPAT_H
+#define GLSTEREO_COMPAT_H
+
+#include <string.h>
+
+#include <GL/gl.h>
+#include <GL/glx.h>
+
+#include <glstereo.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A function as glXGetProcAddress returns it. */
+typedef void (*gls_compat_proc)(void);
+
+static inline XVisualInfo *gls_compat_glXChooseVisual(Display *dpy, int screen, int *attribs)
+{
+    return (XVisualInfo *)gls_glx_choose_visual(dpy, screen, attribs);
+}
+static inline int gls_compat_glXGetConfig(Display *dpy, XVisualInfo *vis, int attrib, int *value)
+{
+    return gls_glx_get_config(dpy, vis, attrib, value);
+}
+static inline GLXFBConfig *gls_compat_glXChooseFBConfig(Display *dpy, int screen,
+                                                        const int *attribs, int *nelements)
+{
+    return (GLXFBConfig *)gls_glx_choose_fbconfig(dpy, screen, attribs, nelements);
+}
+static inline GLXFBConfig *gls_compat_glXGetFBConfigs(Display *dpy, int screen, int *nelements)
+{
+    return (GLXFBConfig *)gls_glx_get_fbconfigs(dpy, screen, nelements);
+}
+static inline int gls_compat_glXGetFBConfigAttrib(Display *dpy, GLXFBConfig config, int attribute,
+                                                  int *value)
+{
+    return gls_glx_get_fbconfig_attrib(dpy, (void *)config, attribute, value);
+}
+static inline XVisualInfo *gls_compat_glXGetVisualFromFBConfig(Display *dpy, GLXFBConfig config)
+{
+    return (XVisualInfo *)gls_glx_get_visual_from_fbconfig(dpy, (void *)config);
+}
+static inline GLXContext gls_compat_glXCreateContext(Display *dpy, XVisualInfo *vis,
+                                                     GLXContext share_list, Bool direct)
+{
+    return (GLXContext)gls_glx_create_context(dpy, vis, (void *)share_list, direct);
+}
+static inline GLXContext gls_compat_glXCreateNewContext(Display *dpy, GLXFBConfig config,
+                                                        int render_type, GLXContext share_list,
+                                                        Bool direct)
+{
+    return (GLXContext)gls_glx_create_new_context(dpy, (void *)config, render_type,
+                                                  (void *)share_list, direct);
+}
+static inline GLXContext gls_compat_glXCreateContextAttribsARB(Display *dpy, GLXFBConfig config,
+                                                               GLXContext share_context,
+                                                               Bool direct, const int *attribs)
+{
+    return (GLXContext)gls_glx_create_context_attribs_arb(dpy, (void *)config,
+                                                          (void *)share_context, direct, attribs);
+}
+static inline void gls_compat_glXDestroyContext(Display *dpy, GLXContext ctx)
+{
+    gls_glx_destroy_context(dpy, (void *)ctx);
+}
+static inline Bool gls_compat_glXMakeCurrent(Display *dpy, GLXDrawable drawable, GLXContext ctx)
+{
+    return gls_glx_make_current(dpy, drawable, (void *)ctx);
+}
+static inline Bool gls_compat_glXMakeContextCurrent(Display *dpy, GLXDrawable draw,
+                                                    GLXDrawable read, GLXContext ctx)
+{
+    return gls_glx_make_context_current(dpy, draw, read, (void *)ctx);
+}
+static inline void gls_compat_glXSwapBuffers(Display *dpy, GLXDrawable drawable)
+{
+    gls_glx_swap_buffers(dpy, drawable);
+}
+static inline GLXWindow gls_compat_glXCreateWindow(Display *dpy, GLXFBConfig config, Window win,
+                                                   const int *attribs)
+{
+    return gls_glx_create_window(dpy, (void *)config, win, attribs);
+}
+static inline void gls_compat_glXDestroyWindow(Display *dpy, GLXWindow win)
+{
+    gls_glx_destroy_window(dpy, win);
+}
+static inline GLXPixmap gls_compat_glXCreatePixmap(Display *dpy, GLXFBConfig config,
+                                                   Pixmap pixmap, const int *attribs)
+{
+    return gls_glx_create_pixmap(dpy, (void *)config, pixmap, attribs);
+}
+static inline GLXPbuffer gls_compat_glXCreatePbuffer(Display *dpy, GLXFBConfig config,
+                                                     const int *attribs)
+{
+    return gls_glx_create_pbuffer(dpy, (void *)config, attribs);
+}
+static inline gls_compat_proc gls_compat_glXGetProcAddress(const GLubyte *name)
+{
+    /* An object pointer to a function pointer, as POSIX dlsym() allows. */
+    void *p = gls_glx_get_proc_address(name);
+    gls_compat_proc f;
+    memcpy(&f, &p, sizeof f);
+    return f;
+}
+
+static inline void gls_compat_glDrawBuffer(GLenum buf)
+{
+    gls_gl_draw_buffer(buf);
+}
+static inline void gls_compat_glDrawBuffers(GLsizei n, const GLenum *bufs)
+{
+    gls_gl_draw_buffers(n, bufs);
+}
+static inline void gls_compat_glReadBuffer(GLenum src)
+{
+    gls_gl_read_buffer(src);
+}
+static inline GLenum gls_compat_glGetError(void)
+{
+    return gls_gl_get_error();
+}
+static inline void gls_compat_glGetIntegerv(GLenum pname, GLint *data)
+{
+    gls_gl_get_integerv(pname, data);
+}
+static inline void gls_compat_glGetBooleanv(GLenum pname, GLboolean *data)
+{
+    gls_gl_get_booleanv(pname, data);
+}
+static inline void gls_compat_glGetFloatv(GLenum pname, GLfloat *data)
+{
+    gls_gl_get_floatv(pname, data);
+}
+static inline void gls_compat_glGetDoublev(GLenum pname, GLdouble *data)
+{
+    gls_gl_get_doublev(pname, data);
+}
+static inline void gls_compat_glBindFramebuffer(GLenum target, GLuint framebuffer)
+{
+    gls_gl_bind_framebuffer(target, framebuffer);
+}
+static inline void gls_compat_glDeleteFramebuffers(GLsizei n, const GLuint *framebuffers)
+{
+    gls_gl_delete_framebuffers(n, framebuffers);
+}
+static inline void gls_compat_glGetFramebufferAttachmentParameteriv(GLenum target,
+                                                                   GLenum attachment,
+                                                                   GLenum pname, GLint *params)
+{
+    gls_gl_get_framebuffer_attachment_parameteriv(target, attachment, pname, params);
+}
+static inline void gls_compat_glPushAttrib(GLbitfield mask)
+{
+    gls_gl_push_attrib(mask);
+}
+static inline void gls_compat_glPopAttrib(void)
+{
+    gls_gl_pop_attrib();
+}
+static inline void gls_compat_glViewport(GLint x, GLint y, GLsizei width, GLsizei height)
+{
+    gls_gl_viewport(x, y, width, height);
+}
+static inline void gls_compat_glFlush(void)
+{
+    gls_gl_flush();
+}
+static inline void gls_compat_glFinish(void)
+{
+    gls_gl_finish();
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#define glXChooseVisual gls_compat_glXChooseVisual
+#define glXGetConfig gls_compat_glXGetConfig
+#define glXChooseFBConfig gls_compat_glXChooseFBConfig
+#define glXGetFBConfigs gls_compat_glXGetFBConfigs
+#define glXGetFBConfigAttrib gls_compat_glXGetFBConfigAttrib
+#define glXGetVisualFromFBConfig gls_compat_glXGetVisualFromFBConfig
+#define glXCreateContext gls_compat_glXCreateContext
+#define glXCreateNewContext gls_compat_glXCreateNewContext
+#define glXCreateContextAttribsARB gls_compat_glXCreateContextAttribsARB
+#define glXDestroyContext gls_compat_glXDestroyContext
+#define glXMakeCurrent gls_compat_glXMakeCurrent
+#define glXMakeContextCurrent gls_compat_glXMakeContextCurrent
+#define glXSwapBuffers gls_compat_glXSwapBuffers
+#define glXCreateWindow gls_compat_glXCreateWindow
+#define glXDestroyWindow gls_compat_glXDestroyWindow
+#define glXCreatePixmap gls_compat_glXCreatePixmap
+#define glXCreatePbuffer gls_compat_glXCreatePbuffer
+#define glXGetProcAddress gls_compat_glXGetProcAddress
+#define glXGetProcAddressARB gls_compat_glXGetProcAddress
+
+#define glDrawBuffer gls_compat_glDrawBuffer
+#define glDrawBuffers gls_compat_glDrawBuffers
+#define glReadBuffer gls_compat_glReadBuffer
+#define glGetError gls_compat_glGetError
+#define glGetIntegerv gls_compat_glGetIntegerv
+#define glGetBooleanv gls_compat_glGetBooleanv
+#define glGetFloatv gls_compat_glGetFloatv
+#define glGetDoublev gls_compat_glGetDoublev
+#define glBindFramebuffer gls_compat_glBindFramebuffer
+#define glDeleteFramebuffers gls_compat_glDeleteFramebuffers
+#define glGetFramebufferAttachmentParameteriv gls_compat_glGetFramebufferAttachmentParameteriv
+#define glPushAttrib gls_compat_glPushAttrib
+#define glPopAttrib gls_compat_glPopAttrib
+#define glViewport gls_compat_glViewport
+#define glFlush gls_compat_glFlush
+#define glFinish gls_compat_glFinish
+
+#endif /* GLSTEREO_COMPAT_H */

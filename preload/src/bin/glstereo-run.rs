@@ -1,0 +1,316 @@
+//! `glstereo-run [-m MODE] [--swap-eyes] [--capture DIR] program args…`:
+//! runs an unmodified OpenGL program with glstereo's stereo layer
+//! (`libglstereo_preload.so`) preloaded, like VirtualGL's `vglrun`. It
+//! checks its options with the library first (a bad mode is refused before
+//! the program starts), sets LD_PRELOAD, GLSTEREO_MODE, GLSTEREO_SWAP_EYES
+//! and GLSTEREO_CAPTURE_DIR, and replaces itself with the program.
+
+use std::ffi::{OsStr, OsString};
+use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use glstereo::output::mode::{ALIASES, AliasSource};
+use glstereo::output::options::{ENV_MODE, ENV_SWAP_EYES, OutputSettings};
+use glstereo::output::{AnaglyphColors, AnaglyphMethod, OutputMode};
+
+/// The preload library's file name.
+const PRELOAD: &str = "libglstereo_preload.so";
+/// Overrides where the preload library is looked for.
+const ENV_PRELOAD_LIB: &str = "GLSTEREO_PRELOAD_LIB";
+/// Where captures go (read by the layer).
+const ENV_CAPTURE_DIR: &str = "GLSTEREO_CAPTURE_DIR";
+/// Exit status for a usage or set-up error (the program never ran).
+const USAGE_ERROR: u8 = 2;
+
+fn describe(mode: OutputMode) -> String {
+    let colors = |c: AnaglyphColors| match c {
+        AnaglyphColors::RedCyan => "red (left) / cyan (right)",
+        AnaglyphColors::GreenMagenta => "green (left) / magenta (right)",
+        AnaglyphColors::AmberBlue => "amber (left) / blue (right)",
+    };
+    match mode {
+        OutputMode::Quad => "the driver's own quad buffer where the server has stereo visuals; \
+                             elsewhere anaglyph-red-cyan"
+            .into(),
+        OutputMode::Left => "the left eye only".into(),
+        OutputMode::Right => "the right eye only".into(),
+        OutputMode::Anaglyph(c, m) => {
+            let how = match m {
+                AnaglyphMethod::FullColor => "full colour",
+                AnaglyphMethod::HalfColor => "half colour (left eye grey)",
+                AnaglyphMethod::Monochrome => "monochrome",
+                AnaglyphMethod::Dubois => "Dubois least-squares",
+            };
+            format!("anaglyph, {} glasses, {how}", colors(c))
+        }
+        OutputMode::AnaglyphRedBlue => "anaglyph, red (left) / blue (right), grey eyes".into(),
+        OutputMode::SideBySide => {
+            "both eyes at full size side by side (2W x H), left on the left".into()
+        }
+        OutputMode::TopBottom => "both eyes at full size, left on top (W x 2H)".into(),
+        OutputMode::SideBySideHalf => {
+            "each eye squeezed to half width, left on the left (3D TVs)".into()
+        }
+        OutputMode::TopBottomHalf => {
+            "each eye squeezed to half height, left on top (3D TVs)".into()
+        }
+        OutputMode::Rows => "row-interleaved, top row from the left eye (passive monitors)".into(),
+        OutputMode::Columns => "column-interleaved, leftmost column from the left eye".into(),
+        OutputMode::Checkerboard => "checkerboard, top-left pixel from the left eye (DLP)".into(),
+        OutputMode::FrameSequential => {
+            "one eye per presented frame, left first (shutter glasses)".into()
+        }
+        OutputMode::HdmiFramePacking => {
+            "HDMI 1.4 frame packing: left on top, gap, right below".into()
+        }
+        OutputMode::Starbase => {
+            "HP Starbase sync-doubled: left squashed into the upper half".into()
+        }
+        OutputMode::StrRect => "SGI STR_RECT: each eye squashed to 492 rows, left on top".into(),
+    }
+}
+
+fn help() -> String {
+    let mut s = String::from(
+        "Usage: glstereo-run [-m MODE] [-s] [-c DIR] [--] PROGRAM [ARGS...]\n\
+         \n\
+         Runs PROGRAM, an unmodified OpenGL (GLX) program, with glstereo's stereo\n\
+         layer preloaded. A program that asks for a stereo visual (GLX_STEREO,\n\
+         GLUT_STEREO) gets one even where the X server has none, draws both eyes\n\
+         (glDrawBuffer(GL_BACK_LEFT / GL_BACK_RIGHT)), and each glXSwapBuffers shows\n\
+         them in its window in MODE. Programs that do not ask for stereo run as\n\
+         they would without the layer.\n\
+         \n\
+         Options:\n\
+         \x20 -m, --mode MODE     how the window shows the eyes (sets GLSTEREO_MODE;\n\
+         \x20                     default: $GLSTEREO_MODE, else anaglyph-red-cyan;\n\
+         \x20                     -st MODE as in vglrun)\n\
+         \x20 -s, --swap-eyes     exchange left and right (GLSTEREO_SWAP_EYES=1)\n\
+         \x20 -c, --capture DIR   write every presented frame to DIR as left-NNNNNN.png,\n\
+         \x20                     right-NNNNNN.png and composite-NNNNNN.png (made if\n\
+         \x20                     missing; sets GLSTEREO_CAPTURE_DIR)\n\
+         \x20 -h, --help          this text\n\
+         \x20 -V, --version       the glstereo version\n\
+         \n\
+         Modes:\n",
+    );
+    for m in OutputMode::all() {
+        s.push_str(&format!("  {:<30}{}\n", m.canonical_name(), describe(m)));
+    }
+    s.push_str("\nAliases (VirtualGL vglrun -st, OpenSceneGraph OSG_STEREO_MODE):\n");
+    for a in ALIASES {
+        let from = match a.source {
+            AliasSource::VirtualGl => "VirtualGL",
+            AliasSource::OpenSceneGraph => "OpenSceneGraph",
+        };
+        let same = if a.differs.is_empty() {
+            ""
+        } else {
+            " (placement differs; see glstereo-run(1))"
+        };
+        s.push_str(&format!(
+            "  {:<22}= {} ({from}){same}\n",
+            a.name,
+            a.mode.canonical_name()
+        ));
+    }
+    s.push_str(
+        "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK (0..1),\n\
+         GLSTEREO_SATURATION (0..1), GLSTEREO_CAPTURE_DIR; GLSTEREO_PRELOAD_LIB names\n\
+         the preload library when it is not installed beside glstereo-run.\n\
+         \n\
+         Exit status: PROGRAM's; 2 for a usage error; 126/127 when PROGRAM cannot be run.\n",
+    );
+    s
+}
+
+/// What the command line asks for.
+struct Request {
+    mode: Option<OutputMode>,
+    swap_eyes: bool,
+    capture: Option<PathBuf>,
+    program: Vec<OsString>,
+}
+
+enum Parsed {
+    Run(Request),
+    Help,
+    Version,
+}
+
+fn parse(args: &[OsString]) -> Result<Parsed, String> {
+    let mut req = Request {
+        mode: None,
+        swap_eyes: false,
+        capture: None,
+        program: Vec::new(),
+    };
+    let mut i = 0;
+    while i < args.len() {
+        let arg = args[i].to_string_lossy().into_owned();
+        // --opt=value
+        let (flag, inline) = match arg.split_once('=') {
+            Some((f, v)) if f.starts_with("--") => (f.to_owned(), Some(OsString::from(v))),
+            _ => (arg.clone(), None),
+        };
+        let mut value = |name: &str| -> Result<OsString, String> {
+            if let Some(v) = inline.clone() {
+                return Ok(v);
+            }
+            i += 1;
+            args.get(i)
+                .cloned()
+                .ok_or_else(|| format!("{name} needs a value"))
+        };
+        match flag.as_str() {
+            "-h" | "--help" => return Ok(Parsed::Help),
+            "-V" | "--version" => return Ok(Parsed::Version),
+            "-m" | "--mode" | "-st" => {
+                let v = value(&flag)?;
+                let name = v.to_string_lossy();
+                let mode = OutputMode::from_name(&name).map_err(|e| e.to_string())?;
+                req.mode = Some(mode);
+            }
+            "-s" | "--swap-eyes" => req.swap_eyes = true,
+            "-c" | "--capture" => req.capture = Some(PathBuf::from(value(&flag)?)),
+            "--" => {
+                req.program = args[i + 1..].to_vec();
+                break;
+            }
+            f if f.starts_with('-') && f.len() > 1 => {
+                return Err(format!("unknown option {f} (see glstereo-run --help)"));
+            }
+            _ => {
+                req.program = args[i..].to_vec();
+                break;
+            }
+        }
+        i += 1;
+    }
+    if req.program.is_empty() {
+        return Err("no program to run (see glstereo-run --help)".into());
+    }
+    Ok(Parsed::Run(req))
+}
+
+/// The preload library: $GLSTEREO_PRELOAD_LIB, else beside this program
+/// (the build tree, target/<profile>/), else in ../lib, ../lib64 or
+/// ../lib/<arch>-linux-gnu (an installed prefix).
+fn find_preload() -> Result<PathBuf, String> {
+    if let Some(p) = std::env::var_os(ENV_PRELOAD_LIB).filter(|p| !p.is_empty()) {
+        let p = PathBuf::from(p);
+        return if p.is_file() {
+            Ok(std::path::absolute(&p).unwrap_or(p))
+        } else {
+            Err(format!("{ENV_PRELOAD_LIB}={} is not a file", p.display()))
+        };
+    }
+    let exe = std::env::current_exe()
+        .and_then(|e| e.canonicalize())
+        .map_err(|e| format!("cannot locate glstereo-run itself: {e}"))?;
+    let dir = exe.parent().unwrap_or(Path::new("/"));
+    let multiarch = format!("../lib/{}-linux-gnu", std::env::consts::ARCH);
+    let candidates = [
+        dir.join(PRELOAD),
+        dir.join("../lib").join(PRELOAD),
+        dir.join("../lib64").join(PRELOAD),
+        dir.join(multiarch).join(PRELOAD),
+    ];
+    candidates
+        .iter()
+        .find(|c| c.is_file())
+        .map(|c| c.canonicalize().unwrap_or_else(|_| c.clone()))
+        .ok_or_else(|| {
+            format!(
+                "cannot find {PRELOAD} (looked in {}): reinstall glstereo, or set {ENV_PRELOAD_LIB}",
+                candidates
+                    .iter()
+                    .map(|c| c.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })
+}
+
+fn prepend_preload(lib: &Path) -> OsString {
+    let mut v = OsString::from(lib.as_os_str());
+    if let Some(old) = std::env::var_os("LD_PRELOAD").filter(|o| !o.is_empty()) {
+        v.push(":");
+        v.push(old);
+    }
+    v
+}
+
+fn run(req: Request) -> Result<std::io::Error, String> {
+    let lib = find_preload()?;
+    let mut cmd = Command::new(&req.program[0]);
+    cmd.args(&req.program[1..]);
+    cmd.env("LD_PRELOAD", prepend_preload(&lib));
+    if let Some(m) = req.mode {
+        cmd.env(ENV_MODE, m.canonical_name());
+    }
+    if req.swap_eyes {
+        cmd.env(ENV_SWAP_EYES, "1");
+    }
+    if let Some(dir) = &req.capture {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            format!(
+                "--capture {}: cannot create the directory: {e}",
+                dir.display()
+            )
+        })?;
+        let abs = dir.canonicalize().unwrap_or_else(|_| dir.clone());
+        cmd.env(ENV_CAPTURE_DIR, abs);
+    }
+    // The settings the layer will read, checked now so a bad value stops
+    // here with a message instead of inside the program.
+    let overrides = |name: &str| -> Option<String> {
+        match name {
+            n if n == ENV_MODE && req.mode.is_some() => req.mode.map(|m| m.canonical_name().into()),
+            n if n == ENV_SWAP_EYES && req.swap_eyes => Some("1".into()),
+            n => std::env::var(n).ok(),
+        }
+    };
+    OutputSettings::from_env_with(overrides).map_err(|e| e.to_string())?;
+    // Only returns on failure.
+    Ok(cmd.exec())
+}
+
+fn main() -> ExitCode {
+    let args: Vec<OsString> = std::env::args_os().skip(1).collect();
+    match parse(&args) {
+        Ok(Parsed::Help) => {
+            print!("{}", help());
+            ExitCode::SUCCESS
+        }
+        Ok(Parsed::Version) => {
+            println!("glstereo-run {}", env!("CARGO_PKG_VERSION"));
+            ExitCode::SUCCESS
+        }
+        Ok(Parsed::Run(req)) => {
+            let program = req.program[0].clone();
+            match run(req) {
+                Ok(e) => {
+                    eprintln!(
+                        "glstereo-run: cannot run {}: {e}",
+                        OsStr::new(&program).to_string_lossy()
+                    );
+                    ExitCode::from(if e.kind() == std::io::ErrorKind::NotFound {
+                        127
+                    } else {
+                        126
+                    })
+                }
+                Err(msg) => {
+                    eprintln!("glstereo-run: {msg}");
+                    ExitCode::from(USAGE_ERROR)
+                }
+            }
+        }
+        Err(msg) => {
+            eprintln!("glstereo-run: {msg}");
+            ExitCode::from(USAGE_ERROR)
+        }
+    }
+}

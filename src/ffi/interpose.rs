@@ -1,0 +1,699 @@
+//! Legacy GLX and GL entry points with emulated stereo, for programs that
+//! create their own GLX contexts and windows (the logic is in
+//! [`crate::interpose`]).
+//!
+//! Unmodified binaries get these under their real names from
+//! `libglstereo_preload.so` (run them with `glstereo-run`). Programs rebuilt
+//! from source include `<glstereo/compat.h>` after the GL headers, which
+//! maps the legacy names onto these `gls_glx_*` / `gls_gl_*` functions, and
+//! link with `-lglstereo` (and `-lGL -lX11` as before).
+//!
+//! Each behaves as the GLX or GL function it replaces (same arguments, same
+//! results, same GL errors), with these differences: GLX_STEREO requests
+//! succeed on servers without stereo visuals, contexts made from them have
+//! an emulated quad-buffered default framebuffer, and each swap shows both
+//! eyes in the window in GLSTEREO_MODE (default anaglyph-red-cyan). A
+//! program that does not ask for stereo is served by the real libGL
+//! unchanged. Types: `Display*`, `XVisualInfo*`, `GLXContext` and
+//! `GLXFBConfig` are passed as `void *`, X drawables as `unsigned long`,
+//! GL enums as `uint32_t`. Thread rules are GLX's and GL's: GL calls apply
+//! to the context current on the calling thread. They report as the
+//! functions they replace do (return values, GL errors); problems the layer
+//! cannot report that way (no GL 3.0, a context it cannot create) are
+//! written to stderr once, prefixed `glstereo:`, and the context then runs
+//! in mono. An internal failure (a bug) is caught at the boundary, leaves a
+//! message for gls_last_error_message() and returns NULL, False or 0.
+
+use std::ffi::{c_int, c_uchar, c_ulong, c_void};
+
+use x11_dl::glx::{GLXContext, GLXFBConfig};
+use x11_dl::xlib::XVisualInfo;
+
+use super::boundary::ffi_boundary;
+use crate::interpose::gl as igl;
+use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
+
+/// The gls_glx_* and gls_gl_* functions stand in for the legacy GLX and GL
+/// functions a stereo program calls: `<glstereo/compat.h>` maps their
+/// names onto these for programs rebuilt from source (link -lglstereo
+/// -lGL -lX11), and libglstereo_preload.so exports them under the real
+/// names for unmodified binaries (glstereo-run). Each takes the arguments
+/// of the function it replaces (`Display*`, `XVisualInfo*`, `GLXContext`,
+/// `GLXFBConfig` as `void *`; drawables as `unsigned long`; GL enums as
+/// `uint32_t`), returns what it returns and raises the GL errors it
+/// raises; thread rules are GLX's and GL's (GL calls apply to the context
+/// current on the calling thread). What the layer cannot report that way
+/// (no GL 3.0, a context it cannot create) goes to stderr once, prefixed
+/// `glstereo:`, and that context runs in mono; an internal failure is
+/// caught, leaves a message for gls_last_error_message() and returns NULL,
+/// False or 0. Output settings come from GLSTEREO_MODE,
+/// GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK, GLSTEREO_SATURATION and
+/// GLSTEREO_CAPTURE_DIR, read once.
+///
+/// `glXChooseVisual`: a GLX_STEREO request gets the server's matching
+/// mono visual, which the layer then treats as stereo (glXGetConfig
+/// reports GLX_STEREO true; contexts created with it are stereo). The
+/// result is freed with XFree as usual; NULL when nothing matches.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_choose_visual(
+    dpy: *mut c_void,
+    screen: c_int,
+    attribs: *mut c_int,
+) -> *mut c_void {
+    ffi_boundary!("gls_glx_choose_visual", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::choose_visual(dpy.cast(), screen, attribs) }.cast())
+    })
+}
+
+/// `glXGetConfig`: GLX_STEREO is 1 for a visual handed out for a stereo
+/// request; everything else is the real visual's. Returns 0 (Success) or
+/// a GLX error code.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_get_config(
+    dpy: *mut c_void,
+    vis: *mut c_void,
+    attrib: c_int,
+    value: *mut c_int,
+) -> c_int {
+    ffi_boundary!("gls_glx_get_config", 1 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::get_config(dpy.cast(), vis as *mut XVisualInfo, attrib, value) })
+    })
+}
+
+/// `glXChooseFBConfig`: with GLX_STEREO True, the configurations matching
+/// the rest of the list, as stereo configurations of the layer's (handles
+/// every GLX function here accepts; GLX_STEREO reads 1). Freed with XFree.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_choose_fbconfig(
+    dpy: *mut c_void,
+    screen: c_int,
+    attribs: *const c_int,
+    nelements: *mut c_int,
+) -> *mut *mut c_void {
+    ffi_boundary!("gls_glx_choose_fbconfig", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::choose_fbconfig(dpy.cast(), screen, attribs, nelements, Flavour::Glx13) }.cast())
+    })
+}
+
+/// `glXChooseFBConfigSGIX`: as gls_glx_choose_fbconfig().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_choose_fbconfig_sgix(
+    dpy: *mut c_void,
+    screen: c_int,
+    attribs: *const c_int,
+    nelements: *mut c_int,
+) -> *mut *mut c_void {
+    ffi_boundary!("gls_glx_choose_fbconfig_sgix", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::choose_fbconfig(dpy.cast(), screen, attribs, nelements, Flavour::Sgix) }.cast())
+    })
+}
+
+/// `glXGetFBConfigs`: the server's configurations in their order, followed
+/// by a stereo twin of each RGBA window configuration. Freed with XFree.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_get_fbconfigs(
+    dpy: *mut c_void,
+    screen: c_int,
+    nelements: *mut c_int,
+) -> *mut *mut c_void {
+    ffi_boundary!("gls_glx_get_fbconfigs", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::get_fbconfigs(dpy.cast(), screen, nelements) }.cast())
+    })
+}
+
+/// `glXGetFBConfigAttrib`: GLX_STEREO is 1 for a stereo configuration;
+/// everything else is the real configuration's.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_get_fbconfig_attrib(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    attribute: c_int,
+    value: *mut c_int,
+) -> c_int {
+    ffi_boundary!("gls_glx_get_fbconfig_attrib", 2 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::get_fbconfig_attrib(dpy.cast(), config as GLXFBConfig, attribute, value, Flavour::Glx13) })
+    })
+}
+
+/// `glXGetFBConfigAttribSGIX`: as gls_glx_get_fbconfig_attrib().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_get_fbconfig_attrib_sgix(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    attribute: c_int,
+    value: *mut c_int,
+) -> c_int {
+    ffi_boundary!("gls_glx_get_fbconfig_attrib_sgix", 2 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::get_fbconfig_attrib(dpy.cast(), config as GLXFBConfig, attribute, value, Flavour::Sgix) })
+    })
+}
+
+/// `glXGetVisualFromFBConfig`: the visual of a configuration; for a stereo
+/// configuration the visual is treated as stereo (see
+/// gls_glx_choose_visual()). Freed with XFree.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_get_visual_from_fbconfig(
+    dpy: *mut c_void,
+    config: *mut c_void,
+) -> *mut c_void {
+    ffi_boundary!("gls_glx_get_visual_from_fbconfig", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::get_visual_from_fbconfig(dpy.cast(), config as GLXFBConfig, Flavour::Glx13) }.cast())
+    })
+}
+
+/// `glXGetVisualFromFBConfigSGIX`: as gls_glx_get_visual_from_fbconfig().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_get_visual_from_fbconfig_sgix(
+    dpy: *mut c_void,
+    config: *mut c_void,
+) -> *mut c_void {
+    ffi_boundary!("gls_glx_get_visual_from_fbconfig_sgix", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::get_visual_from_fbconfig(dpy.cast(), config as GLXFBConfig, Flavour::Sgix) }.cast())
+    })
+}
+
+/// `glXCreateContext`: with a stereo visual, a stereo context (the layer
+/// also creates a context of its own sharing its objects, to present).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_context(
+    dpy: *mut c_void,
+    vis: *mut c_void,
+    share_list: *mut c_void,
+    direct: c_int,
+) -> *mut c_void {
+    ffi_boundary!("gls_glx_create_context", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::create_context(dpy.cast(), vis.cast(), share_list as GLXContext, direct) }.cast())
+    })
+}
+
+/// `glXCreateNewContext`: with a stereo configuration, a stereo context.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_new_context(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    render_type: c_int,
+    share_list: *mut c_void,
+    direct: c_int,
+) -> *mut c_void {
+    ffi_boundary!("gls_glx_create_new_context", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe {
+            iglx::create_config_context(
+                dpy.cast(),
+                config as GLXFBConfig,
+                NewContext::RenderType(render_type, Flavour::Glx13),
+                share_list as GLXContext,
+                direct,
+            )
+        }
+        .cast())
+    })
+}
+
+/// `glXCreateContextWithConfigSGIX`: as gls_glx_create_new_context().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_context_with_config_sgix(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    render_type: c_int,
+    share_list: *mut c_void,
+    direct: c_int,
+) -> *mut c_void {
+    ffi_boundary!("gls_glx_create_context_with_config_sgix", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe {
+            iglx::create_config_context(
+                dpy.cast(),
+                config as GLXFBConfig,
+                NewContext::RenderType(render_type, Flavour::Sgix),
+                share_list as GLXContext,
+                direct,
+            )
+        }
+        .cast())
+    })
+}
+
+/// `glXCreateContextAttribsARB` (GLX_ARB_create_context): with a stereo
+/// configuration, a stereo context of any version and profile (3.0 or
+/// newer hosts the emulation; older ones run in mono, said on stderr).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_context_attribs_arb(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    share_context: *mut c_void,
+    direct: c_int,
+    attrib_list: *const c_int,
+) -> *mut c_void {
+    ffi_boundary!("gls_glx_create_context_attribs_arb", std::ptr::null_mut() => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe {
+            iglx::create_config_context(
+                dpy.cast(),
+                config as GLXFBConfig,
+                NewContext::Attribs(attrib_list),
+                share_context as GLXContext,
+                direct,
+            )
+        }
+        .cast())
+    })
+}
+
+/// `glXDestroyContext`, with the layer's context of a stereo one (after it
+/// is released, when it is current).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_context(dpy: *mut c_void, ctx: *mut c_void) {
+    ffi_boundary!("gls_glx_destroy_context", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_context(dpy.cast(), ctx as GLXContext) };
+        Ok(())
+    })
+}
+
+/// `glXMakeCurrent`: for a stereo context, binds the drawable's emulated
+/// framebuffer (made, or resized to the drawable, first) where the program
+/// has framebuffer 0. Returns True or False as the real call does.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_make_current(
+    dpy: *mut c_void,
+    drawable: c_ulong,
+    ctx: *mut c_void,
+) -> c_int {
+    ffi_boundary!("gls_glx_make_current", 0 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::make_current(dpy.cast(), drawable, None, ctx as GLXContext) })
+    })
+}
+
+/// `glXMakeContextCurrent`: as gls_glx_make_current(), with separate
+/// draw and read drawables.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_make_context_current(
+    dpy: *mut c_void,
+    draw: c_ulong,
+    read: c_ulong,
+    ctx: *mut c_void,
+) -> c_int {
+    ffi_boundary!("gls_glx_make_context_current", 0 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::make_current(dpy.cast(), draw, Some(read), ctx as GLXContext) })
+    })
+}
+
+/// `glXSwapBuffers`: for a stereo drawable, each eye's back buffer becomes
+/// its front buffer, and the front buffers are shown composed in
+/// GLSTEREO_MODE (and captured with GLSTEREO_CAPTURE_DIR).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_swap_buffers(dpy: *mut c_void, drawable: c_ulong) {
+    ffi_boundary!("gls_glx_swap_buffers", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::swap_buffers(dpy.cast(), drawable) };
+        Ok(())
+    })
+}
+
+/// `glXCreateWindow` (a stereo configuration makes a window of its real one).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_window(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    win: c_ulong,
+    attrib_list: *const c_int,
+) -> c_ulong {
+    ffi_boundary!("gls_glx_create_window", 0 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::create_window(dpy.cast(), config as GLXFBConfig, win, attrib_list) })
+    })
+}
+
+/// `glXDestroyWindow`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_window(dpy: *mut c_void, window: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_window", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_window(dpy.cast(), window) };
+        Ok(())
+    })
+}
+
+/// `glXCreatePixmap` (mono: the real configuration of a stereo one).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_pixmap(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    pixmap: c_ulong,
+    attrib_list: *const c_int,
+) -> c_ulong {
+    ffi_boundary!("gls_glx_create_pixmap", 0 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::Pixmap(pixmap, attrib_list)) })
+    })
+}
+
+/// `glXCreatePbuffer` (mono: the real configuration of a stereo one).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_pbuffer(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    attrib_list: *const c_int,
+) -> c_ulong {
+    ffi_boundary!("gls_glx_create_pbuffer", 0 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::Pbuffer(attrib_list)) })
+    })
+}
+
+/// `glXCreateGLXPixmapWithConfigSGIX`: as gls_glx_create_pixmap().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_glx_pixmap_with_config_sgix(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    pixmap: c_ulong,
+) -> c_ulong {
+    ffi_boundary!("gls_glx_create_glx_pixmap_with_config_sgix", 0 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::PixmapSgix(pixmap)) })
+    })
+}
+
+/// `glXCreateGLXPbufferSGIX`: as gls_glx_create_pbuffer().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_create_glx_pbuffer_sgix(
+    dpy: *mut c_void,
+    config: *mut c_void,
+    width: u32,
+    height: u32,
+    attrib_list: *const c_int,
+) -> c_ulong {
+    ffi_boundary!("gls_glx_create_glx_pbuffer_sgix", 0 => {
+        // SAFETY: GLX's contract, forwarded.
+        Ok(unsafe {
+            iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::PbufferSgix(width, height, attrib_list))
+        })
+    })
+}
+
+/// `glDrawBuffer`: on the emulated default framebuffer, any of GL_NONE,
+/// GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT, GL_BACK_RIGHT, GL_FRONT,
+/// GL_BACK, GL_LEFT, GL_RIGHT, GL_FRONT_AND_BACK; GL_INVALID_ENUM for a
+/// value that names no buffer, GL_INVALID_OPERATION for a buffer the
+/// visual lacks (an aux buffer, an attachment); nothing changes on error.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_draw_buffer(buf: u32) {
+    ffi_boundary!("gls_gl_draw_buffer", () => {
+        igl::draw_buffer(buf);
+        Ok(())
+    })
+}
+
+/// `glDrawBuffers`: on the emulated default framebuffer each entry is
+/// GL_NONE or one of the four buffers (GL_BACK alone); GL errors as GL's.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_draw_buffers(n: i32, bufs: *const u32) {
+    ffi_boundary!("gls_gl_draw_buffers", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::draw_buffers(n, bufs, false) };
+        Ok(())
+    })
+}
+
+/// `glDrawBuffersARB`: as gls_gl_draw_buffers().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_draw_buffers_arb(n: i32, bufs: *const u32) {
+    ffi_boundary!("gls_gl_draw_buffers_arb", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::draw_buffers(n, bufs, true) };
+        Ok(())
+    })
+}
+
+/// `glReadBuffer`: on the emulated default framebuffer, the names
+/// glDrawBuffer accepts (GL_FRONT, GL_LEFT and GL_FRONT_AND_BACK read
+/// front-left; GL_BACK back-left; GL_RIGHT front-right); errors as
+/// gls_gl_draw_buffer().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_read_buffer(src: u32) {
+    ffi_boundary!("gls_gl_read_buffer", () => {
+        igl::read_buffer(src);
+        Ok(())
+    })
+}
+
+/// `glGetError`: the emulation's errors first (each code once), then the driver's.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_get_error() -> u32 {
+    ffi_boundary!("gls_gl_get_error", 0 => { Ok(igl::get_error()) })
+}
+
+/// `glGetIntegerv`: GL_STEREO, GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i),
+/// GL_READ_BUFFER and the framebuffer bindings as a stereo visual would
+/// answer; colour, depth and stencil bits as the window's visual.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_integerv(pname: u32, data: *mut i32) {
+    ffi_boundary!("gls_gl_get_integerv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_integerv(pname, data) };
+        Ok(())
+    })
+}
+
+/// `glGetBooleanv`: as gls_gl_get_integerv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_booleanv(pname: u32, data: *mut u8) {
+    ffi_boundary!("gls_gl_get_booleanv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_booleanv(pname, data) };
+        Ok(())
+    })
+}
+
+/// `glGetFloatv`: as gls_gl_get_integerv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_floatv(pname: u32, data: *mut f32) {
+    ffi_boundary!("gls_gl_get_floatv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_floatv(pname, data) };
+        Ok(())
+    })
+}
+
+/// `glGetDoublev`: as gls_gl_get_integerv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_doublev(pname: u32, data: *mut f64) {
+    ffi_boundary!("gls_gl_get_doublev", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_doublev(pname, data) };
+        Ok(())
+    })
+}
+
+/// `glBindFramebuffer`: framebuffer 0 is the emulated default framebuffer.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_bind_framebuffer(target: u32, framebuffer: u32) {
+    ffi_boundary!("gls_gl_bind_framebuffer", () => {
+        igl::bind_framebuffer(target, framebuffer, false);
+        Ok(())
+    })
+}
+
+/// `glBindFramebufferEXT`: as gls_gl_bind_framebuffer().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_bind_framebuffer_ext(target: u32, framebuffer: u32) {
+    ffi_boundary!("gls_gl_bind_framebuffer_ext", () => {
+        igl::bind_framebuffer(target, framebuffer, true);
+        Ok(())
+    })
+}
+
+/// `glDeleteFramebuffers`: never deletes the emulated framebuffer; a
+/// deleted bound framebuffer reverts to the emulated one.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_framebuffers(n: i32, framebuffers: *const u32) {
+    ffi_boundary!("gls_gl_delete_framebuffers", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_framebuffers(n, framebuffers, false) };
+        Ok(())
+    })
+}
+
+/// `glDeleteFramebuffersEXT`: as gls_gl_delete_framebuffers().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *const u32) {
+    ffi_boundary!("gls_gl_delete_framebuffers_ext", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_framebuffers(n, framebuffers, true) };
+        Ok(())
+    })
+}
+
+/// `glGetFramebufferAttachmentParameteriv`: on the emulated default
+/// framebuffer, GL_FRONT_LEFT … GL_BACK_RIGHT, GL_DEPTH and GL_STENCIL
+/// answer as the window's buffers do (a buffer the visual lacks has type
+/// GL_NONE); other attachments are GL_INVALID_ENUM.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv(
+    target: u32,
+    attachment: u32,
+    pname: u32,
+    params: *mut i32,
+) {
+    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, false) };
+        Ok(())
+    })
+}
+
+/// `glGetFramebufferAttachmentParameterivEXT`: as
+/// gls_gl_get_framebuffer_attachment_parameteriv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv_ext(
+    target: u32,
+    attachment: u32,
+    pname: u32,
+    params: *mut i32,
+) {
+    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv_ext", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, true) };
+        Ok(())
+    })
+}
+
+/// `glPushAttrib`: GL_COLOR_BUFFER_BIT also saves the emulated draw buffer,
+/// GL_PIXEL_MODE_BIT the emulated read buffer.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_push_attrib(mask: u32) {
+    ffi_boundary!("gls_gl_push_attrib", () => {
+        igl::push_attrib(mask);
+        Ok(())
+    })
+}
+
+/// `glPopAttrib`: restores what gls_gl_push_attrib() saved.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_pop_attrib() {
+    ffi_boundary!("gls_gl_pop_attrib", () => {
+        igl::pop_attrib();
+        Ok(())
+    })
+}
+
+/// `glViewport`: also notices a resized window (the emulated buffers follow
+/// it before the program draws).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_viewport(x: i32, y: i32, width: i32, height: i32) {
+    ffi_boundary!("gls_gl_viewport", () => {
+        igl::viewport(x, y, width, height);
+        Ok(())
+    })
+}
+
+/// `glFlush`: also shows the front buffers when the program draws to them.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_flush() {
+    ffi_boundary!("gls_gl_flush", () => {
+        igl::flush(false);
+        Ok(())
+    })
+}
+
+/// `glFinish`: as gls_gl_flush().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_finish() {
+    ffi_boundary!("gls_gl_finish", () => {
+        igl::flush(true);
+        Ok(())
+    })
+}
+
+/// `glXGetProcAddress` / `glXGetProcAddressARB`: these functions for the
+/// names they replace (so programs that look GL and GLX functions up get
+/// the stereo versions), the real libGL's for every other name.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_get_proc_address(name: *const c_uchar) -> *mut c_void {
+    ffi_boundary!("gls_glx_get_proc_address", std::ptr::null_mut() => {
+        if name.is_null() {
+            return Ok(std::ptr::null_mut());
+        }
+        // SAFETY: GLX's contract: a NUL-terminated name.
+        let cname = unsafe { std::ffi::CStr::from_ptr(name.cast()) };
+        if let Some(f) = replacement(cname.to_bytes()) {
+            return Ok(f);
+        }
+        // SAFETY: a NUL-terminated name.
+        Ok(unsafe { crate::interpose::real::get_proc_address(name.cast()) }
+            .map_or(std::ptr::null_mut(), |f| f as *mut c_void))
+    })
+}
+
+/// The replacement of a GL or GLX function, by name.
+pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
+    let f: *mut c_void = match name {
+        b"glXChooseVisual" => gls_glx_choose_visual as *mut c_void,
+        b"glXGetConfig" => gls_glx_get_config as *mut c_void,
+        b"glXChooseFBConfig" => gls_glx_choose_fbconfig as *mut c_void,
+        b"glXChooseFBConfigSGIX" => gls_glx_choose_fbconfig_sgix as *mut c_void,
+        b"glXGetFBConfigs" => gls_glx_get_fbconfigs as *mut c_void,
+        b"glXGetFBConfigAttrib" => gls_glx_get_fbconfig_attrib as *mut c_void,
+        b"glXGetFBConfigAttribSGIX" => gls_glx_get_fbconfig_attrib_sgix as *mut c_void,
+        b"glXGetVisualFromFBConfig" => gls_glx_get_visual_from_fbconfig as *mut c_void,
+        b"glXGetVisualFromFBConfigSGIX" => gls_glx_get_visual_from_fbconfig_sgix as *mut c_void,
+        b"glXCreateContext" => gls_glx_create_context as *mut c_void,
+        b"glXCreateNewContext" => gls_glx_create_new_context as *mut c_void,
+        b"glXCreateContextWithConfigSGIX" => gls_glx_create_context_with_config_sgix as *mut c_void,
+        b"glXCreateContextAttribsARB" => gls_glx_create_context_attribs_arb as *mut c_void,
+        b"glXDestroyContext" => gls_glx_destroy_context as *mut c_void,
+        b"glXMakeCurrent" => gls_glx_make_current as *mut c_void,
+        b"glXMakeContextCurrent" | b"glXMakeCurrentReadSGI" => {
+            gls_glx_make_context_current as *mut c_void
+        }
+        b"glXSwapBuffers" => gls_glx_swap_buffers as *mut c_void,
+        b"glXCreateWindow" => gls_glx_create_window as *mut c_void,
+        b"glXDestroyWindow" => gls_glx_destroy_window as *mut c_void,
+        b"glXCreatePixmap" => gls_glx_create_pixmap as *mut c_void,
+        b"glXCreatePbuffer" => gls_glx_create_pbuffer as *mut c_void,
+        b"glXCreateGLXPixmapWithConfigSGIX" => {
+            gls_glx_create_glx_pixmap_with_config_sgix as *mut c_void
+        }
+        b"glXCreateGLXPbufferSGIX" => gls_glx_create_glx_pbuffer_sgix as *mut c_void,
+        b"glXGetProcAddress" | b"glXGetProcAddressARB" => gls_glx_get_proc_address as *mut c_void,
+        b"glDrawBuffer" => gls_gl_draw_buffer as *mut c_void,
+        b"glDrawBuffers" => gls_gl_draw_buffers as *mut c_void,
+        b"glDrawBuffersARB" | b"glDrawBuffersATI" => gls_gl_draw_buffers_arb as *mut c_void,
+        b"glReadBuffer" => gls_gl_read_buffer as *mut c_void,
+        b"glGetError" => gls_gl_get_error as *mut c_void,
+        b"glGetIntegerv" => gls_gl_get_integerv as *mut c_void,
+        b"glGetBooleanv" => gls_gl_get_booleanv as *mut c_void,
+        b"glGetFloatv" => gls_gl_get_floatv as *mut c_void,
+        b"glGetDoublev" => gls_gl_get_doublev as *mut c_void,
+        b"glBindFramebuffer" => gls_gl_bind_framebuffer as *mut c_void,
+        b"glBindFramebufferEXT" => gls_gl_bind_framebuffer_ext as *mut c_void,
+        b"glDeleteFramebuffers" => gls_gl_delete_framebuffers as *mut c_void,
+        b"glDeleteFramebuffersEXT" => gls_gl_delete_framebuffers_ext as *mut c_void,
+        b"glGetFramebufferAttachmentParameteriv" => {
+            gls_gl_get_framebuffer_attachment_parameteriv as *mut c_void
+        }
+        b"glGetFramebufferAttachmentParameterivEXT" => {
+            gls_gl_get_framebuffer_attachment_parameteriv_ext as *mut c_void
+        }
+        b"glPushAttrib" => gls_gl_push_attrib as *mut c_void,
+        b"glPopAttrib" => gls_gl_pop_attrib as *mut c_void,
+        b"glViewport" => gls_gl_viewport as *mut c_void,
+        b"glFlush" => gls_gl_flush as *mut c_void,
+        b"glFinish" => gls_gl_finish as *mut c_void,
+        _ => return None,
+    };
+    Some(f)
+}

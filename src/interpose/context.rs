@@ -1,0 +1,638 @@
+//! A stereo context of the program: its emulated default framebuffer on
+//! each drawable it is bound to, the GL errors the emulation raised, and
+//! the layer's own context that presents the eyes.
+//!
+//! Objects and where they live:
+//! - the colour textures and the depth/stencil renderbuffer of each
+//!   drawable's [`EmulatedFramebuffer`] are made in the layer's context,
+//!   which shares objects with the program's (names from the top of the
+//!   name space: [`crate::gl::Gl::reserve_names`]);
+//! - the framebuffer object the program renders into is made in the
+//!   program's context (framebuffer objects are not shared) and bound
+//!   wherever the program would have framebuffer 0;
+//! - the compositor's programs, vertex array and canvases live in the
+//!   layer's context, which is made current on the program's drawable to
+//!   compose into its real back buffer and swap, then the program's
+//!   context is made current again.
+
+use std::cell::Cell;
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::thread::ThreadId;
+
+use x11_dl::glx::GLXContext;
+use x11_dl::xlib;
+
+use super::capture;
+use super::real::{Real, real};
+use super::registry;
+use super::settings;
+use crate::backend::glx::trap_x_errors;
+use crate::error::{Error, Result};
+use crate::framing::InputFraming;
+use crate::gl::Gl;
+use crate::gl::enums::*;
+use crate::image::Image;
+use crate::output::gl::{GlCompositor, Job};
+use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
+use crate::stereo::emulated::{BufferFormats, DrawSelection, EmulatedFramebuffer, ReadSelection};
+
+/// GLX_WIDTH / GLX_HEIGHT for glXQueryDrawable.
+const GLX_WIDTH: i32 = 0x801D;
+const GLX_HEIGHT: i32 = 0x801E;
+
+/// Orders binds, to find the context a drawable was bound to last.
+static BIND_TICK: AtomicU64 = AtomicU64::new(1);
+
+/// One drawable's emulated framebuffer in one context.
+pub(super) struct Drawn {
+    pub(super) fb: EmulatedFramebuffer,
+    /// Frames presented.
+    frames: u64,
+    /// [`BIND_TICK`] when last bound.
+    last_bound: u64,
+    /// A glViewport of another size already checked the drawable's size
+    /// this frame.
+    viewport_checked: bool,
+}
+
+/// The mutable part of a stereo context. Lock order: the registry's lock
+/// may be held when a state is locked, never the other way round.
+pub(super) struct CtxState {
+    pub(super) fbs: HashMap<u64, Drawn>,
+    /// GL errors raised by the emulation (or saved from the driver before
+    /// the layer called GL in the program's context), oldest first, each
+    /// code once: what glGetError reports before the driver's own.
+    pub(super) pending: Vec<u32>,
+    compositor: GlCompositor,
+    /// Whether the program's context can host the emulation (GL ≥ 3.0);
+    /// None until first bound.
+    usable: Option<bool>,
+    /// The thread it is current on.
+    owner: Option<ThreadId>,
+    /// glXDestroyContext was called while it was current here.
+    destroyed: bool,
+    /// One entry per level of the context's attribute stack (glPushAttrib):
+    /// the emulated draw/read selections the pushed bits cover.
+    pub(super) attribs: Vec<SavedSelections>,
+}
+
+/// The emulated buffer selections saved by one glPushAttrib: the draw
+/// selection with GL_COLOR_BUFFER_BIT, the read one with GL_PIXEL_MODE_BIT.
+pub(super) struct SavedSelections {
+    pub(super) draw: Option<(u64, DrawSelection)>,
+    pub(super) read: Option<(u64, ReadSelection)>,
+}
+
+impl CtxState {
+    /// Whether `fbo` is one of this context's emulated framebuffers.
+    pub(super) fn is_ours(&self, fbo: u32) -> bool {
+        fbo != 0 && self.fbs.values().any(|d| d.fb.app_fbo() == fbo)
+    }
+
+    /// Queues a GL error for glGetError (each code once, as GL's flags).
+    pub(super) fn push_error(&mut self, code: u32) {
+        if code != GL_NO_ERROR && !self.pending.contains(&code) {
+            self.pending.push(code);
+        }
+    }
+
+    /// Moves the driver's pending errors into the queue, so the layer's own
+    /// GL calls in the program's context neither lose nor fake any.
+    pub(super) fn save_driver_errors(&mut self, gl: &Gl) {
+        for _ in 0..16 {
+            // SAFETY: the program's context is current (callers).
+            let e = unsafe { gl.GetError() };
+            if e == GL_NO_ERROR {
+                break;
+            }
+            self.push_error(e);
+        }
+    }
+}
+
+/// A stereo context of the program.
+pub struct StereoContext {
+    display: usize,
+    ctx: usize,
+    ours: usize,
+    shape: FramebufferShape,
+    formats: BufferFormats,
+    state: Mutex<CtxState>,
+}
+
+/// The stereo context current on this thread and its drawables.
+#[derive(Clone)]
+pub struct Current {
+    /// The context.
+    pub sc: Arc<StereoContext>,
+    /// Its `Display*`.
+    pub display: usize,
+    /// The draw drawable.
+    pub draw: u64,
+    /// The read drawable.
+    pub read: u64,
+}
+
+thread_local! {
+    /// The stereo context current on this thread: a leaked `Box<Current>`,
+    /// NULL for a mono context or none. A plain pointer has no destructor,
+    /// so the slot stays usable while the process exits: programs call GLX
+    /// from `atexit` handlers (freeglut destroys its windows there), which
+    /// run after thread-local destructors.
+    static CURRENT: Cell<*mut Current> = const { Cell::new(std::ptr::null_mut()) };
+}
+
+/// Whether a stereo context is current on this thread (the fast test every
+/// interposed GL call makes first).
+pub fn stereo_current() -> bool {
+    CURRENT.with(|c| !c.get().is_null())
+}
+
+/// The stereo context current on this thread.
+pub fn current() -> Option<Current> {
+    CURRENT.with(|c| {
+        let p = c.get();
+        // SAFETY: NULL or a Box this thread leaked in set_current and still owns.
+        (!p.is_null()).then(|| unsafe { (*p).clone() })
+    })
+}
+
+/// Records what is current on this thread now.
+pub fn set_current(new: Option<Current>) {
+    let me = std::thread::current().id();
+    let fresh = new
+        .clone()
+        .map_or(std::ptr::null_mut(), |n| Box::into_raw(Box::new(n)));
+    let old = CURRENT.with(|c| c.replace(fresh));
+    // SAFETY: NULL or the Box set_current leaked before; reclaimed once.
+    let old = (!old.is_null()).then(|| *unsafe { Box::from_raw(old) });
+    if let Some(old) = old {
+        let still = new.as_ref().is_some_and(|n| Arc::ptr_eq(&n.sc, &old.sc));
+        if !still {
+            let destroyed = {
+                let mut st = old.sc.lock();
+                if st.owner == Some(me) {
+                    st.owner = None;
+                }
+                st.destroyed
+            };
+            if destroyed {
+                // Deferred from glXDestroyContext: no longer current anywhere.
+                old.sc.destroy_ours();
+            }
+        }
+    }
+    if let Some(n) = new {
+        n.sc.lock().owner = Some(me);
+    }
+}
+
+/// What was current on this thread, as the real GLX says, to put back.
+struct Saved {
+    display: *mut xlib::Display,
+    draw: u64,
+    read: u64,
+    ctx: GLXContext,
+}
+
+impl Saved {
+    fn now(r: &Real) -> Saved {
+        // SAFETY: plain getters of the calling thread's GLX state.
+        unsafe {
+            Saved {
+                display: (r.glx.glXGetCurrentDisplay)(),
+                draw: (r.glx.glXGetCurrentDrawable)(),
+                read: (r.glx.glXGetCurrentReadDrawable)(),
+                ctx: (r.glx.glXGetCurrentContext)(),
+            }
+        }
+    }
+
+    fn restore(&self, r: &Real, fallback_display: usize) {
+        // SAFETY: the state that was current a moment ago (or none).
+        unsafe {
+            if self.ctx.is_null() {
+                (r.glx.glXMakeContextCurrent)(
+                    fallback_display as *mut xlib::Display,
+                    0,
+                    0,
+                    std::ptr::null_mut(),
+                );
+            } else {
+                (r.glx.glXMakeContextCurrent)(self.display, self.draw, self.read, self.ctx);
+            }
+        }
+    }
+}
+
+/// The size of a drawable: XGetGeometry of its X drawable (the window
+/// behind a GLX window), else glXQueryDrawable (pbuffers). X errors of
+/// these requests are trapped, never reach the program. Takes the
+/// registry's lock: never call it with a context's state locked.
+pub(super) fn drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(u32, u32)> {
+    let dpy = display as *mut xlib::Display;
+    let x = registry::with(|reg| reg.x_drawable(display, drawable));
+    let (geometry, err) = trap_x_errors(&r.xlib, dpy, || {
+        let (mut root, mut px, mut py) = (0, 0, 0);
+        let (mut w, mut h, mut border, mut depth) = (0u32, 0u32, 0u32, 0u32);
+        // SAFETY: valid display and out-pointers; a bad drawable is an X
+        // error, trapped.
+        let ok = unsafe {
+            (r.xlib.XGetGeometry)(
+                dpy,
+                x,
+                &mut root,
+                &mut px,
+                &mut py,
+                &mut w,
+                &mut h,
+                &mut border,
+                &mut depth,
+            )
+        };
+        (ok != 0).then_some((w, h))
+    });
+    if let (Some((w, h)), 0) = (geometry, err) {
+        if w > 0 && h > 0 {
+            return Ok((w, h));
+        }
+    }
+    let ((w, h), err) = trap_x_errors(&r.xlib, dpy, || {
+        let (mut w, mut h) = (0u32, 0u32);
+        // SAFETY: valid display and out-pointers; errors trapped.
+        unsafe {
+            (r.glx.glXQueryDrawable)(dpy, drawable, GLX_WIDTH, &mut w);
+            (r.glx.glXQueryDrawable)(dpy, drawable, GLX_HEIGHT, &mut h);
+        }
+        (w, h)
+    });
+    if err == 0 && w > 0 && h > 0 {
+        Ok((w, h))
+    } else {
+        Err(Error::invalid_operation(format!(
+            "drawable {drawable:#x} has no size (X error {err}): it was destroyed?"
+        )))
+    }
+}
+
+impl StereoContext {
+    /// The stereo state of program context `ctx`, presented with the
+    /// layer's context `ours` (which shares its objects); its emulated
+    /// buffers have `shape` and `formats` (those of the program's visual).
+    pub fn new(
+        display: usize,
+        ctx: usize,
+        ours: usize,
+        shape: FramebufferShape,
+        formats: BufferFormats,
+    ) -> Arc<StereoContext> {
+        Arc::new(StereoContext {
+            display,
+            ctx,
+            ours,
+            shape,
+            formats,
+            state: Mutex::new(CtxState {
+                fbs: HashMap::new(),
+                pending: Vec::new(),
+                compositor: GlCompositor::new(),
+                usable: None,
+                owner: None,
+                destroyed: false,
+                attribs: Vec::new(),
+            }),
+        })
+    }
+
+    /// The `Display*` it was made on.
+    pub fn display(&self) -> usize {
+        self.display
+    }
+
+    /// The program's `GLXContext`.
+    pub fn context(&self) -> usize {
+        self.ctx
+    }
+
+    /// The emulated framebuffer's shape.
+    pub fn shape(&self) -> FramebufferShape {
+        self.shape
+    }
+
+    pub(super) fn lock(&self) -> MutexGuard<'_, CtxState> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// When `drawable` was last bound to this context (None: never).
+    pub fn last_bound(&self, drawable: u64) -> Option<u64> {
+        self.lock().fbs.get(&drawable).map(|d| d.last_bound)
+    }
+
+    /// Whether the emulation is off for this context (GL < 3.0).
+    pub fn unusable(&self) -> bool {
+        self.lock().usable == Some(false)
+    }
+
+    /// Marks a context the program destroyed while it was current on the
+    /// calling thread: the layer's context goes when it is released.
+    pub fn mark_destroyed(&self) {
+        self.lock().destroyed = true;
+    }
+
+    /// Whether it is current on a thread other than the calling one.
+    pub fn current_elsewhere(&self) -> bool {
+        let me = std::thread::current().id();
+        self.lock().owner.is_some_and(|t| t != me)
+    }
+
+    /// Destroys the layer's context. The textures it made belong to the
+    /// program's share group and go with it.
+    pub fn destroy_ours(&self) {
+        if let Ok(r) = real() {
+            // SAFETY: our own context, current nowhere (it is only made
+            // current inside the layer's calls).
+            unsafe {
+                (r.glx.glXDestroyContext)(
+                    self.display as *mut xlib::Display,
+                    self.ours as GLXContext,
+                )
+            };
+        }
+    }
+
+    /// Makes the layer's context current on `drawable`.
+    fn make_ours_current(&self, r: &Real, drawable: u64) -> Result<()> {
+        // SAFETY: valid display; our context; a drawable the program uses.
+        let ok = unsafe {
+            (r.glx.glXMakeCurrent)(
+                self.display as *mut xlib::Display,
+                drawable,
+                self.ours as GLXContext,
+            )
+        };
+        if ok == 0 {
+            return Err(Error::Gl(format!(
+                "the layer's context could not be made current on drawable {drawable:#x}"
+            )));
+        }
+        Ok(())
+    }
+
+    /// After the real glXMake[Context]Current made this context current on
+    /// `draw` / `read`: makes sure each drawable has its emulated
+    /// framebuffer at the drawable's size, and binds it where the program
+    /// has framebuffer 0 (or had this context's framebuffer of another
+    /// drawable). The program's state is otherwise untouched; its pending
+    /// GL errors are kept for its glGetError.
+    pub fn bind(self: &Arc<Self>, draw: u64, read: u64) -> Result<()> {
+        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let gl = &r.gl;
+        // Sizes first: the registry lock is never taken under a state lock.
+        let mut wanted = vec![(draw, drawable_size(r, self.display, draw)?)];
+        if read != draw && read != 0 {
+            wanted.push((read, drawable_size(r, self.display, read)?));
+        }
+        let mut st = self.lock();
+        if st.usable.is_none() {
+            // SAFETY: the program's context is current.
+            let v = unsafe { crate::gl::current_version(gl) };
+            st.usable = Some(v.is_some_and(|v| v >= (3, 0)));
+        }
+        if st.usable == Some(false) {
+            return Err(Error::BackendUnavailable(
+                "the program's GL context is older than GL 3.0 (no framebuffer objects), \
+                 so its stereo buffers cannot be emulated"
+                    .into(),
+            ));
+        }
+        let stale: Vec<(u64, (u32, u32))> = wanted
+            .iter()
+            .copied()
+            .filter(|(d, size)| st.fbs.get(d).is_none_or(|x| x.fb.size() != *size))
+            .collect();
+        if !stale.is_empty() {
+            let saved = Saved::now(r);
+            self.make_ours_current(r, draw)?;
+            let made = self.allocate(gl, &mut st, &stale);
+            saved.restore(r, self.display);
+            made?;
+        }
+        // In the program's context: its framebuffer objects and bindings.
+        st.save_driver_errors(gl);
+        let tick = BIND_TICK.fetch_add(1, Ordering::Relaxed);
+        for (d, _) in &wanted {
+            let drawn = st.fbs.get_mut(d).expect("allocated above");
+            drawn.last_bound = tick;
+            if drawn.fb.app_fbo() == 0 {
+                // SAFETY: the program's context is current; it shares the
+                // textures made in ours.
+                unsafe { drawn.fb.create_app_fbo(gl)? };
+            }
+        }
+        let draw_fbo = st.fbs[&draw].fb.app_fbo();
+        let read_fbo = st.fbs.get(&read).map_or(draw_fbo, |d| d.fb.app_fbo());
+        // SAFETY: the program's context is current.
+        unsafe {
+            let bound_draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+            if bound_draw == 0 || st.is_ours(bound_draw) {
+                gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+            }
+            let bound_read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
+            if bound_read == 0 || st.is_ours(bound_read) {
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo);
+            }
+            gl.check("binding the emulated stereo framebuffer")
+        }
+    }
+
+    /// Allocates or resizes the framebuffers of `stale` drawables; the
+    /// layer's context is current.
+    fn allocate(&self, gl: &Gl, st: &mut CtxState, stale: &[(u64, (u32, u32))]) -> Result<()> {
+        for &(d, (w, h)) in stale {
+            match st.fbs.get_mut(&d) {
+                // SAFETY: the layer's context (sharing the textures) is current.
+                Some(drawn) => unsafe { drawn.fb.resize(gl, w, h)? },
+                None => {
+                    // SAFETY: the layer's context is current.
+                    let fb = unsafe {
+                        EmulatedFramebuffer::allocate_with(gl, self.shape, w, h, self.formats)?
+                    };
+                    st.fbs.insert(
+                        d,
+                        Drawn {
+                            fb,
+                            frames: 0,
+                            last_bound: 0,
+                            viewport_checked: false,
+                        },
+                    );
+                }
+            }
+        }
+        // The program's context uses the new storage next: make it complete.
+        // SAFETY: the layer's context is current.
+        unsafe { gl.Finish() };
+        Ok(())
+    }
+
+    /// glViewport in this context (current here on `cur`): the first call
+    /// of a frame with a size other than the buffers' checks whether the
+    /// window was resized, and if so resizes the buffers before the program
+    /// draws (as a real default framebuffer follows its window).
+    pub fn viewport_hint(self: &Arc<Self>, cur: &Current, width: i32, height: i32) -> Result<()> {
+        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let current_size = {
+            let mut st = self.lock();
+            let Some(drawn) = st.fbs.get_mut(&cur.draw) else {
+                return Ok(());
+            };
+            let asked = (width.max(0) as u32, height.max(0) as u32);
+            if drawn.viewport_checked || drawn.fb.size() == asked {
+                return Ok(());
+            }
+            drawn.viewport_checked = true;
+            drawn.fb.size()
+        };
+        if drawable_size(r, self.display, cur.draw)? == current_size {
+            return Ok(());
+        }
+        self.bind(cur.draw, cur.read)
+    }
+
+    /// Presents `drawable`'s front buffers: with `flip`, first its back
+    /// buffers become the front ones (glXSwapBuffers); without, the fronts
+    /// as they are (glFlush/glFinish after drawing to a front buffer).
+    /// The eyes are composed in the output mode into the drawable's real
+    /// back buffer in the layer's context, which swaps it; then what was
+    /// current before is made current again. `cur` is this thread's
+    /// current stereo context when it is this one.
+    pub fn present(self: &Arc<Self>, drawable: u64, flip: bool, here: bool) -> Result<()> {
+        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let gl = &r.gl;
+        let saved = Saved::now(r);
+        let dpy = self.display as *mut xlib::Display;
+        if !here {
+            // Not current on this thread (and not on another: checked by the
+            // caller): bind it here for the flip.
+            // SAFETY: valid display and drawable; the program's context.
+            let ok = unsafe {
+                (r.glx.glXMakeContextCurrent)(dpy, drawable, drawable, self.ctx as GLXContext)
+            };
+            if ok == 0 {
+                return Err(Error::Gl(
+                    "the drawable's stereo context could not be made current".into(),
+                ));
+            }
+        }
+        let window = match drawable_size(r, self.display, drawable) {
+            Ok(size) => size,
+            Err(e) => {
+                saved.restore(r, self.display);
+                return Err(e);
+            }
+        };
+        let mut st = self.lock();
+        let Some(drawn) = st.fbs.get_mut(&drawable) else {
+            drop(st);
+            saved.restore(r, self.display);
+            return Err(Error::invalid_operation(
+                "no stereo buffers for this drawable",
+            ));
+        };
+        // SAFETY: the program's context is current on this thread.
+        unsafe {
+            if flip {
+                drawn.fb.swap(gl);
+            }
+            // The layer's context reads what the program drew: finish it.
+            gl.Finish();
+        }
+        drawn.frames += 1;
+        drawn.viewport_checked = false;
+        let frame_index = drawn.frames - 1;
+        let result = self
+            .make_ours_current(r, drawable)
+            .and_then(|()| self.compose_and_swap(r, &mut st, drawable, window, frame_index));
+        drop(st);
+        saved.restore(r, self.display);
+        result
+    }
+
+    /// In the layer's context, current on `drawable` (of the given size):
+    /// composes, captures, swaps, and follows a resized window.
+    fn compose_and_swap(
+        &self,
+        r: &Real,
+        st: &mut CtxState,
+        drawable: u64,
+        (width, height): (u32, u32),
+        frame_index: u64,
+    ) -> Result<()> {
+        let gl = &r.gl;
+        let s = settings::get();
+        let mode = s.window_mode();
+        let CtxState {
+            fbs, compositor, ..
+        } = st;
+        let drawn = fbs.get_mut(&drawable).expect("checked by present");
+        let job = Job::front_buffers(
+            &drawn.fb,
+            InputFraming::QuadBuffer,
+            mode,
+            s.options,
+            frame_index,
+        );
+        // SAFETY: the layer's context is current on the drawable; the job's
+        // textures are shared with it.
+        let composed = unsafe { compositor.compose_window(gl, &job, 0, width, height) };
+        // Read the eyes back before the swap: with Mesa's software GLX,
+        // binding framebuffer 0 after a swap (as reading back ends by doing)
+        // fixes the window's size until the next swap, so a resize that
+        // follows would be missed for a frame.
+        if let Some(sink) = capture::sink() {
+            let (w, h) = drawn.fb.size();
+            let mut left = Image::new(w, h);
+            let mut right = Image::new(w, h);
+            // SAFETY: the layer's context is current; the images hold w×h×4 bytes.
+            unsafe {
+                drawn
+                    .fb
+                    .read_pixels(gl, ColorBuffer::FrontLeft, left.pixels_mut())?;
+                drawn
+                    .fb
+                    .read_pixels(gl, ColorBuffer::FrontRight, right.pixels_mut())?;
+            }
+            sink.submit(capture::Frame {
+                left,
+                right,
+                mode,
+                options: s.options,
+                frame_index,
+            });
+        }
+        // SAFETY: valid display and drawable, current in our context.
+        unsafe {
+            if self.shape.double_buffered {
+                (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable);
+            } else {
+                // A single-buffered window was drawn in its front buffer.
+                gl.Finish();
+            }
+            // The frame is on the server when presenting returns: Mesa's
+            // software swap sends the image in several requests without
+            // waiting, and another client (a screenshot, a compositor)
+            // could otherwise see it half drawn. One round trip.
+            (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False);
+        }
+        if drawn.fb.size() != (width, height) {
+            // SAFETY: the layer's context is current.
+            unsafe {
+                drawn.fb.resize(gl, width, height)?;
+                gl.Finish();
+            }
+        }
+        composed
+    }
+}

@@ -1,0 +1,599 @@
+//! The GL entry points a stereo program touches, as the layer answers them
+//! while one of its stereo contexts is current on the calling thread.
+//! With no stereo context current (a mono program, or a mono context of a
+//! stereo one) each goes straight to the driver after one thread-local test.
+//!
+//! The rules (GL 4.5 compatibility, default framebuffer; the emulation
+//! follows [`crate::stereo::buffers`]):
+//! - glDrawBuffer / glDrawBuffers / glReadBuffer select emulated buffers
+//!   while framebuffer 0 is bound; a bad value raises the GL error GL
+//!   would (queued for glGetError) and changes nothing. With the program's
+//!   own framebuffer object bound they go to the driver unchanged.
+//! - glGetError reports the emulation's errors first, then the driver's.
+//! - glGetIntegerv / Booleanv / Floatv / Doublev answer GL_STEREO (true),
+//!   GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i), GL_READ_BUFFER and the draw/read
+//!   framebuffer bindings (0 for the emulated framebuffer) as a stereo
+//!   visual would; GL_RED/GREEN/BLUE/ALPHA/DEPTH/STENCIL_BITS, GL_SAMPLES
+//!   and GL_SAMPLE_BUFFERS come from the window's real framebuffer (the
+//!   visual the program chose), as does glGetFramebufferAttachmentParameteriv
+//!   on framebuffer 0 (right buffers answer as their left twins; a buffer
+//!   the shape lacks has type GL_NONE).
+//! - glBindFramebuffer(target, 0) binds the emulated framebuffer;
+//!   glDeleteFramebuffers never deletes it, and when it deletes the
+//!   program's bound framebuffer the binding reverts to the emulated one,
+//!   as it would revert to framebuffer 0.
+//! - glPushAttrib / glPopAttrib save and restore the emulated draw buffer
+//!   (GL_COLOR_BUFFER_BIT) and read buffer (GL_PIXEL_MODE_BIT), as they do
+//!   a real default framebuffer's;
+//! - glViewport notices a resized window before the program draws into it;
+//!   glFlush / glFinish show the front buffers when the program draws to
+//!   them (single-buffered visuals, or glDrawBuffer(GL_FRONT…)).
+
+use super::context::{Current, current, stereo_current};
+use super::real::{Real, real};
+use crate::gl::Gl;
+use crate::gl::enums::*;
+use crate::stereo::buffers::{ColorBuffer, gl_error_code};
+use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
+
+/// GL_DEPTH and GL_STENCIL, the default framebuffer's attachment names.
+const GL_DEPTH: u32 = 0x1801;
+const GL_STENCIL: u32 = 0x1802;
+const GL_SAMPLE_BUFFERS: u32 = 0x80A8;
+const GL_SAMPLES: u32 = 0x80A9;
+const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE: u32 = 0x8CD0;
+const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME: u32 = 0x8CD1;
+/// glPushAttrib bits that cover the draw buffer and the read buffer.
+const GL_COLOR_BUFFER_BIT_ATTRIB: u32 = 0x4000;
+const GL_PIXEL_MODE_BIT: u32 = 0x0020;
+const GL_ATTRIB_STACK_DEPTH: u32 = 0x0BB0;
+
+fn real_or_none() -> Option<&'static Real> {
+    match real() {
+        Ok(r) => Some(r),
+        Err(e) => {
+            super::warn(e);
+            None
+        }
+    }
+}
+
+/// The emulated framebuffer of `drawable`, when it is what `binding` has bound.
+fn bound<'a>(
+    gl: &Gl,
+    fbs: &'a mut std::collections::HashMap<u64, super::context::Drawn>,
+    drawable: u64,
+    binding: u32,
+) -> Option<&'a mut EmulatedFramebuffer> {
+    // SAFETY: the program's context is current (callers).
+    let name = unsafe { gl.integer(binding) } as u32;
+    fbs.get_mut(&drawable)
+        .map(|d| &mut d.fb)
+        .filter(|fb| name != 0 && fb.app_fbo() == name)
+}
+
+fn read_drawable(cur: &Current) -> u64 {
+    if cur.read == 0 { cur.draw } else { cur.read }
+}
+
+/// Runs `f` on the emulated framebuffer the program has bound at
+/// `binding` (of `drawable`), queueing its GL error; false when the
+/// program has its own framebuffer bound (the driver handles the call).
+fn on_emulated(
+    cur: &Current,
+    gl: &Gl,
+    binding: u32,
+    drawable: u64,
+    f: impl FnOnce(&mut EmulatedFramebuffer, &Gl) -> crate::Result<()>,
+) -> bool {
+    let mut st = cur.sc.lock();
+    let Some(fb) = bound(gl, &mut st.fbs, drawable, binding) else {
+        return false;
+    };
+    if let Err(e) = f(fb, gl) {
+        st.push_error(gl_error_code(&e));
+    }
+    true
+}
+
+/// glDrawBuffer.
+pub fn draw_buffer(buf: u32) {
+    let Some(r) = real_or_none() else { return };
+    if let Some(cur) = current() {
+        let draw = cur.draw;
+        if on_emulated(&cur, &r.gl, GL_DRAW_FRAMEBUFFER_BINDING, draw, |fb, gl| {
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_draw_buffer(gl, buf) }
+        }) {
+            return;
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { r.gl.DrawBuffer(buf) }
+}
+
+/// glDrawBuffers (and glDrawBuffersARB when `arb`).
+///
+/// # Safety
+/// `bufs` must hold `n` values (GL's contract).
+pub unsafe fn draw_buffers(n: i32, bufs: *const u32, arb: bool) {
+    let Some(r) = real_or_none() else { return };
+    if let Some(cur) = current() {
+        let draw = cur.draw;
+        let handled = on_emulated(&cur, &r.gl, GL_DRAW_FRAMEBUFFER_BINDING, draw, |fb, gl| {
+            if n < 0 || (n > 0 && bufs.is_null()) {
+                return Err(crate::Error::invalid_value(
+                    "glDrawBuffers: n is negative (GL_INVALID_VALUE)",
+                ));
+            }
+            let names = if n == 0 {
+                &[][..]
+            } else {
+                // SAFETY: GL's contract: `bufs` holds n values.
+                unsafe { std::slice::from_raw_parts(bufs, n as usize) }
+            };
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_draw_buffers(gl, names) }
+        });
+        if handled {
+            return;
+        }
+    }
+    match (arb, r.extra.draw_buffers_arb) {
+        // SAFETY: forwarded call.
+        (true, Some(f)) => unsafe { f(n, bufs) },
+        // SAFETY: forwarded call.
+        _ => unsafe { r.gl.DrawBuffers(n, bufs) },
+    }
+}
+
+/// glReadBuffer.
+pub fn read_buffer(src: u32) {
+    let Some(r) = real_or_none() else { return };
+    if let Some(cur) = current() {
+        let read = read_drawable(&cur);
+        if on_emulated(&cur, &r.gl, GL_READ_FRAMEBUFFER_BINDING, read, |fb, gl| {
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_read_buffer(gl, src) }
+        }) {
+            return;
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { r.gl.ReadBuffer(src) }
+}
+
+/// glGetError.
+pub fn get_error() -> u32 {
+    let Some(r) = real_or_none() else {
+        return GL_NO_ERROR;
+    };
+    if let Some(cur) = current() {
+        let mut st = cur.sc.lock();
+        if !st.pending.is_empty() {
+            return st.pending.remove(0);
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { r.gl.GetError() }
+}
+
+/// Whether the layer may answer `pname` for the default framebuffer.
+fn answered(pname: u32) -> bool {
+    matches!(
+        pname,
+        GL_STEREO
+            | GL_DOUBLEBUFFER
+            | GL_DRAW_BUFFER
+            | GL_READ_BUFFER
+            | GL_DRAW_FRAMEBUFFER_BINDING
+            | GL_READ_FRAMEBUFFER_BINDING
+            | GL_RED_BITS
+            | GL_GREEN_BITS
+            | GL_BLUE_BITS
+            | GL_ALPHA_BITS
+            | GL_DEPTH_BITS
+            | GL_STENCIL_BITS
+            | GL_SAMPLES
+            | GL_SAMPLE_BUFFERS
+    ) || (GL_DRAW_BUFFER0..=GL_DRAW_BUFFER15).contains(&pname)
+}
+
+/// Whether `pname` describes the draw framebuffer's buffers, which the
+/// window's real framebuffer answers.
+fn from_window(pname: u32) -> bool {
+    matches!(
+        pname,
+        GL_RED_BITS
+            | GL_GREEN_BITS
+            | GL_BLUE_BITS
+            | GL_ALPHA_BITS
+            | GL_DEPTH_BITS
+            | GL_STENCIL_BITS
+            | GL_SAMPLES
+            | GL_SAMPLE_BUFFERS
+    )
+}
+
+/// Runs `f` with the window's real framebuffer bound for drawing and
+/// reading, then puts the program's bindings back.
+fn with_window_framebuffer<T>(gl: &Gl, f: impl FnOnce() -> T) -> T {
+    // SAFETY: the program's context is current (callers).
+    unsafe {
+        let draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+        let read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        let v = f();
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, draw);
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, read);
+        v
+    }
+}
+
+/// The layer's answer for `pname`, or None where the driver's stands.
+fn emulated_value(gl: &Gl, pname: u32) -> Option<i32> {
+    if !answered(pname) {
+        return None;
+    }
+    let cur = current()?;
+    let read_d = read_drawable(&cur);
+    let st = cur.sc.lock();
+    // SAFETY: the program's context is current.
+    let (draw_name, read_name) = unsafe {
+        (
+            gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32,
+            gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32,
+        )
+    };
+    let fb_of = |d: u64, name: u32| {
+        st.fbs
+            .get(&d)
+            .map(|x| &x.fb)
+            .filter(|fb| name != 0 && fb.app_fbo() == name)
+    };
+    let draw = fb_of(cur.draw, draw_name);
+    let read = fb_of(read_d, read_name);
+    if from_window(pname) {
+        draw?;
+        // SAFETY: the program's context is current; one value written.
+        let v = with_window_framebuffer(gl, || unsafe { gl.integer(pname) });
+        return Some(v);
+    }
+    default_framebuffer_query(pname, cur.sc.shape(), draw, read)
+}
+
+/// glGetIntegerv.
+///
+/// # Safety
+/// `data` must be valid for the values `pname` returns (GL's contract).
+pub unsafe fn get_integerv(pname: u32, data: *mut i32) {
+    let Some(r) = real_or_none() else { return };
+    // SAFETY: forwarded call.
+    unsafe { r.gl.GetIntegerv(pname, data) };
+    if data.is_null() || !answered(pname) || !stereo_current() {
+        return;
+    }
+    if let Some(v) = emulated_value(&r.gl, pname) {
+        // SAFETY: non-NULL; every answered pname returns one value.
+        unsafe { *data = v };
+    }
+}
+
+/// glGetBooleanv.
+///
+/// # Safety
+/// As [`get_integerv`].
+pub unsafe fn get_booleanv(pname: u32, data: *mut u8) {
+    let Some(r) = real_or_none() else { return };
+    // SAFETY: forwarded call.
+    unsafe { r.gl.GetBooleanv(pname, data) };
+    if data.is_null() || !answered(pname) || !stereo_current() {
+        return;
+    }
+    if let Some(v) = emulated_value(&r.gl, pname) {
+        // SAFETY: non-NULL; one value.
+        unsafe { *data = (v != 0) as u8 };
+    }
+}
+
+/// glGetFloatv.
+///
+/// # Safety
+/// As [`get_integerv`].
+pub unsafe fn get_floatv(pname: u32, data: *mut f32) {
+    let Some(r) = real_or_none() else { return };
+    // SAFETY: forwarded call.
+    unsafe { r.gl.GetFloatv(pname, data) };
+    if data.is_null() || !answered(pname) || !stereo_current() {
+        return;
+    }
+    if let Some(v) = emulated_value(&r.gl, pname) {
+        // SAFETY: non-NULL; one value.
+        unsafe { *data = v as f32 };
+    }
+}
+
+/// glGetDoublev.
+///
+/// # Safety
+/// As [`get_integerv`].
+pub unsafe fn get_doublev(pname: u32, data: *mut f64) {
+    let Some(r) = real_or_none() else { return };
+    // SAFETY: forwarded call.
+    unsafe { r.gl.GetDoublev(pname, data) };
+    if data.is_null() || !answered(pname) || !stereo_current() {
+        return;
+    }
+    if let Some(v) = emulated_value(&r.gl, pname) {
+        // SAFETY: non-NULL; one value.
+        unsafe { *data = v as f64 };
+    }
+}
+
+/// Binds the emulated framebuffer(s) at `target` in place of framebuffer
+/// 0; false for a target GL does not know (the driver raises its error).
+fn bind_emulated(cur: &Current, gl: &Gl, target: u32) -> bool {
+    let st = cur.sc.lock();
+    let Some(draw) = st.fbs.get(&cur.draw).map(|d| d.fb.app_fbo()) else {
+        return false;
+    };
+    let read = st
+        .fbs
+        .get(&read_drawable(cur))
+        .map_or(draw, |d| d.fb.app_fbo());
+    // SAFETY: the program's context is current.
+    unsafe {
+        match target {
+            GL_FRAMEBUFFER if draw == read => gl.BindFramebuffer(GL_FRAMEBUFFER, draw),
+            GL_FRAMEBUFFER => {
+                gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, draw);
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, read);
+            }
+            GL_DRAW_FRAMEBUFFER => gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, draw),
+            GL_READ_FRAMEBUFFER => gl.BindFramebuffer(GL_READ_FRAMEBUFFER, read),
+            _ => return false,
+        }
+    }
+    true
+}
+
+/// glBindFramebuffer (glBindFramebufferEXT when `ext`).
+pub fn bind_framebuffer(target: u32, framebuffer: u32, ext: bool) {
+    let Some(r) = real_or_none() else { return };
+    if framebuffer == 0 {
+        if let Some(cur) = current() {
+            if bind_emulated(&cur, &r.gl, target) {
+                return;
+            }
+        }
+    }
+    match (ext, r.extra.bind_framebuffer_ext) {
+        // SAFETY: forwarded call.
+        (true, Some(f)) => unsafe { f(target, framebuffer) },
+        // SAFETY: forwarded call.
+        _ => unsafe { r.gl.BindFramebuffer(target, framebuffer) },
+    }
+}
+
+/// glDeleteFramebuffers (glDeleteFramebuffersEXT when `ext`).
+///
+/// # Safety
+/// `names` must hold `n` values (GL's contract).
+pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) {
+    let Some(r) = real_or_none() else { return };
+    let forward = |n: i32, p: *const u32| match (ext, r.extra.delete_framebuffers_ext) {
+        // SAFETY: forwarded call.
+        (true, Some(f)) => unsafe { f(n, p) },
+        // SAFETY: forwarded call.
+        _ => unsafe { r.gl.DeleteFramebuffers(n, p) },
+    };
+    let cur = match current() {
+        Some(c) if n > 0 && !names.is_null() => c,
+        _ => return forward(n, names),
+    };
+    // SAFETY: GL's contract: `names` holds n values.
+    let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
+    let kept: Vec<u32> = {
+        let st = cur.sc.lock();
+        list.iter().copied().filter(|&f| !st.is_ours(f)).collect()
+    };
+    forward(kept.len() as i32, kept.as_ptr());
+    // Deleting the bound framebuffer reverts the binding to framebuffer 0,
+    // which is the emulated one.
+    let gl = &r.gl;
+    // SAFETY: the program's context is current.
+    let (draw, read) = unsafe {
+        (
+            gl.integer(GL_DRAW_FRAMEBUFFER_BINDING),
+            gl.integer(GL_READ_FRAMEBUFFER_BINDING),
+        )
+    };
+    if draw == 0 {
+        bind_emulated(&cur, gl, GL_DRAW_FRAMEBUFFER);
+    }
+    if read == 0 {
+        bind_emulated(&cur, gl, GL_READ_FRAMEBUFFER);
+    }
+}
+
+/// glGetFramebufferAttachmentParameteriv (…EXT when `ext`).
+///
+/// # Safety
+/// `params` must be valid for one value (GL's contract).
+pub unsafe fn get_framebuffer_attachment_parameteriv(
+    target: u32,
+    attachment: u32,
+    pname: u32,
+    params: *mut i32,
+    ext: bool,
+) {
+    let Some(r) = real_or_none() else { return };
+    let gl = &r.gl;
+    let forward = |attachment: u32| match (ext, r.extra.get_attachment_ext) {
+        // SAFETY: forwarded call.
+        (true, Some(f)) => unsafe { f(target, attachment, pname, params) },
+        // SAFETY: forwarded call.
+        _ => unsafe { gl.GetFramebufferAttachmentParameteriv(target, attachment, pname, params) },
+    };
+    let Some(cur) = current() else {
+        return forward(attachment);
+    };
+    let (binding, drawable) = match target {
+        GL_FRAMEBUFFER | GL_DRAW_FRAMEBUFFER => (GL_DRAW_FRAMEBUFFER_BINDING, cur.draw),
+        GL_READ_FRAMEBUFFER => (GL_READ_FRAMEBUFFER_BINDING, read_drawable(&cur)),
+        _ => return forward(attachment),
+    };
+    let mut st = cur.sc.lock();
+    if bound(gl, &mut st.fbs, drawable, binding).is_none() {
+        drop(st);
+        return forward(attachment);
+    }
+    let color = match attachment {
+        GL_FRONT_LEFT | GL_FRONT => Some(ColorBuffer::FrontLeft),
+        GL_BACK_LEFT | GL_BACK => Some(ColorBuffer::BackLeft),
+        GL_FRONT_RIGHT => Some(ColorBuffer::FrontRight),
+        GL_BACK_RIGHT => Some(ColorBuffer::BackRight),
+        GL_DEPTH | GL_STENCIL => None,
+        _ => {
+            st.push_error(GL_INVALID_ENUM);
+            return;
+        }
+    };
+    match color {
+        Some(b) if !cur.sc.shape().allocated().contains(b) => match pname {
+            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE => {
+                if !params.is_null() {
+                    // SAFETY: non-NULL, one value (GL's contract).
+                    unsafe { *params = GL_NONE as i32 };
+                }
+            }
+            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => st.push_error(GL_INVALID_ENUM),
+            _ => st.push_error(GL_INVALID_OPERATION),
+        },
+        _ => {
+            // The window's own buffer answers: the right buffers as their
+            // left twins (same format), depth and stencil as they are.
+            let twin = match color {
+                Some(ColorBuffer::FrontRight) => GL_FRONT_LEFT,
+                Some(ColorBuffer::BackRight) => GL_BACK_LEFT,
+                _ => attachment,
+            };
+            drop(st);
+            with_window_framebuffer(gl, || forward(twin));
+        }
+    }
+}
+
+/// glViewport: before forwarding it, a size other than the buffers' makes
+/// the layer check (once a frame) whether the window was resized.
+pub fn viewport(x: i32, y: i32, width: i32, height: i32) {
+    let Some(r) = real_or_none() else { return };
+    if let Some(cur) = current() {
+        if let Err(e) = cur.sc.viewport_hint(&cur, width, height) {
+            super::warn(&format!("following a resized window: {e}"));
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { r.gl.Viewport(x, y, width, height) }
+}
+
+/// glFlush (`finish` false) or glFinish: forwarded; then, when the program
+/// draws to a front buffer of the emulated framebuffer, the fronts are shown.
+pub fn flush(finish: bool) {
+    let Some(r) = real_or_none() else { return };
+    // SAFETY: forwarded calls.
+    unsafe { if finish { r.gl.Finish() } else { r.gl.Flush() } }
+    let Some(cur) = current() else { return };
+    let fronts = {
+        let mut st = cur.sc.lock();
+        bound(&r.gl, &mut st.fbs, cur.draw, GL_DRAW_FRAMEBUFFER_BINDING).is_some_and(|fb| {
+            let set = fb.draw_set();
+            !fb.shape().double_buffered
+                || set.contains(ColorBuffer::FrontLeft)
+                || set.contains(ColorBuffer::FrontRight)
+        })
+    };
+    if fronts {
+        if let Err(e) = cur.sc.present(cur.draw, false, true) {
+            super::warn(&format!("showing the front buffers: {e}"));
+        }
+    }
+}
+
+/// glPushAttrib.
+pub fn push_attrib(mask: u32) {
+    let Some(r) = real_or_none() else { return };
+    let Some(push) = r.extra.push_attrib else {
+        return;
+    };
+    let Some(cur) = current() else {
+        // SAFETY: forwarded call.
+        return unsafe { push(mask) };
+    };
+    let gl = &r.gl;
+    // SAFETY: the program's context is current; forwarded call.
+    let pushed = unsafe {
+        let before = gl.integer(GL_ATTRIB_STACK_DEPTH);
+        push(mask);
+        gl.integer(GL_ATTRIB_STACK_DEPTH) == before + 1
+    };
+    if !pushed {
+        // Stack overflow (or a core context): GL pushed nothing.
+        return;
+    }
+    let read_d = read_drawable(&cur);
+    let mut st = cur.sc.lock();
+    let saved = super::context::SavedSelections {
+        draw: (mask & GL_COLOR_BUFFER_BIT_ATTRIB != 0)
+            .then(|| {
+                st.fbs
+                    .get(&cur.draw)
+                    .map(|d| (cur.draw, d.fb.draw_selection()))
+            })
+            .flatten(),
+        read: (mask & GL_PIXEL_MODE_BIT != 0)
+            .then(|| st.fbs.get(&read_d).map(|d| (read_d, d.fb.read_selection())))
+            .flatten(),
+    };
+    st.attribs.push(saved);
+}
+
+/// glPopAttrib: GL restores its own state; the emulated selections the
+/// matching push saved are put back when the emulated framebuffer is the
+/// one bound.
+pub fn pop_attrib() {
+    let Some(r) = real_or_none() else { return };
+    let Some(pop) = r.extra.pop_attrib else {
+        return;
+    };
+    let Some(cur) = current() else {
+        // SAFETY: forwarded call.
+        return unsafe { pop() };
+    };
+    let gl = &r.gl;
+    // SAFETY: the program's context is current; forwarded call.
+    let popped = unsafe {
+        let before = gl.integer(GL_ATTRIB_STACK_DEPTH);
+        pop();
+        gl.integer(GL_ATTRIB_STACK_DEPTH) + 1 == before
+    };
+    if !popped {
+        return;
+    }
+    let mut st = cur.sc.lock();
+    let Some(saved) = st.attribs.pop() else {
+        return;
+    };
+    if let Some((d, sel)) = saved.draw {
+        if let Some(fb) = bound(gl, &mut st.fbs, d, GL_DRAW_FRAMEBUFFER_BINDING) {
+            // SAFETY: the program's context is current.
+            unsafe { fb.restore_draw_selection(gl, sel) };
+        }
+    }
+    if let Some((d, sel)) = saved.read {
+        if let Some(fb) = bound(gl, &mut st.fbs, d, GL_READ_FRAMEBUFFER_BINDING) {
+            // SAFETY: the program's context is current.
+            unsafe { fb.restore_read_selection(gl, sel) };
+        }
+    }
+}

@@ -1,0 +1,595 @@
+//! The GLX entry points, as the layer answers them: stereo requests get a
+//! (mono) visual or configuration of the server marked as stereo, contexts
+//! made from those are stereo contexts ([`StereoContext`]), making one
+//! current binds its emulated framebuffer, and glXSwapBuffers presents it.
+//! Everything else goes to the real GLX unchanged.
+//!
+//! With GLSTEREO_MODE=quad on a server that has real stereo visuals, stereo
+//! requests get those and the layer does nothing (the driver's own quad
+//! buffer).
+
+use std::ffi::{c_int, c_ulong};
+use std::sync::Arc;
+
+use x11_dl::glx::{GLXContext, GLXFBConfig};
+use x11_dl::xlib::{Display, XVisualInfo};
+
+use super::attribs::{
+    read_pair_list, read_visual_list, strip_fbconfig_stereo, strip_visual_stereo,
+};
+use super::context::{Current, StereoContext, current, set_current};
+use super::real::{Real, real};
+use super::registry;
+use super::settings;
+use crate::backend::glx::trap_x_errors;
+use crate::config::glx::{
+    GLX_ALPHA_SIZE, GLX_DEPTH_SIZE, GLX_DOUBLEBUFFER, GLX_STENCIL_SIZE, GLX_STEREO,
+};
+use crate::stereo::buffers::FramebufferShape;
+use crate::stereo::emulated::BufferFormats;
+
+const GLX_DRAWABLE_TYPE: c_int = 0x8010;
+const GLX_RENDER_TYPE: c_int = 0x8011;
+const GLX_WINDOW_BIT: c_int = 0x1;
+const GLX_RGBA_BIT: c_int = 0x1;
+const GLX_RGBA_TYPE: c_int = 0x8014;
+/// glXGetConfig / glXGetFBConfigAttrib success.
+const SUCCESS: c_int = 0;
+
+fn real_or_warn() -> Option<&'static Real> {
+    match real() {
+        Ok(r) => Some(r),
+        Err(e) => {
+            super::warn(e);
+            None
+        }
+    }
+}
+
+/// glXChooseVisual.
+///
+/// # Safety
+/// As glXChooseVisual: a valid display and a `None`-terminated list.
+pub unsafe fn choose_visual(
+    dpy: *mut Display,
+    screen: c_int,
+    attribs: *mut c_int,
+) -> *mut XVisualInfo {
+    let Some(r) = real_or_warn() else {
+        return std::ptr::null_mut();
+    };
+    // SAFETY: the caller's list, read by its structure.
+    let list = unsafe { read_visual_list(attribs) };
+    let (mut stripped, stereo) = strip_visual_stereo(&list);
+    if stereo && settings::get().wants_native_quad() {
+        // SAFETY: forwarded call.
+        let v = unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) };
+        if !v.is_null() {
+            return v;
+        }
+    }
+    let v = if stereo {
+        // SAFETY: a None-terminated list.
+        unsafe { (r.glx.glXChooseVisual)(dpy, screen, stripped.as_mut_ptr()) }
+    } else {
+        // SAFETY: forwarded call.
+        unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) }
+    };
+    if !v.is_null() {
+        // SAFETY: a visual the real GLX returned.
+        let id = unsafe { (*v).visualid };
+        registry::with(|reg| reg.mark_visual(v as usize, id, stereo));
+    }
+    v
+}
+
+/// glXGetConfig.
+///
+/// # Safety
+/// As glXGetConfig.
+pub unsafe fn get_config(
+    dpy: *mut Display,
+    vis: *mut XVisualInfo,
+    attrib: c_int,
+    value: *mut c_int,
+) -> c_int {
+    let Some(r) = real_or_warn() else { return 1 };
+    if attrib == GLX_STEREO && !vis.is_null() && !value.is_null() {
+        // SAFETY: a visual pointer of the program's.
+        let id = unsafe { (*vis).visualid };
+        if registry::with(|reg| reg.is_stereo_visual(vis as usize, id)) {
+            // SAFETY: non-NULL out-pointer.
+            unsafe { *value = 1 };
+            return SUCCESS;
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { (r.glx.glXGetConfig)(dpy, vis, attrib, value) }
+}
+
+/// Which entry point a configuration call came through.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Flavour {
+    /// GLX 1.3.
+    Glx13,
+    /// GLX_SGIX_fbconfig.
+    Sgix,
+}
+
+/// glXChooseFBConfig / glXChooseFBConfigSGIX.
+///
+/// # Safety
+/// As glXChooseFBConfig.
+pub unsafe fn choose_fbconfig(
+    dpy: *mut Display,
+    screen: c_int,
+    attribs: *const c_int,
+    nelements: *mut c_int,
+    flavour: Flavour,
+) -> *mut GLXFBConfig {
+    let Some(r) = real_or_warn() else {
+        return std::ptr::null_mut();
+    };
+    let choose = |list: *const c_int| match flavour {
+        // SAFETY: forwarded call.
+        Flavour::Glx13 => unsafe { (r.glx.glXChooseFBConfig)(dpy, screen, list, nelements) },
+        Flavour::Sgix => match r.extra.sgix.choose {
+            // SAFETY: forwarded call.
+            Some(f) => unsafe { f(dpy, screen, list, nelements) },
+            None => std::ptr::null_mut(),
+        },
+    };
+    // SAFETY: the caller's list of pairs.
+    let list = unsafe { read_pair_list(attribs) };
+    let (stripped, stereo) = strip_fbconfig_stereo(&list);
+    if !stereo {
+        return choose(attribs);
+    }
+    if settings::get().wants_native_quad() {
+        let native = choose(attribs);
+        // SAFETY: nelements was written by the real call when it returned a list.
+        if !native.is_null() && !nelements.is_null() && unsafe { *nelements } > 0 {
+            return native;
+        }
+    }
+    let configs = choose(stripped.as_ptr());
+    if configs.is_null() || nelements.is_null() {
+        return configs;
+    }
+    // SAFETY: the real call wrote the count of the list it returned.
+    let n = unsafe { *nelements }.max(0) as usize;
+    registry::with(|reg| {
+        for i in 0..n {
+            // SAFETY: i < n entries of the list, which the program frees with XFree.
+            unsafe {
+                let slot = configs.add(i);
+                *slot = reg.fake_config(dpy as usize, *slot as usize) as GLXFBConfig;
+            }
+        }
+    });
+    configs
+}
+
+/// glXGetFBConfigs: the server's configurations, followed by a stereo twin
+/// of each RGBA window configuration (so programs that pick from the whole
+/// list, as GLFW does, find stereo ones). The first entries are the real
+/// list, in its order.
+///
+/// # Safety
+/// As glXGetFBConfigs.
+pub unsafe fn get_fbconfigs(
+    dpy: *mut Display,
+    screen: c_int,
+    nelements: *mut c_int,
+) -> *mut GLXFBConfig {
+    let Some(r) = real_or_warn() else {
+        return std::ptr::null_mut();
+    };
+    // SAFETY: forwarded call.
+    let configs = unsafe { (r.glx.glXGetFBConfigs)(dpy, screen, nelements) };
+    if configs.is_null() || nelements.is_null() {
+        return configs;
+    }
+    // SAFETY: the count of the list the real call returned.
+    let n = unsafe { *nelements }.max(0) as usize;
+    // SAFETY: n entries.
+    let reals: Vec<GLXFBConfig> = unsafe { std::slice::from_raw_parts(configs, n) }.to_vec();
+    let attr = |c: GLXFBConfig, a: c_int| {
+        let mut v = 0;
+        // SAFETY: a real configuration of this display.
+        unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
+        v
+    };
+    let twins: Vec<GLXFBConfig> = registry::with(|reg| {
+        reals
+            .iter()
+            .filter(|&&c| {
+                attr(c, GLX_RENDER_TYPE) & GLX_RGBA_BIT != 0
+                    && attr(c, GLX_DRAWABLE_TYPE) & GLX_WINDOW_BIT != 0
+                    && attr(c, GLX_STEREO) == 0
+            })
+            .map(|&c| reg.fake_config(dpy as usize, c as usize) as GLXFBConfig)
+            .collect()
+    });
+    let total = n + twins.len();
+    // SAFETY: a list the program frees with XFree (libX11's XFree is free()).
+    let list =
+        unsafe { libc::malloc(total * std::mem::size_of::<GLXFBConfig>()) } as *mut GLXFBConfig;
+    if list.is_null() {
+        return configs;
+    }
+    // SAFETY: `list` holds `total` entries; `configs` came from Xlib.
+    unsafe {
+        std::ptr::copy_nonoverlapping(reals.as_ptr(), list, n);
+        std::ptr::copy_nonoverlapping(twins.as_ptr(), list.add(n), twins.len());
+        (r.xlib.XFree)(configs.cast());
+        *nelements = total as c_int;
+    }
+    list
+}
+
+/// glXGetFBConfigAttrib / glXGetFBConfigAttribSGIX.
+///
+/// # Safety
+/// As glXGetFBConfigAttrib.
+pub unsafe fn get_fbconfig_attrib(
+    dpy: *mut Display,
+    config: GLXFBConfig,
+    attrib: c_int,
+    value: *mut c_int,
+    flavour: Flavour,
+) -> c_int {
+    let Some(r) = real_or_warn() else { return 1 };
+    let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
+    if stereo && attrib == GLX_STEREO && !value.is_null() {
+        // SAFETY: non-NULL out-pointer.
+        unsafe { *value = 1 };
+        return SUCCESS;
+    }
+    let c = real_config as GLXFBConfig;
+    match (flavour, r.extra.sgix.get_attrib) {
+        // SAFETY: forwarded call.
+        (Flavour::Sgix, Some(f)) => unsafe { f(dpy, c, attrib, value) },
+        // SAFETY: forwarded call.
+        _ => unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, attrib, value) },
+    }
+}
+
+/// glXGetVisualFromFBConfig / glXGetVisualFromFBConfigSGIX.
+///
+/// # Safety
+/// As glXGetVisualFromFBConfig.
+pub unsafe fn get_visual_from_fbconfig(
+    dpy: *mut Display,
+    config: GLXFBConfig,
+    flavour: Flavour,
+) -> *mut XVisualInfo {
+    let Some(r) = real_or_warn() else {
+        return std::ptr::null_mut();
+    };
+    let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
+    let c = real_config as GLXFBConfig;
+    let v = match (flavour, r.extra.sgix.get_visual) {
+        // SAFETY: forwarded call.
+        (Flavour::Sgix, Some(f)) => unsafe { f(dpy, c) },
+        // SAFETY: forwarded call.
+        _ => unsafe { (r.glx.glXGetVisualFromFBConfig)(dpy, c) },
+    };
+    if !v.is_null() {
+        // SAFETY: a visual the real GLX returned.
+        let id = unsafe { (*v).visualid };
+        registry::with(|reg| reg.mark_visual(v as usize, id, stereo));
+    }
+    v
+}
+
+/// Makes program context `ctx` a stereo context: creates the layer's
+/// context (`make_ours(ctx)`, sharing its objects; X errors trapped) and
+/// records the shape the configuration gives (`attrib` reads it). On
+/// failure stderr says why and the context stays mono.
+fn adopt(
+    r: &Real,
+    dpy: *mut Display,
+    ctx: GLXContext,
+    make_ours: impl FnOnce(GLXContext) -> GLXContext,
+    attrib: impl Fn(c_int) -> c_int,
+) {
+    let (ours, err) = trap_x_errors(&r.xlib, dpy, || make_ours(ctx));
+    if ours.is_null() || err != 0 {
+        super::warn(&format!(
+            "the layer's own GL context could not be created (X error {err}): \
+             this stereo context runs in mono"
+        ));
+        return;
+    }
+    let shape = FramebufferShape {
+        stereo: true,
+        double_buffered: attrib(GLX_DOUBLEBUFFER) != 0,
+    };
+    let bits = |a| attrib(a).max(0) as u32;
+    let formats = BufferFormats::matching(
+        bits(GLX_ALPHA_SIZE),
+        bits(GLX_DEPTH_SIZE),
+        bits(GLX_STENCIL_SIZE),
+    );
+    let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
+    registry::with(|reg| reg.add_context(ctx as usize, sc));
+}
+
+/// Forgets whatever was known about a context at this address (a new
+/// context may reuse a destroyed one's address).
+fn forget(ctx: GLXContext) {
+    if !ctx.is_null() {
+        registry::with(|reg| reg.remove_context(ctx as usize));
+    }
+}
+
+/// glXCreateContext.
+///
+/// # Safety
+/// As glXCreateContext.
+pub unsafe fn create_context(
+    dpy: *mut Display,
+    vis: *mut XVisualInfo,
+    share: GLXContext,
+    direct: c_int,
+) -> GLXContext {
+    let Some(r) = real_or_warn() else {
+        return std::ptr::null_mut();
+    };
+    // SAFETY: forwarded call.
+    let ctx = unsafe { (r.glx.glXCreateContext)(dpy, vis, share, direct) };
+    forget(ctx);
+    if ctx.is_null() || vis.is_null() {
+        return ctx;
+    }
+    // SAFETY: the program's visual.
+    let id = unsafe { (*vis).visualid };
+    if registry::with(|reg| reg.is_stereo_visual(vis as usize, id)) {
+        adopt(
+            r,
+            dpy,
+            ctx,
+            // SAFETY: the same visual, sharing the program's context.
+            |prog| unsafe { (r.glx.glXCreateContext)(dpy, vis, prog, direct) },
+            |a| {
+                let mut v = 0;
+                // SAFETY: a valid visual.
+                unsafe { (r.glx.glXGetConfig)(dpy, vis, a, &mut v) };
+                v
+            },
+        );
+    }
+    ctx
+}
+
+/// How a configuration-based context is created.
+pub enum NewContext {
+    /// glXCreateNewContext / glXCreateContextWithConfigSGIX(render_type).
+    RenderType(c_int, Flavour),
+    /// glXCreateContextAttribsARB(attribs).
+    Attribs(*const c_int),
+}
+
+/// glXCreateNewContext, glXCreateContextWithConfigSGIX and
+/// glXCreateContextAttribsARB.
+///
+/// # Safety
+/// As those functions.
+pub unsafe fn create_config_context(
+    dpy: *mut Display,
+    config: GLXFBConfig,
+    how: NewContext,
+    share: GLXContext,
+    direct: c_int,
+) -> GLXContext {
+    let Some(r) = real_or_warn() else {
+        return std::ptr::null_mut();
+    };
+    let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
+    let c = real_config as GLXFBConfig;
+    let ctx = match how {
+        // SAFETY: forwarded calls.
+        NewContext::RenderType(t, Flavour::Glx13) => unsafe {
+            (r.glx.glXCreateNewContext)(dpy, c, t, share, direct)
+        },
+        NewContext::RenderType(t, Flavour::Sgix) => match r.extra.sgix.create_context {
+            // SAFETY: forwarded call.
+            Some(f) => unsafe { f(dpy, c, t, share, direct) },
+            None => std::ptr::null_mut(),
+        },
+        NewContext::Attribs(list) => match r.extra.create_context_attribs {
+            // SAFETY: forwarded call.
+            Some(f) => unsafe { f(dpy, c, share, direct, list) },
+            None => std::ptr::null_mut(),
+        },
+    };
+    forget(ctx);
+    if stereo && !ctx.is_null() {
+        adopt(
+            r,
+            dpy,
+            ctx,
+            // SAFETY: a compatibility context of the same configuration,
+            // sharing the program's objects.
+            |prog| unsafe { (r.glx.glXCreateNewContext)(dpy, c, GLX_RGBA_TYPE, prog, direct) },
+            |a| {
+                let mut v = 0;
+                // SAFETY: a real configuration.
+                unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
+                v
+            },
+        );
+    }
+    ctx
+}
+
+/// glXDestroyContext.
+///
+/// # Safety
+/// As glXDestroyContext.
+pub unsafe fn destroy_context(dpy: *mut Display, ctx: GLXContext) {
+    let Some(r) = real_or_warn() else { return };
+    let sc = if ctx.is_null() {
+        None
+    } else {
+        registry::with(|reg| reg.remove_context(ctx as usize))
+    };
+    // SAFETY: forwarded call.
+    unsafe { (r.glx.glXDestroyContext)(dpy, ctx) };
+    if let Some(sc) = sc {
+        let here = current().is_some_and(|c| Arc::ptr_eq(&c.sc, &sc));
+        if here || sc.current_elsewhere() {
+            // GLX keeps a current context alive until it is released.
+            sc.mark_destroyed();
+        } else {
+            sc.destroy_ours();
+        }
+    }
+}
+
+/// glXMakeCurrent (`read` None) and glXMakeContextCurrent.
+///
+/// # Safety
+/// As those functions.
+pub unsafe fn make_current(
+    dpy: *mut Display,
+    draw: c_ulong,
+    read: Option<c_ulong>,
+    ctx: GLXContext,
+) -> c_int {
+    let Some(r) = real_or_warn() else { return 0 };
+    let ok = match read {
+        // SAFETY: forwarded calls.
+        None => unsafe { (r.glx.glXMakeCurrent)(dpy, draw, ctx) },
+        Some(read) => unsafe { (r.glx.glXMakeContextCurrent)(dpy, draw, read, ctx) },
+    };
+    if ok == 0 {
+        return ok;
+    }
+    let read = read.unwrap_or(draw);
+    let sc = if ctx.is_null() {
+        None
+    } else {
+        registry::with(|reg| reg.context(ctx as usize))
+    };
+    let next = match sc {
+        Some(sc) if draw != 0 && !sc.unusable() => match sc.bind(draw, read) {
+            Ok(()) => Some(Current {
+                sc,
+                display: dpy as usize,
+                draw,
+                read,
+            }),
+            Err(e) => {
+                super::warn(&format!("{e}; this context runs in mono"));
+                None
+            }
+        },
+        _ => None,
+    };
+    set_current(next);
+    ok
+}
+
+/// glXSwapBuffers.
+///
+/// # Safety
+/// As glXSwapBuffers.
+pub unsafe fn swap_buffers(dpy: *mut Display, drawable: c_ulong) {
+    let Some(r) = real_or_warn() else { return };
+    let here = current().filter(|c| c.display == dpy as usize && c.draw == drawable);
+    let target = match here {
+        Some(c) => Some((c.sc, true)),
+        // The stereo context this drawable was bound to last (the
+        // contexts' states are read after the registry's lock is released).
+        None => registry::with(|reg| reg.contexts_of(dpy as usize))
+            .into_iter()
+            .filter_map(|sc| sc.last_bound(drawable).map(|t| (t, sc)))
+            .max_by_key(|(t, _)| *t)
+            .map(|(_, sc)| (sc, false)),
+    };
+    if let Some((sc, here)) = target {
+        if !here && sc.current_elsewhere() {
+            super::warn(
+                "glXSwapBuffers on a stereo drawable whose context is current on another \
+                 thread: swap it on that thread; the window is not updated",
+            );
+        } else {
+            match sc.present(drawable, true, here) {
+                Ok(()) => return,
+                Err(e) => super::warn(&format!("presenting the stereo frame: {e}")),
+            }
+            return;
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { (r.glx.glXSwapBuffers)(dpy, drawable) }
+}
+
+/// glXCreateWindow (records the X window behind the GLX window).
+///
+/// # Safety
+/// As glXCreateWindow.
+pub unsafe fn create_window(
+    dpy: *mut Display,
+    config: GLXFBConfig,
+    window: c_ulong,
+    attribs: *const c_int,
+) -> c_ulong {
+    let Some(r) = real_or_warn() else { return 0 };
+    let (c, _) = registry::with(|reg| reg.real_config(config as usize));
+    // SAFETY: forwarded call with the real configuration.
+    let w = unsafe { (r.glx.glXCreateWindow)(dpy, c as GLXFBConfig, window, attribs) };
+    if w != 0 {
+        registry::with(|reg| reg.add_glx_window(dpy as usize, w, window));
+    }
+    w
+}
+
+/// glXDestroyWindow.
+///
+/// # Safety
+/// As glXDestroyWindow.
+pub unsafe fn destroy_window(dpy: *mut Display, window: c_ulong) {
+    let Some(r) = real_or_warn() else { return };
+    registry::with(|reg| reg.remove_glx_window(dpy as usize, window));
+    // SAFETY: forwarded call.
+    unsafe { (r.glx.glXDestroyWindow)(dpy, window) }
+}
+
+/// glXCreatePixmap, glXCreatePbuffer and their SGIX forms: the real
+/// configuration behind a stereo one (these drawables are mono).
+pub enum Offscreen {
+    /// glXCreatePixmap(pixmap, attribs).
+    Pixmap(c_ulong, *const c_int),
+    /// glXCreatePbuffer(attribs).
+    Pbuffer(*const c_int),
+    /// glXCreateGLXPixmapWithConfigSGIX(pixmap).
+    PixmapSgix(c_ulong),
+    /// glXCreateGLXPbufferSGIX(width, height, attribs).
+    PbufferSgix(u32, u32, *const c_int),
+}
+
+/// Creates an offscreen drawable of a configuration.
+///
+/// # Safety
+/// As the corresponding GLX function.
+pub unsafe fn create_offscreen(dpy: *mut Display, config: GLXFBConfig, what: Offscreen) -> c_ulong {
+    let Some(r) = real_or_warn() else { return 0 };
+    let (c, _) = registry::with(|reg| reg.real_config(config as usize));
+    let c = c as GLXFBConfig;
+    // SAFETY: forwarded calls with the real configuration.
+    unsafe {
+        match what {
+            Offscreen::Pixmap(p, a) => (r.glx.glXCreatePixmap)(dpy, c, p, a),
+            Offscreen::Pbuffer(a) => (r.glx.glXCreatePbuffer)(dpy, c, a),
+            Offscreen::PixmapSgix(p) => r.extra.sgix.create_pixmap.map_or(0, |f| f(dpy, c, p)),
+            Offscreen::PbufferSgix(w, h, a) => r
+                .extra
+                .sgix
+                .create_pbuffer
+                .map_or(0, |f| f(dpy, c, w, h, a)),
+        }
+    }
+}

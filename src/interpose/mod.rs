@@ -1,0 +1,95 @@
+//! Stereo for unmodified GLX programs: the logic behind the LD_PRELOAD
+//! library (`libglstereo_preload.so`, run by `glstereo-run`) and behind the
+//! `gls_glx_*` / `gls_gl_*` functions that `<glstereo/compat.h>` maps the
+//! legacy names to in programs rebuilt from source. One implementation
+//! serves both; the C entry points are in [`crate::ffi::interpose`].
+//!
+//! # What a legacy program does, and what it gets
+//!
+//! The program asks for a stereo visual (glXChooseVisual with GLX_STEREO,
+//! glXChooseFBConfig with GLX_STEREO True, GLUT_STEREO), creates a context
+//! and a window with it, draws each eye with glDrawBuffer(GL_BACK_LEFT /
+//! GL_BACK_RIGHT) and swaps once (seed 000 §3–4). Mesa has no stereo
+//! visual, so:
+//!
+//! - the stereo request is answered with the matching mono visual or
+//!   configuration, remembered as stereo ([`registry`]); glXGetConfig and
+//!   glXGetFBConfigAttrib report GLX_STEREO true for it;
+//! - a context created from it is a *stereo context* ([`context`]): the
+//!   first time it is made current on a drawable, the layer makes that
+//!   drawable's emulated default framebuffer — the four colour buffers and
+//!   the shared depth/stencil buffer of [`crate::stereo::emulated`], sized
+//!   to the drawable and resized with it — and binds it in the program's
+//!   context wherever the program has framebuffer 0;
+//! - GL calls about the default framebuffer are answered as a stereo
+//!   visual would ([`gl`]), with the exact GL errors of
+//!   [`crate::stereo::buffers`];
+//! - glXSwapBuffers flips back and front buffers and shows the front
+//!   buffers composed in GLSTEREO_MODE (default anaglyph-red-cyan) in the
+//!   window ([`context::StereoContext::present`]), and, with
+//!   GLSTEREO_CAPTURE_DIR, writes each frame's eyes and composite
+//!   ([`capture`]).
+//!
+//! A program that never asks for stereo runs as it would without the
+//! layer: its calls go to the real libGL after one registry look-up per
+//! GLX call and one thread-local test per interposed GL call; no object is
+//! made and no GL call added.
+//!
+//! # Where the composite is drawn, and why a context of the layer's own
+//!
+//! Presenting draws the eyes into the window's real back buffer with
+//! shaders, a vertex array, textures and framebuffer objects. Doing that in
+//! the program's context would mean saving and restoring every piece of
+//! state a draw depends on (program, vertex array, texture units and
+//! samplers, viewport, scissor, blending, depth/stencil, colour masks,
+//! sRGB, rasterizer discard, alpha test and clip planes of the
+//! compatibility profile, transform feedback, conditional rendering, pixel
+//! store…), and a core-profile program has no glPushAttrib to help: one
+//! missed item corrupts the program silently. Instead each stereo context
+//! gets a companion compatibility context of the layer, created with the
+//! same visual or configuration and sharing the program's objects (so it
+//! samples the eye textures). glXSwapBuffers finishes the program's
+//! rendering, makes the layer's context current on the same drawable,
+//! composes and swaps there, and makes the program's context current again
+//! exactly as it was (display, draw and read drawables). The program's GL
+//! state is never touched; GL guarantees each context's state is its own.
+//!
+//! Cost: two context switches per frame, which measure ≈ 1.3 µs for the
+//! pair with Mesa's llvmpipe under Xvfb, against ≈ 1.2 ms for the cheapest
+//! mono 1280x1024 frame (a clear and a swap); plus one glFinish (the
+//! swap waits for the rendering anyway) and one XGetGeometry round trip
+//! (≈ 17 µs) to follow the window's size. The composite itself is the GL
+//! compositor's pass ([`crate::output::gl`]).
+//!
+//! Names: the layer's textures and renderbuffers live in the program's
+//! share group, so they take names from the top of the name space
+//! ([`crate::gl::Gl::reserve_names`]): legacy programs bind small texture
+//! names they never generated. Its framebuffer object in the program's
+//! context is never reported (bindings of it read 0) and never deleted by
+//! the program.
+
+pub mod attribs;
+pub mod capture;
+pub mod context;
+pub mod gl;
+pub mod glx;
+pub mod real;
+pub mod registry;
+pub mod settings;
+
+use std::collections::HashSet;
+use std::sync::Mutex;
+
+/// Writes `glstereo: <message>` to stderr, once per distinct message: the
+/// layer has no return code to report through, and a frame loop must not
+/// flood the terminal.
+pub fn warn(message: &str) {
+    static SEEN: Mutex<Option<HashSet<String>>> = Mutex::new(None);
+    let mut seen = SEEN.lock().unwrap_or_else(|e| e.into_inner());
+    if seen
+        .get_or_insert_with(HashSet::new)
+        .insert(message.to_owned())
+    {
+        eprintln!("glstereo: {message}");
+    }
+}

@@ -1,0 +1,262 @@
+//! Running unmodified programs under glstereo-run: the preload crate built
+//! for this test run, plain C programs (no glstereo), and their windows
+//! read back from the X server (XGetImage), as a screenshot sees them.
+
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::OnceLock;
+use std::sync::mpsc::{Receiver, channel};
+use std::time::Duration;
+
+use glstereo::image::Image;
+use x11_dl::xlib;
+
+/// glstereo-run and libglstereo_preload.so, built for this test run.
+pub struct Built {
+    /// target/<profile>/glstereo-run.
+    pub run: PathBuf,
+    /// target/<profile>/libglstereo_preload.so.
+    pub preload: PathBuf,
+}
+
+/// Builds the preload crate (library and glstereo-run) with the profile and
+/// target directory of this test binary, once per test binary. `cargo
+/// test` builds only what the root package's tests link; the preload
+/// library is a cdylib of another package, so it is built here, fresh.
+pub fn built() -> &'static Built {
+    static BUILT: OnceLock<Built> = OnceLock::new();
+    BUILT.get_or_init(|| {
+        let deps = super::lib_dir();
+        let profile_dir = deps.parent().expect("target/<profile>");
+        let target = profile_dir.parent().expect("target");
+        let profile = match profile_dir.file_name().and_then(|n| n.to_str()) {
+            Some("debug") | None => "dev".to_owned(),
+            Some(p) => p.to_owned(),
+        };
+        let out = Command::new(env!("CARGO"))
+            .args(["build", "-p", "glstereo-preload", "--profile", &profile])
+            .arg("--target-dir")
+            .arg(target)
+            .current_dir(super::root())
+            .output()
+            .expect("cargo runs");
+        assert!(
+            out.status.success(),
+            "building glstereo-preload failed:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        Built {
+            run: profile_dir.join("glstereo-run"),
+            preload: profile_dir.join("libglstereo_preload.so"),
+        }
+    })
+}
+
+/// Compiles a plain C program (strict flags, no glstereo) with `libs`.
+pub fn compile_plain(source: &Path, out: &Path, libs: &[&str]) {
+    let o = Command::new("cc")
+        .args(super::C_FLAGS)
+        .arg(source)
+        .arg("-o")
+        .arg(out)
+        .args(libs)
+        .output()
+        .expect("cc runs");
+    assert!(
+        o.status.success(),
+        "compiling {} failed:\n{}",
+        source.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// A running program that prints `ready …` once its frame is on screen and
+/// exits after a line on stdin.
+pub struct Running {
+    child: Child,
+    stdin: Option<ChildStdin>,
+    lines: Receiver<String>,
+    /// Every stdout line so far.
+    pub stdout: Vec<String>,
+}
+
+impl Running {
+    /// Starts `cmd` with piped stdin/stdout.
+    pub fn start(mut cmd: Command) -> Running {
+        let mut child = cmd
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap_or_else(|e| panic!("{cmd:?} starts: {e}"));
+        let stdout = child.stdout.take().unwrap();
+        let (tx, rx) = channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        Running {
+            stdin: child.stdin.take(),
+            child,
+            lines: rx,
+            stdout: Vec::new(),
+        }
+    }
+
+    /// Waits (up to 60 s) for the `ready` line and returns what follows
+    /// "ready " on it.
+    pub fn ready(&mut self) -> String {
+        loop {
+            match self.lines.recv_timeout(Duration::from_secs(60)) {
+                Ok(line) => {
+                    self.stdout.push(line.clone());
+                    if let Some(rest) = line.strip_prefix("ready") {
+                        return rest.trim().to_owned();
+                    }
+                }
+                Err(_) => {
+                    let _ = self.child.kill();
+                    let out = self.child.wait_with_output_now();
+                    panic!(
+                        "the program never said ready; stdout {:?}\nstderr:\n{out}",
+                        self.stdout
+                    );
+                }
+            }
+        }
+    }
+
+    /// Sends a line to the program's stdin.
+    pub fn send(&mut self, line: &str) {
+        let stdin = self.stdin.as_mut().expect("stdin open");
+        writeln!(stdin, "{line}").expect("the program reads stdin");
+        stdin.flush().expect("flush");
+    }
+
+    /// Lets the program exit (a line on stdin) and returns its stderr,
+    /// failing unless it exits with status 0 within 60 s.
+    pub fn finish(mut self) -> String {
+        if let Some(mut stdin) = self.stdin.take() {
+            let _ = writeln!(stdin);
+        }
+        for _ in 0..600 {
+            if let Some(status) = self.child.try_wait().expect("wait") {
+                let err = self.child.wait_with_output_now();
+                while let Ok(l) = self.lines.try_recv() {
+                    self.stdout.push(l);
+                }
+                assert!(
+                    status.success(),
+                    "the program exited with {status}; stdout {:?}\nstderr:\n{err}",
+                    self.stdout
+                );
+                return err;
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        let _ = self.child.kill();
+        panic!("the program did not exit within 60 s");
+    }
+}
+
+trait StderrNow {
+    fn wait_with_output_now(&mut self) -> String;
+}
+
+impl StderrNow for Child {
+    fn wait_with_output_now(&mut self) -> String {
+        let _ = self.wait();
+        let mut s = String::new();
+        if let Some(mut e) = self.stderr.take() {
+            let _ = std::io::Read::read_to_string(&mut e, &mut s);
+        }
+        s
+    }
+}
+
+/// An X connection of the test's own, for screenshots.
+pub struct Screen {
+    xlib: xlib::Xlib,
+    display: *mut xlib::Display,
+}
+
+impl Screen {
+    /// Connects to `display` (e.g. ":103").
+    pub fn open(display: &str) -> Screen {
+        let xlib = xlib::Xlib::open().expect("libX11");
+        let name = std::ffi::CString::new(display).unwrap();
+        // SAFETY: NUL-terminated name.
+        let d = unsafe { (xlib.XOpenDisplay)(name.as_ptr()) };
+        assert!(!d.is_null(), "cannot open {display}");
+        Screen { xlib, display: d }
+    }
+
+    /// The window's contents as the server has them (RGBA, alpha 255).
+    pub fn grab(&self, window: u64) -> Image {
+        let x = &self.xlib;
+        // SAFETY: valid display; the window exists while the program waits.
+        unsafe {
+            let mut attrs: xlib::XWindowAttributes = std::mem::zeroed();
+            assert_ne!(
+                (x.XGetWindowAttributes)(self.display, window, &mut attrs),
+                0,
+                "window {window:#x} exists"
+            );
+            let (w, h) = (attrs.width as u32, attrs.height as u32);
+            let img = (x.XGetImage)(self.display, window, 0, 0, w, h, !0, xlib::ZPixmap);
+            assert!(!img.is_null(), "XGetImage of {window:#x}");
+            let out = Image::from_fn(w, h, |px, py| {
+                let p = (x.XGetPixel)(img, px as i32, py as i32);
+                [(p >> 16) as u8, (p >> 8) as u8, p as u8, 255]
+            });
+            (x.XDestroyImage)(img);
+            out
+        }
+    }
+
+    /// The top-level window whose WM_NAME is `name`.
+    pub fn find_window(&self, name: &str) -> Option<u64> {
+        let x = &self.xlib;
+        // SAFETY: valid display; the lists are freed with XFree.
+        unsafe {
+            let root = (x.XDefaultRootWindow)(self.display);
+            let (mut r, mut parent) = (0, 0);
+            let mut children: *mut xlib::Window = std::ptr::null_mut();
+            let mut n = 0u32;
+            (x.XQueryTree)(
+                self.display,
+                root,
+                &mut r,
+                &mut parent,
+                &mut children,
+                &mut n,
+            );
+            let mut found = None;
+            for i in 0..n as usize {
+                let w = *children.add(i);
+                let mut title: *mut std::ffi::c_char = std::ptr::null_mut();
+                if (x.XFetchName)(self.display, w, &mut title) != 0 && !title.is_null() {
+                    if std::ffi::CStr::from_ptr(title).to_string_lossy() == name {
+                        found = Some(w);
+                    }
+                    (x.XFree)(title.cast());
+                }
+            }
+            if !children.is_null() {
+                (x.XFree)(children.cast());
+            }
+            found
+        }
+    }
+}
+
+impl Drop for Screen {
+    fn drop(&mut self) {
+        // SAFETY: our own connection, closed once.
+        unsafe { (self.xlib.XCloseDisplay)(self.display) };
+    }
+}

@@ -1,0 +1,508 @@
+//! Unmodified GLX programs under glstereo-run on a real X server (Xvfb):
+//! a legacy stereo program and a freeglut GLUT_STEREO program show the
+//! composite of their two eyes in their windows (read back from the server
+//! as a screenshot would), their captures hold the eyes they drew, and a
+//! mono program is untouched.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use common::preload::{Running, Screen, built, compile_plain};
+use common::xvfb::Xvfb;
+use glstereo::image::Image;
+use glstereo::output::OutputMode;
+use glstereo::output::options::OutputOptions;
+
+const W: u32 = 160;
+const H: u32 = 120;
+
+/// Builds tests/c/NAME.c (linked with `libs` only) once per test binary.
+fn program(name: &str, libs: &[&str]) -> PathBuf {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    static BUILT: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
+    let mut map = BUILT
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    map.entry(name.to_owned())
+        .or_insert_with(|| {
+            let dir = common::lib_dir().join("test-preload");
+            std::fs::create_dir_all(&dir).unwrap();
+            let exe = dir.join(name);
+            let tmp = dir.join(format!(".{name}-{}", std::process::id()));
+            compile_plain(
+                &common::root().join("tests/c").join(format!("{name}.c")),
+                &tmp,
+                libs,
+            );
+            std::fs::rename(&tmp, &exe).unwrap();
+            exe
+        })
+        .clone()
+}
+
+/// The RedBlue eyes the programs draw, as seed 000 §4 describes them: a
+/// grey 0.2 background (51), the left eye's blue rectangle (-0.8,-0.8)–
+/// (0.2,0.2), the right eye's red (-0.2,-0.2)–(0.8,0.8). Pixel centres
+/// exactly on an edge are avoided by the sample points, not here.
+fn redblue_eye(left: bool, x: u32, y: u32) -> [u8; 4] {
+    // Normalised device coordinates of the pixel centre (y up).
+    let nx = (x as f64 + 0.5) / W as f64 * 2.0 - 1.0;
+    let ny = 1.0 - (y as f64 + 0.5) / H as f64 * 2.0;
+    let (lo, hi) = if left { (-0.8, 0.2) } else { (-0.2, 0.8) };
+    let inside = nx > lo && nx < hi && ny > lo && ny < hi;
+    match (inside, left) {
+        (true, true) => [0, 0, 255, 255],
+        (true, false) => [255, 0, 0, 255],
+        _ => [51, 51, 51, 255],
+    }
+}
+
+/// Sample points well inside each region of the RedBlue frame: background,
+/// left rectangle only, overlap, right rectangle only.
+const SAMPLES: [(f64, f64); 4] = [(-0.9, 0.9), (-0.5, -0.5), (0.0, 0.0), (0.5, 0.5)];
+
+fn sample_pixels() -> Vec<(u32, u32)> {
+    SAMPLES
+        .iter()
+        .map(|&(nx, ny)| {
+            (
+                ((nx + 1.0) / 2.0 * W as f64) as u32,
+                ((1.0 - ny) / 2.0 * H as f64) as u32,
+            )
+        })
+        .collect()
+}
+
+fn expected_eyes() -> (Image, Image) {
+    (
+        Image::from_fn(W, H, |x, y| redblue_eye(true, x, y)),
+        Image::from_fn(W, H, |x, y| redblue_eye(false, x, y)),
+    )
+}
+
+/// How a test finds the program's window.
+#[derive(Clone, Copy)]
+enum Window {
+    /// The program prints "ready 0x<id>".
+    Printed,
+    /// The top-level window with this title.
+    Titled(&'static str),
+}
+
+/// Runs `exe args` under glstereo-run in `mode` with a capture directory;
+/// returns the window as the server shows it, the capture directory, and
+/// the program's first report line.
+fn run_under_layer(
+    x: &Xvfb,
+    exe: &std::path::Path,
+    args: &[String],
+    window: Window,
+    mode: &str,
+    capture: &str,
+) -> (Image, PathBuf, String) {
+    let dir = common::scratch(capture);
+    let mut cmd = Command::new(&built().run);
+    cmd.args(["-m", mode, "--capture"])
+        .arg(&dir)
+        .arg(exe)
+        .args(args)
+        .env("DISPLAY", &x.display);
+    let mut p = Running::start(cmd);
+    let id = p.ready();
+    let screen = Screen::open(&x.display);
+    let window = match window {
+        Window::Printed => u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id"),
+        Window::Titled(t) => screen
+            .find_window(t)
+            .unwrap_or_else(|| panic!("no window titled {t}")),
+    };
+    let shot = screen.grab(window);
+    let report = p.stdout.first().cloned().unwrap_or_default();
+    let stderr = p.finish();
+    assert!(
+        !stderr.contains("glstereo:"),
+        "the layer complained: {stderr}"
+    );
+    (shot, dir, report)
+}
+
+fn run_legacy(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let size = [W.to_string(), H.to_string()];
+    run_under_layer(x, &exe, &size, Window::Printed, mode, capture)
+}
+
+fn run_glut(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
+    let exe = program("glut_stereo", &["-lglut", "-lGL"]);
+    run_under_layer(x, &exe, &[], Window::Titled("glut_stereo"), mode, capture)
+}
+
+/// The capture's eyes are the RedBlue eyes, and the window is the CPU
+/// reference composite of them in `mode`.
+fn check_mode(shot: &Image, dir: &std::path::Path, mode: OutputMode, what: &str) {
+    let left = common::png(&dir.join("left-000001.png"));
+    let right = common::png(&dir.join("right-000001.png"));
+    let (want_l, want_r) = expected_eyes();
+    for (px, py) in sample_pixels() {
+        assert_eq!(left.get(px, py), want_l.get(px, py), "{what}: left eye");
+        assert_eq!(right.get(px, py), want_r.get(px, py), "{what}: right eye");
+    }
+    let reference =
+        glstereo::output::compose(mode, &OutputOptions::default(), &left, &right, 0).unwrap();
+    assert_close(shot, &reference, what);
+    assert_close(
+        &common::png(&dir.join("composite-000001.png")),
+        shot,
+        &format!("{what}: captured composite vs window"),
+    );
+}
+
+/// The three modes every program is checked in, and a hand-made check of each.
+const MODES: [(OutputMode, &str); 3] = [
+    (
+        OutputMode::Anaglyph(
+            glstereo::output::AnaglyphColors::RedCyan,
+            glstereo::output::AnaglyphMethod::FullColor,
+        ),
+        "anaglyph-red-cyan",
+    ),
+    (OutputMode::SideBySideHalf, "side-by-side-half"),
+    (OutputMode::Rows, "rows"),
+];
+
+/// What a person checks on the screen, computed by hand from the RedBlue
+/// frame (not from the library).
+fn check_by_hand(shot: &Image, mode: OutputMode, what: &str) {
+    let s = sample_pixels();
+    match mode {
+        OutputMode::Rows => {
+            // Rows alternate eyes from the top row (left) down.
+            let (lx, ly) = s[1]; // left rectangle only
+            let even = ly & !1;
+            assert_eq!(
+                shot.get(lx, even),
+                [0, 0, 255, 255],
+                "{what}: even row is left"
+            );
+            assert_eq!(
+                shot.get(lx, even + 1),
+                [51, 51, 51, 255],
+                "{what}: odd row is right"
+            );
+        }
+        OutputMode::SideBySideHalf => {
+            // Left half: the left eye squeezed; its blue square spans x
+            // -0.8..0.2 of the eye, so -0.9..-0.4 of the window.
+            let at = |nx: f64, ny: f64| {
+                shot.get(
+                    ((nx + 1.0) / 2.0 * W as f64) as u32,
+                    ((1.0 - ny) / 2.0 * H as f64) as u32,
+                )
+            };
+            assert_eq!(
+                at(-0.65, -0.5),
+                [0, 0, 255, 255],
+                "{what}: left eye in the left half"
+            );
+            assert_eq!(
+                at(0.75, 0.5),
+                [255, 0, 0, 255],
+                "{what}: right eye in the right half"
+            );
+            assert_eq!(
+                at(0.75, -0.5),
+                [51, 51, 51, 255],
+                "{what}: right eye background"
+            );
+        }
+        _ => {
+            // Red from the left eye, green and blue from the right.
+            let want = [
+                [51, 51, 51, 255], // background: grey in both eyes
+                [0, 51, 51, 255],  // left blue rectangle: R 0 (left), G B grey (right)
+                [0, 0, 0, 255],    // overlap: left blue (R 0), right red (G B 0)
+                [51, 0, 0, 255],   // right red rectangle: R grey (left), G B 0
+            ];
+            for ((px, py), want) in s.into_iter().zip(want) {
+                assert_eq!(shot.get(px, py), want, "{what}: window pixel ({px},{py})");
+            }
+        }
+    }
+}
+
+fn assert_close(got: &Image, want: &Image, what: &str) {
+    assert_eq!(
+        (got.width(), got.height()),
+        (want.width(), want.height()),
+        "{what}: size"
+    );
+    if let Some((d, x, y, c)) = got.max_difference(want) {
+        assert!(
+            d <= 1,
+            "{what}: pixel ({x},{y}) channel {c} is {:?}, want {:?}",
+            got.get(x, y),
+            want.get(x, y)
+        );
+    }
+}
+
+#[test]
+fn legacy_glx_program_shows_its_two_eyes_in_each_mode() {
+    let x = Xvfb::start(640, 480);
+    for (mode, name) in MODES {
+        let (shot, dir, report) = run_legacy(&x, name, &format!("legacy_{name}"));
+        assert!(
+            report.contains("glx_stereo 1 gl_stereo 1 framebuffer 0 draw_buffer 0x405 error 0x0"),
+            "what the program saw: {report}"
+        );
+        check_by_hand(&shot, mode, name);
+        check_mode(&shot, &dir, mode, name);
+    }
+}
+
+#[test]
+fn freeglut_stereo_program_shows_its_two_eyes_in_each_mode() {
+    let x = Xvfb::start(640, 480);
+    for (mode, name) in MODES {
+        let (shot, dir, report) = run_glut(&x, name, &format!("glut_{name}"));
+        assert!(
+            report.contains("gl_stereo 1 glut_window_stereo 1 error 0x0"),
+            "what the program saw: {report}"
+        );
+        check_by_hand(&shot, mode, name);
+        check_mode(&shot, &dir, mode, name);
+    }
+}
+
+#[test]
+fn draw_buffer_rules_hold_through_the_layer_on_stereo_visuals() {
+    let x = Xvfb::start(320, 240);
+    let exe = program("glx_draw_buffers", &["-lGL", "-lX11"]);
+    // glXChooseVisual visuals (double and single), and a core-profile
+    // context of a glXChooseFBConfig configuration.
+    for (what, at_least) in [("stereo", 150), ("core", 100)] {
+        let out = common::run_ok(
+            Command::new(&built().run)
+                .arg(&exe)
+                .arg(what)
+                .env("DISPLAY", &x.display),
+        );
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let summary = stdout.lines().last().unwrap_or("");
+        let passed: u32 = summary
+            .split_whitespace()
+            .next()
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(0);
+        assert!(
+            summary.ends_with(" passed, 0 failed") && passed > at_least,
+            "{what}: {summary}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
+/// Runs `exe` (which prints "ready 0x<window>") with or without the layer;
+/// returns its window and its report line.
+fn run_mono(x: &Xvfb, layer: Option<&std::path::Path>) -> (Image, String) {
+    let exe = program("mono_glx", &["-lGL", "-lX11"]);
+    let mut cmd = match layer {
+        Some(capture) => {
+            let mut c = Command::new(&built().run);
+            c.arg("--capture").arg(capture).arg(&exe);
+            c
+        }
+        None => Command::new(&exe),
+    };
+    cmd.env("DISPLAY", &x.display);
+    let mut p = Running::start(cmd);
+    let id = p.ready();
+    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id");
+    let shot = Screen::open(&x.display).grab(window);
+    let report = p.stdout.first().cloned().unwrap_or_default();
+    let stderr = p.finish();
+    assert!(stderr.is_empty(), "stderr: {stderr}");
+    (shot, report)
+}
+
+#[test]
+fn a_mono_program_runs_as_it_would_without_the_layer() {
+    let x = Xvfb::start(320, 240);
+    let capture = common::scratch("mono_capture");
+    let (without, report_without) = run_mono(&x, None);
+    let (with, report_with) = run_mono(&x, Some(&capture));
+    assert_eq!(
+        report_without, "stereo 0 draw_buffer 0x405 read_buffer 0x405 framebuffer 0 error 0x0",
+        "the driver's own answers"
+    );
+    assert_eq!(
+        report_with, report_without,
+        "what GL reports under the layer"
+    );
+    assert_eq!(
+        with.max_difference(&without).map(|d| d.0),
+        Some(0),
+        "the window differs under the layer (difference, x, y, channel): {:?}",
+        with.max_difference(&without)
+    );
+    // The picture is not trivial (the test would catch a blank window).
+    assert_ne!(with.get(40, 90), with.get(150, 5));
+    // No stereo: nothing presented by the layer, nothing captured.
+    assert_eq!(std::fs::read_dir(&capture).unwrap().count(), 0);
+
+    // GL's answers for the draw-buffer probes on mono visuals are the
+    // driver's, byte for byte (Mesa's single-buffered windows even accept
+    // GL_BACK, which the GL rules forbid: the layer leaves that alone).
+    let exe = program("glx_draw_buffers", &["-lGL", "-lX11"]);
+    let plain = common::run_ok(Command::new(&exe).arg("mono").env("DISPLAY", &x.display));
+    let layered = common::run_ok(
+        Command::new(&built().run)
+            .arg(&exe)
+            .arg("mono")
+            .env("DISPLAY", &x.display),
+    );
+    let (plain, layered) = (
+        String::from_utf8_lossy(&plain.stdout),
+        String::from_utf8_lossy(&layered.stdout),
+    );
+    assert!(plain.lines().count() > 50, "{plain}");
+    assert_eq!(layered, plain);
+}
+
+#[test]
+fn the_stereo_buffers_follow_a_resized_window() {
+    let x = Xvfb::start(640, 480);
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let dir = common::scratch("legacy_resize");
+    let mut cmd = Command::new(&built().run);
+    cmd.args(["-m", "rows", "--capture"])
+        .arg(&dir)
+        .arg(&exe)
+        .args(["160", "120"])
+        .env("DISPLAY", &x.display);
+    let mut p = Running::start(cmd);
+    let id = p.ready();
+    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).unwrap();
+    // The program resizes its window and redraws (its reshape sets the viewport).
+    p.send("resize 200 90");
+    p.ready();
+    let shot = Screen::open(&x.display).grab(window);
+    let stderr = p.finish();
+    glstereo::capture::write_png(&shot, &dir.join("window.png")).unwrap();
+    assert!(!stderr.contains("glstereo:"), "{stderr}");
+    assert_eq!((shot.width(), shot.height()), (200, 90));
+    let left = common::png(&dir.join("left-000002.png"));
+    let right = common::png(&dir.join("right-000002.png"));
+    assert_eq!(
+        (left.width(), left.height()),
+        (200, 90),
+        "the eyes are the window's new size"
+    );
+    // The second frame fills the new window: the left eye's blue square
+    // spans x 10%..60% and y 40%..90% of it.
+    assert_eq!(
+        left.get(70, 60),
+        [0, 0, 255, 255],
+        "left eye at the new size"
+    );
+    assert_eq!(
+        right.get(150, 20),
+        [255, 0, 0, 255],
+        "right eye at the new size"
+    );
+    let reference = glstereo::output::compose(
+        OutputMode::Rows,
+        &OutputOptions::default(),
+        &left,
+        &right,
+        1,
+    )
+    .unwrap();
+    assert_close(&shot, &reference, "the resized window");
+}
+
+#[test]
+fn a_single_buffered_stereo_program_is_shown_when_it_flushes() {
+    let x = Xvfb::start(640, 480);
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let args = [W.to_string(), H.to_string(), "single".to_owned()];
+    let (shot, _, report) = run_under_layer(
+        &x,
+        &exe,
+        &args,
+        Window::Printed,
+        "anaglyph-red-cyan",
+        "legacy_single",
+    );
+    assert!(
+        report.contains("glx_stereo 1 gl_stereo 1 framebuffer 0 draw_buffer 0x404 error 0x0"),
+        "{report}"
+    );
+    check_by_hand(&shot, MODES[0].0, "single-buffered anaglyph");
+}
+
+#[test]
+fn glstereo_run_checks_its_options_before_the_program_starts_and_sets_the_environment() {
+    let dir = common::scratch("glstereo_run_options");
+    let marker = dir.join("ran");
+    let touch = format!("touch '{}'", marker.display());
+    // A mode that does not exist: exit 2, the valid names, the program never runs.
+    let out = Command::new(&built().run)
+        .args(["-m", "nonsense", "sh", "-c", &touch])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("unknown output mode \"nonsense\"") && stderr.contains("side-by-side-half"),
+        "{stderr}"
+    );
+    assert!(!marker.exists(), "the program must not run");
+    // A bad setting in the environment is caught the same way.
+    let out = Command::new(&built().run)
+        .args(["sh", "-c", &touch])
+        .env("GLSTEREO_SWAP_EYES", "maybe")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("GLSTEREO_SWAP_EYES"));
+    assert!(!marker.exists());
+    // No program; a program that does not exist.
+    let out = Command::new(&built().run)
+        .args(["-m", "rows"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = Command::new(&built().run)
+        .arg(dir.join("no-such-program"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(127));
+
+    // What the program gets: the preload library first (an existing
+    // LD_PRELOAD kept after it), the canonical mode, swap, the capture
+    // directory (made, absolute).
+    let capture = dir.join("frames");
+    let out = common::run_ok(
+        Command::new(&built().run)
+            .args(["-st", "rc", "--swap-eyes", "--capture"])
+            .arg(&capture)
+            .args([
+                "sh",
+                "-c",
+                "echo \"$LD_PRELOAD|$GLSTEREO_MODE|$GLSTEREO_SWAP_EYES|$GLSTEREO_CAPTURE_DIR\"",
+            ])
+            .env("LD_PRELOAD", "libother.so"),
+    );
+    let line = String::from_utf8_lossy(&out.stdout).trim().to_owned();
+    let want = format!(
+        "{}:libother.so|anaglyph-red-cyan|1|{}",
+        built().preload.canonicalize().unwrap().display(),
+        capture.canonicalize().unwrap().display()
+    );
+    assert_eq!(line, want);
+}
