@@ -142,15 +142,39 @@ impl std::fmt::Debug for Surface {
 
 /// Runs `f` with `platform`'s compositor context current, then puts back
 /// whatever was current on this thread before.
+///
+/// When the thread's current surface belongs to another display, its
+/// context is released first and this one's released before it is made
+/// current again: backends share Mesa's per-thread GL dispatch (libOSMesa
+/// and the EGL/GLX driver both use libglapi), and a make-current that the
+/// other backend's bookkeeping thinks changes nothing would leave GL calls
+/// going to the wrong context.
 fn with_compositor_of<T>(
+    display: &Arc<Display>,
     platform: &dyn PlatformSurface,
     f: impl FnOnce() -> Result<T>,
 ) -> Result<T> {
     let saved = CURRENT.with(|c| c.borrow().clone());
-    platform.make_current(ContextRole::Compositor)?;
+    let foreign = saved
+        .as_ref()
+        .is_some_and(|(p, _)| !Arc::ptr_eq(&p.display, display));
+    if let (true, Some((p, _))) = (foreign, &saved) {
+        p.platform.release_current()?;
+    }
+    if let Err(e) = platform.make_current(ContextRole::Compositor) {
+        if let Some((p, role)) = &saved {
+            let _ = p.platform.make_current(*role);
+        }
+        return Err(e);
+    }
     let result = f();
     let restored = match &saved {
-        Some((p, role)) => p.platform.make_current(*role),
+        Some((p, role)) => {
+            if foreign {
+                let _ = platform.release_current();
+            }
+            p.platform.make_current(*role)
+        }
         None => platform.release_current(),
     };
     let value = result?;
@@ -171,7 +195,7 @@ impl Surface {
         let settings = OutputSettings::from_env()?;
         let platform = display.platform().create_surface(&config, width, height)?;
         let shape = config.shape();
-        let (fb, gl) = with_compositor_of(&*platform, || {
+        let (fb, gl) = with_compositor_of(&display, &*platform, || {
             let gl = display.gl()?;
             // SAFETY: the compositor context is current.
             let fb = unsafe {
@@ -274,7 +298,7 @@ impl Surface {
             // to are only guaranteed visible to another context after Finish.
             unsafe { self.gl.Finish() };
         }
-        with_compositor_of(&*self.platform, || {
+        with_compositor_of(&self.display, &*self.platform, || {
             f(&self.gl, &mut self.state.lock().unwrap())
         })
     }
