@@ -2,7 +2,7 @@
 
 use glam::{DMat4, DVec4};
 
-use super::{finite, positive};
+use super::{field_of_view, finite, positive};
 use crate::error::{Error, Result};
 
 /// The six arguments of glFrustum.
@@ -25,12 +25,7 @@ pub struct Frustum {
 impl Frustum {
     /// A symmetric frustum like gluPerspective(fovy, aspect, near, far).
     pub fn perspective(fovy_degrees: f64, aspect: f64, near: f64, far: f64) -> Result<Frustum> {
-        let fovy = positive("fovy", fovy_degrees)?;
-        if fovy >= 180.0 {
-            return Err(Error::invalid_value(format!(
-                "fovy must be below 180 degrees, got {fovy}"
-            )));
-        }
+        let fovy = field_of_view("fovy", fovy_degrees)?;
         positive("aspect", aspect)?;
         let top = near * (fovy.to_radians() / 2.0).tan();
         let right = top * aspect;

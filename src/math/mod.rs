@@ -94,6 +94,19 @@ pub(crate) fn positive(name: &str, v: f64) -> Result<f64> {
     }
 }
 
+/// Checks a field of view in degrees: finite, above 0 and below 180 (tan of
+/// half of it is the frustum's slope; at 180 it has none, beyond it flips).
+pub(crate) fn field_of_view(name: &str, degrees: f64) -> Result<f64> {
+    positive(name, degrees)?;
+    if degrees < 180.0 {
+        Ok(degrees)
+    } else {
+        Err(Error::invalid_value(format!(
+            "{name} must be below 180 degrees, got {degrees}"
+        )))
+    }
+}
+
 /// Checks that a parameter is finite and >= 0.
 pub(crate) fn non_negative(name: &str, v: f64) -> Result<f64> {
     finite(name, v)?;

@@ -5,7 +5,7 @@
 use glam::{DMat4, DVec4};
 
 use super::frustum::{EyeProjection, Frustum};
-use super::{Eye, finite, non_negative, positive};
+use super::{Eye, field_of_view, finite, non_negative, positive};
 use crate::error::Result;
 
 /// SGI IRIS GL (seed 002 §7): `window(−top·aspect ± half_sep·near/distance,
@@ -54,7 +54,7 @@ pub fn bourke_eye(
     focal_length: f64,
     eye: Eye,
 ) -> Result<EyeProjection> {
-    positive("fov", fov_degrees)?;
+    field_of_view("fov_degrees", fov_degrees)?;
     positive("ratio", ratio)?;
     positive("near", near)?;
     non_negative("eye_separation", eye_separation)?;
@@ -93,7 +93,7 @@ pub fn stereo_camera_eye(
     positive("convergence", convergence)?;
     non_negative("eye_separation", eye_separation)?;
     positive("aspect", aspect)?;
-    positive("fov", fov_degrees)?;
+    field_of_view("fov_degrees", fov_degrees)?;
     positive("near", near)?;
     let half = (fov_degrees.to_radians() / 2.0).tan();
     let top = near * half;
