@@ -371,7 +371,8 @@ pub unsafe extern "C" fn gls_sgi_eye(
 
 /// One eye by the Xinerama / Bourke method (seed 001): wd2 = near·tan(fov/2),
 /// ndfl = near/focal_length, frustum (∓ratio·wd2 ± ½·eye_separation·ndfl …),
-/// camera moved by ∓eye_separation/2. fov is vertical, in degrees. Seed 001's
+/// camera moved by ∓eye_separation/2. fov is vertical, in degrees, above 0
+/// and below 180. Seed 001's
 /// defaults: eye_separation 0.04, focal_length 1.
 ///
 /// @return as gls_stereo_eye(). Thread-safe.
@@ -408,7 +409,7 @@ pub unsafe extern "C" fn gls_bourke_eye(
 /// One eye by the anaglyph tutorial's StereoCamera (seed 003):
 /// a = aspect·tan(fov/2)·C, b = a − D/2, c = a + D/2; left eye frustum
 /// (−b·near/C, c·near/C, …) with translate(+D/2); the right eye swaps b and c.
-/// fov is vertical, in degrees; D is typically C/30.
+/// fov is vertical, in degrees, above 0 and below 180; D is typically C/30.
 ///
 /// @return as gls_stereo_eye(). Thread-safe.
 #[unsafe(no_mangle)]

@@ -40,7 +40,9 @@ fn surface_arg(s: *const gls_surface) -> Result<Arc<Surface>, Error> {
 /// @param width, height 1…16384 (and within the driver's limits).
 /// @param surface_out receives the surface; must not be NULL. Destroy it with gls_surface_destroy().
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
-/// GLS_ERROR_INVALID_VALUE (size); GLS_ERROR_OUT_OF_MEMORY;
+/// GLS_ERROR_INVALID_VALUE (size, or a bad GLSTEREO_MODE and the other
+/// output variables); GLS_ERROR_INVALID_OPERATION (a configuration chosen on
+/// another display); GLS_ERROR_OUT_OF_MEMORY;
 /// GLS_ERROR_BACKEND_UNAVAILABLE (no context could be created). Any thread;
 /// the calling thread's current surface is unchanged.
 #[unsafe(no_mangle)]
@@ -338,8 +340,9 @@ pub unsafe extern "C" fn gls_surface_read_pixels(
 /// @param surface a live surface. @param image GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE.
 /// @param path a file path (UTF-8); must not be NULL.
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
-/// GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_IO (the message names the path
-/// and the reason). Any thread.
+/// GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_INVALID_VALUE (a path that is
+/// not UTF-8 or names no file, e.g. ""); GLS_ERROR_IO (the message names the
+/// path and the reason; no file and no temporary file is left). Any thread.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_surface_save_png(
     surface: *mut gls_surface,
@@ -398,8 +401,8 @@ pub const GLS_INPUT_STR_BOT: u32 = 5;
 /// GLS_OUTPUT_ANAGLYPH_RED_CYAN.
 ///
 /// @param surface a live surface. @param output a GLS_OUTPUT_* value.
-/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_ENUM (nothing
-/// changes). Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+/// GLS_ERROR_INVALID_ENUM (nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_output(surface: *mut gls_surface, output: u32) -> gls_result {
     ffi_boundary!("gls_surface_set_output", {
@@ -432,7 +435,7 @@ pub unsafe extern "C" fn gls_surface_get_output(
 ///
 /// Default: GLSTEREO_SWAP_EYES at surface creation, else false.
 ///
-/// @return GLS_OK or GLS_ERROR_INVALID_HANDLE. Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_swap_eyes(
     surface: *mut gls_surface,
@@ -453,8 +456,8 @@ pub extern "C" fn gls_surface_set_swap_eyes(
 /// Default: GLSTEREO_CROSSTALK at surface creation, else 0.
 ///
 /// @param crosstalk 0…1.
-/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
-/// (outside 0…1 or NaN; nothing changes). Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+/// GLS_ERROR_INVALID_VALUE (outside 0…1 or NaN; nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_crosstalk(
     surface: *mut gls_surface,
@@ -476,8 +479,8 @@ pub extern "C" fn gls_surface_set_crosstalk(
 /// Default: GLSTEREO_SATURATION at surface creation, else 1.
 ///
 /// @param saturation 0…1.
-/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
-/// (outside 0…1 or NaN; nothing changes). Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+/// GLS_ERROR_INVALID_VALUE (outside 0…1 or NaN; nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_saturation(
     surface: *mut gls_surface,
@@ -498,8 +501,8 @@ pub extern "C" fn gls_surface_set_saturation(
 /// The eyes taken apart flow to every output format and capture.
 ///
 /// @param surface a live surface. @param input a GLS_INPUT_* value.
-/// @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_ENUM;
-/// GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
+/// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+/// GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
 /// that way (nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_input(surface: *mut gls_surface, input: u32) -> gls_result {
