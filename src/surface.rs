@@ -25,7 +25,30 @@ use crate::stereo::emulated::EmulatedFramebuffer;
 
 thread_local! {
     /// The surface current on this thread and which of its contexts.
-    static CURRENT: RefCell<Option<(Arc<Surface>, ContextRole)>> = const { RefCell::new(None) };
+    static CURRENT: Current = const { Current(RefCell::new(None)) };
+}
+
+/// This thread's current surface. A thread that ends with a surface current
+/// releases it (as if it called gls_make_current(NULL)): otherwise the
+/// surface would stay owned by a thread that no longer exists — no other
+/// thread could make it current — and a surface destroyed meanwhile would
+/// never free its contexts.
+struct Current(RefCell<Option<(Arc<Surface>, ContextRole)>>);
+
+impl std::ops::Deref for Current {
+    type Target = RefCell<Option<(Arc<Surface>, ContextRole)>>;
+    fn deref(&self) -> &Self::Target {
+        &self.0
+    }
+}
+
+impl Drop for Current {
+    fn drop(&mut self) {
+        if let Some((s, _)) = self.0.get_mut().take() {
+            let _ = s.platform.release_current();
+            *s.owner.lock().unwrap_or_else(|e| e.into_inner()) = None;
+        }
+    }
 }
 
 /// The surface whose application context is current on this thread.
