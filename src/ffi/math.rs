@@ -162,9 +162,10 @@ pub unsafe extern "C" fn gls_frustum_matrix(
         let f = unsafe { arg_ref(frustum, "frustum")? };
         let out = arg_out(column_major_out, "column_major_out")?;
         let p = EyeProjection {
-            frustum: Frustum::from(f).validated()?,
-            camera_offset: crate::math::finite("camera_offset", camera_offset)?,
-        };
+            frustum: Frustum::from(f),
+            camera_offset,
+        }
+        .validated()?;
         write_matrix(out, &p.matrix());
         Ok(())
     })

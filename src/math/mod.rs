@@ -94,6 +94,27 @@ pub(crate) fn positive(name: &str, v: f64) -> Result<f64> {
     }
 }
 
+/// Checks that a computed number is finite: inputs that are each finite can
+/// still overflow (or divide by a difference that rounds to zero).
+pub(crate) fn finite_result(what: &str, v: f64) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid_value(format!(
+            "{what} is not a finite number ({v}): the inputs are too large, too small or too \
+             close together; use values of ordinary magnitude"
+        )))
+    }
+}
+
+/// Checks that a computed matrix is finite (see [`finite_result`]).
+pub(crate) fn finite_matrix(what: &str, m: glam::DMat4) -> Result<glam::DMat4> {
+    for v in m.to_cols_array() {
+        finite_result(what, v)?;
+    }
+    Ok(m)
+}
+
 /// Checks a field of view in degrees: finite, above 0 and below 180 (tan of
 /// half of it is the frustum's slope; at 180 it has none, beyond it flips).
 pub(crate) fn field_of_view(name: &str, degrees: f64) -> Result<f64> {

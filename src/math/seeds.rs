@@ -5,7 +5,7 @@
 use glam::{DMat4, DVec4};
 
 use super::frustum::{EyeProjection, Frustum};
-use super::{Eye, field_of_view, finite, non_negative, positive};
+use super::{Eye, field_of_view, finite, finite_matrix, non_negative, positive};
 use crate::error::Result;
 
 /// SGI IRIS GL (seed 002 §7): `window(−top·aspect ± half_sep·near/distance,
@@ -33,12 +33,12 @@ pub fn sgi_window_eye(
         top,
         near,
         far,
-    }
-    .validated()?;
-    Ok(EyeProjection {
+    };
+    EyeProjection {
         frustum,
         camera_offset: eye.sign() * half_sep,
-    })
+    }
+    .validated()
 }
 
 /// Xinerama / Bourke (seed 001): `wd2 = near·tan(fov/2)`, `ndfl = near/focal`;
@@ -69,12 +69,12 @@ pub fn bourke_eye(
         top: wd2,
         near,
         far,
-    }
-    .validated()?;
-    Ok(EyeProjection {
+    };
+    EyeProjection {
         frustum,
         camera_offset: eye.sign() * eye_separation / 2.0,
-    })
+    }
+    .validated()
 }
 
 /// The anaglyph tutorial's StereoCamera (seed 003): `a = aspect·tan(fov/2)·C`,
@@ -111,12 +111,12 @@ pub fn stereo_camera_eye(
         top,
         near,
         far,
-    }
-    .validated()?;
-    Ok(EyeProjection {
+    };
+    EyeProjection {
         frustum,
         camera_offset: eye.sign() * eye_separation / 2.0,
-    })
+    }
+    .validated()
 }
 
 /// NVIDIA's clip-space form (seed 004, REFERENCE.md):
@@ -146,7 +146,7 @@ pub fn nv_clip_shift(
     m.y_axis.x = row_x.y;
     m.z_axis.x = row_x.z;
     m.w_axis.x = row_x.w;
-    Ok(m)
+    finite_matrix("the stereo projection matrix", m)
 }
 
 /// The NVIDIA separation `s` that matches a camera half offset `h` for a
