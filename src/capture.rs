@@ -44,7 +44,9 @@ pub fn write_png(image: &Image, path: &Path) -> Result<()> {
         let file = w
             .into_inner()
             .map_err(|e| io("cannot write", e.into_error()))?;
-        file.sync_all().ok();
+        // A failed sync means the data may never reach the disk: report it
+        // rather than rename a file that may be incomplete into place.
+        file.sync_all().map_err(|e| io("cannot write", e))?;
         drop(file);
         std::fs::rename(&tmp, path).map_err(|e| io("cannot rename the capture into", e))
     })();
