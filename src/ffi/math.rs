@@ -97,7 +97,9 @@ fn write_matrix(out: *mut f64, m: &DMat4) {
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_ENUM for a bad
 /// eye; GLS_ERROR_INVALID_VALUE (message names the parameter) for near_clip
 /// <= 0, far_clip <= near_clip, left == right, bottom == top,
-/// zero_parallax_distance <= 0, a negative adjustment, or NaN/infinity.
+/// zero_parallax_distance <= 0, a negative adjustment, NaN/infinity, or
+/// values so extreme that the eye's frustum, offset or matrix would not be
+/// finite (every eye returned works with gls_frustum_matrix()).
 /// Outputs are written only on GLS_OK. Thread-safe; no GL context needed.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_stereo_eye(
@@ -148,7 +150,7 @@ pub unsafe extern "C" fn gls_stereo_eye_matrix(
 /// of gls_stereo_eye(), gls_sgi_eye(), gls_bourke_eye() or gls_stereo_camera_eye().
 ///
 /// @param frustum must not be NULL and must be valid as for glFrustum.
-/// @param camera_offset finite.
+/// @param camera_offset finite; with the frustum, its matrix must be finite.
 /// @param column_major_out receives 16 doubles; must not be NULL.
 /// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_VALUE. Thread-safe.
 #[unsafe(no_mangle)]
