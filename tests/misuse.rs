@@ -5,6 +5,8 @@
 //!
 //! The list of functions is taken from the header, so a new export without
 //! a misuse case fails `every_export_of_the_header_has_a_misuse_case`.
+//! The suite also runs under valgrind (here) and with ASan/UBSan
+//! (tests/sanitize.rs).
 
 mod common;
 
@@ -145,4 +147,42 @@ fn glx_configurations_and_current_surfaces_across_connections() {
     let o = run(&exe, &["glx"], Some(&x.display));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("covers gls_display_open"), "{stdout}");
+}
+
+#[test]
+fn the_misuse_suite_is_clean_under_valgrind() {
+    // ASan (tests/sanitize.rs) instruments the C side only; valgrind sees
+    // every read and write of the library's own (Rust) code too, e.g. that
+    // a dead handle is never dereferenced. Mesa's shader disk cache is off:
+    // its zstd compression trips valgrind's uninitialised-value check.
+    let exe = build("misuse-valgrind");
+    let o = Command::new("valgrind")
+        .args([
+            "--error-exitcode=99",
+            "--leak-check=full",
+            "--show-leak-kinds=definite",
+            "--errors-for-leak-kinds=definite",
+        ])
+        .arg(format!(
+            "--suppressions={}",
+            common::root()
+                .join("tests/sanitize/valgrind.supp")
+                .display()
+        ))
+        .arg(exe)
+        .env("MESA_SHADER_CACHE_DISABLE", "true")
+        .env("LP_NUM_THREADS", "0")
+        .env("RUST_BACKTRACE", "0")
+        .env_remove("DISPLAY")
+        .env_remove("GLSTEREO_MODE")
+        .env_remove("GLSTEREO_EMULATION")
+        .output()
+        .expect("valgrind runs (package valgrind; `make deps` installs it)");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success() && stdout.contains(" passed, 0 failed"),
+        "valgrind: {}\n{stdout}\n{}",
+        o.status,
+        String::from_utf8_lossy(&o.stderr)
+    );
 }
