@@ -1639,7 +1639,8 @@ gls_result gls_swap_buffers(struct gls_surface *surface);
  * @param len size of rgba in bytes; at least width × height × 4.
  * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
  * GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_OPERATION (a buffer the
- * configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small).
+ * configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small);
+ * GLS_ERROR_OUT_OF_MEMORY (no memory for the read-back).
  * Nothing is written on error. Any thread.
  */
 gls_result gls_surface_read_pixels(struct gls_surface *surface,
@@ -1657,8 +1658,9 @@ gls_result gls_surface_read_pixels(struct gls_surface *surface,
  * @param path a file path (UTF-8); must not be NULL.
  * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
  * GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_INVALID_VALUE (a path that is
- * not UTF-8 or names no file, e.g. ""); GLS_ERROR_IO (the message names the
- * path and the reason; no file and no temporary file is left). Any thread.
+ * not UTF-8 or names no file, e.g. ""); GLS_ERROR_OUT_OF_MEMORY (no memory
+ * for the image); GLS_ERROR_IO (the message names the path and the reason;
+ * no file and no temporary file is left). Any thread.
  */
 gls_result gls_surface_save_png(struct gls_surface *surface,
                                 uint32_t image,

@@ -37,8 +37,15 @@ pub fn write_png(image: &Image, path: &Path) -> Result<()> {
             let mut writer = enc
                 .write_header()
                 .map_err(|e| Error::Io(format!("cannot write {}: {e}", path.display())))?;
-            writer
-                .write_image_data(image.pixels())
+            // Streamed: write_image_data would first compress the whole
+            // image into memory (as large as the image for noisy content).
+            let mut stream = writer
+                .stream_writer()
+                .map_err(|e| Error::Io(format!("cannot write {}: {e}", path.display())))?;
+            std::io::Write::write_all(&mut stream, image.pixels())
+                .map_err(|e| io("cannot write", e))?;
+            stream
+                .finish()
                 .map_err(|e| Error::Io(format!("cannot write {}: {e}", path.display())))?;
         }
         let file = w

@@ -461,7 +461,7 @@ impl Surface {
     fn read_color_buffer(self: &Arc<Self>, buffer: ColorBuffer) -> Result<Image> {
         let mut img = self.with_compositor(|gl, st| {
             let (w, h) = st.fb.size();
-            let mut img = Image::new(w, h);
+            let mut img = Image::try_new(w, h)?;
             // SAFETY: the compositor context is current; the image has w×h×4 bytes.
             unsafe { st.fb.read_pixels(gl, buffer, img.pixels_mut())? };
             Ok(img)
@@ -484,7 +484,7 @@ impl Surface {
         }
         self.with_compositor(|gl, st| {
             let (w, h) = st.fb.size();
-            let mut values = vec![0f32; w as usize * h as usize];
+            let mut values = crate::image::try_vec(w as usize * h as usize, 0f32, "a depth image")?;
             // SAFETY: the compositor context is current; `values` has w×h entries.
             unsafe { st.fb.read_depth(gl, &mut values)? };
             crate::analysis::DepthImage::new(w, h, values)
@@ -516,7 +516,7 @@ impl Surface {
         let right = match right_buf {
             Some(buf) if whole(&rs) => opaque(buf),
             Some(buf) => framing.extract(&rs, &buf),
-            None if whole(&rs) => opaque(left_buf.clone()),
+            None if whole(&rs) => opaque(left_buf.try_clone()?),
             None => framing.extract(&rs, &left_buf),
         };
         let left = if whole(&ls) {
@@ -606,7 +606,7 @@ impl Surface {
                         return Ok(None);
                     }
                     let (cw, ch) = c.compose_capture(gl, &job)?;
-                    let mut img = Image::new(cw, ch);
+                    let mut img = Image::try_new(cw, ch)?;
                     c.read_capture(gl, &mut img)?;
                     Ok(Some(img))
                 }

@@ -12,7 +12,8 @@
 //! - $DISPLAY pointing nowhere, and an X server without GLX (a killed X
 //!   server is tests/glx.rs's `a_killed_server_is_reported_not_an_exit`).
 //! - Surfaces of 100000x100000, 0x0, and 16384x16384 under a 1.5 GiB address
-//!   space limit (the driver runs out of memory).
+//!   space limit (the driver runs out of memory); read-backs and captures
+//!   without memory left; a draw-buffer count of 2^31 − 1 under a limit.
 //! - GLSTEREO_MODE=garbage, in the library and in a C example.
 //! - Unwritable capture paths, and a disk that fills up in the middle of a
 //!   capture (RLIMIT_FSIZE, and a 128 KiB tmpfs in a private namespace): an
@@ -320,6 +321,35 @@ fn a_surface_the_driver_cannot_allocate_is_out_of_memory_not_an_abort() {
             .expect("surface", "GLS_ERROR_OUT_OF_MEMORY", &["smaller surface"])
             .expect("small", "GLS_OK", &[]);
     }
+}
+
+#[test]
+fn reading_back_without_memory_is_out_of_memory_not_an_abort() {
+    // A 8192x4096 mono surface (one 128 MiB colour buffer) read back with
+    // 64 MiB of address space left: every read-back path fails cleanly
+    // (it aborted the process, as a failed Rust allocation does).
+    for backend in ["egl", "osmesa"] {
+        run(cmd(&["readback", "8192", "4096", "64"]).env("GLSTEREO_BACKEND", backend))
+            .expect(
+                "left",
+                "GLS_ERROR_OUT_OF_MEMORY",
+                &["MiB", "could not be allocated"],
+            )
+            .expect("composite", "GLS_ERROR_OUT_OF_MEMORY", &["MiB"])
+            .expect("read", "GLS_ERROR_OUT_OF_MEMORY", &["MiB"])
+            .expect("small", "GLS_OK", &[]);
+    }
+}
+
+#[test]
+fn a_huge_draw_buffer_count_is_an_invalid_value_not_an_abort() {
+    // gls_draw_buffers(INT_MAX, bufs) allocated INT_MAX entries first,
+    // which aborted the process under a memory limit.
+    run(cmd(&["drawbuffers", "2048"]).env("GLSTEREO_BACKEND", "egl")).expect(
+        "drawbuffers",
+        "GLS_ERROR_INVALID_VALUE",
+        &["2147483647", "GL_MAX_DRAW_BUFFERS"],
+    );
 }
 
 #[test]

@@ -167,8 +167,15 @@ pub unsafe extern "C" fn gls_draw_buffers(n: i32, bufs: *const u32) -> gls_resul
         if n > 0 && bufs.is_null() {
             return Err(Error::NullPointer("bufs"));
         }
-        if n as usize > crate::stereo::emulated::MAX_DRAW_BUFFERS {
-            return s.draw_buffers(&vec![0; n as usize]);
+        const MAX: usize = crate::stereo::emulated::MAX_DRAW_BUFFERS;
+        if n as usize > MAX {
+            // More than any driver takes. Not a list of n entries (n may be
+            // 2^31 − 1: allocating it aborted the process under a memory
+            // limit): any longer list records the same GL_INVALID_VALUE.
+            let _ = s.draw_buffers(&[crate::gl::enums::GL_NONE; MAX + 1]);
+            return Err(Error::invalid_value(format!(
+                "glDrawBuffers: n = {n} exceeds GL_MAX_DRAW_BUFFERS (at most {MAX}) (GL_INVALID_VALUE)"
+            )));
         }
         let list = if n == 0 {
             &[][..]
@@ -306,7 +313,8 @@ pub extern "C" fn gls_swap_buffers(surface: *mut gls_surface) -> gls_result {
 /// @param len size of rgba in bytes; at least width × height × 4.
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
 /// GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_OPERATION (a buffer the
-/// configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small).
+/// configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small);
+/// GLS_ERROR_OUT_OF_MEMORY (no memory for the read-back).
 /// Nothing is written on error. Any thread.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_surface_read_pixels(
@@ -341,8 +349,9 @@ pub unsafe extern "C" fn gls_surface_read_pixels(
 /// @param path a file path (UTF-8); must not be NULL.
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
 /// GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_INVALID_VALUE (a path that is
-/// not UTF-8 or names no file, e.g. ""); GLS_ERROR_IO (the message names the
-/// path and the reason; no file and no temporary file is left). Any thread.
+/// not UTF-8 or names no file, e.g. ""); GLS_ERROR_OUT_OF_MEMORY (no memory
+/// for the image); GLS_ERROR_IO (the message names the path and the reason;
+/// no file and no temporary file is left). Any thread.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_surface_save_png(
     surface: *mut gls_surface,

@@ -17,6 +17,9 @@
  *                                   midway with EFBIG
  *   memory W H LIMIT_MIB            as surface, under RLIMIT_AS
  *   composite W H MODE PATH         a W x H surface's composite in MODE saved
+ *   drawbuffers LIMIT_MIB           gls_draw_buffers(INT_MAX, …) under RLIMIT_AS
+ *   readback W H EXTRA_MIB          a mono W x H surface captured and read back
+ *                                   with EXTRA MiB of address space left
  *
  * Links only libglstereo; GL through gls_get_proc_address. */
 #define _POSIX_C_SOURCE 200809L
@@ -59,6 +62,18 @@ static uint32_t backend_of(const char *s) {
     if (strcmp(s, "egl") == 0) return GLS_BACKEND_EGL;
     if (strcmp(s, "osmesa") == 0) return GLS_BACKEND_OSMESA;
     return GLS_BACKEND_AUTO;
+}
+
+/* The process's address space in MiB (VmSize). */
+static long vm_mib(void) {
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    long kib = 0;
+    if (!f) return 0;
+    while (fgets(line, sizeof line, f))
+        if (strncmp(line, "VmSize:", 7) == 0) kib = atol(line + 7);
+    fclose(f);
+    return kib / 1024;
 }
 
 static const int ATTRIBS[] = {4 /* GLX_RGBA */, 5 /* GLX_DOUBLEBUFFER */, 6 /* GLX_STEREO */, 0};
@@ -151,6 +166,57 @@ int main(int argc, char **argv) {
         report("left", gls_surface_save_png(s, GLS_IMAGE_LEFT, argv[2]));
         gls_make_current(NULL);
         gls_surface_destroy(s);
+        gls_config_free(c);
+        gls_display_close(d);
+        return 0;
+    }
+    if (strcmp(cmd, "drawbuffers") == 0 && argc == 3) {
+        gls_display *d = NULL;
+        gls_config *c = NULL;
+        gls_surface *s = NULL;
+        uint32_t bufs[9] = {0};
+        struct rlimit lim;
+        if (open_surface(16, 16, &d, &c, &s) != GLS_OK) return 0;
+        report("current", gls_make_current(s));
+        lim.rlim_cur = lim.rlim_max = (rlim_t)atol(argv[2]) << 20;
+        setrlimit(RLIMIT_AS, &lim);
+        /* A count far beyond any driver's limit (the array cannot hold it). */
+        report("drawbuffers", gls_draw_buffers(2147483647, bufs));
+        printf("gl error 0x%x\n", gls_get_error());
+        gls_make_current(NULL);
+        gls_surface_destroy(s);
+        gls_config_free(c);
+        gls_display_close(d);
+        return 0;
+    }
+    if (strcmp(cmd, "readback") == 0 && argc == 5) {
+        /* A mono single-buffered surface (one colour buffer), then reading
+         * it back with only EXTRA MiB of address space left. */
+        static const int mono[] = {4 /* GLX_RGBA */, 0};
+        gls_display *d = NULL;
+        gls_config *c = NULL;
+        gls_surface *s = NULL;
+        uint32_t w = (uint32_t)atol(argv[2]), h = (uint32_t)atol(argv[3]);
+        if (report("open", gls_display_open(GLS_BACKEND_AUTO, &d)) ||
+            report("config", gls_config_choose(d, mono, &c)) ||
+            report("surface", gls_surface_create(d, c, w, h, &s)))
+            return 0;
+        report("output", gls_surface_set_output(s, GLS_OUTPUT_SIDE_BY_SIDE));
+        size_t need = (size_t)w * h * 4;
+        unsigned char *px = malloc(need); /* before the limit: the program's own */
+        struct rlimit lim;
+        lim.rlim_cur = lim.rlim_max = (rlim_t)(vm_mib() + atol(argv[4])) << 20;
+        setrlimit(RLIMIT_AS, &lim);
+        report("left", gls_surface_save_png(s, GLS_IMAGE_LEFT, "/nonexistent-glstereo/never.png"));
+        report("composite", gls_surface_save_png(s, GLS_IMAGE_COMPOSITE, "/nonexistent-glstereo/never.png"));
+        if (px) report("read", gls_surface_read_pixels(s, 0x0400 /* GL_FRONT_LEFT */, px, need));
+        free(px);
+        gls_surface_destroy(s);
+        /* Room again: a small surface works. */
+        lim.rlim_cur = lim.rlim_max = RLIM_INFINITY;
+        setrlimit(RLIMIT_AS, &lim);
+        gls_surface *small = NULL;
+        if (report("small", gls_surface_create(d, c, 16, 16, &small)) == GLS_OK) gls_surface_destroy(small);
         gls_config_free(c);
         gls_display_close(d);
         return 0;
