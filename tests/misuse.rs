@@ -39,12 +39,13 @@ fn header_functions() -> BTreeSet<String> {
     names
 }
 
-/// The gls_* functions libglstereo.so exports (its dynamic symbol table).
-fn library_exports() -> BTreeSet<String> {
-    let lib = common::lib_dir().join("libglstereo.so");
+/// The functions a shared library exports whose names start with `prefix`
+/// (its dynamic symbol table). The preload library's glX*/gl* exports can be
+/// listed the same way, to require a misuse case for each.
+fn library_exports(lib: &Path, prefix: &str) -> BTreeSet<String> {
     let o = Command::new("nm")
         .args(["-D", "--defined-only"])
-        .arg(&lib)
+        .arg(lib)
         .output()
         .expect("nm runs (package binutils, installed with gcc)");
     assert!(o.status.success(), "nm {}", lib.display());
@@ -53,7 +54,7 @@ fn library_exports() -> BTreeSet<String> {
         .filter_map(|l| {
             let mut f = l.split_whitespace();
             let (_addr, kind, name) = (f.next()?, f.next()?, f.next()?);
-            (kind == "T" && name.starts_with("gls_")).then(|| name.to_owned())
+            (kind == "T" && name.starts_with(prefix)).then(|| name.to_owned())
         })
         .collect()
 }
@@ -133,7 +134,7 @@ fn the_header_declares_exactly_what_the_library_exports() {
     // A function exported without a declaration could not be called (or
     // misused) from C; a declaration without an export would not link.
     let declared = header_functions();
-    let exported = library_exports();
+    let exported = library_exports(&common::lib_dir().join("libglstereo.so"), "gls_");
     assert_eq!(
         declared, exported,
         "include/glstereo.h and libglstereo.so disagree"
