@@ -15,9 +15,11 @@
  *                                   limit, RLIMIT_FSIZE (bytes) is set first
  *                                   and SIGXFSZ ignored, so the write fails
  *                                   midway with EFBIG
- *   memory W H LIMIT_MIB            as surface, under RLIMIT_AS
+ *   memory W H EXTRA_MIB            a W x H surface with only EXTRA MiB of
+ *                                   address space left (RLIMIT_AS)
  *   composite W H MODE PATH         a W x H surface's composite in MODE saved
- *   drawbuffers LIMIT_MIB           gls_draw_buffers(INT_MAX, …) under RLIMIT_AS
+ *   drawbuffers EXTRA_MIB           gls_draw_buffers(INT_MAX, …) with EXTRA MiB
+ *                                   of address space left
  *   readback W H EXTRA_MIB          a mono W x H surface captured and read back
  *                                   with EXTRA MiB of address space left
  *
@@ -123,12 +125,27 @@ int main(int argc, char **argv) {
         report("after", gls_screen_set_size(640, 480));
         return 0;
     }
-    if ((strcmp(cmd, "surface") == 0 && argc == 4) || (strcmp(cmd, "memory") == 0 && argc == 5)) {
-        if (argc == 5) {
-            struct rlimit lim;
-            lim.rlim_cur = lim.rlim_max = (rlim_t)atol(argv[4]) << 20;
-            setrlimit(RLIMIT_AS, &lim);
-        }
+    if (strcmp(cmd, "memory") == 0 && argc == 5) {
+        gls_display *d = NULL;
+        gls_config *c = NULL;
+        gls_surface *warm = NULL, *s = NULL;
+        /* A small surface first, so the driver is loaded and running; then
+         * only EXTRA MiB more address space for the big one. */
+        if (open_surface(16, 16, &d, &c, &warm) != GLS_OK) return 0;
+        struct rlimit lim;
+        lim.rlim_cur = lim.rlim_max = (rlim_t)(vm_mib() + atol(argv[4])) << 20;
+        setrlimit(RLIMIT_AS, &lim);
+        report("big", gls_surface_create(d, c, (uint32_t)atol(argv[2]), (uint32_t)atol(argv[3]), &s));
+        gls_surface_destroy(s);
+        report("current", gls_make_current(warm));
+        report("swap", gls_swap_buffers(warm));
+        gls_make_current(NULL);
+        gls_surface_destroy(warm);
+        gls_config_free(c);
+        gls_display_close(d);
+        return 0;
+    }
+    if (strcmp(cmd, "surface") == 0 && argc == 4) {
         gls_display *d = NULL;
         gls_config *c = NULL;
         gls_surface *s = NULL;
@@ -178,7 +195,7 @@ int main(int argc, char **argv) {
         struct rlimit lim;
         if (open_surface(16, 16, &d, &c, &s) != GLS_OK) return 0;
         report("current", gls_make_current(s));
-        lim.rlim_cur = lim.rlim_max = (rlim_t)atol(argv[2]) << 20;
+        lim.rlim_cur = lim.rlim_max = (rlim_t)(vm_mib() + atol(argv[2])) << 20;
         setrlimit(RLIMIT_AS, &lim);
         /* A count far beyond any driver's limit (the array cannot hold it). */
         report("drawbuffers", gls_draw_buffers(2147483647, bufs));
