@@ -9,11 +9,12 @@ CARGO_PROFILE_FLAG := $(if $(filter release,$(PROFILE)),--release,)
 
 # Runtime: Mesa's EGL/GL/OSMesa (llvmpipe), Xvfb for the GLX tests.
 # Build: the GL/EGL/OSMesa/GLUT headers for the C examples, pkg-config, a C compiler.
+# Tests: valgrind (leak attribution through Mesa; gcc brings ASan/UBSan/LSan).
 DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosmesa6 \
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
-                xvfb x11-apps x11-utils xauth pkg-config gcc make
+                xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind
 
-.PHONY: all deps build header examples demo test lint clean install uninstall
+.PHONY: all deps build header examples demo test check-sanitize lint clean install uninstall
 
 all: build examples
 
@@ -53,9 +54,19 @@ lint:
 	$(CARGO) fmt --all -- --check
 	$(CARGO) clippy $(CARGO_PROFILE_FLAG) --all-targets -- -D warnings
 
-test: deps lint
+# The bounded fuzz run of tests/fuzz.rs lasts this long (plain `cargo test`: 2 s).
+FUZZ_SECONDS ?= 60
+
+# check-sanitize runs the tests/sanitize.rs tests (named sanitized_*), which
+# the full run then skips.
+test: deps lint check-sanitize
 	$(CARGO) build $(CARGO_PROFILE_FLAG) -p glstereo-preload
-	$(CARGO) test $(CARGO_PROFILE_FLAG) --no-fail-fast
+	GLSTEREO_FUZZ_SECONDS=$(FUZZ_SECONDS) $(CARGO) test $(CARGO_PROFILE_FLAG) --no-fail-fast -- --skip sanitized_
+
+# The C examples, the misuse suite and the threads test built with
+# -fsanitize=address,undefined, run clean (tests/sanitize.rs).
+check-sanitize: deps
+	$(CARGO) test $(CARGO_PROFILE_FLAG) --test sanitize
 
 # --- install: `make install PREFIX=/usr/local` (DESTDIR for staging) -------
 # The libraries (libglstereo.so with its soname, libglstereo.a,

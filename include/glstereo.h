@@ -1024,7 +1024,9 @@ gls_result gls_irisgl_translate(double x, double y, double z);
  * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_ENUM for a bad
  * eye; GLS_ERROR_INVALID_VALUE (message names the parameter) for near_clip
  * <= 0, far_clip <= near_clip, left == right, bottom == top,
- * zero_parallax_distance <= 0, a negative adjustment, or NaN/infinity.
+ * zero_parallax_distance <= 0, a negative adjustment, NaN/infinity, or
+ * values so extreme that the eye's frustum, offset or matrix would not be
+ * finite (every eye returned works with gls_frustum_matrix()).
  * Outputs are written only on GLS_OK. Thread-safe; no GL context needed.
  */
 gls_result gls_stereo_eye(const struct gls_frustum *mono,
@@ -1053,7 +1055,7 @@ gls_result gls_stereo_eye_matrix(const struct gls_frustum *mono,
  * of gls_stereo_eye(), gls_sgi_eye(), gls_bourke_eye() or gls_stereo_camera_eye().
  *
  * @param frustum must not be NULL and must be valid as for glFrustum.
- * @param camera_offset finite.
+ * @param camera_offset finite; with the frustum, its matrix must be finite.
  * @param column_major_out receives 16 doubles; must not be NULL.
  * @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_VALUE. Thread-safe.
  */
@@ -1183,7 +1185,8 @@ gls_result gls_sgi_eye(double top,
 /**
  * One eye by the Xinerama / Bourke method (seed 001): wd2 = near·tan(fov/2),
  * ndfl = near/focal_length, frustum (∓ratio·wd2 ± ½·eye_separation·ndfl …),
- * camera moved by ∓eye_separation/2. fov is vertical, in degrees. Seed 001's
+ * camera moved by ∓eye_separation/2. fov is vertical, in degrees, above 0
+ * and below 180. Seed 001's
  * defaults: eye_separation 0.04, focal_length 1.
  *
  * @return as gls_stereo_eye(). Thread-safe.
@@ -1202,7 +1205,7 @@ gls_result gls_bourke_eye(double fov_degrees,
  * One eye by the anaglyph tutorial's StereoCamera (seed 003):
  * a = aspect·tan(fov/2)·C, b = a − D/2, c = a + D/2; left eye frustum
  * (−b·near/C, c·near/C, …) with translate(+D/2); the right eye swaps b and c.
- * fov is vertical, in degrees; D is typically C/30.
+ * fov is vertical, in degrees, above 0 and below 180; D is typically C/30.
  *
  * @return as gls_stereo_eye(). Thread-safe.
  */
@@ -1546,7 +1549,9 @@ gls_result gls_starbase_gescape(int32_t fildes,
  * @param width, height 1…16384 (and within the driver's limits).
  * @param surface_out receives the surface; must not be NULL. Destroy it with gls_surface_destroy().
  * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
- * GLS_ERROR_INVALID_VALUE (size); GLS_ERROR_OUT_OF_MEMORY;
+ * GLS_ERROR_INVALID_VALUE (size, or a bad GLSTEREO_MODE and the other
+ * output variables); GLS_ERROR_INVALID_OPERATION (a configuration chosen on
+ * another display); GLS_ERROR_OUT_OF_MEMORY;
  * GLS_ERROR_BACKEND_UNAVAILABLE (no context could be created). Any thread;
  * the calling thread's current surface is unchanged.
  */
@@ -1707,7 +1712,8 @@ gls_result gls_swap_buffers(struct gls_surface *surface);
  * @param len size of rgba in bytes; at least width × height × 4.
  * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
  * GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_OPERATION (a buffer the
- * configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small).
+ * configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small);
+ * GLS_ERROR_OUT_OF_MEMORY (no memory for the read-back).
  * Nothing is written on error. Any thread.
  */
 gls_result gls_surface_read_pixels(struct gls_surface *surface,
@@ -1724,8 +1730,10 @@ gls_result gls_surface_read_pixels(struct gls_surface *surface,
  * @param surface a live surface. @param image GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE.
  * @param path a file path (UTF-8); must not be NULL.
  * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
- * GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_IO (the message names the path
- * and the reason). Any thread.
+ * GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_INVALID_VALUE (a path that is
+ * not UTF-8 or names no file, e.g. ""); GLS_ERROR_OUT_OF_MEMORY (no memory
+ * for the image); GLS_ERROR_IO (the message names the path and the reason;
+ * no file and no temporary file is left). Any thread.
  */
 gls_result gls_surface_save_png(struct gls_surface *surface,
                                 uint32_t image,
@@ -1744,8 +1752,8 @@ gls_result gls_surface_save_png(struct gls_surface *surface,
  * GLS_OUTPUT_ANAGLYPH_RED_CYAN.
  *
  * @param surface a live surface. @param output a GLS_OUTPUT_* value.
- * @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_ENUM (nothing
- * changes). Any thread.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+ * GLS_ERROR_INVALID_ENUM (nothing changes). Any thread.
  */
 gls_result gls_surface_set_output(struct gls_surface *surface, uint32_t output);
 
@@ -1763,7 +1771,7 @@ gls_result gls_surface_get_output(const struct gls_surface *surface, uint32_t *o
  *
  * Default: GLSTEREO_SWAP_EYES at surface creation, else false.
  *
- * @return GLS_OK or GLS_ERROR_INVALID_HANDLE. Any thread.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any thread.
  */
 gls_result gls_surface_set_swap_eyes(struct gls_surface *surface, bool swap_eyes);
 
@@ -1774,8 +1782,8 @@ gls_result gls_surface_set_swap_eyes(struct gls_surface *surface, bool swap_eyes
  * Default: GLSTEREO_CROSSTALK at surface creation, else 0.
  *
  * @param crosstalk 0…1.
- * @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
- * (outside 0…1 or NaN; nothing changes). Any thread.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+ * GLS_ERROR_INVALID_VALUE (outside 0…1 or NaN; nothing changes). Any thread.
  */
 gls_result gls_surface_set_crosstalk(struct gls_surface *surface, float crosstalk);
 
@@ -1787,8 +1795,8 @@ gls_result gls_surface_set_crosstalk(struct gls_surface *surface, float crosstal
  * Default: GLSTEREO_SATURATION at surface creation, else 1.
  *
  * @param saturation 0…1.
- * @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
- * (outside 0…1 or NaN; nothing changes). Any thread.
+ * @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+ * GLS_ERROR_INVALID_VALUE (outside 0…1 or NaN; nothing changes). Any thread.
  */
 gls_result gls_surface_set_saturation(struct gls_surface *surface, float saturation);
 
@@ -1799,8 +1807,8 @@ gls_result gls_surface_set_saturation(struct gls_surface *surface, float saturat
  * The eyes taken apart flow to every output format and capture.
  *
  * @param surface a live surface. @param input a GLS_INPUT_* value.
- * @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_ENUM;
- * GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
  * that way (nothing changes). Any thread.
  */
 gls_result gls_surface_set_input(struct gls_surface *surface, uint32_t input);

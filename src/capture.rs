@@ -37,14 +37,23 @@ pub fn write_png(image: &Image, path: &Path) -> Result<()> {
             let mut writer = enc
                 .write_header()
                 .map_err(|e| Error::Io(format!("cannot write {}: {e}", path.display())))?;
-            writer
-                .write_image_data(image.pixels())
+            // Streamed: write_image_data would first compress the whole
+            // image into memory (as large as the image for noisy content).
+            let mut stream = writer
+                .stream_writer()
+                .map_err(|e| Error::Io(format!("cannot write {}: {e}", path.display())))?;
+            std::io::Write::write_all(&mut stream, image.pixels())
+                .map_err(|e| io("cannot write", e))?;
+            stream
+                .finish()
                 .map_err(|e| Error::Io(format!("cannot write {}: {e}", path.display())))?;
         }
         let file = w
             .into_inner()
             .map_err(|e| io("cannot write", e.into_error()))?;
-        file.sync_all().ok();
+        // A failed sync means the data may never reach the disk: report it
+        // rather than rename a file that may be incomplete into place.
+        file.sync_all().map_err(|e| io("cannot write", e))?;
         drop(file);
         std::fs::rename(&tmp, path).map_err(|e| io("cannot rename the capture into", e))
     })();

@@ -287,6 +287,10 @@ pub struct Config {
     pub stencil_bits: u32,
     /// Backend-specific data (a GLX visual, …).
     pub native: Option<Arc<dyn Any + Send + Sync>>,
+    /// The id of the display that chose it ([`crate::display::Display::id`]);
+    /// 0 for a configuration made without one. A surface can only be made
+    /// from a configuration on the display that chose it.
+    pub display_id: u64,
 }
 
 impl std::fmt::Debug for Config {
@@ -333,6 +337,7 @@ impl Config {
             depth_bits: if depth_or_stencil { 24 } else { 0 },
             stencil_bits: if depth_or_stencil { 8 } else { 0 },
             native: None,
+            display_id: 0,
         })
     }
 

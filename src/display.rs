@@ -1,11 +1,12 @@
 //! A display: one backend connection, the configurations it offers, and the
 //! surfaces made on it.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, OnceLock};
 
 use crate::backend::{self, BackendChoice, BackendKind, Platform};
 use crate::config::{Config, ConfigRequest, EmulationPolicy};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::surface::Surface;
 
@@ -14,6 +15,14 @@ use crate::surface::Surface;
 pub struct Display {
     platform: Box<dyn Platform>,
     gl: OnceLock<Arc<Gl>>,
+    id: u64,
+}
+
+/// A new display id: unique for the life of the process (never reused, unlike
+/// addresses), so a configuration can name the display that chose it.
+fn next_id() -> u64 {
+    static NEXT: AtomicU64 = AtomicU64::new(1);
+    NEXT.fetch_add(1, Ordering::Relaxed)
 }
 
 impl std::fmt::Debug for Display {
@@ -35,6 +44,7 @@ impl Display {
         Ok(Arc::new(Display {
             platform: backend::open(choice)?,
             gl: OnceLock::new(),
+            id: next_id(),
         }))
     }
 
@@ -43,7 +53,13 @@ impl Display {
         Ok(Arc::new(Display {
             platform: Box::new(backend::glx::GlxPlatform::open(name)?),
             gl: OnceLock::new(),
+            id: next_id(),
         }))
+    }
+
+    /// This display's id, unique in the process.
+    pub fn id(&self) -> u64 {
+        self.id
     }
 
     /// Which backend this display uses.
@@ -74,7 +90,9 @@ impl Display {
         let request = ConfigRequest::parse_visual_attribs(attribs)?;
         let policy =
             EmulationPolicy::from_env_value(std::env::var("GLSTEREO_EMULATION").ok().as_deref())?;
-        self.platform.choose_config(request, policy)
+        let mut config = self.platform.choose_config(request, policy)?;
+        config.display_id = self.id;
+        Ok(config)
     }
 
     /// Creates a surface of `width` × `height` pixels per eye.
@@ -84,6 +102,14 @@ impl Display {
         width: u32,
         height: u32,
     ) -> Result<Arc<Surface>> {
+        if config.display_id != self.id {
+            // A GLX configuration holds a visual of its own X connection,
+            // which may be closed by now; every backend refuses alike.
+            return Err(Error::invalid_operation(
+                "this configuration was chosen on another display: choose one on the display \
+                 the surface is made on (gls_config_choose)",
+            ));
+        }
         Surface::create(self.clone(), config.clone(), width, height)
     }
 }

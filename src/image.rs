@@ -31,6 +31,20 @@ pub fn check_size(width: u32, height: u32) -> Result<()> {
     Ok(())
 }
 
+/// `len` copies of `value`, or `OutOfMemory` naming `what` when the memory
+/// cannot be had (instead of aborting the process, as `vec!` does).
+pub fn try_vec<T: Clone>(len: usize, value: T, what: &str) -> Result<Vec<T>> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).map_err(|_| {
+        Error::OutOfMemory(format!(
+            "{} MiB for {what} could not be allocated: free memory or use a smaller surface",
+            (len * std::mem::size_of::<T>()) >> 20
+        ))
+    })?;
+    v.resize(len, value);
+    Ok(v)
+}
+
 /// Reverses the order of `stride`-byte rows in place (GL reads rows bottom first).
 pub fn flip_rows(pixels: &mut [u8], stride: usize) {
     let h = pixels.len() / stride;
@@ -42,14 +56,42 @@ pub fn flip_rows(pixels: &mut [u8], stride: usize) {
 
 impl Image {
     /// A black, fully transparent image. Panics on a size outside
-    /// 1…MAX_DIMENSION (check with [`check_size`] first for user input).
+    /// 1…MAX_DIMENSION (check with [`check_size`] first for user input), and
+    /// when the memory cannot be had — a panic the C boundary reports as
+    /// GLS_ERROR_PANIC, where a failed `vec!` would abort the whole process.
+    /// Images as large as a surface use [`Image::try_new`].
     pub fn new(width: u32, height: u32) -> Image {
-        check_size(width, height).expect("image size");
-        Image {
+        Self::try_new(width, height).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// A black, fully transparent image; `InvalidValue` for a size outside
+    /// 1…MAX_DIMENSION, `OutOfMemory` when its pixels cannot be allocated.
+    pub fn try_new(width: u32, height: u32) -> Result<Image> {
+        check_size(width, height)?;
+        Ok(Image {
             width,
             height,
-            pixels: vec![0; width as usize * height as usize * 4],
-        }
+            pixels: try_vec(width as usize * height as usize * 4, 0u8, "an image")?,
+        })
+    }
+
+    /// A copy, or `OutOfMemory` when the memory cannot be had.
+    pub fn try_clone(&self) -> Result<Image> {
+        let mut pixels = try_vec(0, 0u8, "an image")?;
+        pixels.try_reserve_exact(self.pixels.len()).map_err(|_| {
+            Error::OutOfMemory(format!(
+                "{} MiB for a copy of a {}x{} image could not be allocated: free memory or use a smaller surface",
+                self.pixels.len() >> 20,
+                self.width,
+                self.height
+            ))
+        })?;
+        pixels.extend_from_slice(&self.pixels);
+        Ok(Image {
+            width: self.width,
+            height: self.height,
+            pixels,
+        })
     }
 
     /// An image of the given pixels (rows top first, 4 bytes a pixel).

@@ -26,7 +26,30 @@ use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
 
 thread_local! {
     /// The surface current on this thread and which of its contexts.
-    static CURRENT: RefCell<Option<(Arc<Surface>, ContextRole)>> = const { RefCell::new(None) };
+    static CURRENT: Current = const { Current(RefCell::new(None)) };
+}
+
+/// This thread's current surface. A thread that ends with a surface current
+/// releases it (as if it called gls_make_current(NULL)): otherwise the
+/// surface would stay owned by a thread that no longer exists — no other
+/// thread could make it current — and a surface destroyed meanwhile would
+/// never free its contexts.
+struct Current(RefCell<Option<(Arc<Surface>, ContextRole)>>);
+
+impl std::ops::Deref for Current {
+    type Target = RefCell<Option<(Arc<Surface>, ContextRole)>>;
+    fn deref(&self) -> &Self::Target {
+        &self.0
+    }
+}
+
+impl Drop for Current {
+    fn drop(&mut self) {
+        if let Some((s, _)) = self.0.get_mut().take() {
+            let _ = s.platform.release_current();
+            *s.owner.lock().unwrap_or_else(|e| e.into_inner()) = None;
+        }
+    }
 }
 
 /// The surface whose application context is current on this thread.
@@ -146,15 +169,39 @@ impl std::fmt::Debug for Surface {
 
 /// Runs `f` with `platform`'s compositor context current, then puts back
 /// whatever was current on this thread before.
+///
+/// When the thread's current surface belongs to another display, its
+/// context is released first and this one's released before it is made
+/// current again: backends share Mesa's per-thread GL dispatch (libOSMesa
+/// and the EGL/GLX driver both use libglapi), and a make-current that the
+/// other backend's bookkeeping thinks changes nothing would leave GL calls
+/// going to the wrong context.
 fn with_compositor_of<T>(
+    display: &Arc<Display>,
     platform: &dyn PlatformSurface,
     f: impl FnOnce() -> Result<T>,
 ) -> Result<T> {
     let saved = CURRENT.with(|c| c.borrow().clone());
-    platform.make_current(ContextRole::Compositor)?;
+    let foreign = saved
+        .as_ref()
+        .is_some_and(|(p, _)| !Arc::ptr_eq(&p.display, display));
+    if let (true, Some((p, _))) = (foreign, &saved) {
+        p.platform.release_current()?;
+    }
+    if let Err(e) = platform.make_current(ContextRole::Compositor) {
+        if let Some((p, role)) = &saved {
+            let _ = p.platform.make_current(*role);
+        }
+        return Err(e);
+    }
     let result = f();
     let restored = match &saved {
-        Some((p, role)) => p.platform.make_current(*role),
+        Some((p, role)) => {
+            if foreign {
+                let _ = platform.release_current();
+            }
+            p.platform.make_current(*role)
+        }
         None => platform.release_current(),
     };
     let value = result?;
@@ -180,7 +227,7 @@ impl Surface {
         check_size(win_w, win_h)?;
         let platform = display.platform().create_surface(&config, win_w, win_h)?;
         let shape = config.shape();
-        let (fb, gl) = with_compositor_of(&*platform, || {
+        let (fb, gl) = with_compositor_of(&display, &*platform, || {
             let gl = display.gl()?;
             // SAFETY: the compositor context is current.
             let fb = unsafe {
@@ -284,7 +331,7 @@ impl Surface {
             // to are only guaranteed visible to another context after Finish.
             unsafe { self.gl.Finish() };
         }
-        with_compositor_of(&*self.platform, || {
+        with_compositor_of(&self.display, &*self.platform, || {
             f(&self.gl, &mut self.state.lock().unwrap())
         })
     }
@@ -440,7 +487,7 @@ impl Surface {
     fn read_color_buffer(self: &Arc<Self>, buffer: ColorBuffer) -> Result<Image> {
         let mut img = self.with_compositor(|gl, st| {
             let (w, h) = st.fb.size();
-            let mut img = Image::new(w, h);
+            let mut img = Image::try_new(w, h)?;
             // SAFETY: the compositor context is current; the image has w×h×4 bytes.
             unsafe { st.fb.read_pixels(gl, buffer, img.pixels_mut())? };
             Ok(img)
@@ -463,7 +510,7 @@ impl Surface {
         }
         self.with_compositor(|gl, st| {
             let (w, h) = st.fb.size();
-            let mut values = vec![0f32; w as usize * h as usize];
+            let mut values = crate::image::try_vec(w as usize * h as usize, 0f32, "a depth image")?;
             // SAFETY: the compositor context is current; `values` has w×h entries.
             unsafe { st.fb.read_depth(gl, &mut values)? };
             crate::analysis::DepthImage::new(w, h, values)
@@ -495,7 +542,7 @@ impl Surface {
         let right = match right_buf {
             Some(buf) if whole(&rs) => opaque(buf),
             Some(buf) => framing.extract(&rs, &buf),
-            None if whole(&rs) => opaque(left_buf.clone()),
+            None if whole(&rs) => opaque(left_buf.try_clone()?),
             None => framing.extract(&rs, &left_buf),
         };
         let left = if whole(&ls) {
@@ -635,7 +682,7 @@ impl Surface {
                         return Ok(None);
                     }
                     let (cw, ch) = c.compose_capture(gl, &job)?;
-                    let mut img = Image::new(cw, ch);
+                    let mut img = Image::try_new(cw, ch)?;
                     c.read_capture(gl, &mut img)?;
                     Ok(Some(img))
                 }

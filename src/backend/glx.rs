@@ -350,6 +350,12 @@ impl GlxPlatform {
         let (mut err_base, mut ev_base) = (0, 0);
         // SAFETY: valid display and out-pointers.
         if unsafe { (glx.glXQueryExtension)(display, &mut err_base, &mut ev_base) } == 0 {
+            // Unregistered first: `state` is freed on return, and the exit
+            // hook would otherwise read it (and close this display again).
+            OUR_DISPLAYS
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .retain(|r| r.display != display as usize);
             // SAFETY: valid display, closed once.
             unsafe { (xlib.XCloseDisplay)(display) };
             return Err(Error::BackendUnavailable(format!(

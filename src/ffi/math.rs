@@ -97,7 +97,9 @@ fn write_matrix(out: *mut f64, m: &DMat4) {
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_ENUM for a bad
 /// eye; GLS_ERROR_INVALID_VALUE (message names the parameter) for near_clip
 /// <= 0, far_clip <= near_clip, left == right, bottom == top,
-/// zero_parallax_distance <= 0, a negative adjustment, or NaN/infinity.
+/// zero_parallax_distance <= 0, a negative adjustment, NaN/infinity, or
+/// values so extreme that the eye's frustum, offset or matrix would not be
+/// finite (every eye returned works with gls_frustum_matrix()).
 /// Outputs are written only on GLS_OK. Thread-safe; no GL context needed.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_stereo_eye(
@@ -148,7 +150,7 @@ pub unsafe extern "C" fn gls_stereo_eye_matrix(
 /// of gls_stereo_eye(), gls_sgi_eye(), gls_bourke_eye() or gls_stereo_camera_eye().
 ///
 /// @param frustum must not be NULL and must be valid as for glFrustum.
-/// @param camera_offset finite.
+/// @param camera_offset finite; with the frustum, its matrix must be finite.
 /// @param column_major_out receives 16 doubles; must not be NULL.
 /// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_VALUE. Thread-safe.
 #[unsafe(no_mangle)]
@@ -162,9 +164,10 @@ pub unsafe extern "C" fn gls_frustum_matrix(
         let f = unsafe { arg_ref(frustum, "frustum")? };
         let out = arg_out(column_major_out, "column_major_out")?;
         let p = EyeProjection {
-            frustum: Frustum::from(f).validated()?,
-            camera_offset: crate::math::finite("camera_offset", camera_offset)?,
-        };
+            frustum: Frustum::from(f),
+            camera_offset,
+        }
+        .validated()?;
         write_matrix(out, &p.matrix());
         Ok(())
     })
@@ -371,7 +374,8 @@ pub unsafe extern "C" fn gls_sgi_eye(
 
 /// One eye by the Xinerama / Bourke method (seed 001): wd2 = near·tan(fov/2),
 /// ndfl = near/focal_length, frustum (∓ratio·wd2 ± ½·eye_separation·ndfl …),
-/// camera moved by ∓eye_separation/2. fov is vertical, in degrees. Seed 001's
+/// camera moved by ∓eye_separation/2. fov is vertical, in degrees, above 0
+/// and below 180. Seed 001's
 /// defaults: eye_separation 0.04, focal_length 1.
 ///
 /// @return as gls_stereo_eye(). Thread-safe.
@@ -408,7 +412,7 @@ pub unsafe extern "C" fn gls_bourke_eye(
 /// One eye by the anaglyph tutorial's StereoCamera (seed 003):
 /// a = aspect·tan(fov/2)·C, b = a − D/2, c = a + D/2; left eye frustum
 /// (−b·near/C, c·near/C, …) with translate(+D/2); the right eye swaps b and c.
-/// fov is vertical, in degrees; D is typically C/30.
+/// fov is vertical, in degrees, above 0 and below 180; D is typically C/30.
 ///
 /// @return as gls_stereo_eye(). Thread-safe.
 #[unsafe(no_mangle)]

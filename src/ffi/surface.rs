@@ -41,7 +41,9 @@ fn surface_arg(s: *const gls_surface) -> Result<Arc<Surface>, Error> {
 /// @param width, height 1…16384 (and within the driver's limits).
 /// @param surface_out receives the surface; must not be NULL. Destroy it with gls_surface_destroy().
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
-/// GLS_ERROR_INVALID_VALUE (size); GLS_ERROR_OUT_OF_MEMORY;
+/// GLS_ERROR_INVALID_VALUE (size, or a bad GLSTEREO_MODE and the other
+/// output variables); GLS_ERROR_INVALID_OPERATION (a configuration chosen on
+/// another display); GLS_ERROR_OUT_OF_MEMORY;
 /// GLS_ERROR_BACKEND_UNAVAILABLE (no context could be created). Any thread;
 /// the calling thread's current surface is unchanged.
 #[unsafe(no_mangle)]
@@ -166,8 +168,15 @@ pub unsafe extern "C" fn gls_draw_buffers(n: i32, bufs: *const u32) -> gls_resul
         if n > 0 && bufs.is_null() {
             return Err(Error::NullPointer("bufs"));
         }
-        if n as usize > crate::stereo::emulated::MAX_DRAW_BUFFERS {
-            return s.draw_buffers(&vec![0; n as usize]);
+        const MAX: usize = crate::stereo::emulated::MAX_DRAW_BUFFERS;
+        if n as usize > MAX {
+            // More than any driver takes. Not a list of n entries (n may be
+            // 2^31 − 1: allocating it aborted the process under a memory
+            // limit): any longer list records the same GL_INVALID_VALUE.
+            let _ = s.draw_buffers(&[crate::gl::enums::GL_NONE; MAX + 1]);
+            return Err(Error::invalid_value(format!(
+                "glDrawBuffers: n = {n} exceeds GL_MAX_DRAW_BUFFERS (at most {MAX}) (GL_INVALID_VALUE)"
+            )));
         }
         let list = if n == 0 {
             &[][..]
@@ -305,7 +314,8 @@ pub extern "C" fn gls_swap_buffers(surface: *mut gls_surface) -> gls_result {
 /// @param len size of rgba in bytes; at least width × height × 4.
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
 /// GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_OPERATION (a buffer the
-/// configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small).
+/// configuration lacks, or GL_NONE); GLS_ERROR_INVALID_VALUE (len too small);
+/// GLS_ERROR_OUT_OF_MEMORY (no memory for the read-back).
 /// Nothing is written on error. Any thread.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_surface_read_pixels(
@@ -339,8 +349,10 @@ pub unsafe extern "C" fn gls_surface_read_pixels(
 /// @param surface a live surface. @param image GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE.
 /// @param path a file path (UTF-8); must not be NULL.
 /// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
-/// GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_IO (the message names the path
-/// and the reason). Any thread.
+/// GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_INVALID_VALUE (a path that is
+/// not UTF-8 or names no file, e.g. ""); GLS_ERROR_OUT_OF_MEMORY (no memory
+/// for the image); GLS_ERROR_IO (the message names the path and the reason;
+/// no file and no temporary file is left). Any thread.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_surface_save_png(
     surface: *mut gls_surface,
@@ -400,8 +412,8 @@ pub const GLS_INPUT_STR_BOT: u32 = 5;
 /// GLS_OUTPUT_ANAGLYPH_RED_CYAN.
 ///
 /// @param surface a live surface. @param output a GLS_OUTPUT_* value.
-/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_ENUM (nothing
-/// changes). Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+/// GLS_ERROR_INVALID_ENUM (nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_output(surface: *mut gls_surface, output: u32) -> gls_result {
     ffi_boundary!("gls_surface_set_output", {
@@ -433,7 +445,7 @@ pub unsafe extern "C" fn gls_surface_get_output(
 ///
 /// Default: GLSTEREO_SWAP_EYES at surface creation, else false.
 ///
-/// @return GLS_OK or GLS_ERROR_INVALID_HANDLE. Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER or GLS_ERROR_INVALID_HANDLE. Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_swap_eyes(
     surface: *mut gls_surface,
@@ -454,8 +466,8 @@ pub extern "C" fn gls_surface_set_swap_eyes(
 /// Default: GLSTEREO_CROSSTALK at surface creation, else 0.
 ///
 /// @param crosstalk 0…1.
-/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
-/// (outside 0…1 or NaN; nothing changes). Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+/// GLS_ERROR_INVALID_VALUE (outside 0…1 or NaN; nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_crosstalk(
     surface: *mut gls_surface,
@@ -477,8 +489,8 @@ pub extern "C" fn gls_surface_set_crosstalk(
 /// Default: GLSTEREO_SATURATION at surface creation, else 1.
 ///
 /// @param saturation 0…1.
-/// @return GLS_OK, GLS_ERROR_INVALID_HANDLE or GLS_ERROR_INVALID_VALUE
-/// (outside 0…1 or NaN; nothing changes). Any thread.
+/// @return GLS_OK, GLS_ERROR_NULL_POINTER, GLS_ERROR_INVALID_HANDLE or
+/// GLS_ERROR_INVALID_VALUE (outside 0…1 or NaN; nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_saturation(
     surface: *mut gls_surface,
@@ -499,8 +511,8 @@ pub extern "C" fn gls_surface_set_saturation(
 /// The eyes taken apart flow to every output format and capture.
 ///
 /// @param surface a live surface. @param input a GLS_INPUT_* value.
-/// @return GLS_OK; GLS_ERROR_INVALID_HANDLE; GLS_ERROR_INVALID_ENUM;
-/// GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
+/// @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+/// GLS_ERROR_INVALID_ENUM; GLS_ERROR_INVALID_VALUE when the surface is too small to hold two eyes
 /// that way (nothing changes). Any thread.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_surface_set_input(surface: *mut gls_surface, input: u32) -> gls_result {

@@ -18,6 +18,11 @@ pub const ADJUSTMENT_STEP: f64 = 1.1;
 /// set it explicitly to come back.
 pub fn adjust_step(value: f64, steps: i32) -> Result<f64> {
     finite("value", value)?;
+    if value == 0.0 {
+        // 0 stays 0, even for steps so large that 1.1^steps is infinite
+        // (0 × ∞ would be NaN).
+        return Ok(0.0);
+    }
     Ok((value * ADJUSTMENT_STEP.powi(steps)).clamp(ADJUSTMENT_MIN, ADJUSTMENT_MAX))
 }
 
@@ -34,5 +39,8 @@ mod tests {
         assert_eq!(adjust_step(5.0, 0).unwrap(), 2.0);
         assert_eq!(adjust_step(-1.0, 0).unwrap(), 0.0);
         assert!(adjust_step(f64::NAN, 1).is_err());
+        assert_eq!(adjust_step(0.0, i32::MAX).unwrap(), 0.0);
+        assert_eq!(adjust_step(1.0, i32::MAX).unwrap(), 2.0);
+        assert_eq!(adjust_step(1.0, i32::MIN).unwrap(), 0.0);
     }
 }

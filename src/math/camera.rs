@@ -5,7 +5,7 @@
 
 use glam::{DMat4, DVec3};
 
-use super::finite;
+use super::{finite, finite_matrix};
 use crate::error::{Error, Result};
 
 fn finite3(name: &str, v: DVec3) -> Result<DVec3> {
@@ -19,7 +19,7 @@ fn finite3(name: &str, v: DVec3) -> Result<DVec3> {
 /// and `up` must not be parallel to it.
 pub fn look_at(eye: DVec3, center: DVec3, up: DVec3) -> Result<DMat4> {
     basis(eye, center, up)?;
-    Ok(DMat4::look_at_rh(eye, center, up))
+    finite_matrix("the view matrix", DMat4::look_at_rh(eye, center, up))
 }
 
 /// The camera's (right, forward) unit vectors.
@@ -48,7 +48,10 @@ pub fn eye_view(eye: DVec3, center: DVec3, up: DVec3, camera_offset: f64) -> Res
     finite("camera_offset", camera_offset)?;
     let (right, _) = basis(eye, center, up)?;
     let shift = right * camera_offset;
-    Ok(DMat4::look_at_rh(eye + shift, center + shift, up))
+    finite_matrix(
+        "the eye's view matrix",
+        DMat4::look_at_rh(eye + shift, center + shift, up),
+    )
 }
 
 #[cfg(test)]

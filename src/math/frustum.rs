@@ -2,7 +2,7 @@
 
 use glam::{DMat4, DVec4};
 
-use super::{finite, positive};
+use super::{field_of_view, finite, finite_matrix, positive};
 use crate::error::{Error, Result};
 
 /// The six arguments of glFrustum.
@@ -25,12 +25,7 @@ pub struct Frustum {
 impl Frustum {
     /// A symmetric frustum like gluPerspective(fovy, aspect, near, far).
     pub fn perspective(fovy_degrees: f64, aspect: f64, near: f64, far: f64) -> Result<Frustum> {
-        let fovy = positive("fovy", fovy_degrees)?;
-        if fovy >= 180.0 {
-            return Err(Error::invalid_value(format!(
-                "fovy must be below 180 degrees, got {fovy}"
-            )));
-        }
+        let fovy = field_of_view("fovy", fovy_degrees)?;
         positive("aspect", aspect)?;
         let top = near * (fovy.to_radians() / 2.0).tan();
         let right = top * aspect;
@@ -72,6 +67,7 @@ impl Frustum {
                 self.top
             )));
         }
+        finite_matrix("the frustum's projection matrix", self.matrix())?;
         Ok(self)
     }
 
@@ -127,6 +123,16 @@ pub struct EyeProjection {
 }
 
 impl EyeProjection {
+    /// Checks the frustum ([`Frustum::validated`]), that the camera offset is
+    /// finite, and that the eye's whole matrix is: every eye the library
+    /// hands out passes this.
+    pub fn validated(self) -> Result<EyeProjection> {
+        self.frustum.validated()?;
+        finite("camera_offset", self.camera_offset)?;
+        finite_matrix("the eye's projection matrix", self.matrix())?;
+        Ok(self)
+    }
+
     /// glFrustum(frustum) × glTranslated(−camera_offset, 0, 0), column-major.
     pub fn matrix(&self) -> DMat4 {
         self.frustum.matrix()

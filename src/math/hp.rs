@@ -60,10 +60,11 @@ pub fn hp_eye(mono: &Frustum, adjust: &StereoAdjust, eye: Eye) -> Result<EyeProj
     let d = adjust.zero_parallax_distance;
     let offset = eye.sign() * xrange(&mono, d) * HP_OFFSET_FRACTION * adjust.offset_adjustment;
     let asymmetry = -offset * adjust.balance_adjustment * mono.near / d;
-    Ok(EyeProjection {
+    EyeProjection {
         frustum: mono.shifted(asymmetry),
         camera_offset: offset,
-    })
+    }
+    .validated()
 }
 
 #[cfg(test)]

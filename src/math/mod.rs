@@ -86,7 +86,7 @@ pub(crate) fn finite(name: &str, v: f64) -> Result<f64> {
 
 /// Checks that every element of a matrix parameter is finite (the message
 /// names the element, e.g. `projection[12]`).
-pub(crate) fn finite_matrix(name: &str, m: &glam::DMat4) -> Result<()> {
+pub(crate) fn finite_matrix_param(name: &str, m: &glam::DMat4) -> Result<()> {
     for (i, v) in m.to_cols_array().iter().enumerate() {
         finite(&format!("{name}[{i}]"), *v)?;
     }
@@ -100,6 +100,40 @@ pub(crate) fn positive(name: &str, v: f64) -> Result<f64> {
         Ok(v)
     } else {
         Err(Error::invalid_value(format!("{name} must be > 0, got {v}")))
+    }
+}
+
+/// Checks that a computed number is finite: inputs that are each finite can
+/// still overflow (or divide by a difference that rounds to zero).
+pub(crate) fn finite_result(what: &str, v: f64) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid_value(format!(
+            "{what} is not a finite number ({v}): the inputs are too large, too small or too \
+             close together; use values of ordinary magnitude"
+        )))
+    }
+}
+
+/// Checks that a computed matrix is finite (see [`finite_result`]).
+pub(crate) fn finite_matrix(what: &str, m: glam::DMat4) -> Result<glam::DMat4> {
+    for v in m.to_cols_array() {
+        finite_result(what, v)?;
+    }
+    Ok(m)
+}
+
+/// Checks a field of view in degrees: finite, above 0 and below 180 (tan of
+/// half of it is the frustum's slope; at 180 it has none, beyond it flips).
+pub(crate) fn field_of_view(name: &str, degrees: f64) -> Result<f64> {
+    positive(name, degrees)?;
+    if degrees < 180.0 {
+        Ok(degrees)
+    } else {
+        Err(Error::invalid_value(format!(
+            "{name} must be below 180 degrees, got {degrees}"
+        )))
     }
 }
 

@@ -5,7 +5,7 @@ use glam::DVec4;
 
 use super::frustum::{EyeProjection, Frustum};
 use super::hp::{HP_OFFSET_FRACTION, StereoAdjust, hp_eye, xrange};
-use super::{Eye, finite, positive};
+use super::{Eye, finite, finite_result, positive};
 use crate::error::{Error, Result};
 
 /// The comfort budget of seed 000 §7: parallax within about 3% of the
@@ -19,7 +19,7 @@ pub fn parallax(eye_separation: f64, convergence: f64, depth: f64) -> Result<f64
     finite("eye_separation", eye_separation)?;
     finite("convergence", convergence)?;
     positive("depth", depth)?;
-    Ok(eye_separation * (1.0 - convergence / depth))
+    finite_result("the parallax", eye_separation * (1.0 - convergence / depth))
 }
 
 /// The on-screen parallax of a point at distance `depth` in front of the
@@ -44,7 +44,10 @@ pub fn screen_parallax_fraction(
 pub fn hp_parallax_percent(mono: &Frustum, adjust: &StereoAdjust, depth: f64) -> Result<f64> {
     let l = hp_eye(mono, adjust, Eye::Left)?;
     let r = hp_eye(mono, adjust, Eye::Right)?;
-    Ok(100.0 * screen_parallax_fraction(&l, &r, depth)?)
+    finite_result(
+        "the parallax percentage",
+        100.0 * screen_parallax_fraction(&l, &r, depth)?,
+    )
 }
 
 /// The largest stereo that keeps a depth range within a parallax budget.
@@ -90,8 +93,13 @@ pub fn hp_fit_budget(
     }
     let offset = budget_percent / 100.0 / worst;
     Ok(BudgetFit {
-        separation: 2.0 * offset,
-        offset_adjustment: offset / (xrange(&mono, d) * HP_OFFSET_FRACTION),
+        separation: finite_result("the separation", 2.0 * offset)?,
+        offset_adjustment: finite_result(
+            "the offset adjustment",
+            // A mirrored frustum (left > right) has a negative range; the
+            // adjustment is a magnitude either way.
+            offset / (xrange(&mono, d) * HP_OFFSET_FRACTION).abs(),
+        )?,
     })
 }
 

@@ -3,7 +3,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::{finite, non_negative, positive};
+use super::{finite, finite_result, non_negative, positive};
 use crate::error::{Error, Result};
 
 /// Which of the seed's five equations to apply.
@@ -68,7 +68,10 @@ pub fn project_point(
         PointEquation::LeftZeroParallax => (p.x + half) * k - half,
         PointEquation::RightZeroParallax => (p.x - half) * k + half,
     };
-    Ok(DVec2::new(x, p.y * k))
+    Ok(DVec2::new(
+        finite_result("the projected x", x)?,
+        finite_result("the projected y", p.y * k)?,
+    ))
 }
 
 #[cfg(test)]

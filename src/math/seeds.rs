@@ -5,7 +5,9 @@
 use glam::{DMat4, DVec4};
 
 use super::frustum::{EyeProjection, Frustum};
-use super::{Eye, finite, finite_matrix, non_negative, positive};
+use super::{
+    Eye, field_of_view, finite, finite_matrix, finite_matrix_param, non_negative, positive,
+};
 use crate::error::Result;
 
 /// SGI IRIS GL (seed 002 §7): `window(−top·aspect ± half_sep·near/distance,
@@ -33,12 +35,12 @@ pub fn sgi_window_eye(
         top,
         near,
         far,
-    }
-    .validated()?;
-    Ok(EyeProjection {
+    };
+    EyeProjection {
         frustum,
         camera_offset: eye.sign() * half_sep,
-    })
+    }
+    .validated()
 }
 
 /// Xinerama / Bourke (seed 001): `wd2 = near·tan(fov/2)`, `ndfl = near/focal`;
@@ -54,7 +56,7 @@ pub fn bourke_eye(
     focal_length: f64,
     eye: Eye,
 ) -> Result<EyeProjection> {
-    positive("fov", fov_degrees)?;
+    field_of_view("fov_degrees", fov_degrees)?;
     positive("ratio", ratio)?;
     positive("near", near)?;
     non_negative("eye_separation", eye_separation)?;
@@ -69,12 +71,12 @@ pub fn bourke_eye(
         top: wd2,
         near,
         far,
-    }
-    .validated()?;
-    Ok(EyeProjection {
+    };
+    EyeProjection {
         frustum,
         camera_offset: eye.sign() * eye_separation / 2.0,
-    })
+    }
+    .validated()
 }
 
 /// The anaglyph tutorial's StereoCamera (seed 003): `a = aspect·tan(fov/2)·C`,
@@ -93,7 +95,7 @@ pub fn stereo_camera_eye(
     positive("convergence", convergence)?;
     non_negative("eye_separation", eye_separation)?;
     positive("aspect", aspect)?;
-    positive("fov", fov_degrees)?;
+    field_of_view("fov_degrees", fov_degrees)?;
     positive("near", near)?;
     let half = (fov_degrees.to_radians() / 2.0).tan();
     let top = near * half;
@@ -111,12 +113,12 @@ pub fn stereo_camera_eye(
         top,
         near,
         far,
-    }
-    .validated()?;
-    Ok(EyeProjection {
+    };
+    EyeProjection {
         frustum,
         camera_offset: eye.sign() * eye_separation / 2.0,
-    })
+    }
+    .validated()
 }
 
 /// NVIDIA's clip-space form (seed 004, REFERENCE.md):
@@ -134,7 +136,7 @@ pub fn nv_clip_shift(
 ) -> Result<DMat4> {
     finite("separation", separation)?;
     finite("convergence", convergence)?;
-    finite_matrix("projection", projection)?;
+    finite_matrix_param("projection", projection)?;
     let k = eye.sign() * separation;
     let row_w = projection.row(3) - DVec4::new(0.0, 0.0, 0.0, convergence);
     let row_x = projection.row(0) + k * row_w;
@@ -144,7 +146,7 @@ pub fn nv_clip_shift(
     m.y_axis.x = row_x.y;
     m.z_axis.x = row_x.z;
     m.w_axis.x = row_x.w;
-    Ok(m)
+    finite_matrix("the stereo projection matrix", m)
 }
 
 /// The NVIDIA separation `s` that matches a camera half offset `h` for a

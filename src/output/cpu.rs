@@ -144,7 +144,7 @@ pub fn compose_into(
         },
     };
 
-    resize(out, cw, ch);
+    resize(out, cw, ch)?;
     match mode {
         OutputMode::Quad => {} // refused above
         OutputMode::Left => copy_opaque(l.pixels(), out.pixels_mut()),
@@ -275,13 +275,25 @@ fn desaturate(row: &mut [Rgb], s: f32) {
 
 /// Gives `out` the size `width`×`height`, keeping its allocation. The
 /// contents are unspecified: every mode writes every pixel (or fills first).
-fn resize(out: &mut Image, width: u32, height: u32) {
+/// `OutOfMemory` (and `out` unchanged) when the memory cannot be had.
+fn resize(out: &mut Image, width: u32, height: u32) -> Result<()> {
     if (out.width(), out.height()) == (width, height) {
-        return;
+        return Ok(());
     }
+    let len = width as usize * height as usize * 4;
+    let extra = len.saturating_sub(out.pixels().len());
+    let (old_w, old_h) = (out.width(), out.height());
     let mut pixels = std::mem::replace(out, Image::new(1, 1)).into_pixels();
-    pixels.resize(width as usize * height as usize * 4, 0);
+    if pixels.try_reserve_exact(extra).is_err() {
+        *out = Image::from_pixels(old_w, old_h, pixels).expect("its own pixels");
+        return Err(Error::OutOfMemory(format!(
+            "{} MiB for a {width}x{height} composite could not be allocated: free memory or use smaller eyes",
+            len >> 20
+        )));
+    }
+    pixels.resize(len, 0);
     *out = Image::from_pixels(width, height, pixels).expect("size checked by the caller");
+    Ok(())
 }
 
 /// Alpha 255 and black, as a little-endian RGBA8 word.

@@ -352,7 +352,7 @@ pub fn ortho_clip_shift(
 ) -> Result<DMat4> {
     crate::math::finite("separation", separation)?;
     crate::math::finite("convergence", convergence)?;
-    crate::math::finite_matrix("projection", projection)?;
+    crate::math::finite_matrix_param("projection", projection)?;
     let k = eye.sign() * separation;
     let depth: DVec4 = (projection.row(2) + projection.row(3)) * 0.5;
     let row_x = projection.row(0) + k * (depth - convergence * projection.row(3));

@@ -14,6 +14,11 @@ pub struct Xvfb {
 impl Xvfb {
     /// Starts Xvfb with one 24-bit screen of the given size.
     pub fn start(width: u32, height: u32) -> Xvfb {
+        Self::start_with(width, height, "")
+    }
+
+    /// As [`Xvfb::start`], with more Xvfb arguments (e.g. "-extension GLX").
+    pub fn start_with(width: u32, height: u32, extra: &str) -> Xvfb {
         let dir = super::lib_dir().join("xvfb");
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir
@@ -29,7 +34,7 @@ impl Xvfb {
         let child = Command::new("sh")
             .arg("-c")
             .arg(format!(
-                "exec Xvfb -displayfd 3 -screen 0 {width}x{height}x24 -nolisten tcp -noreset 3>'{file}'"
+                "exec Xvfb -displayfd 3 -screen 0 {width}x{height}x24 -nolisten tcp -noreset {extra} 3>'{file}'"
             ))
             .stdout(Stdio::null())
             .stderr(Stdio::null())
