@@ -24,6 +24,9 @@ use crate::shims::nv3dvision::StereoSettings;
 use crate::stereo::buffers::{ColorBuffer, resolve_read_buffer};
 use crate::stereo::emulated::EmulatedFramebuffer;
 
+// Captures without a stall: PNGs written by a thread (src/surface/captures.rs).
+mod captures;
+
 thread_local! {
     /// The surface current on this thread and which of its contexts.
     static CURRENT: RefCell<Option<(Arc<Surface>, ContextRole)>> = const { RefCell::new(None) };
@@ -135,6 +138,8 @@ pub struct Surface {
     gl: Arc<Gl>,
     owner: Mutex<Option<ThreadId>>,
     state: Mutex<SurfaceState>,
+    /// The PNG writer thread, started by the first queued capture.
+    captures: Mutex<Option<crate::capture::queue::PngQueue>>,
 }
 
 impl std::fmt::Debug for Surface {
@@ -212,6 +217,7 @@ impl Surface {
                 compositor: GlCompositor::new(),
                 nv3dvision: StereoSettings::new(false),
             }),
+            captures: Mutex::new(None),
         }))
     }
 
@@ -405,6 +411,20 @@ impl Surface {
             return self.with_compositor(|gl, st| {
                 let resized = st.window != Some((width, height));
                 let job = gl_job(st, mode);
+                // A software renderer's frame goes to the window as pixels
+                // when the backend shows them (GLX: MIT-SHM), skipping a
+                // full-window GL pass (see GlCompositor::compose_image).
+                if !resized && self.platform.accepts_images() {
+                    // SAFETY: the compositor context is current; the job's
+                    // textures are this surface's.
+                    if let Some((img, bottom_first)) =
+                        unsafe { st.compositor.compose_image(gl, &job, width, height)? }
+                    {
+                        if self.platform.present_image(img, bottom_first)? {
+                            return Ok(());
+                        }
+                    }
+                }
                 // SAFETY: with_compositor made the compositor context current;
                 // the job's textures are this surface's.
                 unsafe { st.compositor.compose_window(gl, &job, 0, width, height)? };

@@ -20,6 +20,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use x11_dl::glx::{self, Glx};
 use x11_dl::xlib::{self, Xlib};
 
+use super::xshm::ShmImage;
 use super::{BackendKind, ContextRole, Platform, PlatformSurface, WindowEvent};
 use crate::config::{Config, ConfigRequest, EmulationPolicy, glx as attr};
 use crate::error::{Error, Result};
@@ -426,6 +427,9 @@ impl Platform for GlxPlatform {
             shared: sh.clone(),
             window,
             colormap,
+            visual: info.visual,
+            depth: info.depth,
+            shm: Mutex::new(ShmState::Untried),
             app: std::ptr::null_mut(),
             compositor: std::ptr::null_mut(),
             state: Mutex::new(WindowState {
@@ -469,11 +473,25 @@ struct WindowState {
     events: VecDeque<WindowEvent>,
 }
 
+/// Whether the window shows CPU pixels through MIT-SHM ([`super::xshm`]).
+enum ShmState {
+    /// Not tried yet.
+    Untried,
+    /// MIT-SHM is missing or unusable here: always the GL path.
+    Unsupported,
+    /// An attached image (remade when the window's size changes).
+    Ready(ShmImage),
+}
+
 /// A window with two GLX contexts sharing objects.
 struct GlxSurface {
     shared: Arc<GlxShared>,
     window: xlib::Window,
     colormap: xlib::Colormap,
+    /// The window's visual and depth (for MIT-SHM images).
+    visual: *mut xlib::Visual,
+    depth: c_int,
+    shm: Mutex<ShmState>,
     app: glx::GLXContext,
     compositor: glx::GLXContext,
     state: Mutex<WindowState>,
@@ -569,6 +587,49 @@ impl PlatformSurface for GlxSurface {
         self.shared.check_alive()
     }
 
+    fn accepts_images(&self) -> bool {
+        !matches!(*self.shm.lock().unwrap(), ShmState::Unsupported)
+    }
+
+    fn present_image(&self, image: &crate::image::Image, bottom_first: bool) -> Result<bool> {
+        let sh = &self.shared;
+        sh.check_alive()?;
+        let size = (image.width(), image.height());
+        if size != self.state.lock().unwrap().size {
+            return Ok(false);
+        }
+        let mut shm = self.shm.lock().unwrap();
+        if matches!(&*shm, ShmState::Ready(img) if img.size() != size) {
+            if let ShmState::Ready(old) = std::mem::replace(&mut *shm, ShmState::Untried) {
+                // SAFETY: made on this live connection (checked above).
+                unsafe { old.destroy(&sh.xlib, sh.display, true) };
+            }
+        }
+        if matches!(&*shm, ShmState::Untried) {
+            let trap = |f: &mut dyn FnMut()| sh.trap(f).1;
+            // SAFETY: live connection; the window's own visual and depth.
+            let made = unsafe {
+                ShmImage::create(
+                    &sh.xlib,
+                    sh.display,
+                    self.window,
+                    self.visual,
+                    self.depth,
+                    size,
+                    &trap,
+                )
+            };
+            *shm = made.map_or(ShmState::Unsupported, ShmState::Ready);
+        }
+        let ShmState::Ready(img) = &mut *shm else {
+            return Ok(false);
+        };
+        // SAFETY: the image was made on this live connection for this window.
+        unsafe { img.put(&sh.xlib, sh.display, self.window, image, bottom_first) };
+        sh.check_alive()?;
+        Ok(true)
+    }
+
     fn drawable_size(&self) -> Option<(u32, u32)> {
         self.pump();
         Some(self.state.lock().unwrap().size)
@@ -618,7 +679,16 @@ impl PlatformSurface for GlxSurface {
 impl Drop for GlxSurface {
     fn drop(&mut self) {
         let sh = &self.shared;
-        if sh.state.lost.load(Ordering::SeqCst) {
+        let alive = !sh.state.lost.load(Ordering::SeqCst);
+        let shm = std::mem::replace(
+            &mut *self.shm.lock().unwrap_or_else(|e| e.into_inner()),
+            ShmState::Unsupported,
+        );
+        if let ShmState::Ready(img) = shm {
+            // SAFETY: made on this connection; X calls only while it is alive.
+            unsafe { img.destroy(&sh.xlib, sh.display, alive) };
+        }
+        if !alive {
             return;
         }
         // SAFETY: the surface layer released these contexts from every thread

@@ -10,6 +10,7 @@
 pub mod egl;
 pub mod glx;
 pub mod osmesa;
+mod xshm;
 
 use std::ffi::{CStr, c_void};
 
@@ -154,6 +155,22 @@ pub trait PlatformSurface: Send + Sync {
     /// buffer when double-buffered).
     fn present(&self) -> Result<()> {
         Ok(())
+    }
+
+    /// Whether [`PlatformSurface::present_image`] may show a frame (false
+    /// once it found it cannot): lets the caller skip making the image.
+    fn accepts_images(&self) -> bool {
+        false
+    }
+
+    /// Shows `image` (RGBA8, rows top first unless `bottom_first`) in the
+    /// window directly, instead of a GL composite and [`PlatformSurface::present`]:
+    /// the cheaper way on a software renderer (GLX: MIT-SHM, see
+    /// `backend/xshm.rs`). Ok(false) when it cannot (no window, no MIT-SHM,
+    /// an unsupported visual, an image not of the window's size): nothing
+    /// was shown and the caller takes the GL path.
+    fn present_image(&self, _image: &crate::image::Image, _bottom_first: bool) -> Result<bool> {
+        Ok(false)
     }
 
     /// The drawable's current size, for backends with windows that can be

@@ -64,7 +64,7 @@
 //! falls back on configs without native stereo.
 
 use crate::error::{Error, Result};
-use crate::image::{Image, MAX_DIMENSION, check_size};
+use crate::image::{Image, MAX_DIMENSION, as_words, as_words_mut, check_size};
 use crate::math::Eye;
 
 use super::anaglyph::{DuboisMatrices, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
@@ -301,8 +301,33 @@ fn average_up(a: u32, b: u32) -> u32 {
 
 /// Fills every pixel with one RGBA8 word.
 fn fill(dst: &mut [u8], rgba: u32) {
+    if let Some(d) = as_words_mut(dst) {
+        d.fill(rgba);
+        return;
+    }
     for d in dst.chunks_exact_mut(4) {
         d.copy_from_slice(&rgba.to_le_bytes());
+    }
+}
+
+/// `dst[i] = f(a[i], b[i])` over RGBA8 words: on word slices when all three
+/// are aligned (vectorised), else pixel by pixel.
+#[inline(always)]
+fn zip_words(dst: &mut [u8], a: &[u8], b: &[u8], f: impl Fn(u32, u32) -> u32) {
+    if let (Some(x), Some(y)) = (as_words(a), as_words(b)) {
+        if let Some(d) = as_words_mut(dst) {
+            for ((d, &x), &y) in d.iter_mut().zip(x).zip(y) {
+                *d = f(x, y);
+            }
+            return;
+        }
+    }
+    for ((d, p), q) in dst
+        .chunks_exact_mut(4)
+        .zip(a.chunks_exact(4))
+        .zip(b.chunks_exact(4))
+    {
+        d.copy_from_slice(&f(word(p), word(q)).to_le_bytes());
     }
 }
 
@@ -331,6 +356,12 @@ fn store(src: &[Rgb], dst: &mut [u8]) {
 
 /// Copies RGB and sets alpha to 255.
 fn copy_opaque(src: &[u8], dst: &mut [u8]) {
+    if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
+        for (d, &s) in d.iter_mut().zip(s) {
+            *d = s | ALPHA;
+        }
+        return;
+    }
     for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
         d.copy_from_slice(&(word(s) | ALPHA).to_le_bytes());
     }
@@ -446,20 +477,21 @@ fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: 
             for y in 0..p.height {
                 let (a, b) = (eye.row(2 * y), eye.row(2 * y + 1));
                 let dst = &mut row_mut(out, p.y + y)[x0..x0 + span];
-                for ((d, s), t) in dst
-                    .chunks_exact_mut(4)
-                    .zip(a.chunks_exact(4))
-                    .zip(b.chunks_exact(4))
-                {
-                    d.copy_from_slice(&(average_up(word(s), word(t)) | ALPHA).to_le_bytes());
-                }
+                zip_words(dst, a, b, |s, t| average_up(s, t) | ALPHA);
             }
             return;
         }
         if p.height == h && 2 * p.width == w {
             for y in 0..h {
                 let dst = &mut row_mut(out, p.y + y)[x0..x0 + span];
-                for (d, pair) in dst.chunks_exact_mut(4).zip(eye.row(y).chunks_exact(8)) {
+                let src = eye.row(y);
+                if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
+                    for (d, pair) in d.iter_mut().zip(s.chunks_exact(2)) {
+                        *d = average_up(pair[0], pair[1]) | ALPHA;
+                    }
+                    continue;
+                }
+                for (d, pair) in dst.chunks_exact_mut(4).zip(src.chunks_exact(8)) {
                     let v = average_up(word(&pair[..4]), word(&pair[4..]));
                     d.copy_from_slice(&(v | ALPHA).to_le_bytes());
                 }
@@ -504,19 +536,14 @@ fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Im
                 copy_opaque(if y % 2 == 0 { lr } else { rr }, dst);
                 continue;
             }
-            for (x, ((d, p), q)) in dst
-                .chunks_exact_mut(4)
-                .zip(lr.chunks_exact(4))
-                .zip(rr.chunks_exact(4))
-                .enumerate()
-            {
-                let src = if (x * cx + y as usize * cy) % 2 == 0 {
-                    p
-                } else {
-                    q
-                };
-                d.copy_from_slice(&(word(src) | ALPHA).to_le_bytes());
-            }
+            // Columns and checkerboard: even columns of this row from the
+            // first eye, odd ones from the second.
+            let (first, second) = if (y as usize * cy) % 2 == 0 {
+                (lr, rr)
+            } else {
+                (rr, lr)
+            };
+            interleave_columns(dst, first, second);
         } else {
             load(l.row(y), &mut a);
             load(r.row(y), &mut b);
@@ -530,6 +557,29 @@ fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Im
                 store(&src[x..x + 1], &mut dst[x * 4..x * 4 + 4]);
             }
         }
+    }
+}
+
+/// Pixel x of `dst` from `even` when x is even, else from `odd`; alpha 255.
+fn interleave_columns(dst: &mut [u8], even: &[u8], odd: &[u8]) {
+    if let (Some(e), Some(o)) = (as_words(even), as_words(odd)) {
+        if let Some(d) = as_words_mut(dst) {
+            for (x, ((d, &p), &q)) in d.iter_mut().zip(e).zip(o).enumerate() {
+                // All ones on odd columns: a select the compiler vectorises.
+                let odd = (x as u32 & 1).wrapping_neg();
+                *d = (p & !odd) | (q & odd) | ALPHA;
+            }
+            return;
+        }
+    }
+    for (x, ((d, p), q)) in dst
+        .chunks_exact_mut(4)
+        .zip(even.chunks_exact(4))
+        .zip(odd.chunks_exact(4))
+        .enumerate()
+    {
+        let src = if x % 2 == 0 { p } else { q };
+        d.copy_from_slice(&(word(src) | ALPHA).to_le_bytes());
     }
 }
 
@@ -555,15 +605,9 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
             .map(|from_left| if from_left { 0xFF } else { 0 });
         let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
         let right_mask = !left_mask & !ALPHA;
-        for ((d, p), q) in out
-            .pixels_mut()
-            .chunks_exact_mut(4)
-            .zip(l.pixels().chunks_exact(4))
-            .zip(r.pixels().chunks_exact(4))
-        {
-            let v = (word(p) & left_mask) | (word(q) & right_mask) | ALPHA;
-            d.copy_from_slice(&v.to_le_bytes());
-        }
+        zip_words(out.pixels_mut(), l.pixels(), r.pixels(), |p, q| {
+            (p & left_mask) | (q & right_mask) | ALPHA
+        });
         return;
     }
 

@@ -56,6 +56,7 @@ use super::cpu::check_composite;
 use super::layout::{placements, window_fit};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
+use super::window::{WindowPaths, window_path};
 
 /// A rectangle of a texture holding one eye, in GL texel coordinates (rows
 /// counted from the BOTTOM, as GL stores them).
@@ -375,16 +376,16 @@ struct Program {
 
 /// A framebuffer with one RGBA8 texture, reallocated when its size changes.
 #[derive(Clone, Copy, Debug, Default)]
-struct Canvas {
-    fbo: u32,
-    texture: u32,
-    width: u32,
-    height: u32,
+pub(crate) struct Canvas {
+    pub(crate) fbo: u32,
+    pub(crate) texture: u32,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
 }
 
 impl Canvas {
     /// Makes the canvas `width` × `height` (contents undefined after a change).
-    unsafe fn ensure(&mut self, gl: &Gl, width: u32, height: u32) -> Result<()> {
+    pub(crate) unsafe fn ensure(&mut self, gl: &Gl, width: u32, height: u32) -> Result<()> {
         if self.fbo != 0 && (self.width, self.height) == (width, height) {
             return Ok(());
         }
@@ -474,6 +475,8 @@ pub struct GlCompositor {
     limit: u32,
     /// Whether the renderer is a software rasterizer (None: not queried yet).
     software: Option<bool>,
+    /// The blit and CPU ways into a window ([`super::window`]).
+    window: WindowPaths,
 }
 
 impl GlCompositor {
@@ -620,6 +623,27 @@ impl GlCompositor {
                 GL_COLOR_ATTACHMENT0 + 1,
             ),
         };
+        // The blit and CPU paths, when the composite fills the window.
+        if job.mode != OutputMode::Quad && job.eyes.iter().all(|e| (e.width, e.height) == (w, h)) {
+            let (options, (cw, ch)) = check_composite(job.mode, &job.options, w, h)?;
+            if (cw, ch) == (width, height) {
+                // SAFETY: contract.
+                let path = unsafe {
+                    let software = self.software(gl);
+                    let alpha = WindowPaths::has_alpha(gl, framebuffer, buf);
+                    window_path(job.mode, &options, software, alpha)
+                };
+                if let Some(path) = path {
+                    // SAFETY: contract.
+                    return unsafe {
+                        gl.take_error();
+                        self.window
+                            .compose(gl, path, job, &options, framebuffer, buf)?;
+                        gl.check("composing the eyes into the window")
+                    };
+                }
+            }
+        }
         let single = [(job.mode, buf)];
         let quad = [(OutputMode::Left, left_buf), (OutputMode::Right, right_buf)];
         let passes: &[(OutputMode, u32)] = if job.mode == OutputMode::Quad {
@@ -673,6 +697,53 @@ impl GlCompositor {
                 );
             }
             gl.check("composing the eyes into the window")
+        }
+    }
+
+    /// The composite of `job` as an image in memory (rows bottom first when
+    /// the flag is true), for a window that shows pixels directly
+    /// ([`crate::backend::PlatformSurface::present_image`]): made the faster
+    /// way on a software renderer ([`preferred_path`]: the CPU from eyes
+    /// read back, or GL then one read-back), with buffers reused from frame
+    /// to frame. None on a hardware renderer (its GL composite into the
+    /// window is cheaper), for `quad`, and when the composite is not the
+    /// window's `width` × `height`.
+    ///
+    /// # Errors
+    /// As [`GlCompositor::compose_capture`].
+    ///
+    /// # Safety
+    /// As [`GlCompositor::compose_capture`].
+    pub unsafe fn compose_image(
+        &mut self,
+        gl: &Gl,
+        job: &Job,
+        width: u32,
+        height: u32,
+    ) -> Result<Option<(&Image, bool)>> {
+        let (w, h) = job.eye_size;
+        if job.mode == OutputMode::Quad {
+            return Ok(None);
+        }
+        let (options, size) = check_composite(job.mode, &job.options, w, h)?;
+        // SAFETY: contract.
+        if size != (width, height) || !unsafe { self.software(gl) } {
+            return Ok(None);
+        }
+        let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+        // SAFETY: contract.
+        unsafe {
+            gl.take_error();
+            if unscaled && preferred_path(true, job.mode, &options) == ComposePath::Cpu {
+                let r = self.window.cpu_image(gl, job, &options);
+                gl.check("reading the eyes back")?;
+                return r.map(Some);
+            }
+            self.compose_capture(gl, job)?;
+            let canvas = self.capture;
+            let img = self.window.read_canvas(gl, &canvas);
+            gl.check("reading the composite back")?;
+            Ok(Some((img, true)))
         }
     }
 

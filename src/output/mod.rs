@@ -23,6 +23,7 @@ pub mod layout;
 pub mod mode;
 pub mod options;
 pub mod pattern;
+mod window;
 
 pub use cpu::{compose, compose_into};
 pub use gl::{ComposePath, GlCompositor};
