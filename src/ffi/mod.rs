@@ -26,3 +26,5 @@ pub mod surface;
 pub mod types;
 // Measurement of rendered frames: after the surface calls in the header.
 pub mod analysis;
+// Captures off the rendering thread.
+pub mod capture;

@@ -68,6 +68,7 @@ use crate::image::{Image, MAX_DIMENSION, as_words, as_words_mut, check_size};
 use crate::math::Eye;
 
 use super::anaglyph::{DuboisMatrices, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
+use super::dubois_lut::{Products, dubois_row};
 use super::layout::{Placement, composite_size, placements};
 use super::mode::{AnaglyphColors, AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
@@ -145,6 +146,38 @@ pub fn compose_into(
     };
 
     resize(out, cw, ch);
+    with_scratch(|scratch| {
+        compose_mode(
+            mode,
+            &options,
+            l,
+            r,
+            (left, right),
+            frame_index,
+            stage,
+            out,
+            scratch,
+        )
+    });
+    Ok(())
+}
+
+/// The mode's pixels, once checked (see [`compose_into`]): `l`, `r` are the
+/// eyes after the swap, `unswapped` before it.
+#[allow(clippy::too_many_arguments)]
+fn compose_mode(
+    mode: OutputMode,
+    options: &OutputOptions,
+    l: &Image,
+    r: &Image,
+    (left, right): (&Image, &Image),
+    frame_index: u64,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
+    let (w, h) = (left.width(), left.height());
+    let (cw, ch) = (out.width(), out.height());
     match mode {
         OutputMode::Quad => {} // refused above
         OutputMode::Left => copy_opaque(l.pixels(), out.pixels_mut()),
@@ -164,14 +197,14 @@ pub fn compose_into(
                 width: w,
                 height: h,
             };
-            draw_placement(&full, shown, other, stage, out);
+            draw_placement(&full, shown, other, stage, out, scratch);
         }
         OutputMode::Anaglyph(colors, method) => {
-            anaglyph(Anaglyph::Masked(colors, method), l, r, stage, out);
+            anaglyph(Anaglyph::Masked(colors, method), l, r, stage, out, scratch);
         }
-        OutputMode::AnaglyphRedBlue => anaglyph(Anaglyph::RedBlue, l, r, stage, out),
+        OutputMode::AnaglyphRedBlue => anaglyph(Anaglyph::RedBlue, l, r, stage, out, scratch),
         OutputMode::Rows | OutputMode::Columns | OutputMode::Checkerboard => {
-            interleave(mode, l, r, stage, out);
+            interleave(mode, l, r, stage, out, scratch);
         }
         OutputMode::SideBySide
         | OutputMode::TopBottom
@@ -197,11 +230,40 @@ pub fn compose_into(
                     Eye::Left => (l, r),
                     Eye::Right => (r, l),
                 };
-                draw_placement(p, eye, other, stage, out);
+                draw_placement(p, eye, other, stage, out, scratch);
             }
         }
     }
-    Ok(())
+}
+
+/// Row buffers the float paths reuse from call to call (per thread), so
+/// that a frame loop composing every frame allocates nothing.
+#[derive(Default)]
+struct Scratch {
+    a: Vec<Rgb>,
+    b: Vec<Rgb>,
+    tmp: Vec<Rgb>,
+    taps: Vec<Tap>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = const {
+        std::cell::RefCell::new(Scratch {
+            a: Vec::new(),
+            b: Vec::new(),
+            tmp: Vec::new(),
+            taps: Vec::new(),
+        })
+    };
+}
+
+/// Runs `f` with this thread's scratch buffers (fresh ones if they are in
+/// use further up the stack).
+fn with_scratch<T>(f: impl FnOnce(&mut Scratch) -> T) -> T {
+    SCRATCH.with(|s| match s.try_borrow_mut() {
+        Ok(mut s) => f(&mut s),
+        Err(_) => f(&mut Scratch::default()),
+    })
 }
 
 /// The checks every composite passes, on the CPU and on GL alike: valid
@@ -454,7 +516,14 @@ pub fn resample(src: &Image, x: u32, y: u32, w: u32, h: u32, out_w: u32, out_h: 
 
 /// Draws `eye` scaled into placement `p`, with crosstalk against `other`
 /// sampled at the same coordinates.
-fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: &mut Image) {
+fn draw_placement(
+    p: &Placement,
+    eye: &Image,
+    other: &Image,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
     if p.width == 0 || p.height == 0 {
         return;
     }
@@ -500,26 +569,36 @@ fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: 
         }
     }
 
-    let ht: Option<Vec<Tap>> =
-        (p.width != w).then(|| (0..p.width).map(|i| tap(i, w, p.width)).collect());
-    let (mut tmp, mut a, mut b) = (Vec::new(), Vec::new(), Vec::new());
+    let Scratch { a, b, tmp, taps } = scratch;
+    taps.clear();
+    if p.width != w {
+        taps.extend((0..p.width).map(|i| tap(i, w, p.width)));
+    }
+    let ht = (p.width != w).then_some(&taps[..]);
     for y in 0..p.height {
         let vt = tap(y, h, p.height);
-        sample_row(eye, vt, ht.as_deref(), &mut tmp, &mut a);
+        sample_row(eye, vt, ht, tmp, a);
         if k != 0.0 {
-            sample_row(other, vt, ht.as_deref(), &mut tmp, &mut b);
-            for (e, o) in a.iter_mut().zip(&b) {
+            sample_row(other, vt, ht, tmp, b);
+            for (e, o) in a.iter_mut().zip(b.iter()) {
                 for c in 0..3 {
                     e[c] = (e[c] - k * o[c]).max(0.0);
                 }
             }
         }
-        store(&a, &mut row_mut(out, p.y + y)[x0..x0 + span]);
+        store(a, &mut row_mut(out, p.y + y)[x0..x0 + span]);
     }
 }
 
 /// Rows, columns or checkerboard.
-fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Image) {
+fn interleave(
+    mode: OutputMode,
+    l: &Image,
+    r: &Image,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
     let (w, h) = (l.width(), l.height());
     // Which eye pixel x of row y shows: left when (x·cx + y·cy) is even.
     let (cx, cy) = match mode {
@@ -527,7 +606,7 @@ fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Im
         OutputMode::Columns => (1, 0),
         _ => (1, 1),
     };
-    let (mut a, mut b) = (Vec::new(), Vec::new());
+    let Scratch { a, b, .. } = scratch;
     for y in 0..h {
         let dst = row_mut(out, y);
         if stage.is_identity() {
@@ -545,9 +624,9 @@ fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Im
             };
             interleave_columns(dst, first, second);
         } else {
-            load(l.row(y), &mut a);
-            load(r.row(y), &mut b);
-            stage.apply(&mut a, &mut b);
+            load(l.row(y), a);
+            load(r.row(y), b);
+            stage.apply(a, b);
             for x in 0..w as usize {
                 let src = if (x * cx + y as usize * cy) % 2 == 0 {
                     &a
@@ -595,7 +674,14 @@ fn decode_table() -> [f32; 256] {
     std::array::from_fn(|v| srgb_to_linear(v as f32 / 255.0))
 }
 
-fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image) {
+fn anaglyph(
+    kind: Anaglyph,
+    l: &Image,
+    r: &Image,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
     let h = l.height();
     // Fast path: a plain mask of untouched eyes is a byte shuffle.
     if let (Anaglyph::Masked(colors, AnaglyphMethod::FullColor), true) = (kind, stage.is_identity())
@@ -611,27 +697,36 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
         return;
     }
 
+    // Dubois of untouched eyes: by tables, the same bytes (dubois_lut.rs).
+    if let (Anaglyph::Masked(colors, AnaglyphMethod::Dubois), true) = (kind, stage.is_identity()) {
+        let products = Products::new(colors);
+        for y in 0..h {
+            dubois_row(&products, l.row(y), r.row(y), row_mut(out, y));
+        }
+        return;
+    }
+
     // Integral inputs (no saturation, no crosstalk) decode by table.
     let table = stage.is_identity().then(decode_table);
     let decode = |v: f32| match &table {
         Some(t) => t[v as usize],
         None => srgb_to_linear(v / 255.0),
     };
-    let (mut a, mut b) = (Vec::new(), Vec::new());
+    let Scratch { a, b, .. } = scratch;
     for y in 0..h {
-        load(l.row(y), &mut a);
-        load(r.row(y), &mut b);
-        stage.apply(&mut a, &mut b);
+        load(l.row(y), a);
+        load(r.row(y), b);
+        stage.apply(a, b);
         let dst = row_mut(out, y);
         match kind {
             Anaglyph::RedBlue => {
-                for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
+                for ((d, p), q) in dst.chunks_exact_mut(4).zip(a.iter()).zip(b.iter()) {
                     d.copy_from_slice(&[unorm(luma(rgb(p))), 0, unorm(luma(rgb(q))), 255]);
                 }
             }
             Anaglyph::Masked(colors, AnaglyphMethod::Dubois) => {
                 let m: DuboisMatrices = dubois_matrices(colors);
-                for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
+                for ((d, p), q) in dst.chunks_exact_mut(4).zip(a.iter()).zip(b.iter()) {
                     let lin = |x: &Rgb| [decode(x[0]), decode(x[1]), decode(x[2])];
                     let o = dubois_pixel(&m, lin(p), lin(q));
                     d.copy_from_slice(&[
@@ -646,7 +741,7 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
                 let mask = colors.left_channels();
                 let left_grey = method != AnaglyphMethod::FullColor;
                 let right_grey = method == AnaglyphMethod::Monochrome;
-                for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
+                for ((d, p), q) in dst.chunks_exact_mut(4).zip(a.iter()).zip(b.iter()) {
                     let (yl, yr) = (luma(rgb(p)), luma(rgb(q)));
                     for c in 0..3 {
                         d[c] = unorm(match (mask[c], left_grey, right_grey) {

@@ -18,6 +18,7 @@
 
 pub mod anaglyph;
 pub mod cpu;
+mod dubois_lut;
 pub mod gl;
 pub mod layout;
 pub mod mode;
