@@ -413,14 +413,19 @@ impl Surface {
                 let job = gl_job(st, mode);
                 // A software renderer's frame goes to the window as pixels
                 // when the backend shows them (GLX: MIT-SHM), skipping a
-                // full-window GL pass (see GlCompositor::compose_image).
-                if !resized && self.platform.accepts_images() {
-                    // SAFETY: the compositor context is current; the job's
-                    // textures are this surface's.
-                    if let Some((img, bottom_first)) =
-                        unsafe { st.compositor.compose_image(gl, &job, width, height)? }
-                    {
-                        if self.platform.present_image(img, bottom_first)? {
+                // full-window GL pass (see GlCompositor::pixel_plan).
+                if !resized && self.platform.accepts_pixels() {
+                    // SAFETY: the compositor context is current.
+                    let plan = unsafe { st.compositor.pixel_plan(gl, &job, width, height)? };
+                    if let Some(plan) = plan {
+                        let compositor = &mut st.compositor;
+                        let shown = self.platform.present_pixels((width, height), &mut |t| {
+                            // SAFETY: the compositor context is current; the
+                            // job's textures are this surface's; the plan is
+                            // for this job and the window's size.
+                            unsafe { compositor.fill_pixels(gl, &job, plan, t) }
+                        })?;
+                        if shown {
                             return Ok(());
                         }
                     }

@@ -135,3 +135,24 @@ fn swapped_eyes_with_crosstalk_show_their_composite() {
         ],
     );
 }
+
+#[test]
+fn swapped_eyes_alone_show_their_composite() {
+    let options = OutputOptions {
+        swap_eyes: true,
+        ..OutputOptions::default()
+    };
+    check_modes(
+        97,
+        61,
+        options,
+        &[
+            "anaglyph-amber-blue",
+            "side-by-side",
+            "top-bottom",
+            "right",
+            "frame-sequential",
+            "hdmi-frame-packing",
+        ],
+    );
+}

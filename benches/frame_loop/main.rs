@@ -23,6 +23,11 @@
 //! is done when its pixels are). Each frame is timed; the ratio printed is
 //! median(stereo) / median(mono) over the run.
 //!
+//! Headless, a third program runs in the same alternation: the plain
+//! program drawing both eyes into two colour textures of one FBO (shared
+//! depth), no layer: the two-renders floor, so `stereo / control` is what
+//! the layer itself costs (`--no-control` skips it).
+//!
 //! `--capture` adds, to the stereo program, a PNG capture of both eyes every
 //! frame (`Surface::queue_png`: read back here, written by the surface's
 //! PNG thread, at most 4 waiting), and its frames per second are the
@@ -60,6 +65,7 @@ struct Args {
     height: u32,
     mode: Option<OutputMode>,
     capture: bool,
+    control: bool,
 }
 
 fn parse_args() -> Args {
@@ -72,6 +78,7 @@ fn parse_args() -> Args {
         height: 1024,
         mode: None,
         capture: false,
+        control: true,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -93,6 +100,7 @@ fn parse_args() -> Args {
             }
             "--mode" => a.mode = Some(it.next().expect("--mode NAME").parse().expect("a mode")),
             "--capture" => a.capture = true,
+            "--no-control" => a.control = false,
             // cargo bench passes --bench; criterion-style filters are ignored.
             _ => {}
         }
@@ -188,10 +196,12 @@ fn run_backend(args: &Args, backend: &str) {
             t.stereo.len()
         );
         if !t.control.is_empty() {
+            let c = median(&t.control);
             println!(
-                "        plain two-FBO stereo {:.2} ms, ratio {:.3}",
-                median(&t.control),
-                median(&t.control) / m
+                "        control (plain program, both eyes into two FBOs, no layer): {c:.2} ms, \
+                 ratio {:.3}; stereo / control {:.3}",
+                c / m,
+                s / c
             );
         }
     }
@@ -286,7 +296,7 @@ fn measure(args: &Args, kind: BackendKind, weight: Weight) -> Timings {
             }
             frame += 1;
         }
-        if std::env::var_os("GLS_CONTROL").is_some() && !plain.has_window() {
+        if args.control && !plain.has_window() {
             for _ in 0..batch {
                 let start = Instant::now();
                 // SAFETY: the plain context is current.

@@ -587,14 +587,17 @@ impl PlatformSurface for GlxSurface {
         self.shared.check_alive()
     }
 
-    fn accepts_images(&self) -> bool {
+    fn accepts_pixels(&self) -> bool {
         !matches!(*self.shm.lock().unwrap(), ShmState::Unsupported)
     }
 
-    fn present_image(&self, image: &crate::image::Image, bottom_first: bool) -> Result<bool> {
+    fn present_pixels(
+        &self,
+        size: (u32, u32),
+        fill: &mut dyn FnMut(super::PixelTarget<'_>) -> Result<()>,
+    ) -> Result<bool> {
         let sh = &self.shared;
         sh.check_alive()?;
-        let size = (image.width(), image.height());
         if size != self.state.lock().unwrap().size {
             return Ok(false);
         }
@@ -625,7 +628,7 @@ impl PlatformSurface for GlxSurface {
             return Ok(false);
         };
         // SAFETY: the image was made on this live connection for this window.
-        unsafe { img.put(&sh.xlib, sh.display, self.window, image, bottom_first) };
+        unsafe { img.put_with(&sh.xlib, sh.display, self.window, fill)? };
         sh.check_alive()?;
         Ok(true)
     }

@@ -21,16 +21,8 @@ use std::ffi::c_int;
 use x11_dl::xlib::{self, Xlib};
 use x11_dl::xshm::{XShmSegmentInfo, Xext};
 
-use crate::image::{Image, as_words, as_words_mut};
-
-/// Where R, G and B go in a 32-bit little-endian pixel word.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Layout {
-    /// Red mask 0xff0000 (bytes B, G, R, X): Xvfb's and most servers' 24-bit visuals.
-    Bgrx,
-    /// Red mask 0x0000ff (bytes R, G, B, X).
-    Rgbx,
-}
+use super::{PixelLayout as Layout, PixelTarget};
+use crate::error::Result;
 
 /// A shared-memory XImage attached to the server.
 pub(super) struct ShmImage {
@@ -44,31 +36,6 @@ pub(super) struct ShmImage {
     height: u32,
     /// A put was sent and not yet known to be finished.
     pending: bool,
-}
-
-/// One RGBA8 word (R in the low byte) as a pixel of `layout`, X byte 0xff.
-#[inline(always)]
-fn convert(v: u32, layout: Layout) -> u32 {
-    let w = match layout {
-        Layout::Bgrx => ((v & 0xff) << 16) | (v & 0xff00) | ((v >> 16) & 0xff),
-        Layout::Rgbx => v,
-    };
-    w | 0xff00_0000
-}
-
-/// Converts one row of RGBA8 pixels into `layout`'s 32-bit words (on word
-/// slices when aligned: about memcpy speed; byte by byte otherwise).
-fn convert_row(src: &[u8], dst: &mut [u8], layout: Layout) {
-    if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
-        for (d, &v) in d.iter_mut().zip(s) {
-            *d = convert(v, layout);
-        }
-        return;
-    }
-    for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
-        let v = u32::from_le_bytes([s[0], s[1], s[2], s[3]]);
-        d.copy_from_slice(&convert(v, layout).to_le_bytes());
-    }
 }
 
 impl ShmImage {
@@ -170,20 +137,18 @@ impl ShmImage {
         (self.width, self.height)
     }
 
-    /// Writes `img` (RGBA8, this image's size; rows top first unless
-    /// `bottom_first`) into the segment and sends it to `window`.
+    /// Lets `fill` write a frame into the segment and sends it to `window`
+    /// (unless `fill` fails).
     ///
     /// # Safety
     /// `display` is the live connection the image was made on.
-    pub(super) unsafe fn put(
+    pub(super) unsafe fn put_with(
         &mut self,
         xl: &Xlib,
         display: *mut xlib::Display,
         window: xlib::Window,
-        img: &Image,
-        bottom_first: bool,
-    ) {
-        debug_assert_eq!((img.width(), img.height()), (self.width, self.height));
+        fill: &mut dyn FnMut(PixelTarget<'_>) -> Result<()>,
+    ) -> Result<()> {
         // SAFETY: live display (contract); the segment holds
         // bytes_per_line × height bytes, mapped until drop; the server only
         // reads it between a put and the XSync that follows.
@@ -197,16 +162,12 @@ impl ShmImage {
                 self.info.shmaddr.cast::<u8>(),
                 stride * self.height as usize,
             );
-            let row_bytes = self.width as usize * 4;
-            for y in 0..self.height {
-                let src_row = if bottom_first { self.height - 1 - y } else { y };
-                let start = y as usize * stride;
-                convert_row(
-                    img.row(src_row),
-                    &mut data[start..start + row_bytes],
-                    self.layout,
-                );
-            }
+            fill(PixelTarget {
+                data,
+                stride,
+                size: (self.width, self.height),
+                layout: self.layout,
+            })?;
             (self.xext.XShmPutImage)(
                 display,
                 window,
@@ -223,6 +184,7 @@ impl ShmImage {
             (xl.XFlush)(display);
             self.pending = true;
         }
+        Ok(())
     }
 
     /// Detaches and frees the image. `alive`: whether the connection still
@@ -251,6 +213,7 @@ impl ShmImage {
 
 #[cfg(test)]
 mod tests {
+    use super::super::convert_row;
     use super::*;
 
     #[test]
@@ -261,5 +224,9 @@ mod tests {
         assert_eq!(dst, [30, 20, 10, 255, 50, 100, 200, 255]);
         convert_row(&src, &mut dst, Layout::Rgbx);
         assert_eq!(dst, [10, 20, 30, 255, 200, 100, 50, 255]);
+        // Unaligned rows take the byte path, with the same result.
+        let mut wide = [0u8; 9];
+        convert_row(&src, &mut wide[1..], Layout::Bgrx);
+        assert_eq!(wide[1..], [30, 20, 10, 255, 50, 100, 200, 255]);
     }
 }

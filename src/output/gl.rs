@@ -56,7 +56,7 @@ use super::cpu::check_composite;
 use super::layout::{placements, window_fit};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
-use super::window::{WindowPaths, window_path};
+use super::window::{Plan, WindowPaths, pixel_plan, window_path};
 
 /// A rectangle of a texture holding one eye, in GL texel coordinates (rows
 /// counted from the BOTTOM, as GL stores them).
@@ -107,6 +107,11 @@ pub struct Job {
     /// eyes of this size; rectangles of another size are resampled to it).
     pub eye_size: (u32, u32),
 }
+
+/// How a composite reaches a window that shows pixels from memory (from
+/// [`GlCompositor::pixel_plan`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelPlan(Plan);
 
 /// Which way a capture of the composite is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -700,27 +705,24 @@ impl GlCompositor {
         }
     }
 
-    /// The composite of `job` as an image in memory (rows bottom first when
-    /// the flag is true), for a window that shows pixels directly
-    /// ([`crate::backend::PlatformSurface::present_image`]): made the faster
-    /// way on a software renderer ([`preferred_path`]: the CPU from eyes
-    /// read back, or GL then one read-back), with buffers reused from frame
-    /// to frame. None on a hardware renderer (its GL composite into the
+    /// How `job` can reach a window that shows pixels from memory
+    /// ([`crate::backend::PlatformSurface::present_pixels`]) on a software
+    /// renderer: None on a hardware renderer (its GL composite into the
     /// window is cheaper), for `quad`, and when the composite is not the
-    /// window's `width` × `height`.
+    /// window's `width` × `height`. See [`super::window`].
     ///
     /// # Errors
-    /// As [`GlCompositor::compose_capture`].
+    /// As [`GlCompositor::compose_capture`] for a bad job.
     ///
     /// # Safety
-    /// As [`GlCompositor::compose_capture`].
-    pub unsafe fn compose_image(
+    /// The compositor context must be current.
+    pub unsafe fn pixel_plan(
         &mut self,
         gl: &Gl,
         job: &Job,
         width: u32,
         height: u32,
-    ) -> Result<Option<(&Image, bool)>> {
+    ) -> Result<Option<PixelPlan>> {
         let (w, h) = job.eye_size;
         if job.mode == OutputMode::Quad {
             return Ok(None);
@@ -731,19 +733,39 @@ impl GlCompositor {
             return Ok(None);
         }
         let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+        Ok(Some(PixelPlan(pixel_plan(job.mode, &options, unscaled))))
+    }
+
+    /// Writes the composite of `job` into `target` as `plan` says, with
+    /// buffers reused from frame to frame.
+    ///
+    /// # Errors
+    /// As [`GlCompositor::compose_capture`].
+    ///
+    /// # Safety
+    /// As [`GlCompositor::compose_capture`]; `plan` came from
+    /// [`GlCompositor::pixel_plan`] for this job and the target's size.
+    pub unsafe fn fill_pixels(
+        &mut self,
+        gl: &Gl,
+        job: &Job,
+        plan: PixelPlan,
+        mut target: crate::backend::PixelTarget<'_>,
+    ) -> Result<()> {
+        let options = job.options.validated()?;
         // SAFETY: contract.
         unsafe {
             gl.take_error();
-            if unscaled && preferred_path(true, job.mode, &options) == ComposePath::Cpu {
-                let r = self.window.cpu_image(gl, job, &options);
-                gl.check("reading the eyes back")?;
-                return r.map(Some);
+            match plan.0 {
+                Plan::Gl => {
+                    self.compose_capture(gl, job)?;
+                    let canvas = self.capture;
+                    let img = self.window.read_canvas(gl, &canvas);
+                    target.write_image(img, true);
+                }
+                plan => self.window.fill(gl, plan, job, &options, &mut target)?,
             }
-            self.compose_capture(gl, job)?;
-            let canvas = self.capture;
-            let img = self.window.read_canvas(gl, &canvas);
-            gl.check("reading the composite back")?;
-            Ok(Some((img, true)))
+            gl.check("composing the eyes for the window")
         }
     }
 

@@ -28,16 +28,17 @@
 //! (Dubois, crosstalk and saturation on same-size modes, a window of
 //! another size, hardware renderers' composites) is left to the shaders.
 
+use crate::backend::{PixelTarget, convert_row};
 use crate::error::Result;
 use crate::gl::Gl;
 use crate::gl::enums::*;
-use crate::image::{Image, flip_rows};
+use crate::image::{Image, as_words, as_words_mut, flip_rows};
 use crate::math::Eye;
 
 use super::cpu;
 use super::gl::{Canvas, ComposePath, Job, TexRect, preferred_path};
 use super::layout::{Placement, composite_size, placements};
-use super::mode::OutputMode;
+use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 
 /// GL_ALPHA_BITS (compatibility profile): alpha bits of the draw framebuffer.
@@ -80,6 +81,35 @@ pub(crate) fn window_path(
         return Some(WindowPath::Cpu);
     }
     None
+}
+
+/// How a composite reaches a window that shows pixels from memory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Plan {
+    /// A plain channel mask of untouched eyes, written straight into the
+    /// window's buffer from the eyes read back (one pass).
+    Mask,
+    /// Whole eyes copied into their places in the window's buffer.
+    Copies,
+    /// Composed on the CPU from the eyes read back, then written.
+    Cpu,
+    /// Composed by GL, read back, then written.
+    Gl,
+}
+
+/// The plan for `mode` with validated `options` on a software renderer;
+/// `unscaled`: every eye is a rectangle of the eye's size.
+pub(crate) fn pixel_plan(mode: OutputMode, options: &OutputOptions, unscaled: bool) -> Plan {
+    if !unscaled {
+        return Plan::Gl;
+    }
+    let untouched = options.crosstalk == 0.0 && options.saturation == 1.0;
+    match mode {
+        OutputMode::Anaglyph(_, AnaglyphMethod::FullColor) if untouched => Plan::Mask,
+        _ if window_path(mode, options, false, false) == Some(WindowPath::Blit) => Plan::Copies,
+        _ if preferred_path(true, mode, options) == ComposePath::Cpu => Plan::Cpu,
+        _ => Plan::Gl,
+    }
 }
 
 /// How the CPU path orders rows: Some(swap) when composing GL's bottom-first
@@ -360,6 +390,138 @@ impl WindowPaths {
         &self.out
     }
 
+    /// Reads the job's eyes back into the reused images, rows bottom first
+    /// (one read when both eyes are the same rectangle); returns whether
+    /// they are the same.
+    ///
+    /// # Safety
+    /// As [`WindowPaths::compose`]; the job's eyes are of the eye size.
+    unsafe fn read_eyes(&mut self, gl: &Gl, job: &Job) -> bool {
+        let (w, h) = job.eye_size;
+        let same = job.eyes[1] == job.eyes[0];
+        // SAFETY: contract; each image holds w×h×4 bytes.
+        unsafe {
+            if self.read_fbo == 0 {
+                gl.GenFramebuffers(1, &mut self.read_fbo);
+            }
+            for (i, rect) in job.eyes.iter().enumerate().take(if same { 1 } else { 2 }) {
+                let img = &mut self.eyes[i];
+                ensure_size(img, w, h);
+                read_from(gl, self.read_fbo, rect.texture);
+                gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+                gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+                gl.ReadPixels(
+                    rect.x as i32,
+                    rect.y as i32,
+                    w as i32,
+                    h as i32,
+                    GL_RGBA,
+                    GL_UNSIGNED_BYTE,
+                    img.pixels_mut().as_mut_ptr().cast(),
+                );
+            }
+        }
+        same
+    }
+
+    /// Writes the composite into a window's buffer by `plan` (not
+    /// [`Plan::Gl`], which the compositor does itself).
+    ///
+    /// # Safety
+    /// As [`WindowPaths::compose`]; the job's eyes are of the eye size and
+    /// the target of the composite's size.
+    pub(crate) unsafe fn fill(
+        &mut self,
+        gl: &Gl,
+        plan: Plan,
+        job: &Job,
+        options: &OutputOptions,
+        target: &mut PixelTarget<'_>,
+    ) -> Result<()> {
+        let (w, h) = job.eye_size;
+        match plan {
+            Plan::Mask => {
+                let OutputMode::Anaglyph(colors, _) = job.mode else {
+                    unreachable!("a mask plan is made for anaglyphs only")
+                };
+                // SAFETY: contract.
+                let same = unsafe { self.read_eyes(gl, job) };
+                let (mut l, mut r) = (&self.eyes[0], &self.eyes[if same { 0 } else { 1 }]);
+                if options.swap_eyes {
+                    std::mem::swap(&mut l, &mut r);
+                }
+                let m = colors.left_channels().map(|b| if b { 0xFF } else { 0 });
+                let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
+                let layout = target.layout;
+                for y in 0..h {
+                    // The eyes are bottom first, the window top first.
+                    let (lr, rr) = (l.row(h - 1 - y), r.row(h - 1 - y));
+                    mask_row(lr, rr, target.row_mut(y), left_mask, |v| layout.convert(v));
+                }
+            }
+            Plan::Copies => {
+                // SAFETY: contract.
+                let same = unsafe { self.read_eyes(gl, job) };
+                let [left, right] = [&self.eyes[0], &self.eyes[if same { 0 } else { 1 }]];
+                let (l, r) = if options.swap_eyes {
+                    (right, left)
+                } else {
+                    (left, right)
+                };
+                let full = |eye| Placement {
+                    eye,
+                    x: 0,
+                    y: 0,
+                    width: w,
+                    height: h,
+                };
+                let mut draws: [Option<(Placement, &Image)>; 2] = [None, None];
+                match job.mode {
+                    OutputMode::Left => draws[0] = Some((full(Eye::Left), l)),
+                    OutputMode::Right => draws[0] = Some((full(Eye::Right), r)),
+                    OutputMode::FrameSequential => {
+                        let eye = options.frame_sequential_eye(job.frame_index);
+                        draws[0] = Some((full(eye), if eye == Eye::Left { left } else { right }));
+                    }
+                    mode => {
+                        let places = placements(mode, w, h).expect("a rectangle mode");
+                        for (d, p) in draws.iter_mut().zip(places.iter()) {
+                            *d = Some((*p, if p.eye == Eye::Left { l } else { r }));
+                        }
+                    }
+                }
+                let (cw, ch) = target.size;
+                let covered: u64 = draws
+                    .iter()
+                    .flatten()
+                    .map(|(p, _)| u64::from(p.width) * u64::from(p.height))
+                    .sum();
+                if covered < u64::from(cw) * u64::from(ch) {
+                    let black = target.layout.convert(0);
+                    for y in 0..ch {
+                        fill_words(target.row_mut(y), black);
+                    }
+                }
+                for (p, eye) in draws.into_iter().flatten() {
+                    let x0 = p.x as usize * 4;
+                    for row in 0..p.height {
+                        let src = eye.row(h - 1 - row);
+                        let layout = target.layout;
+                        let dst = &mut target.row_mut(p.y + row)[x0..x0 + p.width as usize * 4];
+                        convert_row(src, dst, layout);
+                    }
+                }
+            }
+            Plan::Cpu => {
+                // SAFETY: contract.
+                let (img, bottom_first) = unsafe { self.cpu_image(gl, job, options)? };
+                target.write_image(img, bottom_first);
+            }
+            Plan::Gl => unreachable!("the compositor composes GL plans"),
+        }
+        Ok(())
+    }
+
     unsafe fn cpu(
         &mut self,
         gl: &Gl,
@@ -411,6 +573,40 @@ impl WindowPaths {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         }
         Ok(())
+    }
+}
+
+/// One row of a plain channel-mask anaglyph: R, G, B from the left eye
+/// where `left_mask` has ones, else from the right; each result word
+/// (alpha 255) passed through `out` (a window's pixel layout).
+fn mask_row(l: &[u8], r: &[u8], dst: &mut [u8], left_mask: u32, out: impl Fn(u32) -> u32) {
+    let right_mask = !left_mask & 0x00FF_FFFF;
+    let pixel = |p: u32, q: u32| out((p & left_mask) | (q & right_mask) | 0xFF00_0000);
+    if let (Some(a), Some(b)) = (as_words(l), as_words(r)) {
+        if let Some(d) = as_words_mut(dst) {
+            for ((d, &p), &q) in d.iter_mut().zip(a).zip(b) {
+                *d = pixel(p, q);
+            }
+            return;
+        }
+    }
+    for ((d, p), q) in dst
+        .chunks_exact_mut(4)
+        .zip(l.chunks_exact(4))
+        .zip(r.chunks_exact(4))
+    {
+        let w = |s: &[u8]| u32::from_le_bytes([s[0], s[1], s[2], s[3]]);
+        d.copy_from_slice(&pixel(w(p), w(q)).to_le_bytes());
+    }
+}
+
+/// Every pixel of a row set to one word.
+fn fill_words(dst: &mut [u8], word: u32) {
+    match as_words_mut(dst) {
+        Some(d) => d.fill(word),
+        None => dst
+            .chunks_exact_mut(4)
+            .for_each(|d| d.copy_from_slice(&word.to_le_bytes())),
     }
 }
 
