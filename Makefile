@@ -13,7 +13,7 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make
 
-.PHONY: all deps build header examples demo test lint clean
+.PHONY: all deps build header examples demo test lint bench clean
 
 all: build examples
 
@@ -55,6 +55,15 @@ lint:
 
 test: deps lint
 	$(CARGO) test $(CARGO_PROFILE_FLAG) --no-fail-fast
+
+# Benchmarks (release build; see BENCHMARKS.md): the frame loop, mono vs
+# stereo on EGL, OSMesa and GLX (a private Xvfb), light and heavy scenes;
+# the same with both eyes captured to PNG every frame; then every output
+# mode's CPU and GL composition against a memcpy (criterion).
+bench:
+	$(CARGO) bench --bench frame_loop
+	$(CARGO) bench --bench frame_loop -- --scene light --capture --no-control
+	$(CARGO) bench --bench compose
 
 clean:
 	$(CARGO) clean

@@ -696,12 +696,9 @@ impl Surface {
     /// Writes one of the images a viewer sees now to a PNG file
     /// (atomically). A display shows no alpha, so neither does the file.
     pub fn save_png(self: &Arc<Self>, which: CaptureImage, path: &std::path::Path) -> Result<()> {
-        let mut img = match which {
-            CaptureImage::Left => self.eye_images()?.0,
-            CaptureImage::Right => self.eye_images()?.1,
-            CaptureImage::Composite => self.composite_image()?,
-        };
-        set_opaque(&mut img);
+        // One read-back for an eye (not both), no extra copies (captures.rs).
+        let mut img = Image::new(1, 1);
+        self.capture_into(which, &mut img)?;
         crate::capture::write_png(&img, path)
     }
 

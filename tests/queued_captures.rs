@@ -25,16 +25,20 @@ use glstereo::surface::{self, CaptureImage};
 use gl_surface::{show, stereo_surface};
 
 #[test]
-fn queued_captures_write_what_save_png_writes_in_order() {
+fn queued_and_saved_captures_hold_the_eyes_and_composite_in_order() {
     let dir = common::scratch("queued-captures");
     let s = stereo_surface(BackendKind::Egl, 37, 21);
     surface::make_current(Some(&s)).unwrap();
+    let mut shown = Vec::new();
     for frame in 0..3u8 {
         show(
             &s,
             &noise(37, 21, u64::from(frame)),
             &gradient(37, 21, frame),
         );
+        // What a viewer sees, by the independent read-back paths.
+        let (left, right) = s.eye_images().unwrap();
+        shown.push([left, right, s.composite_image().unwrap()]);
         for (which, name) in [
             (CaptureImage::Left, "left"),
             (CaptureImage::Right, "right"),
@@ -50,15 +54,18 @@ fn queued_captures_write_what_save_png_writes_in_order() {
         }
     }
     s.finish_captures().unwrap();
-    for name in ["left", "right", "composite"] {
-        for frame in 0..3 {
-            let queued = read_png(&dir.join(format!("{name}-{frame}.png"))).unwrap();
-            let sync = read_png(&dir.join(format!("{name}-sync-{frame}.png"))).unwrap();
-            assert_eq!(queued, sync, "{name}, frame {frame}");
+    for (i, name) in ["left", "right", "composite"].into_iter().enumerate() {
+        for (frame, images) in shown.iter().enumerate() {
+            for file in [
+                format!("{name}-{frame}.png"),
+                format!("{name}-sync-{frame}.png"),
+            ] {
+                assert_eq!(read_png(&dir.join(&file)).unwrap(), images[i], "{file}");
+            }
         }
         assert_eq!(
             read_png(&dir.join(format!("{name}-last.png"))).unwrap(),
-            read_png(&dir.join(format!("{name}-sync-2.png"))).unwrap(),
+            shown[2][i],
             "{name}: the last queued capture of a path wins"
         );
     }

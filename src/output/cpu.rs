@@ -67,7 +67,7 @@ use crate::error::{Error, Result};
 use crate::image::{Image, MAX_DIMENSION, as_words, as_words_mut, check_size};
 use crate::math::Eye;
 
-use super::anaglyph::{DuboisMatrices, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
+use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
 use super::dubois_lut::{Products, dubois_row};
 use super::layout::{Placement, composite_size, placements};
 use super::mode::{AnaglyphColors, AnaglyphMethod, OutputMode};
@@ -697,6 +697,47 @@ fn anaglyph(
         return;
     }
 
+    // Luminance modes of untouched eyes: the luma of three bytes by tables
+    // of the same f32 products, summed in the same order: the same bytes.
+    let grey = match kind {
+        Anaglyph::Masked(colors, AnaglyphMethod::HalfColor) => Some((colors, true, false)),
+        Anaglyph::Masked(colors, AnaglyphMethod::Monochrome) => Some((colors, true, true)),
+        Anaglyph::RedBlue => Some((AnaglyphColors::RedCyan, true, true)),
+        _ => None,
+    };
+    if let (Some((colors, left_grey, right_grey)), true) = (grey, stage.is_identity()) {
+        let t: [[f32; 256]; 3] =
+            std::array::from_fn(|c| std::array::from_fn(|v| LUMA[c] * v as f32));
+        let y = |w: u32| {
+            let [r, g, b, _] = w.to_le_bytes();
+            u32::from(unorm(
+                t[0][r as usize] + t[1][g as usize] + t[2][b as usize],
+            ))
+        };
+        let m = colors
+            .left_channels()
+            .map(|from_left| if from_left { 0xFF } else { 0 });
+        let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
+        let right_mask = !left_mask & !ALPHA;
+        // Red-blue keeps no green: red from the left luma, blue from the right.
+        let keep = if matches!(kind, Anaglyph::RedBlue) {
+            0x00FF_00FF
+        } else {
+            0x00FF_FFFF
+        };
+        let right_mask = if matches!(kind, Anaglyph::RedBlue) {
+            0x00FF_0000
+        } else {
+            right_mask
+        };
+        zip_words(out.pixels_mut(), l.pixels(), r.pixels(), |p, q| {
+            let lv = if left_grey { y(p) * 0x01_0101 } else { p };
+            let rv = if right_grey { y(q) * 0x01_0101 } else { q };
+            ((lv & left_mask) | (rv & right_mask)) & keep | ALPHA
+        });
+        return;
+    }
+
     // Dubois of untouched eyes: by tables, the same bytes (dubois_lut.rs).
     if let (Anaglyph::Masked(colors, AnaglyphMethod::Dubois), true) = (kind, stage.is_identity()) {
         let products = Products::new(colors);
@@ -821,6 +862,45 @@ mod tests {
         assert_eq!(unorm(300.0), 255);
         for v in 0..=255u8 {
             assert_eq!(unorm(f32::from(v)), v, "integral {v}");
+        }
+    }
+
+    #[test]
+    fn luminance_anaglyphs_of_8_bit_eyes_follow_the_float_rules_exactly() {
+        let (w, h) = (37, 5);
+        let (l, r) = (
+            crate::output::pattern::noise(w, h, 11),
+            crate::output::pattern::noise(w, h, 12),
+        );
+        let y = |p: [u8; 4]| unorm(luma([p[0], p[1], p[2]].map(f32::from)));
+        let mut modes = vec![(OutputMode::AnaglyphRedBlue, AnaglyphColors::RedCyan)];
+        for c in AnaglyphColors::ALL {
+            for m in [AnaglyphMethod::HalfColor, AnaglyphMethod::Monochrome] {
+                modes.push((OutputMode::Anaglyph(c, m), c));
+            }
+        }
+        for (mode, colors) in modes {
+            let out = compose(mode, &OutputOptions::default(), &l, &r, 0).unwrap();
+            for (px, py) in (0..h).flat_map(|py| (0..w).map(move |px| (px, py))) {
+                let (p, q) = (l.get(px, py), r.get(px, py));
+                let want = match mode {
+                    OutputMode::AnaglyphRedBlue => [y(p), 0, y(q), 255],
+                    OutputMode::Anaglyph(_, method) => {
+                        let mask = colors.left_channels();
+                        let mut v = [0, 0, 0, 255];
+                        for c in 0..3 {
+                            v[c] = match (mask[c], method == AnaglyphMethod::Monochrome) {
+                                (true, _) => y(p),
+                                (false, false) => q[c],
+                                (false, true) => y(q),
+                            };
+                        }
+                        v
+                    }
+                    _ => unreachable!(),
+                };
+                assert_eq!(out.get(px, py), want, "{mode} at ({px}, {py})");
+            }
         }
     }
 

@@ -705,6 +705,51 @@ impl GlCompositor {
         }
     }
 
+    /// The composite of `job` into `out` (rows top first, resized when
+    /// needed, its buffer reused otherwise), made the faster way here
+    /// ([`preferred_path`]): on the CPU from the eyes read back into reused
+    /// buffers, or by GL and one read-back. Ok(false), with `out`
+    /// untouched, when GL would be needed but the composite exceeds what
+    /// this driver renders (the caller composes on the CPU then).
+    ///
+    /// # Errors
+    /// As [`GlCompositor::compose_capture`].
+    ///
+    /// # Safety
+    /// As [`GlCompositor::compose_capture`].
+    pub unsafe fn capture_into(&mut self, gl: &Gl, job: &Job, out: &mut Image) -> Result<bool> {
+        let (w, h) = job.eye_size;
+        let (options, (cw, ch)) = check_composite(job.mode, &job.options, w, h)?;
+        let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+        // SAFETY: contract.
+        unsafe {
+            let software = self.software(gl);
+            gl.take_error();
+            if unscaled && preferred_path(software, job.mode, &options) == ComposePath::Cpu {
+                let (img, bottom_first) = self.window.cpu_image(gl, job, &options)?;
+                gl.check("reading the eyes back")?;
+                if (out.width(), out.height()) != (cw, ch) {
+                    *out = Image::new(cw, ch);
+                }
+                let stride = cw as usize * 4;
+                for y in 0..ch {
+                    let src = img.row(if bottom_first { ch - 1 - y } else { y });
+                    out.pixels_mut()[y as usize * stride..][..stride].copy_from_slice(src);
+                }
+                return Ok(true);
+            }
+            if cw > self.max_side(gl) || ch > self.max_side(gl) {
+                return Ok(false);
+            }
+            self.compose_capture(gl, job)?;
+            if (out.width(), out.height()) != (cw, ch) {
+                *out = Image::new(cw, ch);
+            }
+            self.read_capture(gl, out)?;
+        }
+        Ok(true)
+    }
+
     /// How `job` can reach a window that shows pixels from memory
     /// ([`crate::backend::PlatformSurface::present_pixels`]) on a software
     /// renderer: None on a hardware renderer (its GL composite into the

@@ -52,7 +52,20 @@ impl Surface {
                 let (l, r) = self.eye_images()?;
                 *out = if which == CaptureImage::Left { l } else { r };
             }
-            None => *out = self.composite_image()?,
+            None => {
+                let mode = self.effective_output();
+                // The eyes into the compositor's reused buffers, the
+                // composite into `out` (see GlCompositor::capture_into).
+                let done = self.with_compositor(|gl, st| {
+                    let job = super::gl_job(st, mode);
+                    // SAFETY: the compositor context is current; the job's
+                    // textures are this surface's.
+                    unsafe { st.compositor.capture_into(gl, &job, out) }
+                })?;
+                if !done {
+                    *out = self.composite_image()?;
+                }
+            }
         }
         make_opaque(out);
         Ok(())
