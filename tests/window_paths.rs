@@ -156,3 +156,21 @@ fn swapped_eyes_alone_show_their_composite() {
         ],
     );
 }
+
+#[test]
+fn wide_windows_are_read_back_in_bands_without_seams() {
+    // 1280 pixels a row: the one-pass paths read 102 rows at a time, so
+    // 250 rows take three bands, the last one short.
+    check_modes(
+        1280,
+        250,
+        OutputOptions::default(),
+        &[
+            "anaglyph-red-cyan",
+            "side-by-side",
+            "top-bottom",
+            "left",
+            "hdmi-frame-packing",
+        ],
+    );
+}
