@@ -147,6 +147,12 @@ pub enum ComposePath {
 /// | side-by-side-half, top-bottom-half, starbase | 2.4–3.3 | 13.8 | 16–18 | 19–22 |
 /// | str-rect                            | 11.5 | 13.8 | 17.6 | 20   |
 ///
+/// Since then the CPU compositions got faster (BENCHMARKS.md; composition
+/// alone, no read-back): plain masks and copies at memory speed (0.2–0.3
+/// ms), `-half` 2.9, `-mono` and red-blue ≈ 5, `-dubois` 22–25 (exact
+/// tables instead of 65); the choices below stand (GL's Dubois, 24 ms,
+/// runs on both cores while the CPU's runs on one).
+///
 /// So on a software renderer: GL for `-dubois` always, and for every mode
 /// but the squeezed ones (`-half`, `starbase`, `str-rect`) when crosstalk
 /// or saturation is in effect; the CPU otherwise (its integer fast paths
