@@ -30,8 +30,9 @@
 //!
 //! `--capture` adds, to the stereo program, a PNG capture of both eyes every
 //! frame (`Surface::queue_png`: read back here, written by the surface's
-//! PNG thread, at most 4 waiting), and its frames per second are the
-//! stereo column.
+//! PNG threads, at most 4 waiting), and its frames per second are the
+//! stereo column. `--capture-sync` captures with `Surface::save_png` instead
+//! (encoded and written on the rendering thread), for comparison.
 //!
 //! The parent process runs one child per backend (`--backend NAME`), and
 //! starts Xvfb for GLX itself.
@@ -65,6 +66,7 @@ struct Args {
     height: u32,
     mode: Option<OutputMode>,
     capture: bool,
+    capture_sync: bool,
     control: bool,
 }
 
@@ -78,6 +80,7 @@ fn parse_args() -> Args {
         height: 1024,
         mode: None,
         capture: false,
+        capture_sync: false,
         control: true,
     };
     let mut it = std::env::args().skip(1);
@@ -100,6 +103,7 @@ fn parse_args() -> Args {
             }
             "--mode" => a.mode = Some(it.next().expect("--mode NAME").parse().expect("a mode")),
             "--capture" => a.capture = true,
+            "--capture-sync" => (a.capture, a.capture_sync) = (true, true),
             "--no-control" => a.control = false,
             // cargo bench passes --bench; criterion-style filters are ignored.
             _ => {}
@@ -321,7 +325,7 @@ fn measure(args: &Args, kind: BackendKind, weight: Weight) -> Timings {
             stereo_frame(&stereo, frame, kind != BackendKind::Glx);
 
             if let Some(dir) = &mut capture {
-                save_eyes(&stereo.surface, dir, frame);
+                save_eyes(&stereo.surface, dir, frame, args.capture_sync);
             }
             if keep {
                 t.stereo.push(ms(start.elapsed()));
@@ -366,14 +370,18 @@ fn capture_dir(kind: BackendKind, weight: Weight) -> std::path::PathBuf {
     dir
 }
 
-fn save_eyes(s: &Arc<Surface>, dir: &std::path::Path, frame: u64) {
+fn save_eyes(s: &Arc<Surface>, dir: &std::path::Path, frame: u64, sync: bool) {
     use glstereo::surface::CaptureImage;
     // A ring of file names: the files are rewritten, the disk does not fill.
     let n = frame % 8;
-    s.queue_png(CaptureImage::Left, &dir.join(format!("left-{n}.png")))
-        .unwrap();
-    s.queue_png(CaptureImage::Right, &dir.join(format!("right-{n}.png")))
-        .unwrap();
+    for (which, name) in [(CaptureImage::Left, "left"), (CaptureImage::Right, "right")] {
+        let path = dir.join(format!("{name}-{n}.png"));
+        if sync {
+            s.save_png(which, &path).unwrap();
+        } else {
+            s.queue_png(which, &path).unwrap();
+        }
+    }
 }
 
 fn ms(d: Duration) -> f64 {

@@ -18,8 +18,8 @@
 //!   an ulp of powf), so an interval whose ends agree by more than the
 //!   margin holds no other value.
 //!
-//! A unit test checks the result against the reference on every grey pair
-//! and on a million random pixel pairs.
+//! A unit test checks the result against the reference on every pair of
+//! grey pixels and on 100 000 random pixel pairs, for each colour pair.
 
 use std::sync::OnceLock;
 
@@ -156,7 +156,7 @@ mod tests {
         for colors in AnaglyphColors::ALL {
             let p = Products::new(colors);
             for a in 0..=255u8 {
-                for b in (0..=255u8).step_by(3) {
+                for b in 0..=255u8 {
                     check(colors, &p, [a; 3], [b; 3]);
                 }
             }
