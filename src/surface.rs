@@ -24,7 +24,7 @@ use crate::shims::nv3dvision::StereoSettings;
 use crate::stereo::buffers::{ColorBuffer, resolve_read_buffer};
 use crate::stereo::emulated::EmulatedFramebuffer;
 
-// Captures without a stall: PNGs written by a thread (src/surface/captures.rs).
+// Captures without a stall: PNGs written by threads (src/surface/captures.rs).
 mod captures;
 
 thread_local! {
@@ -138,7 +138,7 @@ pub struct Surface {
     gl: Arc<Gl>,
     owner: Mutex<Option<ThreadId>>,
     state: Mutex<SurfaceState>,
-    /// The PNG writer thread, started by the first queued capture.
+    /// The PNG encoder and writer threads, started by the first queued capture.
     captures: Mutex<Option<crate::capture::queue::PngQueue>>,
 }
 
@@ -395,7 +395,10 @@ impl Surface {
     /// the new front buffers are then composed in the output mode into the
     /// window's framebuffer 0 in the compositor context (placed by
     /// [`crate::output::layout::window_fit`]), and `present()` is called
-    /// with the compositor context still current.
+    /// with the compositor context still current — or, on a software
+    /// renderer whose backend shows pixels from memory, the composite is
+    /// written into the window directly
+    /// ([`PlatformSurface::present_pixels`]; no GL pass, no `present()`).
     pub fn swap_buffers(self: &Arc<Self>) -> Result<()> {
         self.with_app(|st| {
             // SAFETY: with_app made the application context current.
