@@ -760,7 +760,7 @@ impl GlCompositor {
     /// ([`crate::backend::PlatformSurface::present_pixels`]) on a software
     /// renderer: None on a hardware renderer (its GL composite into the
     /// window is cheaper), for `quad`, and when the composite is not the
-    /// window's `width` × `height`. See [`super::window`].
+    /// window's `width` × `height`. See `output/window.rs`.
     ///
     /// # Errors
     /// As [`GlCompositor::compose_capture`] for a bad job.
