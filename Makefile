@@ -14,7 +14,7 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind
 
-.PHONY: all deps build header examples demo test check-sanitize lint clean install uninstall
+.PHONY: all deps build header examples demo test check-sanitize lint bench clean install uninstall
 
 all: build examples
 
@@ -109,6 +109,15 @@ uninstall:
 	  $(DESTDIR)$(INSTALL_BINDIR)/glstereo-run $(DESTDIR)$(INSTALL_MANDIR)/man1/glstereo-run.1
 	rm -rf $(DESTDIR)$(INSTALL_INCDIR)/glstereo
 # ----------------------------------------------------------------------------
+
+# Benchmarks (release build; see BENCHMARKS.md): the frame loop, mono vs
+# stereo on EGL, OSMesa and GLX (a private Xvfb), light and heavy scenes;
+# the same with both eyes captured to PNG every frame; then every output
+# mode's CPU and GL composition against a memcpy (criterion).
+bench:
+	$(CARGO) bench --bench frame_loop
+	$(CARGO) bench --bench frame_loop -- --scene light --capture --no-control
+	$(CARGO) bench --bench compose
 
 clean:
 	$(CARGO) clean

@@ -413,6 +413,12 @@
 #define GLS_PARALLAX_WARN_POSITIVE 2
 
 /**
+ * Captures a surface may queue before gls_surface_queue_png waits for the
+ * oldest to be written.
+ */
+#define GLS_CAPTURE_QUEUE_LENGTH 4
+
+/**
  * A chosen framebuffer configuration (opaque).
  */
 typedef struct gls_config gls_config;
@@ -2242,6 +2248,38 @@ void gls_gl_finish(void);
  * the stereo versions), the real libGL's for every other name.
  */
 void *gls_glx_get_proc_address(const unsigned char *name);
+
+/**
+ * Like gls_surface_save_png, but returns as soon as the pixels are read
+ * back: the PNG is encoded and written (atomically, temporary file then
+ * rename) by the surface's capture threads, in the order queued, so a
+ * frame loop can capture every frame. At most GLS_CAPTURE_QUEUE_LENGTH
+ * captures wait; beyond that this call waits for the oldest to be
+ * written. Call gls_surface_wait_captures() to know that the files exist
+ * (destroying the surface also writes what is queued).
+ *
+ * @param surface a live surface. @param image GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE.
+ * @param path a file path (UTF-8); must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM (image); GLS_ERROR_IO when an earlier queued
+ * capture failed to be written (reported once, by the next call; the
+ * message names its path and the reason; this capture is queued anyway).
+ * Any thread.
+ */
+gls_result gls_surface_queue_png(struct gls_surface *surface,
+                                 uint32_t image,
+                                 const char *path);
+
+/**
+ * Waits until every capture queued with gls_surface_queue_png() is
+ * written.
+ *
+ * @param surface a live surface.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_IO when a queued capture failed to be written and was not yet
+ * reported (the message names its path and the reason). Any thread.
+ */
+gls_result gls_surface_wait_captures(struct gls_surface *surface);
 
 #ifdef __cplusplus
 }  // extern "C"

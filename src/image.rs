@@ -54,6 +54,31 @@ pub fn flip_rows(pixels: &mut [u8], stride: usize) {
     }
 }
 
+/// `bytes` as RGBA8 pixel words (R in the low byte), when they are
+/// 4-byte aligned, a whole number of pixels, on a little-endian machine
+/// (an [`Image`]'s buffer from the system allocator always is aligned);
+/// None otherwise, for a byte-wise fallback. Word loops compile to vector
+/// code that byte-chunk loops do not (2–4× faster here).
+pub fn as_words(bytes: &[u8]) -> Option<&[u32]> {
+    if cfg!(target_endian = "big") {
+        return None;
+    }
+    // SAFETY: every bit pattern is a valid u32; align_to hands out only
+    // the aligned middle, and the checks below refuse anything else.
+    let (head, words, tail) = unsafe { bytes.align_to::<u32>() };
+    (head.is_empty() && tail.is_empty()).then_some(words)
+}
+
+/// [`as_words`], mutable.
+pub fn as_words_mut(bytes: &mut [u8]) -> Option<&mut [u32]> {
+    if cfg!(target_endian = "big") {
+        return None;
+    }
+    // SAFETY: as in `as_words`; writes of any u32 are valid bytes.
+    let (head, words, tail) = unsafe { bytes.align_to_mut::<u32>() };
+    (head.is_empty() && tail.is_empty()).then_some(words)
+}
+
 impl Image {
     /// A black, fully transparent image. Panics on a size outside
     /// 1…MAX_DIMENSION (check with [`check_size`] first for user input), and

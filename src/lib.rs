@@ -43,5 +43,6 @@ pub mod output;
 pub mod shims;
 pub mod stereo;
 pub mod surface;
+mod sync;
 
 pub use error::{Error, Result};

@@ -4,6 +4,7 @@
 //! GL's rule holds: a surface's application context is current on at most
 //! one thread at a time, and each thread has at most one current surface.
 
+use crate::sync::LockRecover;
 use std::cell::RefCell;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::ThreadId;
@@ -23,6 +24,9 @@ use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
 use crate::shims::nv3dvision::StereoSettings;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code, resolve_read_buffer};
 use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
+
+// Captures without a stall: PNGs written by threads (src/surface/captures.rs).
+mod captures;
 
 thread_local! {
     /// The surface current on this thread and which of its contexts.
@@ -73,7 +77,7 @@ pub fn make_current(surface: Option<&Arc<Surface>>) -> Result<()> {
     let Some(s) = surface else {
         if let Some((p, _)) = prev {
             p.platform.release_current()?;
-            *p.owner.lock().unwrap() = None;
+            *p.owner.recover() = None;
             CURRENT.with(|c| *c.borrow_mut() = None);
         }
         return Ok(());
@@ -84,7 +88,7 @@ pub fn make_current(surface: Option<&Arc<Surface>>) -> Result<()> {
         }
     }
     {
-        let owner = s.owner.lock().unwrap();
+        let owner = s.owner.recover();
         if owner.is_some_and(|t| t != me) {
             return Err(Error::invalid_operation(
                 "this surface is current on another thread: release it there first (gls_make_current(NULL))",
@@ -105,12 +109,12 @@ pub fn make_current(surface: Option<&Arc<Surface>>) -> Result<()> {
     }
     if let Some((p, _)) = &prev {
         if !Arc::ptr_eq(p, s) {
-            *p.owner.lock().unwrap() = None;
+            *p.owner.recover() = None;
         }
     }
-    *s.owner.lock().unwrap() = Some(me);
+    *s.owner.recover() = Some(me);
     CURRENT.with(|c| *c.borrow_mut() = Some((s.clone(), ContextRole::App)));
-    let mut st = s.state.lock().unwrap();
+    let mut st = s.state.recover();
     if st.fb.app_fbo() == 0 {
         // SAFETY: the application context was just made current.
         if let Err(e) = unsafe { st.fb.attach_app(&s.gl) } {
@@ -158,6 +162,8 @@ pub struct Surface {
     gl: Arc<Gl>,
     owner: Mutex<Option<ThreadId>>,
     state: Mutex<SurfaceState>,
+    /// The PNG encoder and writer threads, started by the first queued capture.
+    captures: Mutex<Option<crate::capture::queue::PngQueue>>,
 }
 
 impl std::fmt::Debug for Surface {
@@ -259,6 +265,7 @@ impl Surface {
                 compositor: GlCompositor::new(),
                 nv3dvision: StereoSettings::new(false),
             }),
+            captures: Mutex::new(None),
         }))
     }
 
@@ -284,12 +291,12 @@ impl Surface {
 
     /// Width and height of each eye's buffers.
     pub fn size(&self) -> (u32, u32) {
-        self.state.lock().unwrap().fb.size()
+        self.state.recover().fb.size()
     }
 
     /// Swaps so far.
     pub fn frames(&self) -> u64 {
-        self.state.lock().unwrap().frames
+        self.state.recover().frames
     }
 
     fn is_current_here(self: &Arc<Self>) -> bool {
@@ -301,7 +308,7 @@ impl Surface {
         if !self.is_current_here() {
             return Err(Error::NoCurrentSurface);
         }
-        Ok(self.state.lock().unwrap())
+        Ok(self.state.recover())
     }
 
     /// Runs `f` in the application context: directly when this surface is
@@ -309,11 +316,11 @@ impl Surface {
     /// the thread's previous surface. Fails if it is current on another thread.
     fn with_app<T>(self: &Arc<Self>, f: impl FnOnce(&mut SurfaceState) -> Result<T>) -> Result<T> {
         if self.is_current_here() {
-            return f(&mut self.state.lock().unwrap());
+            return f(&mut self.state.recover());
         }
         let prev = current();
         make_current(Some(self))?;
-        let r = f(&mut self.state.lock().unwrap());
+        let r = f(&mut self.state.recover());
         let restored = make_current(prev.as_ref());
         let v = r?;
         restored?;
@@ -332,7 +339,7 @@ impl Surface {
             unsafe { self.gl.Finish() };
         }
         with_compositor_of(&self.display, &*self.platform, || {
-            f(&self.gl, &mut self.state.lock().unwrap())
+            f(&self.gl, &mut self.state.recover())
         })
     }
 
@@ -430,7 +437,10 @@ impl Surface {
     /// the new front buffers are then composed in the output mode into the
     /// window's framebuffer 0 in the compositor context (placed by
     /// [`crate::output::layout::window_fit`]), and `present()` is called
-    /// with the compositor context still current.
+    /// with the compositor context still current — or, on a software
+    /// renderer whose backend shows pixels from memory, the composite is
+    /// written into the window directly
+    /// ([`PlatformSurface::present_pixels`]; no GL pass, no `present()`).
     pub fn swap_buffers(self: &Arc<Self>) -> Result<()> {
         self.with_app(|st| {
             // SAFETY: with_app made the application context current.
@@ -446,6 +456,25 @@ impl Surface {
             return self.with_compositor(|gl, st| {
                 let resized = st.window != Some((width, height));
                 let job = gl_job(st, mode);
+                // A software renderer's frame goes to the window as pixels
+                // when the backend shows them (GLX: MIT-SHM), skipping a
+                // full-window GL pass (see GlCompositor::pixel_plan).
+                if !resized && self.platform.accepts_pixels() {
+                    // SAFETY: the compositor context is current.
+                    let plan = unsafe { st.compositor.pixel_plan(gl, &job, width, height)? };
+                    if let Some(plan) = plan {
+                        let compositor = &mut st.compositor;
+                        let shown = self.platform.present_pixels((width, height), &mut |t| {
+                            // SAFETY: the compositor context is current; the
+                            // job's textures are this surface's; the plan is
+                            // for this job and the window's size.
+                            unsafe { compositor.fill_pixels(gl, &job, plan, t) }
+                        })?;
+                        if shown {
+                            return Ok(());
+                        }
+                    }
+                }
                 // SAFETY: with_compositor made the compositor context current;
                 // the job's textures are this surface's.
                 unsafe { st.compositor.compose_window(gl, &job, 0, width, height)? };
@@ -522,7 +551,7 @@ impl Surface {
     /// quad-buffer framing shows its one image to both eyes).
     pub fn eye_images(self: &Arc<Self>) -> Result<(Image, Image)> {
         let (framing, shape, (w, h)) = {
-            let st = self.state.lock().unwrap();
+            let st = self.state.recover();
             (st.framing, st.fb.shape(), st.fb.size())
         };
         let [ls, rs] = framing.sources(shape, w, h);
@@ -555,7 +584,7 @@ impl Surface {
 
     /// The output mode as set (`quad` included).
     pub fn output(&self) -> OutputMode {
-        self.state.lock().unwrap().output
+        self.state.recover().output
     }
 
     /// The mode the composite is made in: the output mode, except that
@@ -570,7 +599,7 @@ impl Surface {
     /// A window is resized to the new mode's composite of the current eyes
     /// (e.g. twice as wide for `side-by-side`), so it stays pixel for pixel.
     pub fn set_output(&self, mode: OutputMode) -> Result<()> {
-        self.state.lock().unwrap().output = mode;
+        self.state.recover().output = mode;
         self.fit_window()
     }
 
@@ -588,7 +617,7 @@ impl Surface {
         if self.platform.drawable_size().is_none() {
             return Ok(());
         }
-        let (w, h) = self.window_size_for(&self.state.lock().unwrap());
+        let (w, h) = self.window_size_for(&self.state.recover());
         check_size(w, h)?;
         // The next swap sees the new size, rebinds the drawable and keeps
         // the eyes (they already match the new composite).
@@ -624,24 +653,24 @@ impl Surface {
 
     /// The output options.
     pub fn options(&self) -> OutputOptions {
-        self.state.lock().unwrap().options
+        self.state.recover().options
     }
 
     /// Sets the output options (validated first; on error nothing changes).
     pub fn set_options(&self, options: OutputOptions) -> Result<()> {
         let options = options.validated()?;
-        self.state.lock().unwrap().options = options;
+        self.state.recover().options = options;
         Ok(())
     }
 
     /// The input framing.
     pub fn framing(&self) -> InputFraming {
-        self.state.lock().unwrap().framing
+        self.state.recover().framing
     }
 
     /// Sets how the program delivers its eyes (checked against the size).
     pub fn set_framing(&self, framing: InputFraming) -> Result<()> {
-        let mut st = self.state.lock().unwrap();
+        let mut st = self.state.recover();
         let (w, h) = st.fb.size();
         framing.check(st.fb.shape(), w, h)?;
         st.framing = framing;
@@ -697,7 +726,7 @@ impl Surface {
     fn composite_image_cpu(self: &Arc<Self>) -> Result<Image> {
         let (left, right) = self.eye_images()?;
         let (options, frames) = {
-            let st = self.state.lock().unwrap();
+            let st = self.state.recover();
             (st.options, st.frames)
         };
         cpu::compose(
@@ -712,12 +741,9 @@ impl Surface {
     /// Writes one of the images a viewer sees now to a PNG file
     /// (atomically). A display shows no alpha, so neither does the file.
     pub fn save_png(self: &Arc<Self>, which: CaptureImage, path: &std::path::Path) -> Result<()> {
-        let mut img = match which {
-            CaptureImage::Left => self.eye_images()?.0,
-            CaptureImage::Right => self.eye_images()?.1,
-            CaptureImage::Composite => self.composite_image()?,
-        };
-        set_opaque(&mut img);
+        // One read-back for an eye (not both), no extra copies (captures.rs).
+        let mut img = Image::new(1, 1);
+        self.capture_into(which, &mut img)?;
         crate::capture::write_png(&img, path)
     }
 
@@ -726,12 +752,12 @@ impl Surface {
     /// Makes this surface auto-stereo capable (EGL_NV_3dvision_surface):
     /// called once, at creation, by [`crate::framing::auto::create_surface`].
     pub(crate) fn make_auto_stereo_capable(&self) {
-        self.state.lock().unwrap().nv3dvision = StereoSettings::new(true);
+        self.state.recover().nv3dvision = StereoSettings::new(true);
     }
 
     /// A copy of this surface's NV_3dvision_settings state (any thread).
     pub fn nv3dvision(&self) -> StereoSettings {
-        self.state.lock().unwrap().nv3dvision
+        self.state.recover().nv3dvision
     }
 
     /// Runs `f` on this surface's NV_3dvision_settings state (this surface

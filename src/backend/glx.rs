@@ -12,6 +12,7 @@
 //! requests are trapped, and a lost connection (server killed) is recorded
 //! by an I/O-error exit handler (libX11 ≥ 1.7) instead of Xlib's exit().
 
+use crate::sync::LockRecover;
 use std::collections::VecDeque;
 use std::ffi::{CStr, CString, c_int, c_void};
 use std::sync::atomic::{AtomicBool, AtomicI32, AtomicU64, AtomicUsize, Ordering};
@@ -20,6 +21,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use x11_dl::glx::{self, Glx};
 use x11_dl::xlib::{self, Xlib};
 
+use super::xshm::ShmImage;
 use super::{BackendKind, ContextRole, Platform, PlatformSurface, WindowEvent};
 use crate::config::{Config, ConfigRequest, EmulationPolicy, glx as attr};
 use crate::error::{Error, Result};
@@ -341,7 +343,7 @@ impl GlxPlatform {
             unsafe { libc::atexit(close_lost_connections_at_exit) };
             xlib.XCloseDisplay
         });
-        OUR_DISPLAYS.lock().unwrap().push(Registered {
+        OUR_DISPLAYS.recover().push(Registered {
             display: display as usize,
             state: &*state as *const ConnectionState as usize,
         });
@@ -470,6 +472,9 @@ impl Platform for GlxPlatform {
             shared: sh.clone(),
             window,
             colormap,
+            visual: info.visual,
+            depth: info.depth,
+            shm: Mutex::new(ShmState::Untried),
             app: std::ptr::null_mut(),
             compositor: std::ptr::null_mut(),
             state: Mutex::new(WindowState {
@@ -513,11 +518,25 @@ struct WindowState {
     events: VecDeque<WindowEvent>,
 }
 
+/// Whether the window shows CPU pixels through MIT-SHM ([`super::xshm`]).
+enum ShmState {
+    /// Not tried yet.
+    Untried,
+    /// MIT-SHM is missing or unusable here: always the GL path.
+    Unsupported,
+    /// An attached image (remade when the window's size changes).
+    Ready(ShmImage),
+}
+
 /// A window with two GLX contexts sharing objects.
 struct GlxSurface {
     shared: Arc<GlxShared>,
     window: xlib::Window,
     colormap: xlib::Colormap,
+    /// The window's visual and depth (for MIT-SHM images).
+    visual: *mut xlib::Visual,
+    depth: c_int,
+    shm: Mutex<ShmState>,
     app: glx::GLXContext,
     compositor: glx::GLXContext,
     state: Mutex<WindowState>,
@@ -539,7 +558,7 @@ impl GlxSurface {
         if sh.state.lost.load(Ordering::SeqCst) {
             return;
         }
-        let mut st = self.state.lock().unwrap();
+        let mut st = self.state.recover();
         // SAFETY: valid display and window; `ev` is a plain C union filled by Xlib.
         unsafe {
             let mut ev: xlib::XEvent = std::mem::zeroed();
@@ -613,9 +632,55 @@ impl PlatformSurface for GlxSurface {
         self.shared.check_alive()
     }
 
+    fn accepts_pixels(&self) -> bool {
+        !matches!(*self.shm.recover(), ShmState::Unsupported)
+    }
+
+    fn present_pixels(
+        &self,
+        size: (u32, u32),
+        fill: &mut dyn FnMut(super::PixelTarget<'_>) -> Result<()>,
+    ) -> Result<bool> {
+        let sh = &self.shared;
+        sh.check_alive()?;
+        if size != self.state.recover().size {
+            return Ok(false);
+        }
+        let mut shm = self.shm.recover();
+        if matches!(&*shm, ShmState::Ready(img) if img.size() != size) {
+            if let ShmState::Ready(old) = std::mem::replace(&mut *shm, ShmState::Untried) {
+                // SAFETY: made on this live connection (checked above).
+                unsafe { old.destroy(&sh.xlib, sh.display, true) };
+            }
+        }
+        if matches!(&*shm, ShmState::Untried) {
+            let trap = |f: &mut dyn FnMut()| sh.trap(f).1;
+            // SAFETY: live connection; the window's own visual and depth.
+            let made = unsafe {
+                ShmImage::create(
+                    &sh.xlib,
+                    sh.display,
+                    self.window,
+                    self.visual,
+                    self.depth,
+                    size,
+                    &trap,
+                )
+            };
+            *shm = made.map_or(ShmState::Unsupported, ShmState::Ready);
+        }
+        let ShmState::Ready(img) = &mut *shm else {
+            return Ok(false);
+        };
+        // SAFETY: the image was made on this live connection for this window.
+        unsafe { img.put_with(&sh.xlib, sh.display, self.window, fill)? };
+        sh.check_alive()?;
+        Ok(true)
+    }
+
     fn drawable_size(&self) -> Option<(u32, u32)> {
         self.pump();
-        Some(self.state.lock().unwrap().size)
+        Some(self.state.recover().size)
     }
 
     fn resize_window(&self, width: u32, height: u32) -> Result<()> {
@@ -631,12 +696,12 @@ impl PlatformSurface for GlxSurface {
 
     fn next_event(&self) -> Option<WindowEvent> {
         self.pump();
-        self.state.lock().unwrap().events.pop_front()
+        self.state.recover().events.pop_front()
     }
 
     fn close_requested(&self) -> bool {
         self.pump();
-        self.state.lock().unwrap().close_requested
+        self.state.recover().close_requested
     }
 
     fn set_title(&self, title: &str) -> Result<()> {
@@ -662,7 +727,16 @@ impl PlatformSurface for GlxSurface {
 impl Drop for GlxSurface {
     fn drop(&mut self) {
         let sh = &self.shared;
-        if sh.state.lost.load(Ordering::SeqCst) {
+        let alive = !sh.state.lost.load(Ordering::SeqCst);
+        let shm = std::mem::replace(
+            &mut *self.shm.lock().unwrap_or_else(|e| e.into_inner()),
+            ShmState::Unsupported,
+        );
+        if let ShmState::Ready(img) = shm {
+            // SAFETY: made on this connection; X calls only while it is alive.
+            unsafe { img.destroy(&sh.xlib, sh.display, alive) };
+        }
+        if !alive {
             return;
         }
         // SAFETY: the surface layer released these contexts from every thread

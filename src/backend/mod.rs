@@ -10,6 +10,7 @@
 pub mod egl;
 pub mod glx;
 pub mod osmesa;
+mod xshm;
 
 use std::ffi::{CStr, c_void};
 
@@ -139,6 +140,75 @@ pub enum NativeHandles {
     },
 }
 
+/// How a window buffer stores a pixel: a 32-bit little-endian word.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PixelLayout {
+    /// Bytes B, G, R, X (red mask 0xff0000): Xvfb's and most X servers' 24-bit visuals.
+    Bgrx,
+    /// Bytes R, G, B, X (red mask 0x0000ff).
+    Rgbx,
+}
+
+impl PixelLayout {
+    /// An RGBA8 word (R in the low byte) as this layout's word, X byte 0xff.
+    #[inline(always)]
+    pub fn convert(self, rgba: u32) -> u32 {
+        let w = match self {
+            PixelLayout::Bgrx => ((rgba & 0xff) << 16) | (rgba & 0xff00) | ((rgba >> 16) & 0xff),
+            PixelLayout::Rgbx => rgba,
+        };
+        w | 0xff00_0000
+    }
+}
+
+/// A window buffer to write one frame into ([`PlatformSurface::present_pixels`]).
+#[derive(Debug)]
+pub struct PixelTarget<'a> {
+    /// The rows, top first, `stride` bytes apart (4-byte aligned).
+    pub data: &'a mut [u8],
+    /// Bytes from one row to the next (at least width × 4).
+    pub stride: usize,
+    /// Width and height in pixels.
+    pub size: (u32, u32),
+    /// How pixels are stored.
+    pub layout: PixelLayout,
+}
+
+impl PixelTarget<'_> {
+    /// Row `y` (0 = top), `width × 4` bytes.
+    pub fn row_mut(&mut self, y: u32) -> &mut [u8] {
+        let start = y as usize * self.stride;
+        &mut self.data[start..start + self.size.0 as usize * 4]
+    }
+
+    /// Writes an RGBA8 image of the target's size (rows top first unless
+    /// `bottom_first`) in the target's layout.
+    pub fn write_image(&mut self, img: &crate::image::Image, bottom_first: bool) {
+        let h = self.size.1;
+        for y in 0..h {
+            let src = img.row(if bottom_first { h - 1 - y } else { y });
+            let layout = self.layout;
+            convert_row(src, self.row_mut(y), layout);
+        }
+    }
+}
+
+/// Converts a row of RGBA8 pixels into `layout`'s words (on word slices
+/// when aligned: about memcpy speed; byte by byte otherwise).
+pub fn convert_row(src: &[u8], dst: &mut [u8], layout: PixelLayout) {
+    use crate::image::{as_words, as_words_mut};
+    if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
+        for (d, &v) in d.iter_mut().zip(s) {
+            *d = layout.convert(v);
+        }
+        return;
+    }
+    for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
+        let v = u32::from_le_bytes([s[0], s[1], s[2], s[3]]);
+        d.copy_from_slice(&layout.convert(v).to_le_bytes());
+    }
+}
+
 /// The backend half of a surface: its drawable and two contexts.
 pub trait PlatformSurface: Send + Sync {
     /// Makes one of the surface's contexts current on the calling thread.
@@ -154,6 +224,27 @@ pub trait PlatformSurface: Send + Sync {
     /// buffer when double-buffered).
     fn present(&self) -> Result<()> {
         Ok(())
+    }
+
+    /// Whether [`PlatformSurface::present_pixels`] may show a frame (false
+    /// once it found it cannot): lets the caller skip preparing one.
+    fn accepts_pixels(&self) -> bool {
+        false
+    }
+
+    /// Shows a frame of `size` in the window from memory, instead of a GL
+    /// composite and [`PlatformSurface::present`]: the cheaper way on a
+    /// software renderer (GLX: MIT-SHM, see `backend/xshm.rs`). `fill`
+    /// writes the frame into the backend's buffer; it is called at most
+    /// once, and its error is returned. Ok(false) when the backend cannot
+    /// (no window, no MIT-SHM, an unsupported visual, `size` is not the
+    /// window's): nothing was shown and the caller takes the GL path.
+    fn present_pixels(
+        &self,
+        _size: (u32, u32),
+        _fill: &mut dyn FnMut(PixelTarget<'_>) -> Result<()>,
+    ) -> Result<bool> {
+        Ok(false)
     }
 
     /// The drawable's current size, for backends with windows that can be

@@ -2,6 +2,7 @@
 //! in a registry so a handle that was never created, or already destroyed,
 //! is reported as GLS_ERROR_INVALID_HANDLE instead of being dereferenced.
 
+use crate::sync::LockRecover;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -23,7 +24,7 @@ fn registry() -> &'static Mutex<HashMap<usize, Kind>> {
 /// Gives `value` to C: the pointer stays valid until [`release`].
 pub(crate) fn publish<T, C>(value: Arc<T>, kind: Kind) -> *mut C {
     let p = Arc::into_raw(value);
-    registry().lock().unwrap().insert(p as usize, kind);
+    registry().recover().insert(p as usize, kind);
     p as *mut C
 }
 
@@ -32,7 +33,7 @@ pub(crate) fn get<T, C>(ptr: *const C, kind: Kind, name: &'static str) -> Result
     if ptr.is_null() {
         return Err(Error::NullPointer(name));
     }
-    let reg = registry().lock().unwrap();
+    let reg = registry().recover();
     if reg.get(&(ptr as usize)) != Some(&kind) {
         return Err(Error::InvalidHandle(name));
     }
@@ -51,7 +52,7 @@ pub(crate) fn release<T, C>(ptr: *const C, kind: Kind) -> Option<Arc<T>> {
     if ptr.is_null() {
         return None;
     }
-    let mut reg = registry().lock().unwrap();
+    let mut reg = registry().recover();
     if reg.get(&(ptr as usize)) != Some(&kind) {
         return None;
     }

@@ -28,3 +28,5 @@ pub mod types;
 pub mod analysis;
 // Legacy GLX/GL names for unmodified programs (glstereo-run, compat.h).
 pub mod interpose;
+// Captures off the rendering thread.
+pub mod capture;

@@ -64,10 +64,11 @@
 //! falls back on configs without native stereo.
 
 use crate::error::{Error, Result};
-use crate::image::{Image, MAX_DIMENSION, check_size};
+use crate::image::{Image, MAX_DIMENSION, as_words, as_words_mut, check_size};
 use crate::math::Eye;
 
-use super::anaglyph::{DuboisMatrices, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
+use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
+use super::dubois_lut::{Products, dubois_row};
 use super::layout::{Placement, composite_size, placements};
 use super::mode::{AnaglyphColors, AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
@@ -145,6 +146,38 @@ pub fn compose_into(
     };
 
     resize(out, cw, ch)?;
+    with_scratch(|scratch| {
+        compose_mode(
+            mode,
+            &options,
+            l,
+            r,
+            (left, right),
+            frame_index,
+            stage,
+            out,
+            scratch,
+        )
+    });
+    Ok(())
+}
+
+/// The mode's pixels, once checked (see [`compose_into`]): `l`, `r` are the
+/// eyes after the swap, `unswapped` before it.
+#[allow(clippy::too_many_arguments)]
+fn compose_mode(
+    mode: OutputMode,
+    options: &OutputOptions,
+    l: &Image,
+    r: &Image,
+    (left, right): (&Image, &Image),
+    frame_index: u64,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
+    let (w, h) = (left.width(), left.height());
+    let (cw, ch) = (out.width(), out.height());
     match mode {
         OutputMode::Quad => {} // refused above
         OutputMode::Left => copy_opaque(l.pixels(), out.pixels_mut()),
@@ -164,14 +197,14 @@ pub fn compose_into(
                 width: w,
                 height: h,
             };
-            draw_placement(&full, shown, other, stage, out);
+            draw_placement(&full, shown, other, stage, out, scratch);
         }
         OutputMode::Anaglyph(colors, method) => {
-            anaglyph(Anaglyph::Masked(colors, method), l, r, stage, out);
+            anaglyph(Anaglyph::Masked(colors, method), l, r, stage, out, scratch);
         }
-        OutputMode::AnaglyphRedBlue => anaglyph(Anaglyph::RedBlue, l, r, stage, out),
+        OutputMode::AnaglyphRedBlue => anaglyph(Anaglyph::RedBlue, l, r, stage, out, scratch),
         OutputMode::Rows | OutputMode::Columns | OutputMode::Checkerboard => {
-            interleave(mode, l, r, stage, out);
+            interleave(mode, l, r, stage, out, scratch);
         }
         OutputMode::SideBySide
         | OutputMode::TopBottom
@@ -197,11 +230,40 @@ pub fn compose_into(
                     Eye::Left => (l, r),
                     Eye::Right => (r, l),
                 };
-                draw_placement(p, eye, other, stage, out);
+                draw_placement(p, eye, other, stage, out, scratch);
             }
         }
     }
-    Ok(())
+}
+
+/// Row buffers the float paths reuse from call to call (per thread), so
+/// that a frame loop composing every frame allocates nothing.
+#[derive(Default)]
+struct Scratch {
+    a: Vec<Rgb>,
+    b: Vec<Rgb>,
+    tmp: Vec<Rgb>,
+    taps: Vec<Tap>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = const {
+        std::cell::RefCell::new(Scratch {
+            a: Vec::new(),
+            b: Vec::new(),
+            tmp: Vec::new(),
+            taps: Vec::new(),
+        })
+    };
+}
+
+/// Runs `f` with this thread's scratch buffers (fresh ones if they are in
+/// use further up the stack).
+fn with_scratch<T>(f: impl FnOnce(&mut Scratch) -> T) -> T {
+    SCRATCH.with(|s| match s.try_borrow_mut() {
+        Ok(mut s) => f(&mut s),
+        Err(_) => f(&mut Scratch::default()),
+    })
 }
 
 /// The checks every composite passes, on the CPU and on GL alike: valid
@@ -313,8 +375,33 @@ fn average_up(a: u32, b: u32) -> u32 {
 
 /// Fills every pixel with one RGBA8 word.
 fn fill(dst: &mut [u8], rgba: u32) {
+    if let Some(d) = as_words_mut(dst) {
+        d.fill(rgba);
+        return;
+    }
     for d in dst.chunks_exact_mut(4) {
         d.copy_from_slice(&rgba.to_le_bytes());
+    }
+}
+
+/// `dst[i] = f(a[i], b[i])` over RGBA8 words: on word slices when all three
+/// are aligned (vectorised), else pixel by pixel.
+#[inline(always)]
+fn zip_words(dst: &mut [u8], a: &[u8], b: &[u8], f: impl Fn(u32, u32) -> u32) {
+    if let (Some(x), Some(y)) = (as_words(a), as_words(b)) {
+        if let Some(d) = as_words_mut(dst) {
+            for ((d, &x), &y) in d.iter_mut().zip(x).zip(y) {
+                *d = f(x, y);
+            }
+            return;
+        }
+    }
+    for ((d, p), q) in dst
+        .chunks_exact_mut(4)
+        .zip(a.chunks_exact(4))
+        .zip(b.chunks_exact(4))
+    {
+        d.copy_from_slice(&f(word(p), word(q)).to_le_bytes());
     }
 }
 
@@ -343,6 +430,12 @@ fn store(src: &[Rgb], dst: &mut [u8]) {
 
 /// Copies RGB and sets alpha to 255.
 fn copy_opaque(src: &[u8], dst: &mut [u8]) {
+    if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
+        for (d, &s) in d.iter_mut().zip(s) {
+            *d = s | ALPHA;
+        }
+        return;
+    }
     for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
         d.copy_from_slice(&(word(s) | ALPHA).to_le_bytes());
     }
@@ -435,7 +528,14 @@ pub fn resample(src: &Image, x: u32, y: u32, w: u32, h: u32, out_w: u32, out_h: 
 
 /// Draws `eye` scaled into placement `p`, with crosstalk against `other`
 /// sampled at the same coordinates.
-fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: &mut Image) {
+fn draw_placement(
+    p: &Placement,
+    eye: &Image,
+    other: &Image,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
     if p.width == 0 || p.height == 0 {
         return;
     }
@@ -458,20 +558,21 @@ fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: 
             for y in 0..p.height {
                 let (a, b) = (eye.row(2 * y), eye.row(2 * y + 1));
                 let dst = &mut row_mut(out, p.y + y)[x0..x0 + span];
-                for ((d, s), t) in dst
-                    .chunks_exact_mut(4)
-                    .zip(a.chunks_exact(4))
-                    .zip(b.chunks_exact(4))
-                {
-                    d.copy_from_slice(&(average_up(word(s), word(t)) | ALPHA).to_le_bytes());
-                }
+                zip_words(dst, a, b, |s, t| average_up(s, t) | ALPHA);
             }
             return;
         }
         if p.height == h && 2 * p.width == w {
             for y in 0..h {
                 let dst = &mut row_mut(out, p.y + y)[x0..x0 + span];
-                for (d, pair) in dst.chunks_exact_mut(4).zip(eye.row(y).chunks_exact(8)) {
+                let src = eye.row(y);
+                if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
+                    for (d, pair) in d.iter_mut().zip(s.chunks_exact(2)) {
+                        *d = average_up(pair[0], pair[1]) | ALPHA;
+                    }
+                    continue;
+                }
+                for (d, pair) in dst.chunks_exact_mut(4).zip(src.chunks_exact(8)) {
                     let v = average_up(word(&pair[..4]), word(&pair[4..]));
                     d.copy_from_slice(&(v | ALPHA).to_le_bytes());
                 }
@@ -480,26 +581,36 @@ fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: 
         }
     }
 
-    let ht: Option<Vec<Tap>> =
-        (p.width != w).then(|| (0..p.width).map(|i| tap(i, w, p.width)).collect());
-    let (mut tmp, mut a, mut b) = (Vec::new(), Vec::new(), Vec::new());
+    let Scratch { a, b, tmp, taps } = scratch;
+    taps.clear();
+    if p.width != w {
+        taps.extend((0..p.width).map(|i| tap(i, w, p.width)));
+    }
+    let ht = (p.width != w).then_some(&taps[..]);
     for y in 0..p.height {
         let vt = tap(y, h, p.height);
-        sample_row(eye, vt, ht.as_deref(), &mut tmp, &mut a);
+        sample_row(eye, vt, ht, tmp, a);
         if k != 0.0 {
-            sample_row(other, vt, ht.as_deref(), &mut tmp, &mut b);
-            for (e, o) in a.iter_mut().zip(&b) {
+            sample_row(other, vt, ht, tmp, b);
+            for (e, o) in a.iter_mut().zip(b.iter()) {
                 for c in 0..3 {
                     e[c] = (e[c] - k * o[c]).max(0.0);
                 }
             }
         }
-        store(&a, &mut row_mut(out, p.y + y)[x0..x0 + span]);
+        store(a, &mut row_mut(out, p.y + y)[x0..x0 + span]);
     }
 }
 
 /// Rows, columns or checkerboard.
-fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Image) {
+fn interleave(
+    mode: OutputMode,
+    l: &Image,
+    r: &Image,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
     let (w, h) = (l.width(), l.height());
     // Which eye pixel x of row y shows: left when (x·cx + y·cy) is even.
     let (cx, cy) = match mode {
@@ -507,7 +618,7 @@ fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Im
         OutputMode::Columns => (1, 0),
         _ => (1, 1),
     };
-    let (mut a, mut b) = (Vec::new(), Vec::new());
+    let Scratch { a, b, .. } = scratch;
     for y in 0..h {
         let dst = row_mut(out, y);
         if stage.is_identity() {
@@ -516,23 +627,18 @@ fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Im
                 copy_opaque(if y % 2 == 0 { lr } else { rr }, dst);
                 continue;
             }
-            for (x, ((d, p), q)) in dst
-                .chunks_exact_mut(4)
-                .zip(lr.chunks_exact(4))
-                .zip(rr.chunks_exact(4))
-                .enumerate()
-            {
-                let src = if (x * cx + y as usize * cy) % 2 == 0 {
-                    p
-                } else {
-                    q
-                };
-                d.copy_from_slice(&(word(src) | ALPHA).to_le_bytes());
-            }
+            // Columns and checkerboard: even columns of this row from the
+            // first eye, odd ones from the second.
+            let (first, second) = if (y as usize * cy) % 2 == 0 {
+                (lr, rr)
+            } else {
+                (rr, lr)
+            };
+            interleave_columns(dst, first, second);
         } else {
-            load(l.row(y), &mut a);
-            load(r.row(y), &mut b);
-            stage.apply(&mut a, &mut b);
+            load(l.row(y), a);
+            load(r.row(y), b);
+            stage.apply(a, b);
             for x in 0..w as usize {
                 let src = if (x * cx + y as usize * cy) % 2 == 0 {
                     &a
@@ -542,6 +648,29 @@ fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Im
                 store(&src[x..x + 1], &mut dst[x * 4..x * 4 + 4]);
             }
         }
+    }
+}
+
+/// Pixel x of `dst` from `even` when x is even, else from `odd`; alpha 255.
+fn interleave_columns(dst: &mut [u8], even: &[u8], odd: &[u8]) {
+    if let (Some(e), Some(o)) = (as_words(even), as_words(odd)) {
+        if let Some(d) = as_words_mut(dst) {
+            for (x, ((d, &p), &q)) in d.iter_mut().zip(e).zip(o).enumerate() {
+                // All ones on odd columns: a select the compiler vectorises.
+                let odd = (x as u32 & 1).wrapping_neg();
+                *d = (p & !odd) | (q & odd) | ALPHA;
+            }
+            return;
+        }
+    }
+    for (x, ((d, p), q)) in dst
+        .chunks_exact_mut(4)
+        .zip(even.chunks_exact(4))
+        .zip(odd.chunks_exact(4))
+        .enumerate()
+    {
+        let src = if x % 2 == 0 { p } else { q };
+        d.copy_from_slice(&(word(src) | ALPHA).to_le_bytes());
     }
 }
 
@@ -557,7 +686,14 @@ fn decode_table() -> [f32; 256] {
     std::array::from_fn(|v| srgb_to_linear(v as f32 / 255.0))
 }
 
-fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image) {
+fn anaglyph(
+    kind: Anaglyph,
+    l: &Image,
+    r: &Image,
+    stage: Stage,
+    out: &mut Image,
+    scratch: &mut Scratch,
+) {
     let h = l.height();
     // Fast path: a plain mask of untouched eyes is a byte shuffle.
     if let (Anaglyph::Masked(colors, AnaglyphMethod::FullColor), true) = (kind, stage.is_identity())
@@ -567,14 +703,58 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
             .map(|from_left| if from_left { 0xFF } else { 0 });
         let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
         let right_mask = !left_mask & !ALPHA;
-        for ((d, p), q) in out
-            .pixels_mut()
-            .chunks_exact_mut(4)
-            .zip(l.pixels().chunks_exact(4))
-            .zip(r.pixels().chunks_exact(4))
-        {
-            let v = (word(p) & left_mask) | (word(q) & right_mask) | ALPHA;
-            d.copy_from_slice(&v.to_le_bytes());
+        zip_words(out.pixels_mut(), l.pixels(), r.pixels(), |p, q| {
+            (p & left_mask) | (q & right_mask) | ALPHA
+        });
+        return;
+    }
+
+    // Luminance modes of untouched eyes: the luma of three bytes by tables
+    // of the same f32 products, summed in the same order: the same bytes.
+    let grey = match kind {
+        Anaglyph::Masked(colors, AnaglyphMethod::HalfColor) => Some((colors, true, false)),
+        Anaglyph::Masked(colors, AnaglyphMethod::Monochrome) => Some((colors, true, true)),
+        Anaglyph::RedBlue => Some((AnaglyphColors::RedCyan, true, true)),
+        _ => None,
+    };
+    if let (Some((colors, left_grey, right_grey)), true) = (grey, stage.is_identity()) {
+        let t: [[f32; 256]; 3] =
+            std::array::from_fn(|c| std::array::from_fn(|v| LUMA[c] * v as f32));
+        let y = |w: u32| {
+            let [r, g, b, _] = w.to_le_bytes();
+            u32::from(unorm(
+                t[0][r as usize] + t[1][g as usize] + t[2][b as usize],
+            ))
+        };
+        let m = colors
+            .left_channels()
+            .map(|from_left| if from_left { 0xFF } else { 0 });
+        let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
+        let right_mask = !left_mask & !ALPHA;
+        // Red-blue keeps no green: red from the left luma, blue from the right.
+        let keep = if matches!(kind, Anaglyph::RedBlue) {
+            0x00FF_00FF
+        } else {
+            0x00FF_FFFF
+        };
+        let right_mask = if matches!(kind, Anaglyph::RedBlue) {
+            0x00FF_0000
+        } else {
+            right_mask
+        };
+        zip_words(out.pixels_mut(), l.pixels(), r.pixels(), |p, q| {
+            let lv = if left_grey { y(p) * 0x01_0101 } else { p };
+            let rv = if right_grey { y(q) * 0x01_0101 } else { q };
+            ((lv & left_mask) | (rv & right_mask)) & keep | ALPHA
+        });
+        return;
+    }
+
+    // Dubois of untouched eyes: by tables, the same bytes (dubois_lut.rs).
+    if let (Anaglyph::Masked(colors, AnaglyphMethod::Dubois), true) = (kind, stage.is_identity()) {
+        let products = Products::new(colors);
+        for y in 0..h {
+            dubois_row(&products, l.row(y), r.row(y), row_mut(out, y));
         }
         return;
     }
@@ -585,21 +765,21 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
         Some(t) => t[v as usize],
         None => srgb_to_linear(v / 255.0),
     };
-    let (mut a, mut b) = (Vec::new(), Vec::new());
+    let Scratch { a, b, .. } = scratch;
     for y in 0..h {
-        load(l.row(y), &mut a);
-        load(r.row(y), &mut b);
-        stage.apply(&mut a, &mut b);
+        load(l.row(y), a);
+        load(r.row(y), b);
+        stage.apply(a, b);
         let dst = row_mut(out, y);
         match kind {
             Anaglyph::RedBlue => {
-                for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
+                for ((d, p), q) in dst.chunks_exact_mut(4).zip(a.iter()).zip(b.iter()) {
                     d.copy_from_slice(&[unorm(luma(rgb(p))), 0, unorm(luma(rgb(q))), 255]);
                 }
             }
             Anaglyph::Masked(colors, AnaglyphMethod::Dubois) => {
                 let m: DuboisMatrices = dubois_matrices(colors);
-                for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
+                for ((d, p), q) in dst.chunks_exact_mut(4).zip(a.iter()).zip(b.iter()) {
                     let lin = |x: &Rgb| [decode(x[0]), decode(x[1]), decode(x[2])];
                     let o = dubois_pixel(&m, lin(p), lin(q));
                     d.copy_from_slice(&[
@@ -614,7 +794,7 @@ fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image)
                 let mask = colors.left_channels();
                 let left_grey = method != AnaglyphMethod::FullColor;
                 let right_grey = method == AnaglyphMethod::Monochrome;
-                for ((d, p), q) in dst.chunks_exact_mut(4).zip(&a).zip(&b) {
+                for ((d, p), q) in dst.chunks_exact_mut(4).zip(a.iter()).zip(b.iter()) {
                     let (yl, yr) = (luma(rgb(p)), luma(rgb(q)));
                     for c in 0..3 {
                         d[c] = unorm(match (mask[c], left_grey, right_grey) {
@@ -694,6 +874,45 @@ mod tests {
         assert_eq!(unorm(300.0), 255);
         for v in 0..=255u8 {
             assert_eq!(unorm(f32::from(v)), v, "integral {v}");
+        }
+    }
+
+    #[test]
+    fn luminance_anaglyphs_of_8_bit_eyes_follow_the_float_rules_exactly() {
+        let (w, h) = (37, 5);
+        let (l, r) = (
+            crate::output::pattern::noise(w, h, 11),
+            crate::output::pattern::noise(w, h, 12),
+        );
+        let y = |p: [u8; 4]| unorm(luma([p[0], p[1], p[2]].map(f32::from)));
+        let mut modes = vec![(OutputMode::AnaglyphRedBlue, AnaglyphColors::RedCyan)];
+        for c in AnaglyphColors::ALL {
+            for m in [AnaglyphMethod::HalfColor, AnaglyphMethod::Monochrome] {
+                modes.push((OutputMode::Anaglyph(c, m), c));
+            }
+        }
+        for (mode, colors) in modes {
+            let out = compose(mode, &OutputOptions::default(), &l, &r, 0).unwrap();
+            for (px, py) in (0..h).flat_map(|py| (0..w).map(move |px| (px, py))) {
+                let (p, q) = (l.get(px, py), r.get(px, py));
+                let want = match mode {
+                    OutputMode::AnaglyphRedBlue => [y(p), 0, y(q), 255],
+                    OutputMode::Anaglyph(_, method) => {
+                        let mask = colors.left_channels();
+                        let mut v = [0, 0, 0, 255];
+                        for c in 0..3 {
+                            v[c] = match (mask[c], method == AnaglyphMethod::Monochrome) {
+                                (true, _) => y(p),
+                                (false, false) => q[c],
+                                (false, true) => y(q),
+                            };
+                        }
+                        v
+                    }
+                    _ => unreachable!(),
+                };
+                assert_eq!(out.get(px, py), want, "{mode} at ({px}, {py})");
+            }
         }
     }
 

@@ -56,6 +56,7 @@ use super::cpu::check_composite;
 use super::layout::{placements, window_fit};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
+use super::window::{Plan, WindowPaths, pixel_plan, window_path};
 
 /// A rectangle of a texture holding one eye, in GL texel coordinates (rows
 /// counted from the BOTTOM, as GL stores them).
@@ -129,6 +130,11 @@ impl Job {
     }
 }
 
+/// How a composite reaches a window that shows pixels from memory (from
+/// [`GlCompositor::pixel_plan`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelPlan(Plan);
+
 /// Which way a capture of the composite is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ComposePath {
@@ -162,6 +168,12 @@ pub enum ComposePath {
 /// | hdmi-frame-packing                  | 3.2  | 12.8 | 20   | 18.6 |
 /// | side-by-side-half, top-bottom-half, starbase | 2.4–3.3 | 13.8 | 16–18 | 19–22 |
 /// | str-rect                            | 11.5 | 13.8 | 17.6 | 20   |
+///
+/// Since then the CPU compositions got faster (BENCHMARKS.md; composition
+/// alone, no read-back): plain masks and copies at memory speed (0.2–0.3
+/// ms), `-half` 2.9, `-mono` and red-blue ≈ 5, `-dubois` 22–25 (exact
+/// tables instead of 65); the choices below stand (GL's Dubois, 24 ms,
+/// runs on both cores while the CPU's runs on one).
 ///
 /// So on a software renderer: GL for `-dubois` always, and for every mode
 /// but the squeezed ones (`-half`, `starbase`, `str-rect`) when crosstalk
@@ -397,16 +409,16 @@ struct Program {
 
 /// A framebuffer with one RGBA8 texture, reallocated when its size changes.
 #[derive(Clone, Copy, Debug, Default)]
-struct Canvas {
-    fbo: u32,
-    texture: u32,
-    width: u32,
-    height: u32,
+pub(crate) struct Canvas {
+    pub(crate) fbo: u32,
+    pub(crate) texture: u32,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
 }
 
 impl Canvas {
     /// Makes the canvas `width` × `height` (contents undefined after a change).
-    unsafe fn ensure(&mut self, gl: &Gl, width: u32, height: u32) -> Result<()> {
+    pub(crate) unsafe fn ensure(&mut self, gl: &Gl, width: u32, height: u32) -> Result<()> {
         if self.fbo != 0 && (self.width, self.height) == (width, height) {
             return Ok(());
         }
@@ -496,6 +508,8 @@ pub struct GlCompositor {
     limit: u32,
     /// Whether the renderer is a software rasterizer (None: not queried yet).
     software: Option<bool>,
+    /// The blit and CPU ways into a window ([`super::window`]).
+    window: WindowPaths,
 }
 
 impl GlCompositor {
@@ -642,6 +656,27 @@ impl GlCompositor {
                 GL_COLOR_ATTACHMENT0 + 1,
             ),
         };
+        // The blit and CPU paths, when the composite fills the window.
+        if job.mode != OutputMode::Quad && job.eyes.iter().all(|e| (e.width, e.height) == (w, h)) {
+            let (options, (cw, ch)) = check_composite(job.mode, &job.options, w, h)?;
+            if (cw, ch) == (width, height) {
+                // SAFETY: contract.
+                let path = unsafe {
+                    let software = self.software(gl);
+                    let alpha = WindowPaths::has_alpha(gl, framebuffer, buf);
+                    window_path(job.mode, &options, software, alpha)
+                };
+                if let Some(path) = path {
+                    // SAFETY: contract.
+                    return unsafe {
+                        gl.take_error();
+                        self.window
+                            .compose(gl, path, job, &options, framebuffer, buf)?;
+                        gl.check("composing the eyes into the window")
+                    };
+                }
+            }
+        }
         let single = [(job.mode, buf)];
         let quad = [(OutputMode::Left, left_buf), (OutputMode::Right, right_buf)];
         let passes: &[(OutputMode, u32)] = if job.mode == OutputMode::Quad {
@@ -695,6 +730,115 @@ impl GlCompositor {
                 );
             }
             gl.check("composing the eyes into the window")
+        }
+    }
+
+    /// The composite of `job` into `out` (rows top first, resized when
+    /// needed, its buffer reused otherwise), made the faster way here
+    /// ([`preferred_path`]): on the CPU from the eyes read back into reused
+    /// buffers, or by GL and one read-back. Ok(false), with `out`
+    /// untouched, when GL would be needed but the composite exceeds what
+    /// this driver renders (the caller composes on the CPU then).
+    ///
+    /// # Errors
+    /// As [`GlCompositor::compose_capture`].
+    ///
+    /// # Safety
+    /// As [`GlCompositor::compose_capture`].
+    pub unsafe fn capture_into(&mut self, gl: &Gl, job: &Job, out: &mut Image) -> Result<bool> {
+        let (w, h) = job.eye_size;
+        let (options, (cw, ch)) = check_composite(job.mode, &job.options, w, h)?;
+        let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+        // SAFETY: contract.
+        unsafe {
+            let software = self.software(gl);
+            gl.take_error();
+            if unscaled && preferred_path(software, job.mode, &options) == ComposePath::Cpu {
+                let (img, bottom_first) = self.window.cpu_image(gl, job, &options)?;
+                gl.check("reading the eyes back")?;
+                if (out.width(), out.height()) != (cw, ch) {
+                    *out = Image::try_new(cw, ch)?;
+                }
+                let stride = cw as usize * 4;
+                for y in 0..ch {
+                    let src = img.row(if bottom_first { ch - 1 - y } else { y });
+                    out.pixels_mut()[y as usize * stride..][..stride].copy_from_slice(src);
+                }
+                return Ok(true);
+            }
+            if cw > self.max_side(gl) || ch > self.max_side(gl) {
+                return Ok(false);
+            }
+            self.compose_capture(gl, job)?;
+            if (out.width(), out.height()) != (cw, ch) {
+                *out = Image::try_new(cw, ch)?;
+            }
+            self.read_capture(gl, out)?;
+        }
+        Ok(true)
+    }
+
+    /// How `job` can reach a window that shows pixels from memory
+    /// ([`crate::backend::PlatformSurface::present_pixels`]) on a software
+    /// renderer: None on a hardware renderer (its GL composite into the
+    /// window is cheaper), for `quad`, and when the composite is not the
+    /// window's `width` × `height`. See `output/window.rs`.
+    ///
+    /// # Errors
+    /// As [`GlCompositor::compose_capture`] for a bad job.
+    ///
+    /// # Safety
+    /// The compositor context must be current.
+    pub unsafe fn pixel_plan(
+        &mut self,
+        gl: &Gl,
+        job: &Job,
+        width: u32,
+        height: u32,
+    ) -> Result<Option<PixelPlan>> {
+        let (w, h) = job.eye_size;
+        if job.mode == OutputMode::Quad {
+            return Ok(None);
+        }
+        let (options, size) = check_composite(job.mode, &job.options, w, h)?;
+        // SAFETY: contract.
+        if size != (width, height) || !unsafe { self.software(gl) } {
+            return Ok(None);
+        }
+        let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+        Ok(Some(PixelPlan(pixel_plan(job.mode, &options, unscaled))))
+    }
+
+    /// Writes the composite of `job` into `target` as `plan` says, with
+    /// buffers reused from frame to frame.
+    ///
+    /// # Errors
+    /// As [`GlCompositor::compose_capture`].
+    ///
+    /// # Safety
+    /// As [`GlCompositor::compose_capture`]; `plan` came from
+    /// [`GlCompositor::pixel_plan`] for this job and the target's size.
+    pub unsafe fn fill_pixels(
+        &mut self,
+        gl: &Gl,
+        job: &Job,
+        plan: PixelPlan,
+        mut target: crate::backend::PixelTarget<'_>,
+    ) -> Result<()> {
+        let options = job.options.validated()?;
+        // SAFETY: contract.
+        unsafe {
+            gl.take_error();
+            match plan.0 {
+                Plan::Gl => {
+                    self.compose_capture(gl, job)?;
+                    let canvas = self.capture;
+                    let img = self.window.read_canvas(gl, &canvas)?;
+                    target.write_image(img, true);
+                }
+                plan => self.window.fill(gl, plan, job, &options, &mut target)?,
+            }
+            gl.check("composing the eyes for the window")
         }
     }
 

@@ -18,11 +18,13 @@
 
 pub mod anaglyph;
 pub mod cpu;
+mod dubois_lut;
 pub mod gl;
 pub mod layout;
 pub mod mode;
 pub mod options;
 pub mod pattern;
+mod window;
 
 pub use cpu::{compose, compose_into};
 pub use gl::{ComposePath, GlCompositor};

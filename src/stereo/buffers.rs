@@ -118,17 +118,18 @@ pub struct FramebufferShape {
 impl FramebufferShape {
     /// The buffers this framebuffer has.
     pub fn allocated(self) -> BufferSet {
-        let mut v = vec![ColorBuffer::FrontLeft];
+        // Bits, not a Vec: called on every glDrawBuffer of a frame.
+        let mut bits = ColorBuffer::FrontLeft.bit();
         if self.double_buffered {
-            v.push(ColorBuffer::BackLeft);
+            bits |= ColorBuffer::BackLeft.bit();
         }
         if self.stereo {
-            v.push(ColorBuffer::FrontRight);
+            bits |= ColorBuffer::FrontRight.bit();
             if self.double_buffered {
-                v.push(ColorBuffer::BackRight);
+                bits |= ColorBuffer::BackRight.bit();
             }
         }
-        BufferSet::of(&v)
+        BufferSet(bits)
     }
 
     /// The initial draw and read buffer: GL_BACK when double-buffered, else GL_FRONT.
