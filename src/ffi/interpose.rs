@@ -411,9 +411,8 @@ pub unsafe extern "C" fn gls_glx_create_glx_pbuffer_sgix(
 /// visual lacks (an aux buffer, an attachment); nothing changes on error.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_draw_buffer(buf: u32) {
-    ffi_boundary!("gls_gl_draw_buffer", () => {
-        igl::draw_buffer(buf);
-        Ok(())
+    ffi_boundary!("gls_gl_draw_buffer" for "glDrawBuffer", () => {
+        igl::draw_buffer(buf)
     })
 }
 
@@ -421,20 +420,18 @@ pub extern "C" fn gls_gl_draw_buffer(buf: u32) {
 /// GL_NONE or one of the four buffers (GL_BACK alone); GL errors as GL's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_draw_buffers(n: i32, bufs: *const u32) {
-    ffi_boundary!("gls_gl_draw_buffers", () => {
+    ffi_boundary!("gls_gl_draw_buffers" for "glDrawBuffers", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::draw_buffers(n, bufs, false) };
-        Ok(())
+        unsafe { igl::draw_buffers(n, bufs, false) }
     })
 }
 
 /// `glDrawBuffersARB`: as gls_gl_draw_buffers().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_draw_buffers_arb(n: i32, bufs: *const u32) {
-    ffi_boundary!("gls_gl_draw_buffers_arb", () => {
+    ffi_boundary!("gls_gl_draw_buffers_arb" for "glDrawBuffersARB", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::draw_buffers(n, bufs, true) };
-        Ok(())
+        unsafe { igl::draw_buffers(n, bufs, true) }
     })
 }
 
@@ -444,16 +441,15 @@ pub unsafe extern "C" fn gls_gl_draw_buffers_arb(n: i32, bufs: *const u32) {
 /// gls_gl_draw_buffer().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_read_buffer(src: u32) {
-    ffi_boundary!("gls_gl_read_buffer", () => {
-        igl::read_buffer(src);
-        Ok(())
+    ffi_boundary!("gls_gl_read_buffer" for "glReadBuffer", () => {
+        igl::read_buffer(src)
     })
 }
 
 /// `glGetError`: the emulation's errors first (each code once), then the driver's.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_get_error() -> u32 {
-    ffi_boundary!("gls_gl_get_error", 0 => { Ok(igl::get_error()) })
+    ffi_boundary!("gls_gl_get_error" for "glGetError", 0 => { igl::get_error() })
 }
 
 /// `glGetIntegerv`: GL_STEREO, GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i),
@@ -461,58 +457,52 @@ pub extern "C" fn gls_gl_get_error() -> u32 {
 /// answer; colour, depth and stencil bits as the window's visual.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_integerv(pname: u32, data: *mut i32) {
-    ffi_boundary!("gls_gl_get_integerv", () => {
+    ffi_boundary!("gls_gl_get_integerv" for "glGetIntegerv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_integerv(pname, data) };
-        Ok(())
+        unsafe { igl::get_integerv(pname, data) }
     })
 }
 
 /// `glGetBooleanv`: as gls_gl_get_integerv().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_booleanv(pname: u32, data: *mut u8) {
-    ffi_boundary!("gls_gl_get_booleanv", () => {
+    ffi_boundary!("gls_gl_get_booleanv" for "glGetBooleanv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_booleanv(pname, data) };
-        Ok(())
+        unsafe { igl::get_booleanv(pname, data) }
     })
 }
 
 /// `glGetFloatv`: as gls_gl_get_integerv().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_floatv(pname: u32, data: *mut f32) {
-    ffi_boundary!("gls_gl_get_floatv", () => {
+    ffi_boundary!("gls_gl_get_floatv" for "glGetFloatv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_floatv(pname, data) };
-        Ok(())
+        unsafe { igl::get_floatv(pname, data) }
     })
 }
 
 /// `glGetDoublev`: as gls_gl_get_integerv().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_doublev(pname: u32, data: *mut f64) {
-    ffi_boundary!("gls_gl_get_doublev", () => {
+    ffi_boundary!("gls_gl_get_doublev" for "glGetDoublev", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_doublev(pname, data) };
-        Ok(())
+        unsafe { igl::get_doublev(pname, data) }
     })
 }
 
 /// `glBindFramebuffer`: framebuffer 0 is the emulated default framebuffer.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_bind_framebuffer(target: u32, framebuffer: u32) {
-    ffi_boundary!("gls_gl_bind_framebuffer", () => {
-        igl::bind_framebuffer(target, framebuffer, false);
-        Ok(())
+    ffi_boundary!("gls_gl_bind_framebuffer" for "glBindFramebuffer", () => {
+        igl::bind_framebuffer(target, framebuffer, false)
     })
 }
 
 /// `glBindFramebufferEXT`: as gls_gl_bind_framebuffer().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_bind_framebuffer_ext(target: u32, framebuffer: u32) {
-    ffi_boundary!("gls_gl_bind_framebuffer_ext", () => {
-        igl::bind_framebuffer(target, framebuffer, true);
-        Ok(())
+    ffi_boundary!("gls_gl_bind_framebuffer_ext" for "glBindFramebufferEXT", () => {
+        igl::bind_framebuffer(target, framebuffer, true)
     })
 }
 
@@ -520,20 +510,18 @@ pub extern "C" fn gls_gl_bind_framebuffer_ext(target: u32, framebuffer: u32) {
 /// deleted bound framebuffer reverts to the emulated one.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_delete_framebuffers(n: i32, framebuffers: *const u32) {
-    ffi_boundary!("gls_gl_delete_framebuffers", () => {
+    ffi_boundary!("gls_gl_delete_framebuffers" for "glDeleteFramebuffers", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::delete_framebuffers(n, framebuffers, false) };
-        Ok(())
+        unsafe { igl::delete_framebuffers(n, framebuffers, false) }
     })
 }
 
 /// `glDeleteFramebuffersEXT`: as gls_gl_delete_framebuffers().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *const u32) {
-    ffi_boundary!("gls_gl_delete_framebuffers_ext", () => {
+    ffi_boundary!("gls_gl_delete_framebuffers_ext" for "glDeleteFramebuffersEXT", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::delete_framebuffers(n, framebuffers, true) };
-        Ok(())
+        unsafe { igl::delete_framebuffers(n, framebuffers, true) }
     })
 }
 
@@ -548,10 +536,9 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv(
     pname: u32,
     params: *mut i32,
 ) {
-    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv", () => {
+    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv" for "glGetFramebufferAttachmentParameteriv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, false) };
-        Ok(())
+        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, false) }
     })
 }
 
@@ -564,10 +551,9 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv_ext(
     pname: u32,
     params: *mut i32,
 ) {
-    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv_ext", () => {
+    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv_ext" for "glGetFramebufferAttachmentParameterivEXT", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, true) };
-        Ok(())
+        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, true) }
     })
 }
 
@@ -575,18 +561,16 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv_ext(
 /// GL_PIXEL_MODE_BIT the emulated read buffer.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_push_attrib(mask: u32) {
-    ffi_boundary!("gls_gl_push_attrib", () => {
-        igl::push_attrib(mask);
-        Ok(())
+    ffi_boundary!("gls_gl_push_attrib" for "glPushAttrib", () => {
+        igl::push_attrib(mask)
     })
 }
 
 /// `glPopAttrib`: restores what gls_gl_push_attrib() saved.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_pop_attrib() {
-    ffi_boundary!("gls_gl_pop_attrib", () => {
-        igl::pop_attrib();
-        Ok(())
+    ffi_boundary!("gls_gl_pop_attrib" for "glPopAttrib", () => {
+        igl::pop_attrib()
     })
 }
 
@@ -594,27 +578,24 @@ pub extern "C" fn gls_gl_pop_attrib() {
 /// it before the program draws).
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_viewport(x: i32, y: i32, width: i32, height: i32) {
-    ffi_boundary!("gls_gl_viewport", () => {
-        igl::viewport(x, y, width, height);
-        Ok(())
+    ffi_boundary!("gls_gl_viewport" for "glViewport", () => {
+        igl::viewport(x, y, width, height)
     })
 }
 
 /// `glFlush`: also shows the front buffers when the program draws to them.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_flush() {
-    ffi_boundary!("gls_gl_flush", () => {
-        igl::flush(false);
-        Ok(())
+    ffi_boundary!("gls_gl_flush" for "glFlush", () => {
+        igl::flush(false)
     })
 }
 
 /// `glFinish`: as gls_gl_flush().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_finish() {
-    ffi_boundary!("gls_gl_finish", () => {
-        igl::flush(true);
-        Ok(())
+    ffi_boundary!("gls_gl_finish" for "glFinish", () => {
+        igl::flush(true)
     })
 }
 
