@@ -71,7 +71,8 @@ pub(super) struct CtxState {
     usable: Option<bool>,
     /// The thread it is current on.
     owner: Option<ThreadId>,
-    /// glXDestroyContext was called while it was current here.
+    /// glXDestroyContext was called while it was current on a thread: it
+    /// is destroyed (the program's context and the layer's) when released.
     destroyed: bool,
     /// One entry per level of the context's attribute stack (glPushAttrib):
     /// the emulated draw/read selections the pushed bits cover.
@@ -180,7 +181,8 @@ pub fn set_current(new: Option<Current>) {
             };
             if destroyed {
                 // Deferred from glXDestroyContext: no longer current anywhere.
-                old.sc.destroy_ours();
+                old.sc.destroy();
+                registry::with(|reg| reg.remove_doomed(old.sc.context()));
             }
         }
     }
@@ -335,16 +337,37 @@ impl StereoContext {
         self.lock().usable == Some(false)
     }
 
-    /// Marks a context the program destroyed while it was current on the
-    /// calling thread: the layer's context goes when it is released.
-    pub fn mark_destroyed(&self) {
-        self.lock().destroyed = true;
+    /// glXDestroyContext of this context: when it is current on a thread,
+    /// marks it to be destroyed when released and returns true (GLX keeps a
+    /// current context alive until then, and the layer makes it current
+    /// again after presenting, which a destroyed context cannot be);
+    /// false when it is current nowhere (destroy it now).
+    pub fn defer_destroy(&self) -> bool {
+        let mut st = self.lock();
+        st.destroyed = st.owner.is_some();
+        st.destroyed
     }
 
     /// Whether it is current on a thread other than the calling one.
     pub fn current_elsewhere(&self) -> bool {
         let me = std::thread::current().id();
         self.lock().owner.is_some_and(|t| t != me)
+    }
+
+    /// Destroys the program's context (a destroy the layer deferred, see
+    /// [`Self::defer_destroy`]) and the layer's.
+    fn destroy(&self) {
+        if let Ok(r) = real() {
+            // SAFETY: the program's context, which it destroyed, current
+            // nowhere now.
+            unsafe {
+                (r.glx.glXDestroyContext)(
+                    self.display as *mut xlib::Display,
+                    self.ctx as GLXContext,
+                )
+            };
+        }
+        self.destroy_ours();
     }
 
     /// Destroys the layer's context. The textures it made belong to the

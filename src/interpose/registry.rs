@@ -12,7 +12,7 @@
 //! request is remembered with its visual ID (a later allocation at the same
 //! address for another visual is not mistaken for it).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use super::context::StereoContext;
@@ -46,7 +46,17 @@ pub struct Registry {
     contexts: HashMap<usize, Arc<StereoContext>>,
     /// (display, GLX window) → X window.
     glx_windows: HashMap<(usize, u64), u64>,
+    /// Stereo contexts glXDestroyContext destroyed while current on a
+    /// thread: really destroyed when released ([`StereoContext::defer_destroy`]).
+    doomed: HashMap<usize, Arc<StereoContext>>,
+    /// Contexts glXDestroyContext destroyed, oldest first (at most
+    /// [`DEAD_CONTEXTS`]); an address leaves the list when a new context
+    /// is created at it.
+    dead: VecDeque<usize>,
 }
+
+/// How many destroyed contexts are remembered (the share-list check).
+pub const DEAD_CONTEXTS: usize = 256;
 
 static REGISTRY: Mutex<Option<Registry>> = Mutex::new(None);
 
@@ -96,6 +106,51 @@ impl Registry {
             Some(f) => (f.real, true),
             None => (config, false),
         }
+    }
+
+    /// The display a stereo FBConfig handle was made for (None: not one).
+    pub fn fake_display(&self, config: usize) -> Option<usize> {
+        self.fakes.get(&config).map(|f| f.display)
+    }
+
+    /// Remembers that the program destroyed context `ctx`.
+    pub fn mark_dead(&mut self, ctx: usize) {
+        self.dead.retain(|&c| c != ctx);
+        if self.dead.len() == DEAD_CONTEXTS {
+            self.dead.pop_front();
+        }
+        self.dead.push_back(ctx);
+    }
+
+    /// Whether `ctx` is a context the program destroyed (and no context was
+    /// created at its address since).
+    pub fn is_dead(&self, ctx: usize) -> bool {
+        self.dead.contains(&ctx)
+    }
+
+    /// A context was created at `ctx`: whatever was known about an earlier
+    /// context at that address is forgotten.
+    pub fn born(&mut self, ctx: usize) {
+        self.dead.retain(|&c| c != ctx);
+        self.contexts.remove(&ctx);
+        self.doomed.remove(&ctx);
+    }
+
+    /// Records a stereo context destroyed while current (its destruction
+    /// waits for its release).
+    pub fn add_doomed(&mut self, ctx: usize, sc: Arc<StereoContext>) {
+        self.doomed.insert(ctx, sc);
+    }
+
+    /// Whether `ctx` is a stereo context destroyed while current and not
+    /// yet released.
+    pub fn is_doomed(&self, ctx: usize) -> bool {
+        self.doomed.contains_key(&ctx)
+    }
+
+    /// A doomed context was released and destroyed.
+    pub fn remove_doomed(&mut self, ctx: usize) {
+        self.doomed.remove(&ctx);
     }
 
     /// Records a stereo context.
@@ -156,6 +211,21 @@ mod tests {
         assert_ne!(r.fake_config(2, 0x1000), a, "per display");
         assert_eq!(r.real_config(a), (0x1000, true));
         assert_eq!(r.real_config(0x1000), (0x1000, false));
+    }
+
+    #[test]
+    fn destroyed_contexts_are_remembered_until_their_address_is_reused() {
+        let mut r = Registry::default();
+        r.mark_dead(0x10);
+        r.mark_dead(0x20);
+        assert!(r.is_dead(0x10) && r.is_dead(0x20) && !r.is_dead(0x30));
+        r.born(0x10);
+        assert!(!r.is_dead(0x10) && r.is_dead(0x20));
+        for i in 0..DEAD_CONTEXTS {
+            r.mark_dead(0x1000 + i);
+        }
+        assert!(!r.is_dead(0x20), "the oldest is dropped past the limit");
+        assert!(r.is_dead(0x1000) && r.is_dead(0x1000 + DEAD_CONTEXTS - 1));
     }
 
     #[test]
