@@ -160,6 +160,16 @@ pub fn current() -> Option<Current> {
     })
 }
 
+/// Forgets the stereo context current on this thread without releasing
+/// it (its display is closing: nothing may be done with it any more).
+pub fn forget_current() {
+    let old = CURRENT.with(|c| c.replace(std::ptr::null_mut()));
+    if !old.is_null() {
+        // SAFETY: the Box set_current leaked; reclaimed once.
+        drop(unsafe { Box::from_raw(old) });
+    }
+}
+
 /// Records what is current on this thread now.
 pub fn set_current(new: Option<Current>) {
     let me = std::thread::current().id();

@@ -11,7 +11,7 @@
 use std::ffi::{c_int, c_ulong};
 
 use x11_dl::glx::{GLXContext, GLXFBConfig};
-use x11_dl::xlib::{Display, XVisualInfo};
+use x11_dl::xlib::{Display, XExtCodes, XVisualInfo};
 
 use super::attribs::{
     read_pair_list, read_visual_list, strip_fbconfig_stereo, strip_visual_stereo,
@@ -60,6 +60,45 @@ fn required<T>(p: *const T, what: &'static str) -> Result<()> {
     }
 }
 
+/// Makes XCloseDisplay of `dpy` forget what the layer recorded for it
+/// ([`registry::Registry::forget_display`]): called before the first thing
+/// is recorded for a display. The hook is an Xlib extension's close_display
+/// procedure (as libGL's own GLX uses), run by XCloseDisplay while the
+/// connection is still open.
+fn watch(r: &Real, dpy: *mut Display) {
+    if !registry::with(|reg| reg.watch(dpy as usize)) {
+        return;
+    }
+    // SAFETY: a valid display (checked non-NULL by callers, and libGL just
+    // answered for it); XAddExtension returns codes owned by the display.
+    unsafe {
+        let codes = (r.xlib.XAddExtension)(dpy);
+        if codes.is_null() {
+            super::warn(
+                "XAddExtension failed: what the layer records for a display is kept after XCloseDisplay",
+            );
+            return;
+        }
+        (r.xlib.XESetCloseDisplay)(dpy, (*codes).extension, Some(display_closed));
+    }
+}
+
+/// XCloseDisplay's hook ([`watch`]). A callback from Xlib: no panic may
+/// leave it.
+unsafe extern "C" fn display_closed(dpy: *mut Display, _codes: *mut XExtCodes) -> c_int {
+    let _ = std::panic::catch_unwind(|| {
+        let gone = registry::with(|reg| reg.forget_display(dpy as usize));
+        // A context of the display current on this thread (the program
+        // closes the display without releasing it) is forgotten too: the
+        // layer must not touch the closed connection afterwards.
+        if current().is_some_and(|c| c.sc.display() == dpy as usize) {
+            super::context::forget_current();
+        }
+        drop(gone);
+    });
+    0
+}
+
 /// A share list the program already destroyed is refused (libGL reads the
 /// freed context and crashes; GLX says GLXBadContext).
 fn live_share(share: GLXContext, what: &'static str) -> Result<()> {
@@ -102,7 +141,10 @@ pub unsafe fn choose_visual(
     if !v.is_null() {
         // SAFETY: a visual the real GLX returned.
         let id = unsafe { (*v).visualid };
-        registry::with(|reg| reg.mark_visual(v as usize, id, stereo));
+        if stereo {
+            watch(r, dpy);
+        }
+        registry::with(|reg| reg.mark_visual(dpy as usize, v as usize, id, stereo));
     }
     Ok(v)
 }
@@ -187,6 +229,7 @@ pub unsafe fn choose_fbconfig(
     }
     // SAFETY: the real call wrote the count of the list it returned.
     let n = unsafe { *nelements }.max(0) as usize;
+    watch(r, dpy);
     registry::with(|reg| {
         for i in 0..n {
             // SAFETY: i < n entries of the list, which the program frees with XFree.
@@ -231,6 +274,7 @@ pub unsafe fn get_fbconfigs(
         unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
         v
     };
+    watch(r, dpy);
     let twins: Vec<GLXFBConfig> = registry::with(|reg| {
         reals
             .iter()
@@ -319,7 +363,10 @@ pub unsafe fn get_visual_from_fbconfig(
     if !v.is_null() {
         // SAFETY: a visual the real GLX returned.
         let id = unsafe { (*v).visualid };
-        registry::with(|reg| reg.mark_visual(v as usize, id, stereo));
+        if stereo {
+            watch(r, dpy);
+        }
+        registry::with(|reg| reg.mark_visual(dpy as usize, v as usize, id, stereo));
     }
     Ok(v)
 }
@@ -354,6 +401,7 @@ fn adopt(
         bits(GLX_STENCIL_SIZE),
     );
     let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
+    watch(r, dpy);
     registry::with(|reg| reg.add_context(ctx as usize, sc));
 }
 
@@ -626,6 +674,7 @@ pub unsafe fn create_window(
     // SAFETY: forwarded call with the real configuration.
     let w = unsafe { (r.glx.glXCreateWindow)(dpy, c as GLXFBConfig, window, attribs) };
     if w != 0 {
+        watch(r, dpy);
         registry::with(|reg| reg.add_glx_window(dpy as usize, w, window));
     }
     Ok(w)
