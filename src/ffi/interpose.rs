@@ -637,6 +637,8 @@ pub unsafe extern "C" fn gls_glx_get_proc_address(name: *const c_uchar) -> *mut 
         if let Some(f) = replacement(cname.to_bytes()) {
             return Ok(f);
         }
+        // Any other name is libGL's: without libGL, refused (with the reason).
+        crate::interpose::real::loaded()?;
         // SAFETY: a NUL-terminated name.
         Ok(unsafe { crate::interpose::real::get_proc_address(name.cast()) }
             .map_or(std::ptr::null_mut(), |f| f as *mut c_void))
