@@ -202,6 +202,22 @@ fn sanitized_layer_misuse_suite_runs_clean_through_libglstereo_and_the_preload()
 }
 
 #[test]
+fn sanitized_glx_threads_run_clean_under_glstereo_run() {
+    let x = common::xvfb::Xvfb::start(320, 240);
+    let include = format!("-I{}", common::root().join("tests/c").display());
+    let exe = plain("glx_threads", &[&include, "-pthread", "-lGL", "-lX11"]);
+    for connections in ["own", "shared"] {
+        let out = under_layer(
+            &format!("glx_threads {connections}"),
+            &x.display,
+            &exe,
+            &[connections, "1000"],
+        );
+        assert!(out.contains(" passed, 0 failed"), "{out}");
+    }
+}
+
+#[test]
 fn sanitized_threads_run_clean() {
     let exe = c_test("threads");
     for backend in ["egl", "osmesa"] {
