@@ -14,7 +14,12 @@
 //! - Surfaces of 100000x100000, 0x0, and 16384x16384 with 1 GiB of address
 //!   space left (the driver runs out of memory); read-backs and captures
 //!   without memory left; a draw-buffer count of 2^31 − 1 under a limit.
-//! - GLSTEREO_MODE=garbage, in the library and in a C example.
+//! - GLSTEREO_MODE=garbage, in the library and in a C example; for
+//!   glstereo-run (exit 2 before the program runs) and for the preload
+//!   library used without it (the default mode, said once).
+//! - glstereo-run where the real libGL is missing: a program linked with
+//!   -lGL stops in the loader; one that finds glX*/gl* at run time gets the
+//!   layer's, which refuse every call naming the package (tests/c/no_libgl.c).
 //! - Unwritable capture paths, and a disk that fills up in the middle of a
 //!   capture (RLIMIT_FSIZE, and a 128 KiB tmpfs in a private namespace): an
 //!   I/O error naming the path, the previous file intact, no temporary left.
