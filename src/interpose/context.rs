@@ -17,7 +17,7 @@
 
 use std::cell::Cell;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::ThreadId;
 
@@ -121,6 +121,9 @@ pub struct StereoContext {
     shape: FramebufferShape,
     formats: BufferFormats,
     state: Mutex<CtxState>,
+    /// Its display was closed: nothing may be done with it any more (it
+    /// may still sit in another thread's current slot).
+    closed: AtomicBool,
 }
 
 /// The stereo context current on this thread and its drawables.
@@ -306,6 +309,7 @@ impl StereoContext {
             ours,
             shape,
             formats,
+            closed: AtomicBool::new(false),
             state: Mutex::new(CtxState {
                 fbs: HashMap::new(),
                 pending: Vec::new(),
@@ -364,9 +368,33 @@ impl StereoContext {
         self.lock().owner.is_some_and(|t| t != me)
     }
 
+    /// Marks it as belonging to a display the program closed (XCloseDisplay
+    /// frees the connection: the layer must never use it again).
+    pub fn mark_closed(&self) {
+        self.closed.store(true, Ordering::SeqCst);
+    }
+
+    fn is_closed(&self) -> bool {
+        self.closed.load(Ordering::SeqCst)
+    }
+
+    fn check_open(&self) -> Result<()> {
+        if self.is_closed() {
+            Err(Error::DisplayLost(
+                "the stereo context's display was closed (XCloseDisplay) while it was current"
+                    .into(),
+            ))
+        } else {
+            Ok(())
+        }
+    }
+
     /// Destroys the program's context (a destroy the layer deferred, see
     /// [`Self::defer_destroy`]) and the layer's.
     fn destroy(&self) {
+        if self.is_closed() {
+            return;
+        }
         if let Ok(r) = real() {
             // SAFETY: the program's context, which it destroyed, current
             // nowhere now.
@@ -383,6 +411,9 @@ impl StereoContext {
     /// Destroys the layer's context. The textures it made belong to the
     /// program's share group and go with it.
     pub fn destroy_ours(&self) {
+        if self.is_closed() {
+            return;
+        }
         if let Ok(r) = real() {
             // SAFETY: our own context, current nowhere (it is only made
             // current inside the layer's calls).
@@ -421,6 +452,7 @@ impl StereoContext {
     /// GL errors are kept for its glGetError.
     pub fn bind(self: &Arc<Self>, draw: u64, read: u64) -> Result<()> {
         let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        self.check_open()?;
         let gl = &r.gl;
         // Sizes first: the registry lock is never taken under a state lock.
         let mut wanted = vec![(draw, drawable_size(r, self.display, draw)?)];
@@ -543,6 +575,7 @@ impl StereoContext {
     /// current stereo context when it is this one.
     pub fn present(self: &Arc<Self>, drawable: u64, flip: bool, here: bool) -> Result<()> {
         let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        self.check_open()?;
         let gl = &r.gl;
         let saved = Saved::now(r);
         let dpy = self.display as *mut xlib::Display;

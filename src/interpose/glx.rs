@@ -88,6 +88,9 @@ fn watch(r: &Real, dpy: *mut Display) {
 unsafe extern "C" fn display_closed(dpy: *mut Display, _codes: *mut XExtCodes) -> c_int {
     let _ = std::panic::catch_unwind(|| {
         let gone = registry::with(|reg| reg.forget_display(dpy as usize));
+        for sc in &gone.contexts {
+            sc.mark_closed();
+        }
         // A context of the display current on this thread (the program
         // closes the display without releasing it) is forgotten too: the
         // layer must not touch the closed connection afterwards.

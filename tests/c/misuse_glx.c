@@ -791,6 +791,44 @@ static void core_gl_cases(void) {
     EXPECT_VOID(0, gls_glx_destroy_context, dpy, core);
 }
 
+/* ---- a display closed while its stereo context is current ----------------- */
+
+/* A display with a stereo context current on a window, painted. */
+static Display *stereo_display(Window *w, void **ctx, int x) {
+    Display *d = XOpenDisplay(NULL);
+    void *v;
+    Bool ok;
+    EXPECT_RET(v != NULL, 0, v, gls_glx_choose_visual, d, 0, VIS_STEREO);
+    *w = make_window(d, v, x);
+    EXPECT_RET(*ctx != NULL, 0, *ctx, gls_glx_create_context, d, v, NULL, True);
+    EXPECT_RET(ok == True, 0, ok, gls_glx_make_current, d, *w, *ctx);
+    paint(d, *w, 0x808000, 0x008080, "a third display");
+    XFree(v);
+    return d;
+}
+
+static void closed_display_cases(void) {
+    Window w;
+    void *ctx;
+    Bool ok;
+    GLint iv = -5;
+    /* XCloseDisplay unbinds the context (libGL); the layer forgets the
+     * display and its stereo state, and touches it no more. */
+    XCloseDisplay(stereo_display(&w, &ctx, 6 * W));
+    CHECK(glXGetCurrentContext() == NULL, "no context after XCloseDisplay");
+    EXPECT_VOID(0, gls_gl_get_integerv, GL_STEREO, &iv);
+    CHECK(iv == -5, "GL_STEREO answered with no context: %d", iv);
+    EXPECT_VOID(0, gls_gl_draw_buffer, GL_BACK_LEFT);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
+    EXPECT_RET(ok == True, 0, ok, gls_glx_make_current, dpy, None, NULL);
+    /* A new display (often at the same address) starts afresh. */
+    Display *d = stereo_display(&w, &ctx, 6 * W);
+    EXPECT_RET(ok == True, 0, ok, gls_glx_make_current, d, None, NULL);
+    EXPECT_VOID(0, gls_glx_destroy_context, d, ctx);
+    EXPECT_X_ERROR(d, 0);
+    XCloseDisplay(d);
+}
+
 int main(void) {
     setvbuf(stdout, NULL, _IOLBF, 0);
     XSetErrorHandler(on_x_error);
@@ -826,6 +864,7 @@ int main(void) {
     stereo_gl_cases(ctx);
     mono_gl_cases();
     core_gl_cases();
+    closed_display_cases();
     no_context_cases(); /* again, after all of the above */
 
     /* Still working: a new stereo context draws both eyes. */
