@@ -107,6 +107,19 @@
 //! program's pending errors are moved to the queue first; see
 //! [`gl::push_attrib`] in a core-profile context).
 //!
+//! # Threads
+//!
+//! GLX's rules: each thread has its own current context. The stereo context
+//! current on a thread is a thread-local slot ([`context::current`]); each
+//! stereo context's state has its own lock, the registry one lock taken
+//! briefly (never under a state lock). Two threads render and swap their
+//! own stereo contexts at once, on their own X connections or on one
+//! (XInitThreads), and a context moves between threads by release and
+//! make-current (tests/threads.rs, tests/c/glx_threads.c). A stereo
+//! drawable swapped on a thread other than the one its context is current
+//! on is not updated (said on stderr): GLX would swap a context's drawable
+//! only where it is current too.
+//!
 //! Names: the layer's textures and renderbuffers live in the program's
 //! share group, so they take names from the top of the name space
 //! ([`crate::gl::Gl::reserve_names`]): legacy programs bind small texture
