@@ -126,7 +126,7 @@ pub fn draw_buffer(buf: u32) -> Result<()> {
 }
 
 /// glDrawBuffers (and glDrawBuffersARB when `arb`). Refused: `bufs` NULL
-/// with `n` > 0 ([`refuse_null`]).
+/// with `n` > 0 (`refuse_null`).
 ///
 /// # Safety
 /// `bufs` must hold `n` values (GL's contract).
@@ -279,7 +279,7 @@ fn emulated_value(gl: &Gl, pname: u32) -> Option<i32> {
     default_framebuffer_query(pname, cur.sc.shape(), draw, read)
 }
 
-/// glGetIntegerv. Refused: `data` NULL ([`refuse_null`]).
+/// glGetIntegerv. Refused: `data` NULL (`refuse_null`).
 ///
 /// # Safety
 /// `data` must be valid for the values `pname` returns (GL's contract).
@@ -410,7 +410,7 @@ pub fn bind_framebuffer(target: u32, framebuffer: u32, ext: bool) -> Result<()> 
 }
 
 /// glDeleteFramebuffers (glDeleteFramebuffersEXT when `ext`). Refused:
-/// `names` NULL with `n` > 0 ([`refuse_null`]).
+/// `names` NULL with `n` > 0 (`refuse_null`).
 ///
 /// # Safety
 /// `names` must hold `n` values (GL's contract).
@@ -459,7 +459,7 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
 }
 
 /// glGetFramebufferAttachmentParameteriv (…EXT when `ext`). Refused:
-/// `params` NULL ([`refuse_null`]).
+/// `params` NULL (`refuse_null`).
 ///
 /// # Safety
 /// `params` must be valid for one value (GL's contract).
