@@ -63,8 +63,10 @@ test: deps lint check-sanitize
 	$(CARGO) build $(CARGO_PROFILE_FLAG) -p glstereo-preload
 	GLSTEREO_FUZZ_SECONDS=$(FUZZ_SECONDS) $(CARGO) test $(CARGO_PROFILE_FLAG) --no-fail-fast -- --skip sanitized_
 
-# The C examples, the misuse suite and the threads test built with
-# -fsanitize=address,undefined, run clean (tests/sanitize.rs).
+# The C examples, the misuse suites and the threads tests built with
+# -fsanitize=address,undefined, run clean (tests/sanitize.rs); the GLX ones
+# (legacy stereo, freeglut, the layer's misuse suite, GLX threads) under
+# glstereo-run on a private Xvfb.
 check-sanitize: deps
 	$(CARGO) test $(CARGO_PROFILE_FLAG) --test sanitize
 

@@ -1955,11 +1955,36 @@ gls_result gls_parallax_report_describe(const struct gls_parallax_report *report
  * raises; thread rules are GLX's and GL's (GL calls apply to the context
  * current on the calling thread). What the layer cannot report that way
  * (no GL 3.0, a context it cannot create) goes to stderr once, prefixed
- * `glstereo:`, and that context runs in mono; an internal failure is
- * caught, leaves a message for gls_last_error_message() and returns NULL,
- * False or 0. Output settings come from GLSTEREO_MODE,
- * GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK, GLSTEREO_SATURATION and
- * GLSTEREO_CAPTURE_DIR, read once.
+ * `glstereo:`, and that context runs in mono. Output settings come from
+ * GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK,
+ * GLSTEREO_SATURATION and GLSTEREO_CAPTURE_DIR, read once.
+ *
+ * Misuse. A call libGL survives goes to libGL, and the program gets what
+ * libGL gives: its return value, its X error (through the program's X
+ * error handler), its GL error (through glGetError) — for a bad screen,
+ * attribute, render type, drawable or enum, a configuration or context
+ * libGL does not know (a destroyed one: GLXBadContext). A call libGL
+ * would crash on is refused before it gets there: nothing changes, it
+ * returns what the function returns on failure (NULL, None, False;
+ * GLX_BAD_VALUE from glXGetConfig and glXGetFBConfigAttrib, libglvnd's
+ * answer to a NULL there) and leaves a message, for
+ * gls_last_error_message() ("gls_glx_choose_visual: dpy (the Display*)
+ * must not be NULL") and on stderr once per distinct message
+ * ("glstereo: glXChooseVisual refused: …", the channel unmodified binaries
+ * have). Refused: a NULL Display* (every function; a release,
+ * glXMakeCurrent(dpy, None, NULL), is allowed with NULL, as libglvnd
+ * allows it); NULL for glXChooseVisual's attribute list, glXCreateContext's
+ * visual, nelements, the value of glXGetConfig / glXGetFBConfigAttrib and
+ * glXGetProcAddress's name; a share context the program destroyed (the
+ * last 256 are remembered); a stereo context destroyed while current
+ * (which GLX keeps until it is released, and the layer destroys then),
+ * made current or destroyed again before its release. In GL, a NULL
+ * pointer GL would read or write through (glGet*v data, glDrawBuffers
+ * and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
+ * params): nothing happens but GL_INVALID_VALUE for glGetError in the
+ * current context (none with no context current). A pointer that is not
+ * NULL but wrong (freed, too short, not terminated) cannot be detected.
+ * An internal failure (a bug) is caught and reported as a refusal.
  *
  * `glXChooseVisual`: a GLX_STEREO request gets the server's matching
  * mono visual, which the layer then treats as stereo (glXGetConfig
@@ -1971,7 +1996,7 @@ void *gls_glx_choose_visual(void *dpy, int screen, int *attribs);
 /**
  * `glXGetConfig`: GLX_STEREO is 1 for a visual handed out for a stereo
  * request; everything else is the real visual's. Returns 0 (Success) or
- * a GLX error code.
+ * a GLX error code (GLX_BAD_VALUE for a NULL display, visual or value).
  */
 int gls_glx_get_config(void *dpy, void *vis, int attrib, int *value);
 
@@ -2052,8 +2077,9 @@ void *gls_glx_create_context_attribs_arb(void *dpy,
                                          const int *attrib_list);
 
 /**
- * `glXDestroyContext`, with the layer's context of a stereo one (after it
- * is released, when it is current).
+ * `glXDestroyContext`, with the layer's context of a stereo one. A stereo
+ * context current on a thread stays usable there and is destroyed when it
+ * is released, as GLX says.
  */
 void gls_glx_destroy_context(void *dpy, void *ctx);
 

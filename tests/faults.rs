@@ -14,7 +14,12 @@
 //! - Surfaces of 100000x100000, 0x0, and 16384x16384 with 1 GiB of address
 //!   space left (the driver runs out of memory); read-backs and captures
 //!   without memory left; a draw-buffer count of 2^31 − 1 under a limit.
-//! - GLSTEREO_MODE=garbage, in the library and in a C example.
+//! - GLSTEREO_MODE=garbage, in the library and in a C example; for
+//!   glstereo-run (exit 2 before the program runs) and for the preload
+//!   library used without it (the default mode, said once).
+//! - glstereo-run where the real libGL is missing: a program linked with
+//!   -lGL stops in the loader; one that finds glX*/gl* at run time gets the
+//!   layer's, which refuse every call naming the package (tests/c/no_libgl.c).
 //! - Unwritable capture paths, and a disk that fills up in the middle of a
 //!   capture (RLIMIT_FSIZE, and a 128 KiB tmpfs in a private namespace): an
 //!   I/O error naming the path, the previous file intact, no temporary left.
@@ -126,6 +131,11 @@ fn system_lib_dir() -> String {
 /// Runs `c` where the library files matching the shell patterns `hide`
 /// (e.g. "libEGL.so*") do not exist.
 fn without_libraries(c: &mut Command, hide: &[&str]) -> Said {
+    Said::of(&output_without_libraries(c, hide))
+}
+
+/// [`without_libraries`], returning the output whatever the exit status.
+fn output_without_libraries(c: &mut Command, hide: &[&str]) -> Output {
     if namespaces() {
         // In a private mount namespace the system directory becomes a tmpfs
         // of symlinks to the real files, less the hidden ones. cp runs
@@ -152,7 +162,7 @@ exec "$@""#;
                 None => n.env_remove(k),
             };
         }
-        run(&mut n)
+        n.output().expect("unshare runs")
     } else {
         eprintln!("no user/mount namespaces here: hiding libraries with tests/c/hide_libs.c");
         static SHIM: OnceLock<PathBuf> = OnceLock::new();
@@ -174,9 +184,11 @@ exec "$@""#;
             .iter()
             .map(|p| p.trim_end_matches('*').into())
             .collect();
-        run(c
-            .env("LD_PRELOAD", shim)
-            .env("GLSTEREO_TEST_HIDE", prefixes.join(":")))
+        // glstereo-run keeps an LD_PRELOAD it finds, after its own library.
+        c.env("LD_PRELOAD", shim)
+            .env("GLSTEREO_TEST_HIDE", prefixes.join(":"))
+            .output()
+            .expect("the program starts")
     }
 }
 
@@ -288,6 +300,146 @@ fn an_x_server_without_glx_is_unavailable_and_the_exit_is_clean() {
         o.status,
         String::from_utf8_lossy(&o.stderr)
     );
+}
+
+// ---- the preload library (glstereo-run) --------------------------------------
+
+/// tests/c/NAME.c as a plain program (no glstereo) with `libs`.
+fn plain(name: &str, libs: &[&str]) -> PathBuf {
+    let exe = common::scratch(&format!("faults-{name}")).join(name);
+    common::preload::compile_plain(
+        &common::root().join(format!("tests/c/{name}.c")),
+        &exe,
+        libs,
+    );
+    exe
+}
+
+/// `glstereo-run program args` on `display`, settings from a clean slate.
+fn glstereo_run(display: &str, program: &Path, args: &[&str]) -> Command {
+    let mut c = Command::new(&common::preload::built().run);
+    c.arg(program)
+        .args(args)
+        .env("DISPLAY", display)
+        .env_remove("GLSTEREO_MODE")
+        .env_remove("GLSTEREO_SWAP_EYES")
+        .env_remove("GLSTEREO_CAPTURE_DIR")
+        .env("RUST_BACKTRACE", "0")
+        .stdin(std::process::Stdio::null());
+    c
+}
+
+#[test]
+fn glstereo_run_without_libgl_refuses_every_call_naming_the_package_and_nothing_crashes() {
+    let x = common::xvfb::Xvfb::start(320, 240);
+    // A program that finds glX*/gl* at run time: it gets the layer's, which
+    // cannot load the real libGL.
+    let exe = plain("no_libgl", &["-lX11", "-ldl"]);
+    let o = output_without_libraries(&mut glstereo_run(&x.display, &exe, &[]), &["libGL.so*"]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "exit {}\n{stdout}\n{stderr}", o.status);
+    for line in [
+        "libGL: missing",
+        "glXChooseVisual -> NULL",
+        "glXChooseFBConfig -> NULL, n -1",
+        "glXCreateContext -> NULL",
+        "glXMakeCurrent -> 0",
+        "glXSwapBuffers -> returned",
+        "glXGetProcAddressARB -> NULL",
+        "glDrawBuffer, glGetIntegerv -> -7",
+        "glGetError -> 0x0",
+        "done",
+    ] {
+        assert!(
+            stdout.contains(line),
+            "wanted {line:?}:\n{stdout}\n{stderr}"
+        );
+    }
+    for name in [
+        "glXChooseVisual",
+        "glXChooseFBConfig",
+        "glXCreateContext",
+        "glXMakeCurrent",
+        "glXSwapBuffers",
+        "glXGetProcAddress",
+        "glDrawBuffer",
+        "glGetIntegerv",
+        "glGetError",
+    ] {
+        let said = format!("glstereo: {name} refused: the real libGL.so.1 could not be loaded");
+        assert!(stderr.contains(&said), "wanted {said:?}:\n{stderr}");
+    }
+    assert!(stderr.contains("install libgl1"), "{stderr}");
+
+    // A program linked with -lGL does not start: the loader says why
+    // (glstereo-run and its library need no libGL themselves).
+    if namespaces() {
+        let legacy = plain("legacy_stereo", &["-lGL", "-lX11"]);
+        let o = output_without_libraries(
+            &mut glstereo_run(&x.display, &legacy, &["32", "32"]),
+            &["libGL.so*"],
+        );
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(127), "{stderr}");
+        assert!(
+            stderr.contains("libGL.so.1") && !stderr.contains("glstereo"),
+            "{stderr}"
+        );
+    }
+}
+
+#[test]
+fn an_unknown_glstereo_mode_stops_glstereo_run_and_the_preload_alone_uses_the_default() {
+    let x = common::xvfb::Xvfb::start(320, 240);
+    let legacy = plain("legacy_stereo", &["-lGL", "-lX11"]);
+    // glstereo-run checks the variable before the program starts: exit 2.
+    let o = glstereo_run(&x.display, &legacy, &["32", "32"])
+        .env("GLSTEREO_MODE", "garbage")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("GLSTEREO_MODE")
+            && stderr.contains("garbage")
+            && stderr.contains("anaglyph-red-cyan"),
+        "{stderr}"
+    );
+    assert!(o.stdout.is_empty(), "the program ran");
+
+    // The library preloaded without glstereo-run (or the variable changed
+    // after): it says so once and shows the default, anaglyph-red-cyan.
+    let dir = common::scratch("faults-mode-garbage-preload");
+    let o = Command::new(&legacy)
+        .args(["40", "30"])
+        .env("LD_PRELOAD", &common::preload::built().preload)
+        .env("GLSTEREO_MODE", "garbage")
+        .env("GLSTEREO_CAPTURE_DIR", &dir)
+        .env("DISPLAY", &x.display)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stdout}\n{stderr}");
+    assert!(stdout.contains("glx_stereo 1 gl_stereo 1"), "{stdout}");
+    assert_eq!(
+        stderr.matches("glstereo:").count(),
+        1,
+        "one message:\n{stderr}"
+    );
+    assert!(
+        stderr.contains("GLSTEREO_MODE")
+            && stderr.contains("garbage")
+            && stderr.contains("using the defaults"),
+        "{stderr}"
+    );
+    // The RedBlue frame (tests/c/legacy_stereo.c) in red-cyan: at (-0.5,
+    // -0.5) only the left eye's blue square (red channel from the left eye:
+    // 0; green and blue from the right eye's grey background: 51).
+    let composite = common::png(&dir.join("composite-000001.png"));
+    assert_eq!(composite.get(10, 22), [0, 51, 51, 255]);
 }
 
 // ---- surfaces -----------------------------------------------------------------

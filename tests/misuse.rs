@@ -1,11 +1,20 @@
-//! The C misuse suite (tests/c/misuse.c): every function of glstereo.h
-//! called wrongly — NULL pointers, bad enums, out-of-range values, no
-//! current surface, dead handles, surfaces of several displays — returns
-//! its documented code with a message of its own, and the process goes on.
+//! The C misuse suites: every function of glstereo.h called wrongly — NULL
+//! pointers, bad enums, out-of-range values, no current surface, dead
+//! handles, surfaces of several displays — returns its documented code
+//! with a message of its own, and the process goes on.
+//!
+//! - tests/c/misuse.c: the library's own API (headless; with "glx", GLX
+//!   displays on a private Xvfb);
+//! - tests/c/misuse_glx.c: the stereo layer's gls_glx_* / gls_gl_*
+//!   functions on a private Xvfb (NULL displays and pointers, bad values,
+//!   destroyed contexts, double destroy, contexts and configurations of
+//!   another display, GL calls with no, a mono, a stereo and a core-profile
+//!   context), once through libglstereo and once, rebuilt with the real
+//!   GLX/GL names, under glstereo-run (libglstereo_preload.so).
 //!
 //! The list of functions is taken from the header, so a new export without
 //! a misuse case fails `every_export_of_the_header_has_a_misuse_case`.
-//! The suite also runs under valgrind (here) and with ASan/UBSan
+//! The suites also run under valgrind (here) and with ASan/UBSan
 //! (tests/sanitize.rs).
 
 mod common;
@@ -91,20 +100,55 @@ fn run(exe: &Path, args: &[&str], display: Option<&str>) -> Output {
     o
 }
 
-fn covered(o: &Output) -> BTreeSet<String> {
+/// Builds tests/c/misuse_glx.c: against glstereo.h (the gls_ names), or
+/// with `preload` as a plain GLX program (the real names, no glstereo) to
+/// run under glstereo-run.
+fn build_glx(scratch: &str, preload: bool) -> PathBuf {
+    let exe = common::scratch(scratch).join("misuse_glx");
+    let src = common::root().join("tests/c/misuse_glx.c");
+    let include = format!("-I{}", common::root().join("tests/c").display());
+    if preload {
+        common::preload::compile_plain(
+            &src,
+            &exe,
+            &[&include, "-DMISUSE_PRELOAD", "-lGL", "-lX11"],
+        );
+    } else {
+        common::compile_c(&[src], &exe, &[&include, "-lGL", "-lX11"]);
+    }
+    exe
+}
+
+/// The lines of stdout that start with `prefix` (the rest of each).
+fn listed(o: &Output, prefix: &str) -> BTreeSet<String> {
     String::from_utf8_lossy(&o.stdout)
         .lines()
-        .filter_map(|l| l.strip_prefix("covers "))
+        .filter_map(|l| l.strip_prefix(prefix))
         .map(str::to_owned)
         .collect()
+}
+
+fn covered(o: &Output) -> BTreeSet<String> {
+    listed(o, "covers ")
+}
+
+/// The number of checks a run passed.
+fn passed(o: &Output) -> usize {
+    String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .find_map(|l| l.strip_suffix(" passed, 0 failed")?.parse().ok())
+        .unwrap_or(0)
 }
 
 #[test]
 fn every_export_of_the_header_has_a_misuse_case() {
     let exe = build("misuse");
     let o = run(&exe, &[], None);
+    let x = common::xvfb::Xvfb::start(320, 240);
+    let glx = run(&build_glx("misuse-layer", false), &[], Some(&x.display));
     let declared = header_functions();
-    let exercised = covered(&o);
+    let mut exercised = covered(&o);
+    exercised.extend(covered(&glx));
     assert!(
         declared.len() > 80,
         "the header parser found only {declared:?}"
@@ -113,20 +157,147 @@ fn every_export_of_the_header_has_a_misuse_case() {
     let unknown: Vec<_> = exercised.difference(&declared).collect();
     assert!(
         missing.is_empty(),
-        "exports of include/glstereo.h without a case in tests/c/misuse.c: {missing:?}"
+        "exports of include/glstereo.h without a case in tests/c/misuse.c or \
+         tests/c/misuse_glx.c: {missing:?}"
     );
     assert!(
         unknown.is_empty(),
-        "tests/c/misuse.c exercises names the header does not declare: {unknown:?}"
+        "the misuse suites exercise names the header does not declare: {unknown:?}"
     );
-    let passed: usize = String::from_utf8_lossy(&o.stdout)
-        .lines()
-        .find_map(|l| l.strip_suffix(" passed, 0 failed")?.parse().ok())
-        .unwrap();
+    let (library, layer) = (passed(&o), passed(&glx));
     assert!(
-        passed > 1000,
-        "only {passed} checks ran: was a section skipped?"
+        library > 1000 && layer > 400,
+        "only {library} + {layer} checks ran: was a section skipped?"
     );
+}
+
+/// The GLX or GL name a gls_glx_* / gls_gl_* function stands in for (the
+/// name the preload library exports it under, and its stderr messages use).
+fn legacy_name(gls: &str) -> &'static str {
+    const NAMES: &[(&str, &str)] = &[
+        ("gls_glx_choose_visual", "glXChooseVisual"),
+        ("gls_glx_get_config", "glXGetConfig"),
+        ("gls_glx_choose_fbconfig", "glXChooseFBConfig"),
+        ("gls_glx_choose_fbconfig_sgix", "glXChooseFBConfigSGIX"),
+        ("gls_glx_get_fbconfigs", "glXGetFBConfigs"),
+        ("gls_glx_get_fbconfig_attrib", "glXGetFBConfigAttrib"),
+        (
+            "gls_glx_get_fbconfig_attrib_sgix",
+            "glXGetFBConfigAttribSGIX",
+        ),
+        (
+            "gls_glx_get_visual_from_fbconfig",
+            "glXGetVisualFromFBConfig",
+        ),
+        (
+            "gls_glx_get_visual_from_fbconfig_sgix",
+            "glXGetVisualFromFBConfigSGIX",
+        ),
+        ("gls_glx_create_context", "glXCreateContext"),
+        ("gls_glx_create_new_context", "glXCreateNewContext"),
+        (
+            "gls_glx_create_context_with_config_sgix",
+            "glXCreateContextWithConfigSGIX",
+        ),
+        (
+            "gls_glx_create_context_attribs_arb",
+            "glXCreateContextAttribsARB",
+        ),
+        ("gls_glx_destroy_context", "glXDestroyContext"),
+        ("gls_glx_make_current", "glXMakeCurrent"),
+        ("gls_glx_make_context_current", "glXMakeContextCurrent"),
+        ("gls_glx_swap_buffers", "glXSwapBuffers"),
+        ("gls_glx_create_window", "glXCreateWindow"),
+        ("gls_glx_destroy_window", "glXDestroyWindow"),
+        ("gls_glx_create_pixmap", "glXCreatePixmap"),
+        ("gls_glx_create_pbuffer", "glXCreatePbuffer"),
+        (
+            "gls_glx_create_glx_pixmap_with_config_sgix",
+            "glXCreateGLXPixmapWithConfigSGIX",
+        ),
+        ("gls_glx_create_glx_pbuffer_sgix", "glXCreateGLXPbufferSGIX"),
+        ("gls_glx_get_proc_address", "glXGetProcAddress"),
+        ("gls_gl_draw_buffers", "glDrawBuffers"),
+        ("gls_gl_draw_buffers_arb", "glDrawBuffersARB"),
+        ("gls_gl_get_integerv", "glGetIntegerv"),
+        ("gls_gl_get_booleanv", "glGetBooleanv"),
+        ("gls_gl_get_floatv", "glGetFloatv"),
+        ("gls_gl_get_doublev", "glGetDoublev"),
+        ("gls_gl_delete_framebuffers", "glDeleteFramebuffers"),
+        ("gls_gl_delete_framebuffers_ext", "glDeleteFramebuffersEXT"),
+        (
+            "gls_gl_get_framebuffer_attachment_parameteriv",
+            "glGetFramebufferAttachmentParameteriv",
+        ),
+        (
+            "gls_gl_get_framebuffer_attachment_parameteriv_ext",
+            "glGetFramebufferAttachmentParameterivEXT",
+        ),
+    ];
+    NAMES
+        .iter()
+        .find(|(g, _)| *g == gls)
+        .unwrap_or_else(|| panic!("{gls} is refused by the suite but has no legacy name here"))
+        .1
+}
+
+/// Checks the stderr of a misuse_glx run: each refused function said so,
+/// as `glstereo: <GLX/GL name> refused: …`, each distinct message once, and
+/// the layer said nothing else.
+fn check_refusals_on_stderr(o: &Output) {
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let refused = listed(o, "refuses ");
+    assert!(refused.len() > 20, "refusals listed: {refused:?}");
+    for gls in &refused {
+        let line = format!("glstereo: {} refused: ", legacy_name(gls));
+        assert!(
+            stderr.contains(&line),
+            "{gls}: no \"{line}…\" line\n{stderr}"
+        );
+    }
+    // Each distinct message once, however often the call was refused.
+    let mut lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.contains(" refused: "))
+        .collect();
+    let all = lines.len();
+    lines.sort_unstable();
+    lines.dedup();
+    assert_eq!(lines.len(), all, "a message repeated:\n{stderr}");
+    let other: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("glstereo:") && !l.contains(" refused: "))
+        .collect();
+    assert!(other.is_empty(), "the layer also said: {other:?}");
+}
+
+#[test]
+fn the_stereo_layer_refuses_what_libgl_would_crash_on_and_passes_the_rest() {
+    let x = common::xvfb::Xvfb::start(320, 240);
+    let o = run(
+        &build_glx("misuse-layer-compat", false),
+        &[],
+        Some(&x.display),
+    );
+    check_refusals_on_stderr(&o);
+}
+
+#[test]
+fn the_same_misuse_through_libglstereo_preload_under_glstereo_run() {
+    let x = common::xvfb::Xvfb::start(320, 240);
+    let exe = build_glx("misuse-layer-preload", true);
+    let mut cmd = Command::new(&common::preload::built().run);
+    cmd.arg(exe)
+        .env("DISPLAY", &x.display)
+        .env("RUST_BACKTRACE", "0")
+        .env_remove("GLSTEREO_MODE")
+        .env_remove("GLSTEREO_SWAP_EYES")
+        .env_remove("GLSTEREO_CAPTURE_DIR");
+    let o = common::run_ok(&mut cmd);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains(" passed, 0 failed"), "{stdout}");
+    assert!(passed(&o) > 400, "{stdout}");
+    check_refusals_on_stderr(&o);
 }
 
 #[test]

@@ -79,15 +79,41 @@ pub(crate) fn run_value<T>(
     }
 }
 
+/// Runs the body of a gls_glx_* / gls_gl_* function (the stereo layer's GLX
+/// and GL entry points): as [`run_value`], and since a program under the
+/// LD_PRELOAD library cannot read gls_last_error_message(), the message also
+/// goes to stderr, once, naming the GLX or GL function the program called
+/// (`glstereo: glXChooseVisual refused: …`).
+pub(crate) fn run_layer<T>(
+    function: &'static str,
+    legacy: &'static str,
+    on_error: T,
+    body: impl FnOnce() -> Result<T>,
+) -> T {
+    let e = match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(Ok(v)) => return v,
+        Ok(Err(e)) => e,
+        Err(payload) => Error::Panic(panic_message(payload)),
+    };
+    set_last_error(function, &e);
+    crate::interpose::warn(&format!("{legacy} refused: {e}"));
+    on_error
+}
+
 /// Wraps the body of every export. `ffi_boundary!("name", { ... Ok(()) })`
 /// for calls returning `gls_result`; `ffi_boundary!("name", default => { ... Ok(v) })`
-/// for calls returning a value (`default` on failure).
+/// for calls returning a value (`default` on failure);
+/// `ffi_boundary!("gls_glx_name" for "glXName", default => { ... Ok(v) })`
+/// for the stereo layer's GLX/GL entry points ([`run_layer`]).
 macro_rules! ffi_boundary {
     ($name:literal, $body:block) => {
         $crate::ffi::boundary::run($name, || -> $crate::error::Result<()> { $body })
     };
     ($name:literal, $default:expr => $body:block) => {
         $crate::ffi::boundary::run_value($name, $default, || $body)
+    };
+    ($name:literal for $legacy:literal, $default:expr => $body:block) => {
+        $crate::ffi::boundary::run_layer($name, $legacy, $default, || $body)
     };
 }
 pub(crate) use ffi_boundary;

@@ -21,8 +21,9 @@
 //! functions they replace do (return values, GL errors); problems the layer
 //! cannot report that way (no GL 3.0, a context it cannot create) are
 //! written to stderr once, prefixed `glstereo:`, and the context then runs
-//! in mono. An internal failure (a bug) is caught at the boundary, leaves a
-//! message for gls_last_error_message() and returns NULL, False or 0.
+//! in mono. Misuse: a call libGL survives goes to libGL; a call libGL would
+//! crash on is refused — see "Misuse" in [`crate::interpose`] and the doc
+//! of [`gls_glx_choose_visual`] (the family's, in the header).
 
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
 
@@ -44,11 +45,36 @@ use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
 /// raises; thread rules are GLX's and GL's (GL calls apply to the context
 /// current on the calling thread). What the layer cannot report that way
 /// (no GL 3.0, a context it cannot create) goes to stderr once, prefixed
-/// `glstereo:`, and that context runs in mono; an internal failure is
-/// caught, leaves a message for gls_last_error_message() and returns NULL,
-/// False or 0. Output settings come from GLSTEREO_MODE,
-/// GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK, GLSTEREO_SATURATION and
-/// GLSTEREO_CAPTURE_DIR, read once.
+/// `glstereo:`, and that context runs in mono. Output settings come from
+/// GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK,
+/// GLSTEREO_SATURATION and GLSTEREO_CAPTURE_DIR, read once.
+///
+/// Misuse. A call libGL survives goes to libGL, and the program gets what
+/// libGL gives: its return value, its X error (through the program's X
+/// error handler), its GL error (through glGetError) — for a bad screen,
+/// attribute, render type, drawable or enum, a configuration or context
+/// libGL does not know (a destroyed one: GLXBadContext). A call libGL
+/// would crash on is refused before it gets there: nothing changes, it
+/// returns what the function returns on failure (NULL, None, False;
+/// GLX_BAD_VALUE from glXGetConfig and glXGetFBConfigAttrib, libglvnd's
+/// answer to a NULL there) and leaves a message, for
+/// gls_last_error_message() ("gls_glx_choose_visual: dpy (the Display*)
+/// must not be NULL") and on stderr once per distinct message
+/// ("glstereo: glXChooseVisual refused: …", the channel unmodified binaries
+/// have). Refused: a NULL Display* (every function; a release,
+/// glXMakeCurrent(dpy, None, NULL), is allowed with NULL, as libglvnd
+/// allows it); NULL for glXChooseVisual's attribute list, glXCreateContext's
+/// visual, nelements, the value of glXGetConfig / glXGetFBConfigAttrib and
+/// glXGetProcAddress's name; a share context the program destroyed (the
+/// last 256 are remembered); a stereo context destroyed while current
+/// (which GLX keeps until it is released, and the layer destroys then),
+/// made current or destroyed again before its release. In GL, a NULL
+/// pointer GL would read or write through (glGet*v data, glDrawBuffers
+/// and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
+/// params): nothing happens but GL_INVALID_VALUE for glGetError in the
+/// current context (none with no context current). A pointer that is not
+/// NULL but wrong (freed, too short, not terminated) cannot be detected.
+/// An internal failure (a bug) is caught and reported as a refusal.
 ///
 /// `glXChooseVisual`: a GLX_STEREO request gets the server's matching
 /// mono visual, which the layer then treats as stereo (glXGetConfig
@@ -60,15 +86,15 @@ pub unsafe extern "C" fn gls_glx_choose_visual(
     screen: c_int,
     attribs: *mut c_int,
 ) -> *mut c_void {
-    ffi_boundary!("gls_glx_choose_visual", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_choose_visual" for "glXChooseVisual", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::choose_visual(dpy.cast(), screen, attribs) }.cast())
+        unsafe { iglx::choose_visual(dpy.cast(), screen, attribs) }.map(|p| p.cast())
     })
 }
 
 /// `glXGetConfig`: GLX_STEREO is 1 for a visual handed out for a stereo
 /// request; everything else is the real visual's. Returns 0 (Success) or
-/// a GLX error code.
+/// a GLX error code (GLX_BAD_VALUE for a NULL display, visual or value).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_glx_get_config(
     dpy: *mut c_void,
@@ -76,9 +102,9 @@ pub unsafe extern "C" fn gls_glx_get_config(
     attrib: c_int,
     value: *mut c_int,
 ) -> c_int {
-    ffi_boundary!("gls_glx_get_config", 1 => {
+    ffi_boundary!("gls_glx_get_config" for "glXGetConfig", iglx::GLX_BAD_VALUE => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::get_config(dpy.cast(), vis as *mut XVisualInfo, attrib, value) })
+        unsafe { iglx::get_config(dpy.cast(), vis as *mut XVisualInfo, attrib, value) }
     })
 }
 
@@ -92,9 +118,9 @@ pub unsafe extern "C" fn gls_glx_choose_fbconfig(
     attribs: *const c_int,
     nelements: *mut c_int,
 ) -> *mut *mut c_void {
-    ffi_boundary!("gls_glx_choose_fbconfig", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_choose_fbconfig" for "glXChooseFBConfig", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::choose_fbconfig(dpy.cast(), screen, attribs, nelements, Flavour::Glx13) }.cast())
+        unsafe { iglx::choose_fbconfig(dpy.cast(), screen, attribs, nelements, Flavour::Glx13) }.map(|p| p.cast())
     })
 }
 
@@ -106,9 +132,9 @@ pub unsafe extern "C" fn gls_glx_choose_fbconfig_sgix(
     attribs: *const c_int,
     nelements: *mut c_int,
 ) -> *mut *mut c_void {
-    ffi_boundary!("gls_glx_choose_fbconfig_sgix", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_choose_fbconfig_sgix" for "glXChooseFBConfigSGIX", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::choose_fbconfig(dpy.cast(), screen, attribs, nelements, Flavour::Sgix) }.cast())
+        unsafe { iglx::choose_fbconfig(dpy.cast(), screen, attribs, nelements, Flavour::Sgix) }.map(|p| p.cast())
     })
 }
 
@@ -120,9 +146,9 @@ pub unsafe extern "C" fn gls_glx_get_fbconfigs(
     screen: c_int,
     nelements: *mut c_int,
 ) -> *mut *mut c_void {
-    ffi_boundary!("gls_glx_get_fbconfigs", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_get_fbconfigs" for "glXGetFBConfigs", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::get_fbconfigs(dpy.cast(), screen, nelements) }.cast())
+        unsafe { iglx::get_fbconfigs(dpy.cast(), screen, nelements) }.map(|p| p.cast())
     })
 }
 
@@ -135,9 +161,9 @@ pub unsafe extern "C" fn gls_glx_get_fbconfig_attrib(
     attribute: c_int,
     value: *mut c_int,
 ) -> c_int {
-    ffi_boundary!("gls_glx_get_fbconfig_attrib", 2 => {
+    ffi_boundary!("gls_glx_get_fbconfig_attrib" for "glXGetFBConfigAttrib", iglx::GLX_BAD_VALUE => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::get_fbconfig_attrib(dpy.cast(), config as GLXFBConfig, attribute, value, Flavour::Glx13) })
+        unsafe { iglx::get_fbconfig_attrib(dpy.cast(), config as GLXFBConfig, attribute, value, Flavour::Glx13) }
     })
 }
 
@@ -149,9 +175,9 @@ pub unsafe extern "C" fn gls_glx_get_fbconfig_attrib_sgix(
     attribute: c_int,
     value: *mut c_int,
 ) -> c_int {
-    ffi_boundary!("gls_glx_get_fbconfig_attrib_sgix", 2 => {
+    ffi_boundary!("gls_glx_get_fbconfig_attrib_sgix" for "glXGetFBConfigAttribSGIX", iglx::GLX_BAD_VALUE => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::get_fbconfig_attrib(dpy.cast(), config as GLXFBConfig, attribute, value, Flavour::Sgix) })
+        unsafe { iglx::get_fbconfig_attrib(dpy.cast(), config as GLXFBConfig, attribute, value, Flavour::Sgix) }
     })
 }
 
@@ -163,9 +189,9 @@ pub unsafe extern "C" fn gls_glx_get_visual_from_fbconfig(
     dpy: *mut c_void,
     config: *mut c_void,
 ) -> *mut c_void {
-    ffi_boundary!("gls_glx_get_visual_from_fbconfig", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_get_visual_from_fbconfig" for "glXGetVisualFromFBConfig", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::get_visual_from_fbconfig(dpy.cast(), config as GLXFBConfig, Flavour::Glx13) }.cast())
+        unsafe { iglx::get_visual_from_fbconfig(dpy.cast(), config as GLXFBConfig, Flavour::Glx13) }.map(|p| p.cast())
     })
 }
 
@@ -175,9 +201,9 @@ pub unsafe extern "C" fn gls_glx_get_visual_from_fbconfig_sgix(
     dpy: *mut c_void,
     config: *mut c_void,
 ) -> *mut c_void {
-    ffi_boundary!("gls_glx_get_visual_from_fbconfig_sgix", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_get_visual_from_fbconfig_sgix" for "glXGetVisualFromFBConfigSGIX", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::get_visual_from_fbconfig(dpy.cast(), config as GLXFBConfig, Flavour::Sgix) }.cast())
+        unsafe { iglx::get_visual_from_fbconfig(dpy.cast(), config as GLXFBConfig, Flavour::Sgix) }.map(|p| p.cast())
     })
 }
 
@@ -190,9 +216,9 @@ pub unsafe extern "C" fn gls_glx_create_context(
     share_list: *mut c_void,
     direct: c_int,
 ) -> *mut c_void {
-    ffi_boundary!("gls_glx_create_context", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_create_context" for "glXCreateContext", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::create_context(dpy.cast(), vis.cast(), share_list as GLXContext, direct) }.cast())
+        unsafe { iglx::create_context(dpy.cast(), vis.cast(), share_list as GLXContext, direct) }.map(|p| p.cast())
     })
 }
 
@@ -205,9 +231,9 @@ pub unsafe extern "C" fn gls_glx_create_new_context(
     share_list: *mut c_void,
     direct: c_int,
 ) -> *mut c_void {
-    ffi_boundary!("gls_glx_create_new_context", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_create_new_context" for "glXCreateNewContext", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe {
+        unsafe {
             iglx::create_config_context(
                 dpy.cast(),
                 config as GLXFBConfig,
@@ -216,7 +242,7 @@ pub unsafe extern "C" fn gls_glx_create_new_context(
                 direct,
             )
         }
-        .cast())
+        .map(|p| p.cast())
     })
 }
 
@@ -229,9 +255,9 @@ pub unsafe extern "C" fn gls_glx_create_context_with_config_sgix(
     share_list: *mut c_void,
     direct: c_int,
 ) -> *mut c_void {
-    ffi_boundary!("gls_glx_create_context_with_config_sgix", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_create_context_with_config_sgix" for "glXCreateContextWithConfigSGIX", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe {
+        unsafe {
             iglx::create_config_context(
                 dpy.cast(),
                 config as GLXFBConfig,
@@ -240,7 +266,7 @@ pub unsafe extern "C" fn gls_glx_create_context_with_config_sgix(
                 direct,
             )
         }
-        .cast())
+        .map(|p| p.cast())
     })
 }
 
@@ -255,9 +281,9 @@ pub unsafe extern "C" fn gls_glx_create_context_attribs_arb(
     direct: c_int,
     attrib_list: *const c_int,
 ) -> *mut c_void {
-    ffi_boundary!("gls_glx_create_context_attribs_arb", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_create_context_attribs_arb" for "glXCreateContextAttribsARB", std::ptr::null_mut() => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe {
+        unsafe {
             iglx::create_config_context(
                 dpy.cast(),
                 config as GLXFBConfig,
@@ -266,18 +292,18 @@ pub unsafe extern "C" fn gls_glx_create_context_attribs_arb(
                 direct,
             )
         }
-        .cast())
+        .map(|p| p.cast())
     })
 }
 
-/// `glXDestroyContext`, with the layer's context of a stereo one (after it
-/// is released, when it is current).
+/// `glXDestroyContext`, with the layer's context of a stereo one. A stereo
+/// context current on a thread stays usable there and is destroyed when it
+/// is released, as GLX says.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_glx_destroy_context(dpy: *mut c_void, ctx: *mut c_void) {
-    ffi_boundary!("gls_glx_destroy_context", () => {
+    ffi_boundary!("gls_glx_destroy_context" for "glXDestroyContext", () => {
         // SAFETY: GLX's contract, forwarded.
-        unsafe { iglx::destroy_context(dpy.cast(), ctx as GLXContext) };
-        Ok(())
+        unsafe { iglx::destroy_context(dpy.cast(), ctx as GLXContext) }
     })
 }
 
@@ -290,9 +316,9 @@ pub unsafe extern "C" fn gls_glx_make_current(
     drawable: c_ulong,
     ctx: *mut c_void,
 ) -> c_int {
-    ffi_boundary!("gls_glx_make_current", 0 => {
+    ffi_boundary!("gls_glx_make_current" for "glXMakeCurrent", 0 => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::make_current(dpy.cast(), drawable, None, ctx as GLXContext) })
+        unsafe { iglx::make_current(dpy.cast(), drawable, None, ctx as GLXContext) }
     })
 }
 
@@ -305,9 +331,9 @@ pub unsafe extern "C" fn gls_glx_make_context_current(
     read: c_ulong,
     ctx: *mut c_void,
 ) -> c_int {
-    ffi_boundary!("gls_glx_make_context_current", 0 => {
+    ffi_boundary!("gls_glx_make_context_current" for "glXMakeContextCurrent", 0 => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::make_current(dpy.cast(), draw, Some(read), ctx as GLXContext) })
+        unsafe { iglx::make_current(dpy.cast(), draw, Some(read), ctx as GLXContext) }
     })
 }
 
@@ -316,10 +342,9 @@ pub unsafe extern "C" fn gls_glx_make_context_current(
 /// GLSTEREO_MODE (and captured with GLSTEREO_CAPTURE_DIR).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_glx_swap_buffers(dpy: *mut c_void, drawable: c_ulong) {
-    ffi_boundary!("gls_glx_swap_buffers", () => {
+    ffi_boundary!("gls_glx_swap_buffers" for "glXSwapBuffers", () => {
         // SAFETY: GLX's contract, forwarded.
-        unsafe { iglx::swap_buffers(dpy.cast(), drawable) };
-        Ok(())
+        unsafe { iglx::swap_buffers(dpy.cast(), drawable) }
     })
 }
 
@@ -331,19 +356,18 @@ pub unsafe extern "C" fn gls_glx_create_window(
     win: c_ulong,
     attrib_list: *const c_int,
 ) -> c_ulong {
-    ffi_boundary!("gls_glx_create_window", 0 => {
+    ffi_boundary!("gls_glx_create_window" for "glXCreateWindow", 0 => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::create_window(dpy.cast(), config as GLXFBConfig, win, attrib_list) })
+        unsafe { iglx::create_window(dpy.cast(), config as GLXFBConfig, win, attrib_list) }
     })
 }
 
 /// `glXDestroyWindow`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_glx_destroy_window(dpy: *mut c_void, window: c_ulong) {
-    ffi_boundary!("gls_glx_destroy_window", () => {
+    ffi_boundary!("gls_glx_destroy_window" for "glXDestroyWindow", () => {
         // SAFETY: GLX's contract, forwarded.
-        unsafe { iglx::destroy_window(dpy.cast(), window) };
-        Ok(())
+        unsafe { iglx::destroy_window(dpy.cast(), window) }
     })
 }
 
@@ -355,9 +379,9 @@ pub unsafe extern "C" fn gls_glx_create_pixmap(
     pixmap: c_ulong,
     attrib_list: *const c_int,
 ) -> c_ulong {
-    ffi_boundary!("gls_glx_create_pixmap", 0 => {
+    ffi_boundary!("gls_glx_create_pixmap" for "glXCreatePixmap", 0 => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::Pixmap(pixmap, attrib_list)) })
+        unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::Pixmap(pixmap, attrib_list)) }
     })
 }
 
@@ -368,9 +392,9 @@ pub unsafe extern "C" fn gls_glx_create_pbuffer(
     config: *mut c_void,
     attrib_list: *const c_int,
 ) -> c_ulong {
-    ffi_boundary!("gls_glx_create_pbuffer", 0 => {
+    ffi_boundary!("gls_glx_create_pbuffer" for "glXCreatePbuffer", 0 => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::Pbuffer(attrib_list)) })
+        unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::Pbuffer(attrib_list)) }
     })
 }
 
@@ -381,9 +405,9 @@ pub unsafe extern "C" fn gls_glx_create_glx_pixmap_with_config_sgix(
     config: *mut c_void,
     pixmap: c_ulong,
 ) -> c_ulong {
-    ffi_boundary!("gls_glx_create_glx_pixmap_with_config_sgix", 0 => {
+    ffi_boundary!("gls_glx_create_glx_pixmap_with_config_sgix" for "glXCreateGLXPixmapWithConfigSGIX", 0 => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::PixmapSgix(pixmap)) })
+        unsafe { iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::PixmapSgix(pixmap)) }
     })
 }
 
@@ -396,11 +420,11 @@ pub unsafe extern "C" fn gls_glx_create_glx_pbuffer_sgix(
     height: u32,
     attrib_list: *const c_int,
 ) -> c_ulong {
-    ffi_boundary!("gls_glx_create_glx_pbuffer_sgix", 0 => {
+    ffi_boundary!("gls_glx_create_glx_pbuffer_sgix" for "glXCreateGLXPbufferSGIX", 0 => {
         // SAFETY: GLX's contract, forwarded.
-        Ok(unsafe {
+        unsafe {
             iglx::create_offscreen(dpy.cast(), config as GLXFBConfig, Offscreen::PbufferSgix(width, height, attrib_list))
-        })
+        }
     })
 }
 
@@ -411,9 +435,8 @@ pub unsafe extern "C" fn gls_glx_create_glx_pbuffer_sgix(
 /// visual lacks (an aux buffer, an attachment); nothing changes on error.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_draw_buffer(buf: u32) {
-    ffi_boundary!("gls_gl_draw_buffer", () => {
-        igl::draw_buffer(buf);
-        Ok(())
+    ffi_boundary!("gls_gl_draw_buffer" for "glDrawBuffer", () => {
+        igl::draw_buffer(buf)
     })
 }
 
@@ -421,20 +444,18 @@ pub extern "C" fn gls_gl_draw_buffer(buf: u32) {
 /// GL_NONE or one of the four buffers (GL_BACK alone); GL errors as GL's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_draw_buffers(n: i32, bufs: *const u32) {
-    ffi_boundary!("gls_gl_draw_buffers", () => {
+    ffi_boundary!("gls_gl_draw_buffers" for "glDrawBuffers", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::draw_buffers(n, bufs, false) };
-        Ok(())
+        unsafe { igl::draw_buffers(n, bufs, false) }
     })
 }
 
 /// `glDrawBuffersARB`: as gls_gl_draw_buffers().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_draw_buffers_arb(n: i32, bufs: *const u32) {
-    ffi_boundary!("gls_gl_draw_buffers_arb", () => {
+    ffi_boundary!("gls_gl_draw_buffers_arb" for "glDrawBuffersARB", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::draw_buffers(n, bufs, true) };
-        Ok(())
+        unsafe { igl::draw_buffers(n, bufs, true) }
     })
 }
 
@@ -444,16 +465,15 @@ pub unsafe extern "C" fn gls_gl_draw_buffers_arb(n: i32, bufs: *const u32) {
 /// gls_gl_draw_buffer().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_read_buffer(src: u32) {
-    ffi_boundary!("gls_gl_read_buffer", () => {
-        igl::read_buffer(src);
-        Ok(())
+    ffi_boundary!("gls_gl_read_buffer" for "glReadBuffer", () => {
+        igl::read_buffer(src)
     })
 }
 
 /// `glGetError`: the emulation's errors first (each code once), then the driver's.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_get_error() -> u32 {
-    ffi_boundary!("gls_gl_get_error", 0 => { Ok(igl::get_error()) })
+    ffi_boundary!("gls_gl_get_error" for "glGetError", 0 => { igl::get_error() })
 }
 
 /// `glGetIntegerv`: GL_STEREO, GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i),
@@ -461,58 +481,52 @@ pub extern "C" fn gls_gl_get_error() -> u32 {
 /// answer; colour, depth and stencil bits as the window's visual.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_integerv(pname: u32, data: *mut i32) {
-    ffi_boundary!("gls_gl_get_integerv", () => {
+    ffi_boundary!("gls_gl_get_integerv" for "glGetIntegerv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_integerv(pname, data) };
-        Ok(())
+        unsafe { igl::get_integerv(pname, data) }
     })
 }
 
 /// `glGetBooleanv`: as gls_gl_get_integerv().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_booleanv(pname: u32, data: *mut u8) {
-    ffi_boundary!("gls_gl_get_booleanv", () => {
+    ffi_boundary!("gls_gl_get_booleanv" for "glGetBooleanv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_booleanv(pname, data) };
-        Ok(())
+        unsafe { igl::get_booleanv(pname, data) }
     })
 }
 
 /// `glGetFloatv`: as gls_gl_get_integerv().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_floatv(pname: u32, data: *mut f32) {
-    ffi_boundary!("gls_gl_get_floatv", () => {
+    ffi_boundary!("gls_gl_get_floatv" for "glGetFloatv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_floatv(pname, data) };
-        Ok(())
+        unsafe { igl::get_floatv(pname, data) }
     })
 }
 
 /// `glGetDoublev`: as gls_gl_get_integerv().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_get_doublev(pname: u32, data: *mut f64) {
-    ffi_boundary!("gls_gl_get_doublev", () => {
+    ffi_boundary!("gls_gl_get_doublev" for "glGetDoublev", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_doublev(pname, data) };
-        Ok(())
+        unsafe { igl::get_doublev(pname, data) }
     })
 }
 
 /// `glBindFramebuffer`: framebuffer 0 is the emulated default framebuffer.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_bind_framebuffer(target: u32, framebuffer: u32) {
-    ffi_boundary!("gls_gl_bind_framebuffer", () => {
-        igl::bind_framebuffer(target, framebuffer, false);
-        Ok(())
+    ffi_boundary!("gls_gl_bind_framebuffer" for "glBindFramebuffer", () => {
+        igl::bind_framebuffer(target, framebuffer, false)
     })
 }
 
 /// `glBindFramebufferEXT`: as gls_gl_bind_framebuffer().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_bind_framebuffer_ext(target: u32, framebuffer: u32) {
-    ffi_boundary!("gls_gl_bind_framebuffer_ext", () => {
-        igl::bind_framebuffer(target, framebuffer, true);
-        Ok(())
+    ffi_boundary!("gls_gl_bind_framebuffer_ext" for "glBindFramebufferEXT", () => {
+        igl::bind_framebuffer(target, framebuffer, true)
     })
 }
 
@@ -520,20 +534,18 @@ pub extern "C" fn gls_gl_bind_framebuffer_ext(target: u32, framebuffer: u32) {
 /// deleted bound framebuffer reverts to the emulated one.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_delete_framebuffers(n: i32, framebuffers: *const u32) {
-    ffi_boundary!("gls_gl_delete_framebuffers", () => {
+    ffi_boundary!("gls_gl_delete_framebuffers" for "glDeleteFramebuffers", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::delete_framebuffers(n, framebuffers, false) };
-        Ok(())
+        unsafe { igl::delete_framebuffers(n, framebuffers, false) }
     })
 }
 
 /// `glDeleteFramebuffersEXT`: as gls_gl_delete_framebuffers().
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *const u32) {
-    ffi_boundary!("gls_gl_delete_framebuffers_ext", () => {
+    ffi_boundary!("gls_gl_delete_framebuffers_ext" for "glDeleteFramebuffersEXT", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::delete_framebuffers(n, framebuffers, true) };
-        Ok(())
+        unsafe { igl::delete_framebuffers(n, framebuffers, true) }
     })
 }
 
@@ -548,10 +560,9 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv(
     pname: u32,
     params: *mut i32,
 ) {
-    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv", () => {
+    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv" for "glGetFramebufferAttachmentParameteriv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, false) };
-        Ok(())
+        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, false) }
     })
 }
 
@@ -564,10 +575,9 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv_ext(
     pname: u32,
     params: *mut i32,
 ) {
-    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv_ext", () => {
+    ffi_boundary!("gls_gl_get_framebuffer_attachment_parameteriv_ext" for "glGetFramebufferAttachmentParameterivEXT", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, true) };
-        Ok(())
+        unsafe { igl::get_framebuffer_attachment_parameteriv(target, attachment, pname, params, true) }
     })
 }
 
@@ -575,18 +585,16 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_attachment_parameteriv_ext(
 /// GL_PIXEL_MODE_BIT the emulated read buffer.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_push_attrib(mask: u32) {
-    ffi_boundary!("gls_gl_push_attrib", () => {
-        igl::push_attrib(mask);
-        Ok(())
+    ffi_boundary!("gls_gl_push_attrib" for "glPushAttrib", () => {
+        igl::push_attrib(mask)
     })
 }
 
 /// `glPopAttrib`: restores what gls_gl_push_attrib() saved.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_pop_attrib() {
-    ffi_boundary!("gls_gl_pop_attrib", () => {
-        igl::pop_attrib();
-        Ok(())
+    ffi_boundary!("gls_gl_pop_attrib" for "glPopAttrib", () => {
+        igl::pop_attrib()
     })
 }
 
@@ -594,27 +602,24 @@ pub extern "C" fn gls_gl_pop_attrib() {
 /// it before the program draws).
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_viewport(x: i32, y: i32, width: i32, height: i32) {
-    ffi_boundary!("gls_gl_viewport", () => {
-        igl::viewport(x, y, width, height);
-        Ok(())
+    ffi_boundary!("gls_gl_viewport" for "glViewport", () => {
+        igl::viewport(x, y, width, height)
     })
 }
 
 /// `glFlush`: also shows the front buffers when the program draws to them.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_flush() {
-    ffi_boundary!("gls_gl_flush", () => {
-        igl::flush(false);
-        Ok(())
+    ffi_boundary!("gls_gl_flush" for "glFlush", () => {
+        igl::flush(false)
     })
 }
 
 /// `glFinish`: as gls_gl_flush().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_finish() {
-    ffi_boundary!("gls_gl_finish", () => {
-        igl::flush(true);
-        Ok(())
+    ffi_boundary!("gls_gl_finish" for "glFinish", () => {
+        igl::flush(true)
     })
 }
 
@@ -623,15 +628,17 @@ pub extern "C" fn gls_gl_finish() {
 /// the stereo versions), the real libGL's for every other name.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_glx_get_proc_address(name: *const c_uchar) -> *mut c_void {
-    ffi_boundary!("gls_glx_get_proc_address", std::ptr::null_mut() => {
+    ffi_boundary!("gls_glx_get_proc_address" for "glXGetProcAddress", std::ptr::null_mut() => {
         if name.is_null() {
-            return Ok(std::ptr::null_mut());
+            return Err(crate::Error::NullPointer("procName"));
         }
         // SAFETY: GLX's contract: a NUL-terminated name.
         let cname = unsafe { std::ffi::CStr::from_ptr(name.cast()) };
         if let Some(f) = replacement(cname.to_bytes()) {
             return Ok(f);
         }
+        // Any other name is libGL's: without libGL, refused (with the reason).
+        crate::interpose::real::loaded()?;
         // SAFETY: a NUL-terminated name.
         Ok(unsafe { crate::interpose::real::get_proc_address(name.cast()) }
             .map_or(std::ptr::null_mut(), |f| f as *mut c_void))

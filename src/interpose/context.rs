@@ -17,7 +17,7 @@
 
 use std::cell::Cell;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::ThreadId;
 
@@ -71,7 +71,8 @@ pub(super) struct CtxState {
     usable: Option<bool>,
     /// The thread it is current on.
     owner: Option<ThreadId>,
-    /// glXDestroyContext was called while it was current here.
+    /// glXDestroyContext was called while it was current on a thread: it
+    /// is destroyed (the program's context and the layer's) when released.
     destroyed: bool,
     /// One entry per level of the context's attribute stack (glPushAttrib):
     /// the emulated draw/read selections the pushed bits cover.
@@ -120,6 +121,9 @@ pub struct StereoContext {
     shape: FramebufferShape,
     formats: BufferFormats,
     state: Mutex<CtxState>,
+    /// Its display was closed: nothing may be done with it any more (it
+    /// may still sit in another thread's current slot).
+    closed: AtomicBool,
 }
 
 /// The stereo context current on this thread and its drawables.
@@ -159,6 +163,16 @@ pub fn current() -> Option<Current> {
     })
 }
 
+/// Forgets the stereo context current on this thread without releasing
+/// it (its display is closing: nothing may be done with it any more).
+pub fn forget_current() {
+    let old = CURRENT.with(|c| c.replace(std::ptr::null_mut()));
+    if !old.is_null() {
+        // SAFETY: the Box set_current leaked; reclaimed once.
+        drop(unsafe { Box::from_raw(old) });
+    }
+}
+
 /// Records what is current on this thread now.
 pub fn set_current(new: Option<Current>) {
     let me = std::thread::current().id();
@@ -180,7 +194,8 @@ pub fn set_current(new: Option<Current>) {
             };
             if destroyed {
                 // Deferred from glXDestroyContext: no longer current anywhere.
-                old.sc.destroy_ours();
+                old.sc.destroy();
+                registry::with(|reg| reg.remove_doomed(old.sc.context()));
             }
         }
     }
@@ -294,6 +309,7 @@ impl StereoContext {
             ours,
             shape,
             formats,
+            closed: AtomicBool::new(false),
             state: Mutex::new(CtxState {
                 fbs: HashMap::new(),
                 pending: Vec::new(),
@@ -335,10 +351,15 @@ impl StereoContext {
         self.lock().usable == Some(false)
     }
 
-    /// Marks a context the program destroyed while it was current on the
-    /// calling thread: the layer's context goes when it is released.
-    pub fn mark_destroyed(&self) {
-        self.lock().destroyed = true;
+    /// glXDestroyContext of this context: when it is current on a thread,
+    /// marks it to be destroyed when released and returns true (GLX keeps a
+    /// current context alive until then, and the layer makes it current
+    /// again after presenting, which a destroyed context cannot be);
+    /// false when it is current nowhere (destroy it now).
+    pub fn defer_destroy(&self) -> bool {
+        let mut st = self.lock();
+        st.destroyed = st.owner.is_some();
+        st.destroyed
     }
 
     /// Whether it is current on a thread other than the calling one.
@@ -347,9 +368,52 @@ impl StereoContext {
         self.lock().owner.is_some_and(|t| t != me)
     }
 
+    /// Marks it as belonging to a display the program closed (XCloseDisplay
+    /// frees the connection: the layer must never use it again).
+    pub fn mark_closed(&self) {
+        self.closed.store(true, Ordering::SeqCst);
+    }
+
+    fn is_closed(&self) -> bool {
+        self.closed.load(Ordering::SeqCst)
+    }
+
+    fn check_open(&self) -> Result<()> {
+        if self.is_closed() {
+            Err(Error::DisplayLost(
+                "the stereo context's display was closed (XCloseDisplay) while it was current"
+                    .into(),
+            ))
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Destroys the program's context (a destroy the layer deferred, see
+    /// [`Self::defer_destroy`]) and the layer's.
+    fn destroy(&self) {
+        if self.is_closed() {
+            return;
+        }
+        if let Ok(r) = real() {
+            // SAFETY: the program's context, which it destroyed, current
+            // nowhere now.
+            unsafe {
+                (r.glx.glXDestroyContext)(
+                    self.display as *mut xlib::Display,
+                    self.ctx as GLXContext,
+                )
+            };
+        }
+        self.destroy_ours();
+    }
+
     /// Destroys the layer's context. The textures it made belong to the
     /// program's share group and go with it.
     pub fn destroy_ours(&self) {
+        if self.is_closed() {
+            return;
+        }
         if let Ok(r) = real() {
             // SAFETY: our own context, current nowhere (it is only made
             // current inside the layer's calls).
@@ -388,6 +452,7 @@ impl StereoContext {
     /// GL errors are kept for its glGetError.
     pub fn bind(self: &Arc<Self>, draw: u64, read: u64) -> Result<()> {
         let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        self.check_open()?;
         let gl = &r.gl;
         // Sizes first: the registry lock is never taken under a state lock.
         let mut wanted = vec![(draw, drawable_size(r, self.display, draw)?)];
@@ -510,6 +575,7 @@ impl StereoContext {
     /// current stereo context when it is this one.
     pub fn present(self: &Arc<Self>, drawable: u64, flip: bool, here: bool) -> Result<()> {
         let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        self.check_open()?;
         let gl = &r.gl;
         let saved = Saved::now(r);
         let dpy = self.display as *mut xlib::Display;

@@ -30,7 +30,8 @@
 //!   them (single-buffered visuals, or glDrawBuffer(GL_FRONT…)).
 
 use super::context::{Current, current, stereo_current};
-use super::real::{Real, real};
+use super::real::{Real, loaded};
+use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code};
@@ -48,14 +49,25 @@ const GL_COLOR_BUFFER_BIT_ATTRIB: u32 = 0x4000;
 const GL_PIXEL_MODE_BIT: u32 = 0x0020;
 const GL_ATTRIB_STACK_DEPTH: u32 = 0x0BB0;
 
-fn real_or_none() -> Option<&'static Real> {
-    match real() {
-        Ok(r) => Some(r),
-        Err(e) => {
-            super::warn(e);
-            None
-        }
+/// Refuses a NULL pointer that GL would read or write through (libGL
+/// dereferences it and crashes): nothing is forwarded, and GL_INVALID_VALUE
+/// is raised in the current context — in a stereo context's queue of
+/// emulated errors, in any other context by the driver itself through
+/// glViewport(0, 0, -1, -1), which GL rejects with exactly that error and
+/// no other effect. With no context current nothing is raised (GL calls do
+/// nothing then).
+fn refuse_null(r: &Real, what: &'static str) -> Error {
+    match current() {
+        Some(cur) => cur.sc.lock().push_error(GL_INVALID_VALUE),
+        // SAFETY: an erroneous call GL ignores, in whatever context is current.
+        None => unsafe { r.gl.Viewport(0, 0, -1, -1) },
     }
+    Error::NullPointer(what)
+}
+
+/// `p` is NULL while GL needs `n` values there.
+fn missing<T>(n: i32, p: *const T) -> bool {
+    n > 0 && p.is_null()
 }
 
 /// The emulated framebuffer of `drawable`, when it is what `binding` has bound.
@@ -97,31 +109,36 @@ fn on_emulated(
 }
 
 /// glDrawBuffer.
-pub fn draw_buffer(buf: u32) {
-    let Some(r) = real_or_none() else { return };
+pub fn draw_buffer(buf: u32) -> Result<()> {
+    let r = loaded()?;
     if let Some(cur) = current() {
         let draw = cur.draw;
         if on_emulated(&cur, &r.gl, GL_DRAW_FRAMEBUFFER_BINDING, draw, |fb, gl| {
             // SAFETY: the program's context is current.
             unsafe { fb.set_draw_buffer(gl, buf) }
         }) {
-            return;
+            return Ok(());
         }
     }
     // SAFETY: forwarded call.
-    unsafe { r.gl.DrawBuffer(buf) }
+    unsafe { r.gl.DrawBuffer(buf) };
+    Ok(())
 }
 
-/// glDrawBuffers (and glDrawBuffersARB when `arb`).
+/// glDrawBuffers (and glDrawBuffersARB when `arb`). Refused: `bufs` NULL
+/// with `n` > 0 (`refuse_null`).
 ///
 /// # Safety
 /// `bufs` must hold `n` values (GL's contract).
-pub unsafe fn draw_buffers(n: i32, bufs: *const u32, arb: bool) {
-    let Some(r) = real_or_none() else { return };
+pub unsafe fn draw_buffers(n: i32, bufs: *const u32, arb: bool) -> Result<()> {
+    let r = loaded()?;
+    if missing(n, bufs) {
+        return Err(refuse_null(r, "bufs"));
+    }
     if let Some(cur) = current() {
         let draw = cur.draw;
         let handled = on_emulated(&cur, &r.gl, GL_DRAW_FRAMEBUFFER_BINDING, draw, |fb, gl| {
-            if n < 0 || (n > 0 && bufs.is_null()) {
+            if n < 0 {
                 return Err(crate::Error::invalid_value(
                     "glDrawBuffers: n is negative (GL_INVALID_VALUE)",
                 ));
@@ -136,7 +153,7 @@ pub unsafe fn draw_buffers(n: i32, bufs: *const u32, arb: bool) {
             unsafe { fb.set_draw_buffers(gl, names) }
         });
         if handled {
-            return;
+            return Ok(());
         }
     }
     match (arb, r.extra.draw_buffers_arb) {
@@ -145,37 +162,37 @@ pub unsafe fn draw_buffers(n: i32, bufs: *const u32, arb: bool) {
         // SAFETY: forwarded call.
         _ => unsafe { r.gl.DrawBuffers(n, bufs) },
     }
+    Ok(())
 }
 
 /// glReadBuffer.
-pub fn read_buffer(src: u32) {
-    let Some(r) = real_or_none() else { return };
+pub fn read_buffer(src: u32) -> Result<()> {
+    let r = loaded()?;
     if let Some(cur) = current() {
         let read = read_drawable(&cur);
         if on_emulated(&cur, &r.gl, GL_READ_FRAMEBUFFER_BINDING, read, |fb, gl| {
             // SAFETY: the program's context is current.
             unsafe { fb.set_read_buffer(gl, src) }
         }) {
-            return;
+            return Ok(());
         }
     }
     // SAFETY: forwarded call.
-    unsafe { r.gl.ReadBuffer(src) }
+    unsafe { r.gl.ReadBuffer(src) };
+    Ok(())
 }
 
 /// glGetError.
-pub fn get_error() -> u32 {
-    let Some(r) = real_or_none() else {
-        return GL_NO_ERROR;
-    };
+pub fn get_error() -> Result<u32> {
+    let r = loaded()?;
     if let Some(cur) = current() {
         let mut st = cur.sc.lock();
         if !st.pending.is_empty() {
-            return st.pending.remove(0);
+            return Ok(st.pending.remove(0));
         }
     }
     // SAFETY: forwarded call.
-    unsafe { r.gl.GetError() }
+    Ok(unsafe { r.gl.GetError() })
 }
 
 /// Whether the layer may answer `pname` for the default framebuffer.
@@ -262,72 +279,88 @@ fn emulated_value(gl: &Gl, pname: u32) -> Option<i32> {
     default_framebuffer_query(pname, cur.sc.shape(), draw, read)
 }
 
-/// glGetIntegerv.
+/// glGetIntegerv. Refused: `data` NULL (`refuse_null`).
 ///
 /// # Safety
 /// `data` must be valid for the values `pname` returns (GL's contract).
-pub unsafe fn get_integerv(pname: u32, data: *mut i32) {
-    let Some(r) = real_or_none() else { return };
+pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
+    let r = loaded()?;
+    if data.is_null() {
+        return Err(refuse_null(r, "data"));
+    }
     // SAFETY: forwarded call.
     unsafe { r.gl.GetIntegerv(pname, data) };
-    if data.is_null() || !answered(pname) || !stereo_current() {
-        return;
+    if !answered(pname) || !stereo_current() {
+        return Ok(());
     }
     if let Some(v) = emulated_value(&r.gl, pname) {
         // SAFETY: non-NULL; every answered pname returns one value.
         unsafe { *data = v };
     }
+    Ok(())
 }
 
 /// glGetBooleanv.
 ///
 /// # Safety
 /// As [`get_integerv`].
-pub unsafe fn get_booleanv(pname: u32, data: *mut u8) {
-    let Some(r) = real_or_none() else { return };
+pub unsafe fn get_booleanv(pname: u32, data: *mut u8) -> Result<()> {
+    let r = loaded()?;
+    if data.is_null() {
+        return Err(refuse_null(r, "data"));
+    }
     // SAFETY: forwarded call.
     unsafe { r.gl.GetBooleanv(pname, data) };
-    if data.is_null() || !answered(pname) || !stereo_current() {
-        return;
+    if !answered(pname) || !stereo_current() {
+        return Ok(());
     }
     if let Some(v) = emulated_value(&r.gl, pname) {
         // SAFETY: non-NULL; one value.
         unsafe { *data = (v != 0) as u8 };
     }
+    Ok(())
 }
 
 /// glGetFloatv.
 ///
 /// # Safety
 /// As [`get_integerv`].
-pub unsafe fn get_floatv(pname: u32, data: *mut f32) {
-    let Some(r) = real_or_none() else { return };
+pub unsafe fn get_floatv(pname: u32, data: *mut f32) -> Result<()> {
+    let r = loaded()?;
+    if data.is_null() {
+        return Err(refuse_null(r, "data"));
+    }
     // SAFETY: forwarded call.
     unsafe { r.gl.GetFloatv(pname, data) };
-    if data.is_null() || !answered(pname) || !stereo_current() {
-        return;
+    if !answered(pname) || !stereo_current() {
+        return Ok(());
     }
     if let Some(v) = emulated_value(&r.gl, pname) {
         // SAFETY: non-NULL; one value.
         unsafe { *data = v as f32 };
     }
+    Ok(())
 }
 
 /// glGetDoublev.
 ///
 /// # Safety
 /// As [`get_integerv`].
-pub unsafe fn get_doublev(pname: u32, data: *mut f64) {
-    let Some(r) = real_or_none() else { return };
+pub unsafe fn get_doublev(pname: u32, data: *mut f64) -> Result<()> {
+    let r = loaded()?;
+    if data.is_null() {
+        return Err(refuse_null(r, "data"));
+    }
     // SAFETY: forwarded call.
     unsafe { r.gl.GetDoublev(pname, data) };
-    if data.is_null() || !answered(pname) || !stereo_current() {
-        return;
+    if !answered(pname) || !stereo_current() {
+        return Ok(());
     }
     if let Some(v) = emulated_value(&r.gl, pname) {
         // SAFETY: non-NULL; one value.
         unsafe { *data = v as f64 };
     }
+    Ok(())
 }
 
 /// Binds the emulated framebuffer(s) at `target` in place of framebuffer
@@ -358,12 +391,12 @@ fn bind_emulated(cur: &Current, gl: &Gl, target: u32) -> bool {
 }
 
 /// glBindFramebuffer (glBindFramebufferEXT when `ext`).
-pub fn bind_framebuffer(target: u32, framebuffer: u32, ext: bool) {
-    let Some(r) = real_or_none() else { return };
+pub fn bind_framebuffer(target: u32, framebuffer: u32, ext: bool) -> Result<()> {
+    let r = loaded()?;
     if framebuffer == 0 {
         if let Some(cur) = current() {
             if bind_emulated(&cur, &r.gl, target) {
-                return;
+                return Ok(());
             }
         }
     }
@@ -373,14 +406,19 @@ pub fn bind_framebuffer(target: u32, framebuffer: u32, ext: bool) {
         // SAFETY: forwarded call.
         _ => unsafe { r.gl.BindFramebuffer(target, framebuffer) },
     }
+    Ok(())
 }
 
-/// glDeleteFramebuffers (glDeleteFramebuffersEXT when `ext`).
+/// glDeleteFramebuffers (glDeleteFramebuffersEXT when `ext`). Refused:
+/// `names` NULL with `n` > 0 (`refuse_null`).
 ///
 /// # Safety
 /// `names` must hold `n` values (GL's contract).
-pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) {
-    let Some(r) = real_or_none() else { return };
+pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Result<()> {
+    let r = loaded()?;
+    if missing(n, names) {
+        return Err(refuse_null(r, "framebuffers"));
+    }
     let forward = |n: i32, p: *const u32| match (ext, r.extra.delete_framebuffers_ext) {
         // SAFETY: forwarded call.
         (true, Some(f)) => unsafe { f(n, p) },
@@ -388,8 +426,11 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) {
         _ => unsafe { r.gl.DeleteFramebuffers(n, p) },
     };
     let cur = match current() {
-        Some(c) if n > 0 && !names.is_null() => c,
-        _ => return forward(n, names),
+        Some(c) if n > 0 => c,
+        _ => {
+            forward(n, names);
+            return Ok(());
+        }
     };
     // SAFETY: GL's contract: `names` holds n values.
     let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
@@ -414,9 +455,11 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) {
     if read == 0 {
         bind_emulated(&cur, gl, GL_READ_FRAMEBUFFER);
     }
+    Ok(())
 }
 
-/// glGetFramebufferAttachmentParameteriv (…EXT when `ext`).
+/// glGetFramebufferAttachmentParameteriv (…EXT when `ext`). Refused:
+/// `params` NULL (`refuse_null`).
 ///
 /// # Safety
 /// `params` must be valid for one value (GL's contract).
@@ -426,8 +469,25 @@ pub unsafe fn get_framebuffer_attachment_parameteriv(
     pname: u32,
     params: *mut i32,
     ext: bool,
+) -> Result<()> {
+    let r = loaded()?;
+    if params.is_null() {
+        return Err(refuse_null(r, "params"));
+    }
+    // SAFETY: forwarded contract; `params` is not NULL.
+    unsafe { attachment_parameter(r, target, attachment, pname, params, ext) };
+    Ok(())
+}
+
+/// [`get_framebuffer_attachment_parameteriv`] with `params` not NULL.
+unsafe fn attachment_parameter(
+    r: &Real,
+    target: u32,
+    attachment: u32,
+    pname: u32,
+    params: *mut i32,
+    ext: bool,
 ) {
-    let Some(r) = real_or_none() else { return };
     let gl = &r.gl;
     let forward = |attachment: u32| match (ext, r.extra.get_attachment_ext) {
         // SAFETY: forwarded call.
@@ -461,12 +521,8 @@ pub unsafe fn get_framebuffer_attachment_parameteriv(
     };
     match color {
         Some(b) if !cur.sc.shape().allocated().contains(b) => match pname {
-            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE => {
-                if !params.is_null() {
-                    // SAFETY: non-NULL, one value (GL's contract).
-                    unsafe { *params = GL_NONE as i32 };
-                }
-            }
+            // SAFETY: not NULL (checked by the caller), one value (GL's contract).
+            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE => unsafe { *params = GL_NONE as i32 },
             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => st.push_error(GL_INVALID_ENUM),
             _ => st.push_error(GL_INVALID_OPERATION),
         },
@@ -486,24 +542,27 @@ pub unsafe fn get_framebuffer_attachment_parameteriv(
 
 /// glViewport: before forwarding it, a size other than the buffers' makes
 /// the layer check (once a frame) whether the window was resized.
-pub fn viewport(x: i32, y: i32, width: i32, height: i32) {
-    let Some(r) = real_or_none() else { return };
+pub fn viewport(x: i32, y: i32, width: i32, height: i32) -> Result<()> {
+    let r = loaded()?;
     if let Some(cur) = current() {
         if let Err(e) = cur.sc.viewport_hint(&cur, width, height) {
             super::warn(&format!("following a resized window: {e}"));
         }
     }
     // SAFETY: forwarded call.
-    unsafe { r.gl.Viewport(x, y, width, height) }
+    unsafe { r.gl.Viewport(x, y, width, height) };
+    Ok(())
 }
 
 /// glFlush (`finish` false) or glFinish: forwarded; then, when the program
 /// draws to a front buffer of the emulated framebuffer, the fronts are shown.
-pub fn flush(finish: bool) {
-    let Some(r) = real_or_none() else { return };
+pub fn flush(finish: bool) -> Result<()> {
+    let r = loaded()?;
     // SAFETY: forwarded calls.
     unsafe { if finish { r.gl.Finish() } else { r.gl.Flush() } }
-    let Some(cur) = current() else { return };
+    let Some(cur) = current() else {
+        return Ok(());
+    };
     let fronts = {
         let mut st = cur.sc.lock();
         bound(&r.gl, &mut st.fbs, cur.draw, GL_DRAW_FRAMEBUFFER_BINDING).is_some_and(|fb| {
@@ -518,27 +577,44 @@ pub fn flush(finish: bool) {
             super::warn(&format!("showing the front buffers: {e}"));
         }
     }
+    Ok(())
+}
+
+/// The attribute stack's depth, read in the program's context without
+/// touching its GL errors: the driver's pending error (the program's) is
+/// moved to the stereo context's queue first, and the error of the query
+/// itself (GL_INVALID_ENUM in a core-profile context, which has no
+/// attribute stack) is dropped; None then.
+fn stack_depth(gl: &Gl, cur: &Current) -> Option<i32> {
+    let mut st = cur.sc.lock();
+    st.save_driver_errors(gl);
+    // SAFETY: the program's context is current (callers).
+    unsafe {
+        let depth = gl.integer(GL_ATTRIB_STACK_DEPTH);
+        (gl.GetError() == GL_NO_ERROR).then_some(depth)
+    }
 }
 
 /// glPushAttrib.
-pub fn push_attrib(mask: u32) {
-    let Some(r) = real_or_none() else { return };
-    let Some(push) = r.extra.push_attrib else {
-        return;
-    };
+pub fn push_attrib(mask: u32) -> Result<()> {
+    let r = loaded()?;
+    if let Some(push) = r.extra.push_attrib {
+        push_selections(&r.gl, push, mask);
+    }
+    Ok(())
+}
+
+fn push_selections(gl: &Gl, push: unsafe extern "system" fn(u32), mask: u32) {
     let Some(cur) = current() else {
         // SAFETY: forwarded call.
         return unsafe { push(mask) };
     };
-    let gl = &r.gl;
-    // SAFETY: the program's context is current; forwarded call.
-    let pushed = unsafe {
-        let before = gl.integer(GL_ATTRIB_STACK_DEPTH);
-        push(mask);
-        gl.integer(GL_ATTRIB_STACK_DEPTH) == before + 1
-    };
-    if !pushed {
-        // Stack overflow (or a core context): GL pushed nothing.
+    let before = stack_depth(gl, &cur);
+    // SAFETY: forwarded call; its GL error stays the driver's.
+    unsafe { push(mask) };
+    let after = stack_depth(gl, &cur);
+    if before.is_none() || after != before.map(|d| d + 1) {
+        // Stack overflow, or a core context: GL pushed nothing.
         return;
     }
     let read_d = read_drawable(&cur);
@@ -561,23 +637,25 @@ pub fn push_attrib(mask: u32) {
 /// glPopAttrib: GL restores its own state; the emulated selections the
 /// matching push saved are put back when the emulated framebuffer is the
 /// one bound.
-pub fn pop_attrib() {
-    let Some(r) = real_or_none() else { return };
-    let Some(pop) = r.extra.pop_attrib else {
-        return;
-    };
+pub fn pop_attrib() -> Result<()> {
+    let r = loaded()?;
+    if let Some(pop) = r.extra.pop_attrib {
+        pop_selections(&r.gl, pop);
+    }
+    Ok(())
+}
+
+fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
     let Some(cur) = current() else {
         // SAFETY: forwarded call.
         return unsafe { pop() };
     };
-    let gl = &r.gl;
-    // SAFETY: the program's context is current; forwarded call.
-    let popped = unsafe {
-        let before = gl.integer(GL_ATTRIB_STACK_DEPTH);
-        pop();
-        gl.integer(GL_ATTRIB_STACK_DEPTH) + 1 == before
-    };
-    if !popped {
+    let before = stack_depth(gl, &cur);
+    // SAFETY: forwarded call; its GL error stays the driver's.
+    unsafe { pop() };
+    let after = stack_depth(gl, &cur);
+    if before.is_none() || after.map(|d| d + 1) != before {
+        // Stack underflow, or a core context: GL popped nothing.
         return;
     }
     let mut st = cur.sc.lock();

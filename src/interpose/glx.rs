@@ -9,22 +9,22 @@
 //! buffer).
 
 use std::ffi::{c_int, c_ulong};
-use std::sync::Arc;
 
 use x11_dl::glx::{GLXContext, GLXFBConfig};
-use x11_dl::xlib::{Display, XVisualInfo};
+use x11_dl::xlib::{Display, XExtCodes, XVisualInfo};
 
 use super::attribs::{
     read_pair_list, read_visual_list, strip_fbconfig_stereo, strip_visual_stereo,
 };
 use super::context::{Current, StereoContext, current, set_current};
-use super::real::{Real, real};
+use super::real::{Real, loaded};
 use super::registry;
 use super::settings;
 use crate::backend::glx::trap_x_errors;
 use crate::config::glx::{
     GLX_ALPHA_SIZE, GLX_DEPTH_SIZE, GLX_DOUBLEBUFFER, GLX_STENCIL_SIZE, GLX_STEREO,
 };
+use crate::error::{Error, Result};
 use crate::stereo::buffers::FramebufferShape;
 use crate::stereo::emulated::BufferFormats;
 
@@ -35,18 +35,84 @@ const GLX_RGBA_BIT: c_int = 0x1;
 const GLX_RGBA_TYPE: c_int = 0x8014;
 /// glXGetConfig / glXGetFBConfigAttrib success.
 const SUCCESS: c_int = 0;
+/// glXGetConfig / glXGetFBConfigAttrib: a bad argument (libglvnd's answer
+/// for a NULL display, visual or value pointer), GLX_BAD_ATTRIBUTE, and
+/// GLX_BAD_VISUAL.
+pub const GLX_BAD_VALUE: c_int = 6;
 
-fn real_or_warn() -> Option<&'static Real> {
-    match real() {
-        Ok(r) => Some(r),
-        Err(e) => {
-            super::warn(e);
-            None
-        }
+/// The Display* every GLX function needs: NULL is refused (libGL
+/// dereferences it in every function but glXGetConfig, glXMakeCurrent,
+/// glXSwapBuffers and glXDestroyWindow).
+fn display(dpy: *mut Display) -> Result<*mut Display> {
+    if dpy.is_null() {
+        Err(Error::NullPointer("dpy (the Display*)"))
+    } else {
+        Ok(dpy)
     }
 }
 
-/// glXChooseVisual.
+/// A pointer argument GLX requires: NULL is refused.
+fn required<T>(p: *const T, what: &'static str) -> Result<()> {
+    if p.is_null() {
+        Err(Error::NullPointer(what))
+    } else {
+        Ok(())
+    }
+}
+
+/// Makes XCloseDisplay of `dpy` forget what the layer recorded for it
+/// ([`registry::Registry::forget_display`]): called before the first thing
+/// is recorded for a display. The hook is an Xlib extension's close_display
+/// procedure (as libGL's own GLX uses), run by XCloseDisplay while the
+/// connection is still open.
+fn watch(r: &Real, dpy: *mut Display) {
+    if !registry::with(|reg| reg.watch(dpy as usize)) {
+        return;
+    }
+    // SAFETY: a valid display (checked non-NULL by callers, and libGL just
+    // answered for it); XAddExtension returns codes owned by the display.
+    unsafe {
+        let codes = (r.xlib.XAddExtension)(dpy);
+        if codes.is_null() {
+            super::warn(
+                "XAddExtension failed: what the layer records for a display is kept after XCloseDisplay",
+            );
+            return;
+        }
+        (r.xlib.XESetCloseDisplay)(dpy, (*codes).extension, Some(display_closed));
+    }
+}
+
+/// XCloseDisplay's hook ([`watch`]). A callback from Xlib: no panic may
+/// leave it.
+unsafe extern "C" fn display_closed(dpy: *mut Display, _codes: *mut XExtCodes) -> c_int {
+    let _ = std::panic::catch_unwind(|| {
+        let gone = registry::with(|reg| reg.forget_display(dpy as usize));
+        for sc in &gone.contexts {
+            sc.mark_closed();
+        }
+        // A context of the display current on this thread (the program
+        // closes the display without releasing it) is forgotten too: the
+        // layer must not touch the closed connection afterwards.
+        if current().is_some_and(|c| c.sc.display() == dpy as usize) {
+            super::context::forget_current();
+        }
+        drop(gone);
+    });
+    0
+}
+
+/// A share list the program already destroyed is refused (libGL reads the
+/// freed context and crashes; GLX says GLXBadContext).
+fn live_share(share: GLXContext, what: &'static str) -> Result<()> {
+    if !share.is_null() && registry::with(|reg| reg.is_dead(share as usize)) {
+        Err(Error::InvalidHandle(what))
+    } else {
+        Ok(())
+    }
+}
+
+/// glXChooseVisual. Refused: a NULL display or attribute list.
 ///
 /// # Safety
 /// As glXChooseVisual: a valid display and a `None`-terminated list.
@@ -54,10 +120,10 @@ pub unsafe fn choose_visual(
     dpy: *mut Display,
     screen: c_int,
     attribs: *mut c_int,
-) -> *mut XVisualInfo {
-    let Some(r) = real_or_warn() else {
-        return std::ptr::null_mut();
-    };
+) -> Result<*mut XVisualInfo> {
+    let r = loaded()?;
+    display(dpy)?;
+    required(attribs, "attribList")?;
     // SAFETY: the caller's list, read by its structure.
     let list = unsafe { read_visual_list(attribs) };
     let (mut stripped, stereo) = strip_visual_stereo(&list);
@@ -65,7 +131,7 @@ pub unsafe fn choose_visual(
         // SAFETY: forwarded call.
         let v = unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) };
         if !v.is_null() {
-            return v;
+            return Ok(v);
         }
     }
     let v = if stereo {
@@ -78,12 +144,16 @@ pub unsafe fn choose_visual(
     if !v.is_null() {
         // SAFETY: a visual the real GLX returned.
         let id = unsafe { (*v).visualid };
-        registry::with(|reg| reg.mark_visual(v as usize, id, stereo));
+        if stereo {
+            watch(r, dpy);
+        }
+        registry::with(|reg| reg.mark_visual(dpy as usize, v as usize, id, stereo));
     }
-    v
+    Ok(v)
 }
 
-/// glXGetConfig.
+/// glXGetConfig. Refused (GLX_BAD_VALUE, as libglvnd answers): a NULL
+/// display, visual or value pointer.
 ///
 /// # Safety
 /// As glXGetConfig.
@@ -92,19 +162,22 @@ pub unsafe fn get_config(
     vis: *mut XVisualInfo,
     attrib: c_int,
     value: *mut c_int,
-) -> c_int {
-    let Some(r) = real_or_warn() else { return 1 };
-    if attrib == GLX_STEREO && !vis.is_null() && !value.is_null() {
+) -> Result<c_int> {
+    let r = loaded()?;
+    display(dpy)?;
+    required(vis, "vis (the XVisualInfo*)")?;
+    required(value, "value")?;
+    if attrib == GLX_STEREO {
         // SAFETY: a visual pointer of the program's.
         let id = unsafe { (*vis).visualid };
         if registry::with(|reg| reg.is_stereo_visual(vis as usize, id)) {
             // SAFETY: non-NULL out-pointer.
             unsafe { *value = 1 };
-            return SUCCESS;
+            return Ok(SUCCESS);
         }
     }
     // SAFETY: forwarded call.
-    unsafe { (r.glx.glXGetConfig)(dpy, vis, attrib, value) }
+    Ok(unsafe { (r.glx.glXGetConfig)(dpy, vis, attrib, value) })
 }
 
 /// Which entry point a configuration call came through.
@@ -116,7 +189,8 @@ pub enum Flavour {
     Sgix,
 }
 
-/// glXChooseFBConfig / glXChooseFBConfigSGIX.
+/// glXChooseFBConfig / glXChooseFBConfigSGIX. Refused: a NULL display
+/// or `nelements` (a NULL attribute list is GLX's "defaults").
 ///
 /// # Safety
 /// As glXChooseFBConfig.
@@ -126,10 +200,10 @@ pub unsafe fn choose_fbconfig(
     attribs: *const c_int,
     nelements: *mut c_int,
     flavour: Flavour,
-) -> *mut GLXFBConfig {
-    let Some(r) = real_or_warn() else {
-        return std::ptr::null_mut();
-    };
+) -> Result<*mut GLXFBConfig> {
+    let r = loaded()?;
+    display(dpy)?;
+    required(nelements, "nelements")?;
     let choose = |list: *const c_int| match flavour {
         // SAFETY: forwarded call.
         Flavour::Glx13 => unsafe { (r.glx.glXChooseFBConfig)(dpy, screen, list, nelements) },
@@ -143,21 +217,22 @@ pub unsafe fn choose_fbconfig(
     let list = unsafe { read_pair_list(attribs) };
     let (stripped, stereo) = strip_fbconfig_stereo(&list);
     if !stereo {
-        return choose(attribs);
+        return Ok(choose(attribs));
     }
     if settings::get().wants_native_quad() {
         let native = choose(attribs);
         // SAFETY: nelements was written by the real call when it returned a list.
-        if !native.is_null() && !nelements.is_null() && unsafe { *nelements } > 0 {
-            return native;
+        if !native.is_null() && unsafe { *nelements } > 0 {
+            return Ok(native);
         }
     }
     let configs = choose(stripped.as_ptr());
-    if configs.is_null() || nelements.is_null() {
-        return configs;
+    if configs.is_null() {
+        return Ok(configs);
     }
     // SAFETY: the real call wrote the count of the list it returned.
     let n = unsafe { *nelements }.max(0) as usize;
+    watch(r, dpy);
     registry::with(|reg| {
         for i in 0..n {
             // SAFETY: i < n entries of the list, which the program frees with XFree.
@@ -167,7 +242,7 @@ pub unsafe fn choose_fbconfig(
             }
         }
     });
-    configs
+    Ok(configs)
 }
 
 /// glXGetFBConfigs: the server's configurations, followed by a stereo twin
@@ -175,20 +250,22 @@ pub unsafe fn choose_fbconfig(
 /// list, as GLFW does, find stereo ones). The first entries are the real
 /// list, in its order.
 ///
+/// Refused: a NULL display or `nelements`.
+///
 /// # Safety
 /// As glXGetFBConfigs.
 pub unsafe fn get_fbconfigs(
     dpy: *mut Display,
     screen: c_int,
     nelements: *mut c_int,
-) -> *mut GLXFBConfig {
-    let Some(r) = real_or_warn() else {
-        return std::ptr::null_mut();
-    };
+) -> Result<*mut GLXFBConfig> {
+    let r = loaded()?;
+    display(dpy)?;
+    required(nelements, "nelements")?;
     // SAFETY: forwarded call.
     let configs = unsafe { (r.glx.glXGetFBConfigs)(dpy, screen, nelements) };
-    if configs.is_null() || nelements.is_null() {
-        return configs;
+    if configs.is_null() {
+        return Ok(configs);
     }
     // SAFETY: the count of the list the real call returned.
     let n = unsafe { *nelements }.max(0) as usize;
@@ -200,6 +277,7 @@ pub unsafe fn get_fbconfigs(
         unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
         v
     };
+    watch(r, dpy);
     let twins: Vec<GLXFBConfig> = registry::with(|reg| {
         reals
             .iter()
@@ -216,7 +294,8 @@ pub unsafe fn get_fbconfigs(
     let list =
         unsafe { libc::malloc(total * std::mem::size_of::<GLXFBConfig>()) } as *mut GLXFBConfig;
     if list.is_null() {
-        return configs;
+        // No memory for the twins: the real list, without stereo ones.
+        return Ok(configs);
     }
     // SAFETY: `list` holds `total` entries; `configs` came from Xlib.
     unsafe {
@@ -225,10 +304,14 @@ pub unsafe fn get_fbconfigs(
         (r.xlib.XFree)(configs.cast());
         *nelements = total as c_int;
     }
-    list
+    Ok(list)
 }
 
-/// glXGetFBConfigAttrib / glXGetFBConfigAttribSGIX.
+/// glXGetFBConfigAttrib / glXGetFBConfigAttribSGIX. Refused
+/// (GLX_BAD_VALUE): a NULL display or value pointer. A stereo
+/// configuration asked about on another display is answered by the real
+/// call with its real configuration, as GLX answers a configuration of
+/// another display (GLXBadFBConfig).
 ///
 /// # Safety
 /// As glXGetFBConfigAttrib.
@@ -238,24 +321,30 @@ pub unsafe fn get_fbconfig_attrib(
     attrib: c_int,
     value: *mut c_int,
     flavour: Flavour,
-) -> c_int {
-    let Some(r) = real_or_warn() else { return 1 };
-    let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
-    if stereo && attrib == GLX_STEREO && !value.is_null() {
+) -> Result<c_int> {
+    let r = loaded()?;
+    display(dpy)?;
+    required(value, "value")?;
+    let (real_config, ours) = registry::with(|reg| {
+        let (c, _) = reg.real_config(config as usize);
+        (c, reg.fake_display(config as usize) == Some(dpy as usize))
+    });
+    if ours && attrib == GLX_STEREO {
         // SAFETY: non-NULL out-pointer.
         unsafe { *value = 1 };
-        return SUCCESS;
+        return Ok(SUCCESS);
     }
     let c = real_config as GLXFBConfig;
-    match (flavour, r.extra.sgix.get_attrib) {
+    Ok(match (flavour, r.extra.sgix.get_attrib) {
         // SAFETY: forwarded call.
         (Flavour::Sgix, Some(f)) => unsafe { f(dpy, c, attrib, value) },
         // SAFETY: forwarded call.
         _ => unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, attrib, value) },
-    }
+    })
 }
 
-/// glXGetVisualFromFBConfig / glXGetVisualFromFBConfigSGIX.
+/// glXGetVisualFromFBConfig / glXGetVisualFromFBConfigSGIX. Refused: a
+/// NULL display.
 ///
 /// # Safety
 /// As glXGetVisualFromFBConfig.
@@ -263,10 +352,9 @@ pub unsafe fn get_visual_from_fbconfig(
     dpy: *mut Display,
     config: GLXFBConfig,
     flavour: Flavour,
-) -> *mut XVisualInfo {
-    let Some(r) = real_or_warn() else {
-        return std::ptr::null_mut();
-    };
+) -> Result<*mut XVisualInfo> {
+    let r = loaded()?;
+    display(dpy)?;
     let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
     let c = real_config as GLXFBConfig;
     let v = match (flavour, r.extra.sgix.get_visual) {
@@ -278,9 +366,12 @@ pub unsafe fn get_visual_from_fbconfig(
     if !v.is_null() {
         // SAFETY: a visual the real GLX returned.
         let id = unsafe { (*v).visualid };
-        registry::with(|reg| reg.mark_visual(v as usize, id, stereo));
+        if stereo {
+            watch(r, dpy);
+        }
+        registry::with(|reg| reg.mark_visual(dpy as usize, v as usize, id, stereo));
     }
-    v
+    Ok(v)
 }
 
 /// Makes program context `ctx` a stereo context: creates the layer's
@@ -313,6 +404,7 @@ fn adopt(
         bits(GLX_STENCIL_SIZE),
     );
     let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
+    watch(r, dpy);
     registry::with(|reg| reg.add_context(ctx as usize, sc));
 }
 
@@ -320,11 +412,12 @@ fn adopt(
 /// context may reuse a destroyed one's address).
 fn forget(ctx: GLXContext) {
     if !ctx.is_null() {
-        registry::with(|reg| reg.remove_context(ctx as usize));
+        registry::with(|reg| reg.born(ctx as usize));
     }
 }
 
-/// glXCreateContext.
+/// glXCreateContext. Refused: a NULL display or visual, a share list the
+/// program destroyed.
 ///
 /// # Safety
 /// As glXCreateContext.
@@ -333,15 +426,16 @@ pub unsafe fn create_context(
     vis: *mut XVisualInfo,
     share: GLXContext,
     direct: c_int,
-) -> GLXContext {
-    let Some(r) = real_or_warn() else {
-        return std::ptr::null_mut();
-    };
+) -> Result<GLXContext> {
+    let r = loaded()?;
+    display(dpy)?;
+    required(vis, "vis (the XVisualInfo*)")?;
+    live_share(share, "shareList (destroyed by glXDestroyContext)")?;
     // SAFETY: forwarded call.
     let ctx = unsafe { (r.glx.glXCreateContext)(dpy, vis, share, direct) };
     forget(ctx);
-    if ctx.is_null() || vis.is_null() {
-        return ctx;
+    if ctx.is_null() {
+        return Ok(ctx);
     }
     // SAFETY: the program's visual.
     let id = unsafe { (*vis).visualid };
@@ -360,7 +454,7 @@ pub unsafe fn create_context(
             },
         );
     }
-    ctx
+    Ok(ctx)
 }
 
 /// How a configuration-based context is created.
@@ -372,7 +466,8 @@ pub enum NewContext {
 }
 
 /// glXCreateNewContext, glXCreateContextWithConfigSGIX and
-/// glXCreateContextAttribsARB.
+/// glXCreateContextAttribsARB. Refused: a NULL display, a share context
+/// the program destroyed.
 ///
 /// # Safety
 /// As those functions.
@@ -382,10 +477,10 @@ pub unsafe fn create_config_context(
     how: NewContext,
     share: GLXContext,
     direct: c_int,
-) -> GLXContext {
-    let Some(r) = real_or_warn() else {
-        return std::ptr::null_mut();
-    };
+) -> Result<GLXContext> {
+    let r = loaded()?;
+    display(dpy)?;
+    live_share(share, "the share context (destroyed by glXDestroyContext)")?;
     let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
     let c = real_config as GLXFBConfig;
     let ctx = match how {
@@ -421,34 +516,64 @@ pub unsafe fn create_config_context(
             },
         );
     }
-    ctx
+    Ok(ctx)
 }
 
-/// glXDestroyContext.
+/// glXDestroyContext. Refused: a NULL display; a stereo context destroyed
+/// already that is still current (its destruction waits for its release).
+/// A stereo context current on a thread is destroyed, with the layer's
+/// context, when it is released: GLX keeps it alive until then, and
+/// presenting makes it current again, which a destroyed context cannot be.
+/// Any other context goes to the real call (a context destroyed before
+/// gets GLX's GLXBadContext error), and is remembered as destroyed (a share
+/// list of it is refused).
 ///
 /// # Safety
 /// As glXDestroyContext.
-pub unsafe fn destroy_context(dpy: *mut Display, ctx: GLXContext) {
-    let Some(r) = real_or_warn() else { return };
-    let sc = if ctx.is_null() {
-        None
-    } else {
-        registry::with(|reg| reg.remove_context(ctx as usize))
-    };
+pub unsafe fn destroy_context(dpy: *mut Display, ctx: GLXContext) -> Result<()> {
+    let r = loaded()?;
+    display(dpy)?;
+    if ctx.is_null() {
+        // SAFETY: forwarded call (nothing, in libGL).
+        unsafe { (r.glx.glXDestroyContext)(dpy, ctx) };
+        return Ok(());
+    }
+    let key = ctx as usize;
+    let (sc, deferred) = registry::with(|reg| {
+        if reg.is_doomed(key) {
+            return Err(doomed());
+        }
+        reg.mark_dead(key);
+        let sc = reg.remove_context(key);
+        // Registry before state: decided under both locks, so a release on
+        // another thread either sees the mark or came first.
+        let deferred = sc.as_ref().is_some_and(|sc| sc.defer_destroy());
+        if deferred {
+            reg.add_doomed(key, sc.clone().expect("deferred"));
+        }
+        Ok((sc, deferred))
+    })?;
+    if deferred {
+        return Ok(());
+    }
     // SAFETY: forwarded call.
     unsafe { (r.glx.glXDestroyContext)(dpy, ctx) };
     if let Some(sc) = sc {
-        let here = current().is_some_and(|c| Arc::ptr_eq(&c.sc, &sc));
-        if here || sc.current_elsewhere() {
-            // GLX keeps a current context alive until it is released.
-            sc.mark_destroyed();
-        } else {
-            sc.destroy_ours();
-        }
+        sc.destroy_ours();
     }
+    Ok(())
 }
 
-/// glXMakeCurrent (`read` None) and glXMakeContextCurrent.
+fn doomed() -> Error {
+    Error::invalid_operation(
+        "ctx was destroyed by glXDestroyContext: it stays current where it is until \
+         released, and cannot be made current again",
+    )
+}
+
+/// glXMakeCurrent (`read` None) and glXMakeContextCurrent. Refused
+/// (False): a NULL display, except for a release (no context, no
+/// drawables), which libglvnd allows.
 ///
 /// # Safety
 /// As those functions.
@@ -457,15 +582,22 @@ pub unsafe fn make_current(
     draw: c_ulong,
     read: Option<c_ulong>,
     ctx: GLXContext,
-) -> c_int {
-    let Some(r) = real_or_warn() else { return 0 };
+) -> Result<c_int> {
+    let r = loaded()?;
+    let release = ctx.is_null() && draw == 0 && read.unwrap_or(0) == 0;
+    if !release {
+        display(dpy)?;
+    }
+    if !ctx.is_null() && registry::with(|reg| reg.is_doomed(ctx as usize)) {
+        return Err(doomed());
+    }
     let ok = match read {
         // SAFETY: forwarded calls.
         None => unsafe { (r.glx.glXMakeCurrent)(dpy, draw, ctx) },
         Some(read) => unsafe { (r.glx.glXMakeContextCurrent)(dpy, draw, read, ctx) },
     };
     if ok == 0 {
-        return ok;
+        return Ok(ok);
     }
     let read = read.unwrap_or(draw);
     let sc = if ctx.is_null() {
@@ -489,15 +621,16 @@ pub unsafe fn make_current(
         _ => None,
     };
     set_current(next);
-    ok
+    Ok(ok)
 }
 
-/// glXSwapBuffers.
+/// glXSwapBuffers. Refused: a NULL display.
 ///
 /// # Safety
 /// As glXSwapBuffers.
-pub unsafe fn swap_buffers(dpy: *mut Display, drawable: c_ulong) {
-    let Some(r) = real_or_warn() else { return };
+pub unsafe fn swap_buffers(dpy: *mut Display, drawable: c_ulong) -> Result<()> {
+    let r = loaded()?;
+    display(dpy)?;
     let here = current().filter(|c| c.display == dpy as usize && c.draw == drawable);
     let target = match here {
         Some(c) => Some((c.sc, true)),
@@ -516,18 +649,19 @@ pub unsafe fn swap_buffers(dpy: *mut Display, drawable: c_ulong) {
                  thread: swap it on that thread; the window is not updated",
             );
         } else {
-            match sc.present(drawable, true, here) {
-                Ok(()) => return,
-                Err(e) => super::warn(&format!("presenting the stereo frame: {e}")),
+            if let Err(e) = sc.present(drawable, true, here) {
+                super::warn(&format!("presenting the stereo frame: {e}"));
             }
-            return;
+            return Ok(());
         }
     }
     // SAFETY: forwarded call.
-    unsafe { (r.glx.glXSwapBuffers)(dpy, drawable) }
+    unsafe { (r.glx.glXSwapBuffers)(dpy, drawable) };
+    Ok(())
 }
 
-/// glXCreateWindow (records the X window behind the GLX window).
+/// glXCreateWindow (records the X window behind the GLX window). Refused:
+/// a NULL display.
 ///
 /// # Safety
 /// As glXCreateWindow.
@@ -536,26 +670,30 @@ pub unsafe fn create_window(
     config: GLXFBConfig,
     window: c_ulong,
     attribs: *const c_int,
-) -> c_ulong {
-    let Some(r) = real_or_warn() else { return 0 };
+) -> Result<c_ulong> {
+    let r = loaded()?;
+    display(dpy)?;
     let (c, _) = registry::with(|reg| reg.real_config(config as usize));
     // SAFETY: forwarded call with the real configuration.
     let w = unsafe { (r.glx.glXCreateWindow)(dpy, c as GLXFBConfig, window, attribs) };
     if w != 0 {
+        watch(r, dpy);
         registry::with(|reg| reg.add_glx_window(dpy as usize, w, window));
     }
-    w
+    Ok(w)
 }
 
-/// glXDestroyWindow.
+/// glXDestroyWindow. Refused: a NULL display.
 ///
 /// # Safety
 /// As glXDestroyWindow.
-pub unsafe fn destroy_window(dpy: *mut Display, window: c_ulong) {
-    let Some(r) = real_or_warn() else { return };
+pub unsafe fn destroy_window(dpy: *mut Display, window: c_ulong) -> Result<()> {
+    let r = loaded()?;
+    display(dpy)?;
     registry::with(|reg| reg.remove_glx_window(dpy as usize, window));
     // SAFETY: forwarded call.
-    unsafe { (r.glx.glXDestroyWindow)(dpy, window) }
+    unsafe { (r.glx.glXDestroyWindow)(dpy, window) };
+    Ok(())
 }
 
 /// glXCreatePixmap, glXCreatePbuffer and their SGIX forms: the real
@@ -571,16 +709,22 @@ pub enum Offscreen {
     PbufferSgix(u32, u32, *const c_int),
 }
 
-/// Creates an offscreen drawable of a configuration.
+/// Creates an offscreen drawable of a configuration. Refused: a NULL
+/// display.
 ///
 /// # Safety
 /// As the corresponding GLX function.
-pub unsafe fn create_offscreen(dpy: *mut Display, config: GLXFBConfig, what: Offscreen) -> c_ulong {
-    let Some(r) = real_or_warn() else { return 0 };
+pub unsafe fn create_offscreen(
+    dpy: *mut Display,
+    config: GLXFBConfig,
+    what: Offscreen,
+) -> Result<c_ulong> {
+    let r = loaded()?;
+    display(dpy)?;
     let (c, _) = registry::with(|reg| reg.real_config(config as usize));
     let c = c as GLXFBConfig;
     // SAFETY: forwarded calls with the real configuration.
-    unsafe {
+    Ok(unsafe {
         match what {
             Offscreen::Pixmap(p, a) => (r.glx.glXCreatePixmap)(dpy, c, p, a),
             Offscreen::Pbuffer(a) => (r.glx.glXCreatePbuffer)(dpy, c, a),
@@ -591,5 +735,5 @@ pub unsafe fn create_offscreen(dpy: *mut Display, config: GLXFBConfig, what: Off
                 .create_pbuffer
                 .map_or(0, |f| f(dpy, c, w, h, a)),
         }
-    }
+    })
 }

@@ -61,6 +61,65 @@
 //! (≈ 17 µs) to follow the window's size. The composite itself is the GL
 //! compositor's pass ([`crate::output::gl`]).
 //!
+//! # Misuse: what libGL survives goes to libGL, what would crash it is refused
+//!
+//! The layer answers a wrong call as libGL does whenever libGL answers it:
+//! the program sees libGL's return value, X error and GL error (a bad
+//! screen, attribute, render type, drawable or GL enum; a configuration or
+//! context libGL does not know — libglvnd reports a destroyed context as
+//! GLXBadContext). What libglvnd 1.6 with Mesa 22 crashes on (measured:
+//! tests/c/misuse_glx.c runs each case, and fails with SIGSEGV without the
+//! checks) is refused before libGL sees it, with the failure value of the
+//! function and a message (for
+//! gls_last_error_message() and, once per distinct message, on stderr as
+//! `glstereo: glXName refused: …`):
+//!
+//! - a NULL `Display*`: libGL crashes in every function but glXGetConfig,
+//!   glXMakeCurrent, glXSwapBuffers and glXDestroyWindow; the layer refuses
+//!   it everywhere (one rule; a silent no-op of glXSwapBuffers would hide
+//!   the bug), except for a release, glXMakeCurrent(NULL, None, NULL),
+//!   which libglvnd accepts;
+//! - NULL where GLX needs a pointer: glXChooseVisual's list, glXCreateContext's
+//!   visual, `nelements`, the value of glXGetConfig / glXGetFBConfigAttrib
+//!   (GLX_BAD_VALUE, as libglvnd answers for glXGetConfig), the name of
+//!   glXGetProcAddress. A NULL configuration or glXChooseFBConfig list is
+//!   libGL's to answer (GLXBadFBConfig; the defaults);
+//! - a share context the program destroyed (libGL reads the freed context):
+//!   [`registry::Registry::is_dead`] remembers the last
+//!   [`registry::DEAD_CONTEXTS`] destroyed;
+//! - a stereo context destroyed while current: GLX keeps it until it is
+//!   released, and presenting makes the program's context current again
+//!   after the layer's, which libGL refuses for a destroyed context (the
+//!   program would then draw into the layer's context). So its real
+//!   destruction waits for the release ([`context::StereoContext::defer_destroy`]),
+//!   and making it current or destroying it again meanwhile is refused;
+//! - GL: a NULL pointer GL reads or writes through (glGet*v, glDrawBuffers
+//!   and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv):
+//!   nothing happens but GL_INVALID_VALUE, in the stereo context's queue of
+//!   emulated errors or, in any other context, raised by the driver itself
+//!   with glViewport(0, 0, -1, -1) (GL rejects it with exactly that error
+//!   and no other effect). With no context current nothing is raised, as
+//!   GL raises nothing then.
+//!
+//! Pointers that are not NULL but wrong (freed, too short, unterminated
+//! lists) cannot be detected, by libGL or the layer. The layer's own GL
+//! queries in the program's context never add or hide a GL error (the
+//! program's pending errors are moved to the queue first; see
+//! [`gl::push_attrib`] in a core-profile context).
+//!
+//! # Threads
+//!
+//! GLX's rules: each thread has its own current context. The stereo context
+//! current on a thread is a thread-local slot ([`context::current`]); each
+//! stereo context's state has its own lock, the registry one lock taken
+//! briefly (never under a state lock). Two threads render and swap their
+//! own stereo contexts at once, on their own X connections or on one
+//! (XInitThreads), and a context moves between threads by release and
+//! make-current (tests/threads.rs, tests/c/glx_threads.c). A stereo
+//! drawable swapped on a thread other than the one its context is current
+//! on is not updated (said on stderr): GLX would swap a context's drawable
+//! only where it is current too.
+//!
 //! Names: the layer's textures and renderbuffers live in the program's
 //! share group, so they take names from the top of the name space
 //! ([`crate::gl::Gl::reserve_names`]): legacy programs bind small texture

@@ -109,9 +109,21 @@ pub fn real() -> Result<&'static Real, &'static str> {
     REAL.get_or_init(load).as_ref().map_err(|e| e.as_str())
 }
 
+/// [`real`] as the crate's [`crate::Error`]: GLS_ERROR_BACKEND_UNAVAILABLE
+/// with the reason.
+pub fn loaded() -> crate::Result<&'static Real> {
+    real().map_err(|e| crate::Error::BackendUnavailable(e.into()))
+}
+
 fn load() -> Result<Real, String> {
-    let xlib = Xlib::open().map_err(|e| format!("libX11 could not be loaded: {e}"))?;
-    let glx = Glx::open().map_err(|e| format!("libGL.so.1 could not be loaded: {e}"))?;
+    let xlib = Xlib::open()
+        .map_err(|e| format!("libX11 could not be loaded ({e}): install libx11-6 (Debian)"))?;
+    let glx = Glx::open().map_err(|e| {
+        format!(
+            "the real libGL.so.1 could not be loaded ({e}): install libgl1 and \
+             libglx-mesa0 (Debian) or your GL driver's libGL"
+        )
+    })?;
     let get = |name: &CStr| -> *const c_void {
         // SAFETY: NUL-terminated name; libGL's own glXGetProcAddressARB.
         unsafe { (glx.glXGetProcAddressARB)(name.as_ptr() as *const u8) }

@@ -3,7 +3,7 @@
 //! stereo contexts, and the X window behind each GLX window.
 //!
 //! Stereo FBConfigs are handles of the interposer's own (a small heap
-//! block each, alive for the process): the real configurations are shared
+//! block each, alive as long as their display): the real configurations are shared
 //! by every request (a program may choose the same configuration with and
 //! without stereo), so stereo has to live in a handle of its own. Every
 //! GLX function that takes a configuration is interposed and translates it
@@ -11,8 +11,13 @@
 //! copies the program frees itself: the pointer handed out for a stereo
 //! request is remembered with its visual ID (a later allocation at the same
 //! address for another visual is not mistaken for it).
+//!
+//! Everything recorded for a display is forgotten when the program closes
+//! it ([`Registry::forget_display`], from XCloseDisplay's hook, installed
+//! by `glx::watch`): a program that opens and closes displays must not grow,
+//! and a new display at a closed one's address must not inherit its state.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet, VecDeque};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use super::context::StereoContext;
@@ -36,17 +41,38 @@ const FAKE_MAGIC: u64 = 0x676c_7353_5445_5245;
 /// take this lock). It is never taken while a context's state is locked.
 #[derive(Default)]
 pub struct Registry {
-    /// `XVisualInfo*` handed out for a stereo request → its visual ID.
-    stereo_visuals: HashMap<usize, u64>,
-    /// Stereo FBConfig handle → what it stands for.
-    fakes: HashMap<usize, &'static FakeConfig>,
+    /// `XVisualInfo*` handed out for a stereo request → its visual ID and
+    /// display.
+    stereo_visuals: HashMap<usize, (u64, usize)>,
+    /// Stereo FBConfig handle (the address of the box) → what it stands for.
+    fakes: HashMap<usize, Box<FakeConfig>>,
     /// (display, real config) → its stereo handle.
     fake_of: HashMap<(usize, usize), usize>,
     /// Program context → its stereo state.
     contexts: HashMap<usize, Arc<StereoContext>>,
     /// (display, GLX window) → X window.
     glx_windows: HashMap<(usize, u64), u64>,
+    /// Stereo contexts glXDestroyContext destroyed while current on a
+    /// thread: really destroyed when released ([`StereoContext::defer_destroy`]).
+    doomed: HashMap<usize, Arc<StereoContext>>,
+    /// Contexts glXDestroyContext destroyed, oldest first (at most
+    /// [`DEAD_CONTEXTS`]); an address leaves the list when a new context
+    /// is created at it.
+    dead: VecDeque<usize>,
+    /// Displays whose XCloseDisplay calls [`Registry::forget_display`].
+    watched: HashSet<usize>,
 }
+
+/// What [`Registry::forget_display`] removed, to be dropped after the
+/// registry's lock is released.
+#[must_use]
+pub struct Forgotten {
+    /// The display's stereo contexts (and those destroyed while current).
+    pub contexts: Vec<Arc<StereoContext>>,
+}
+
+/// How many destroyed contexts are remembered (the share-list check).
+pub const DEAD_CONTEXTS: usize = 256;
 
 static REGISTRY: Mutex<Option<Registry>> = Mutex::new(None);
 
@@ -58,11 +84,11 @@ pub fn with<T>(f: impl FnOnce(&mut Registry) -> T) -> T {
 }
 
 impl Registry {
-    /// Remembers that `visual` (an `XVisualInfo*`) was handed out for a
-    /// stereo request, or (stereo = false) that it was not.
-    pub fn mark_visual(&mut self, visual: usize, visual_id: u64, stereo: bool) {
+    /// Remembers that `visual` (an `XVisualInfo*` of `display`) was handed
+    /// out for a stereo request, or (stereo = false) that it was not.
+    pub fn mark_visual(&mut self, display: usize, visual: usize, visual_id: u64, stereo: bool) {
         if stereo {
-            self.stereo_visuals.insert(visual, visual_id);
+            self.stereo_visuals.insert(visual, (visual_id, display));
         } else {
             self.stereo_visuals.remove(&visual);
         }
@@ -70,7 +96,9 @@ impl Registry {
 
     /// Whether `visual` (with this visual ID) was handed out as stereo.
     pub fn is_stereo_visual(&self, visual: usize, visual_id: u64) -> bool {
-        self.stereo_visuals.get(&visual) == Some(&visual_id)
+        self.stereo_visuals
+            .get(&visual)
+            .is_some_and(|&(id, _)| id == visual_id)
     }
 
     /// The stereo handle of a real configuration (made on first use).
@@ -78,12 +106,12 @@ impl Registry {
         if let Some(&f) = self.fake_of.get(&(display, real)) {
             return f;
         }
-        let fake: &'static FakeConfig = Box::leak(Box::new(FakeConfig {
+        let fake = Box::new(FakeConfig {
             magic: FAKE_MAGIC,
             real,
             display,
-        }));
-        let p = fake as *const FakeConfig as usize;
+        });
+        let p = &*fake as *const FakeConfig as usize;
         self.fakes.insert(p, fake);
         self.fake_of.insert((display, real), p);
         p
@@ -96,6 +124,51 @@ impl Registry {
             Some(f) => (f.real, true),
             None => (config, false),
         }
+    }
+
+    /// The display a stereo FBConfig handle was made for (None: not one).
+    pub fn fake_display(&self, config: usize) -> Option<usize> {
+        self.fakes.get(&config).map(|f| f.display)
+    }
+
+    /// Remembers that the program destroyed context `ctx`.
+    pub fn mark_dead(&mut self, ctx: usize) {
+        self.dead.retain(|&c| c != ctx);
+        if self.dead.len() == DEAD_CONTEXTS {
+            self.dead.pop_front();
+        }
+        self.dead.push_back(ctx);
+    }
+
+    /// Whether `ctx` is a context the program destroyed (and no context was
+    /// created at its address since).
+    pub fn is_dead(&self, ctx: usize) -> bool {
+        self.dead.contains(&ctx)
+    }
+
+    /// A context was created at `ctx`: whatever was known about an earlier
+    /// context at that address is forgotten.
+    pub fn born(&mut self, ctx: usize) {
+        self.dead.retain(|&c| c != ctx);
+        self.contexts.remove(&ctx);
+        self.doomed.remove(&ctx);
+    }
+
+    /// Records a stereo context destroyed while current (its destruction
+    /// waits for its release).
+    pub fn add_doomed(&mut self, ctx: usize, sc: Arc<StereoContext>) {
+        self.doomed.insert(ctx, sc);
+    }
+
+    /// Whether `ctx` is a stereo context destroyed while current and not
+    /// yet released.
+    pub fn is_doomed(&self, ctx: usize) -> bool {
+        self.doomed.contains_key(&ctx)
+    }
+
+    /// A doomed context was released and destroyed.
+    pub fn remove_doomed(&mut self, ctx: usize) {
+        self.doomed.remove(&ctx);
     }
 
     /// Records a stereo context.
@@ -132,6 +205,48 @@ impl Registry {
         self.glx_windows.remove(&(display, glx_window));
     }
 
+    /// Marks `display` as watched; true the first time (install the hook).
+    pub fn watch(&mut self, display: usize) -> bool {
+        self.watched.insert(display)
+    }
+
+    /// Forgets everything recorded for `display` (closing): its stereo
+    /// visuals, configurations (the handles are freed: libGL frees the
+    /// real ones too), contexts and GLX windows.
+    pub fn forget_display(&mut self, display: usize) -> Forgotten {
+        self.watched.remove(&display);
+        self.stereo_visuals.retain(|_, &mut (_, d)| d != display);
+        self.fakes.retain(|_, f| f.display != display);
+        self.fake_of.retain(|&(d, _), _| d != display);
+        self.glx_windows.retain(|&(d, _), _| d != display);
+        let mut contexts = Vec::new();
+        for map in [&mut self.contexts, &mut self.doomed] {
+            let gone: Vec<usize> = map
+                .iter()
+                .filter(|(_, sc)| sc.display() == display)
+                .map(|(&k, _)| k)
+                .collect();
+            contexts.extend(gone.into_iter().filter_map(|k| map.remove(&k)));
+        }
+        Forgotten { contexts }
+    }
+
+    /// How many entries the registry holds (tests: nothing grows).
+    pub fn len(&self) -> usize {
+        self.stereo_visuals.len()
+            + self.fakes.len()
+            + self.fake_of.len()
+            + self.contexts.len()
+            + self.doomed.len()
+            + self.glx_windows.len()
+            + self.watched.len()
+    }
+
+    /// Whether the registry holds nothing.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
     /// The X drawable to ask the size of: the X window behind a GLX window,
     /// else the drawable itself.
     pub fn x_drawable(&self, display: usize, drawable: u64) -> u64 {
@@ -159,12 +274,55 @@ mod tests {
     }
 
     #[test]
+    fn destroyed_contexts_are_remembered_until_their_address_is_reused() {
+        let mut r = Registry::default();
+        r.mark_dead(0x10);
+        r.mark_dead(0x20);
+        assert!(r.is_dead(0x10) && r.is_dead(0x20) && !r.is_dead(0x30));
+        r.born(0x10);
+        assert!(!r.is_dead(0x10) && r.is_dead(0x20));
+        for i in 0..DEAD_CONTEXTS {
+            r.mark_dead(0x1000 + i);
+        }
+        assert!(!r.is_dead(0x20), "the oldest is dropped past the limit");
+        assert!(r.is_dead(0x1000) && r.is_dead(0x1000 + DEAD_CONTEXTS - 1));
+    }
+
+    #[test]
     fn a_reused_visual_address_for_another_visual_is_not_stereo() {
         let mut r = Registry::default();
-        r.mark_visual(0x55, 33, true);
+        r.mark_visual(1, 0x55, 33, true);
         assert!(r.is_stereo_visual(0x55, 33));
         assert!(!r.is_stereo_visual(0x55, 34));
-        r.mark_visual(0x55, 33, false);
+        r.mark_visual(1, 0x55, 33, false);
         assert!(!r.is_stereo_visual(0x55, 33));
+    }
+
+    #[test]
+    fn closing_a_display_forgets_only_its_state() {
+        let mut r = Registry::default();
+        for d in [1, 2] {
+            assert!(r.watch(d));
+            assert!(!r.watch(d), "watched once");
+            r.mark_visual(d, 0x100 * d, 33, true);
+            r.fake_config(d, 0x1000);
+            r.add_glx_window(d, 0x400001, 0x200001);
+        }
+        let a2 = r.fake_config(2, 0x1000);
+        let before = r.len();
+        let gone = r.forget_display(1);
+        assert!(gone.contexts.is_empty());
+        assert_eq!(r.len(), before / 2, "display 2's half remains");
+        assert!(!r.is_stereo_visual(0x100, 33) && r.is_stereo_visual(0x200, 33));
+        assert_eq!(r.real_config(a2), (0x1000, true));
+        assert_eq!(r.x_drawable(1, 0x400001), 0x400001);
+        assert_eq!(r.x_drawable(2, 0x400001), 0x200001);
+        assert!(
+            r.watch(1),
+            "a new display at the same address is watched again"
+        );
+        let _ = r.forget_display(1);
+        let _ = r.forget_display(2);
+        assert!(r.is_empty());
     }
 }

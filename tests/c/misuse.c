@@ -489,6 +489,67 @@ static void display_cases(void) {
 
 /* ---- surfaces --------------------------------------------------------- */
 
+/* The window calls on a live surface `s` of `backend`: events (none
+ * headless, whatever the window had otherwise), close, title, native
+ * handles; NULL, bogus and wrong-kind handles. */
+static void window_cases(gls_surface *s, gls_config *not_a_surface, uint32_t backend) {
+    gls_event ev;
+    memset(&ev, 0xAB, sizeof ev);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_poll_event, NULL, &ev);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_poll_event, s, NULL);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_poll_event, BOGUS(gls_surface), &ev);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_poll_event, (gls_surface *)(void *)not_a_surface, &ev);
+    CHECK(ev.kind == 0xABABABABu, "event written on error");
+    for (int i = 0; i < 64; ++i) {
+        EXPECT(GLS_OK, gls_surface_poll_event, s, &ev);
+        if (ev.kind == GLS_EVENT_NONE) break;
+        CHECK(ev.kind == GLS_EVENT_RESIZE || ev.kind == GLS_EVENT_KEY, "event kind %u", ev.kind);
+        CHECK(backend == GLS_BACKEND_GLX, "an event (kind %u) on a headless surface", ev.kind);
+    }
+    CHECK(ev.kind == GLS_EVENT_NONE && ev.key == 0 && ev.width == 0 && ev.height == 0,
+          "no event: %u %u %u %u", ev.kind, ev.key, ev.width, ev.height);
+
+    bool b;
+    EXPECT_RET(!b, 0, b, gls_surface_should_close, s);
+    EXPECT_RET(!b, 1, b, gls_surface_should_close, NULL);
+    EXPECT_RET(!b, 1, b, gls_surface_should_close, BOGUS(gls_surface));
+    EXPECT_RET(!b, 1, b, gls_surface_should_close, (gls_surface *)(void *)not_a_surface);
+
+    EXPECT(GLS_OK, gls_surface_set_title, s, "misuse: a title");
+    EXPECT(GLS_OK, gls_surface_set_title, s, "");
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_set_title, s, NULL);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_set_title, NULL, "t");
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_set_title, BOGUS(gls_surface), "t");
+    EXPECT(GLS_ERROR_INVALID_VALUE, gls_surface_set_title, s, "\xff\xfe");
+
+    gls_native_handles h;
+    memset(&h, 0xAB, sizeof h);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_get_native_handles, NULL, &h);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_get_native_handles, s, NULL);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_get_native_handles, BOGUS(gls_surface), &h);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_get_native_handles, (gls_surface *)(void *)not_a_surface, &h);
+    CHECK(h.backend == 0xABABABABu, "handles written on error");
+    EXPECT(GLS_OK, gls_surface_get_native_handles, s, &h);
+    CHECK(h.backend == backend && h.context != NULL, "handles: backend %u, context %p", h.backend, h.context);
+    if (backend == GLS_BACKEND_OSMESA) {
+        CHECK(h.display == NULL && h.window == 0 && h.osmesa_buffer != NULL, "OSMesa handles");
+    } else {
+        CHECK(h.display != NULL && h.osmesa_buffer == NULL, "display handle");
+        CHECK((h.window != 0) == (backend == GLS_BACKEND_GLX), "window %llu", (unsigned long long)h.window);
+    }
+}
+
+/* The window calls on a destroyed surface. */
+static void dead_window_cases(gls_surface *dead) {
+    gls_event ev;
+    gls_native_handles h;
+    bool b;
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_poll_event, dead, &ev);
+    EXPECT_RET(!b, 1, b, gls_surface_should_close, dead);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_set_title, dead, "t");
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_get_native_handles, dead, &h);
+}
+
 typedef struct {
     gls_surface *s;
     pthread_barrier_t *barrier;
@@ -624,6 +685,7 @@ static void surface_cases(void) {
     EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_get_size, NULL, &w, &h);
     EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_get_size, s, NULL, &h);
     EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_get_size, s, &w, NULL);
+    window_cases(s, c, GLS_BACKEND_EGL);
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_get_size, BOGUS(gls_surface), &w, &h);
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_get_size, (gls_surface *)(void *)c, &w, &h);
 
@@ -888,6 +950,7 @@ static void surface_cases(void) {
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_set_input, s, GLS_INPUT_STR_RECT);
     int32_t fd;
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_starbase_fildes, s, &fd);
+    dead_window_cases(s);
     EXPECT_VOID(1, gls_surface_destroy, s);
     free(px);
 
@@ -949,6 +1012,7 @@ static void cross_display_cases(void) {
     EXPECT(GLS_OK, gls_surface_create, egl1, c1, 40, 30, &s1);
     EXPECT(GLS_OK, gls_surface_create, egl2, c2, 24, 20, &s2);
     EXPECT(GLS_OK, gls_surface_create, osm, co, 32, 16, &so);
+    window_cases(so, co, GLS_BACKEND_OSMESA);
 
     /* Hop between the three, drawing on each; every surface keeps its pixels. */
     for (int round = 0; round < 3; ++round) {
@@ -1167,6 +1231,7 @@ static void glx_cases(void) {
     CHECK(never == BOGUS(gls_surface), "surface_out written on error");
     EXPECT(GLS_OK, gls_surface_create, bd, cb, 32, 32, &sb);
     EXPECT(GLS_OK, gls_surface_create, e, ce, 32, 32, &se);
+    window_cases(sb, cb, GLS_BACKEND_GLX);
     for (int round = 0; round < 3; ++round) {
         long k = round * 0x202020;
         EXPECT(GLS_OK, gls_make_current, sb);
@@ -1178,6 +1243,7 @@ static void glx_cases(void) {
     }
     EXPECT(GLS_OK, gls_make_current, NULL);
     gls_surface_destroy(sb);
+    dead_window_cases(sb);
     gls_surface_destroy(se);
     gls_config_free(ca);
     gls_config_free(cb);

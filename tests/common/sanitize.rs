@@ -30,19 +30,42 @@ pub fn compile(sources: &[PathBuf], out: &Path, extra: &[&str]) {
     compile_c(sources, out, &args);
 }
 
+/// Compiles a plain C program (no glstereo: one to run under glstereo-run)
+/// with the sanitizers and `extra` (-I, -D, -lGL …).
+pub fn compile_plain(source: &Path, out: &Path, extra: &[&str]) {
+    let o = Command::new("cc")
+        .args(crate::common::C_FLAGS)
+        .args(FLAGS)
+        .arg(source)
+        .arg("-o")
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("cc runs");
+    assert!(
+        o.status.success(),
+        "compiling {} failed:\n{}",
+        source.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// ASan's options: leaks checked at exit, any report fatal.
+const ASAN_OPTIONS: &str = "detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1";
+
 /// Sets the sanitizer options on a command: leaks checked at exit with the
 /// suppressions, any report fatal, UBSan with stacks.
 pub fn configure(cmd: &mut Command) -> &mut Command {
-    cmd.env(
-        "ASAN_OPTIONS",
-        "detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1",
-    )
-    .env(
-        "LSAN_OPTIONS",
-        format!("suppressions={}:print_suppressions=0", lsan_suppressions().display()),
-    )
-    .env("UBSAN_OPTIONS", "halt_on_error=1:print_stacktrace=1")
-    .env("RUST_BACKTRACE", "0")
+    cmd.env("ASAN_OPTIONS", ASAN_OPTIONS)
+        .env(
+            "LSAN_OPTIONS",
+            format!(
+                "suppressions={}:print_suppressions=0",
+                lsan_suppressions().display()
+            ),
+        )
+        .env("UBSAN_OPTIONS", "halt_on_error=1:print_stacktrace=1")
+        .env("RUST_BACKTRACE", "0")
 }
 
 /// Fails with both streams when the program did not exit 0 or a sanitizer
@@ -68,6 +91,48 @@ pub fn assert_clean(what: &str, o: &Output) {
 /// Runs a sanitized program and requires it to be clean.
 pub fn run_clean(what: &str, cmd: &mut Command) -> Output {
     let o = configure(cmd).output().expect("program starts");
+    assert_clean(what, &o);
+    o
+}
+
+/// tests/c/keep_modules.c built as a shared library (once): a dlclose()
+/// that keeps libraries loaded, so LeakSanitizer still scans the globals of
+/// Mesa's DRI driver, which XCloseDisplay unloads (see the file).
+pub fn keep_modules() -> PathBuf {
+    static SHIM: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    SHIM.get_or_init(|| {
+        let dir = crate::common::lib_dir().join("test-sanitize");
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("keep_modules.so");
+        let tmp = dir.join(format!(".keep_modules-{}.so", std::process::id()));
+        let o = Command::new("cc")
+            .args(crate::common::C_FLAGS)
+            .args(["-shared", "-fPIC"])
+            .arg(root().join("tests/c/keep_modules.c"))
+            .arg("-o")
+            .arg(&tmp)
+            .output()
+            .expect("cc runs");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::rename(&tmp, &out).unwrap();
+        out
+    })
+    .clone()
+}
+
+/// As [`run_clean`] for a GLX program, with Mesa's driver kept loaded
+/// ([`keep_modules`]) and, for glstereo-run, which preloads its library
+/// ahead of the program's ASan runtime, ASan's check that its runtime
+/// comes first off. ASan still intercepts every allocation (the preloaded
+/// libraries define no malloc), so nothing goes unchecked.
+pub fn run_clean_preloaded(what: &str, cmd: &mut Command) -> Output {
+    configure(cmd)
+        .env(
+            "ASAN_OPTIONS",
+            format!("{ASAN_OPTIONS}:verify_asan_link_order=0"),
+        )
+        .env("LD_PRELOAD", keep_modules());
+    let o = cmd.output().expect("program starts");
     assert_clean(what, &o);
     o
 }
