@@ -260,6 +260,35 @@ impl Gl {
         name
     }
 
+    /// One new framebuffer-object name, for the library's own contexts
+    /// (compositor and layer contexts, compatibility profile). Mesa shares
+    /// framebuffer objects across a share group, so with
+    /// [`Gl::reserve_names`] they too come from the reserved range, where a
+    /// program that deletes or binds names it guessed cannot reach them.
+    /// The framebuffer bindings are left as they were.
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn gen_framebuffer(&self) -> u32 {
+        let mut name = 0;
+        // SAFETY: contract; one name written, bindings restored.
+        unsafe {
+            match self.next_reserved() {
+                Some(n) => {
+                    name = n;
+                    let draw = self.integer(enums::GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+                    let read = self.integer(enums::GL_READ_FRAMEBUFFER_BINDING) as u32;
+                    // Binding creates the object.
+                    self.BindFramebuffer(enums::GL_FRAMEBUFFER, name);
+                    self.BindFramebuffer(enums::GL_DRAW_FRAMEBUFFER, draw);
+                    self.BindFramebuffer(enums::GL_READ_FRAMEBUFFER, read);
+                }
+                None => self.GenFramebuffers(1, &mut name),
+            }
+        }
+        name
+    }
+
     /// glGetString as a Rust string ("" when NULL).
     ///
     /// # Safety
@@ -329,6 +358,16 @@ impl Gl {
 /// the lowest free names, so names at the very top leave the program's own
 /// glGen* results small, as they are without the library.
 pub const RESERVED_NAME_TOP: u32 = 0xFFFF_FFFE;
+
+/// How many names below [`RESERVED_NAME_TOP`] count as reserved: far more
+/// than the library ever makes, far above anything glGen* hands out.
+pub const RESERVED_NAME_SPAN: u32 = 1 << 24;
+
+/// Whether `name` lies in the library's reserved range (see
+/// [`Gl::reserve_names`]): a program can only have it by guessing.
+pub fn is_reserved_name(name: u32) -> bool {
+    name > RESERVED_NAME_TOP - RESERVED_NAME_SPAN
+}
 
 /// Parses the GL_VERSION string of the current context into (major, minor).
 ///

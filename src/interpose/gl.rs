@@ -436,7 +436,12 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
     let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
     let kept: Vec<u32> = {
         let st = cur.sc.lock();
-        list.iter().copied().filter(|&f| !st.is_ours(f)).collect()
+        // The emulated framebuffer, and the reserved names of the layer's
+        // own framebuffers (Mesa shares framebuffers across the share group).
+        list.iter()
+            .copied()
+            .filter(|&f| !st.is_ours(f) && !crate::gl::is_reserved_name(f))
+            .collect()
     };
     forward(kept.len() as i32, kept.as_ptr());
     // Deleting the bound framebuffer reverts the binding to framebuffer 0,

@@ -425,7 +425,7 @@ impl Canvas {
         // SAFETY: the compositor context is current (contract of the callers).
         unsafe {
             if self.fbo == 0 {
-                gl.GenFramebuffers(1, &mut self.fbo);
+                self.fbo = gl.gen_framebuffer();
                 self.texture = gl.gen_texture();
             }
             gl.BindTexture(GL_TEXTURE_2D, self.texture);

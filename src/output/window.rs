@@ -225,7 +225,7 @@ impl WindowPaths {
         // SAFETY: contract.
         unsafe {
             if self.read_fbo == 0 {
-                gl.GenFramebuffers(1, &mut self.read_fbo);
+                self.read_fbo = gl.gen_framebuffer();
             }
             gl.Disable(GL_SCISSOR_TEST);
             gl.Disable(GL_FRAMEBUFFER_SRGB);
@@ -336,7 +336,7 @@ impl WindowPaths {
         // SAFETY: contract.
         unsafe {
             if self.read_fbo == 0 {
-                gl.GenFramebuffers(1, &mut self.read_fbo);
+                self.read_fbo = gl.gen_framebuffer();
             }
         }
         for (i, rect) in job.eyes.iter().enumerate().take(if same { 1 } else { 2 }) {
@@ -418,7 +418,7 @@ impl WindowPaths {
         // SAFETY: contract.
         unsafe {
             if self.read_fbo == 0 {
-                gl.GenFramebuffers(1, &mut self.read_fbo);
+                self.read_fbo = gl.gen_framebuffer();
             }
             gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
             gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);

@@ -208,7 +208,7 @@ impl EmulatedFramebuffer {
                 )));
             }
             gl.take_error();
-            gl.GenFramebuffers(1, &mut fb.read_fbo);
+            fb.read_fbo = gl.gen_framebuffer();
             for b in shape.allocated().iter() {
                 fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }

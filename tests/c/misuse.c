@@ -907,6 +907,23 @@ static void surface_cases(void) {
     EXPECT(GLS_ERROR_IO, gls_surface_save_png, s, GLS_IMAGE_LEFT, dir ? dir : "/tmp"); /* a directory */
     EXPECT(GLS_ERROR_INVALID_VALUE, gls_surface_save_png, s, GLS_IMAGE_LEFT, "");
     EXPECT(GLS_ERROR_INVALID_VALUE, gls_surface_save_png, s, GLS_IMAGE_LEFT, "/tmp/\xff\xfe.png");
+    /* Queued captures: the same argument rules; a write that fails later
+     * is reported (once) by the next queue or wait call, and leaves no file. */
+    snprintf(path, sizeof path, "%s/queued.png", dir ? dir : "/tmp");
+    EXPECT(GLS_OK, gls_surface_queue_png, s, GLS_IMAGE_COMPOSITE, path);
+    EXPECT(GLS_OK, gls_surface_wait_captures, s);
+    CHECK(access(path, F_OK) == 0, "a queued capture was not written: %s", path);
+    unlink(path);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_queue_png, s, GLS_IMAGE_LEFT, NULL);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_queue_png, NULL, GLS_IMAGE_LEFT, path);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_queue_png, BOGUS(gls_surface), GLS_IMAGE_LEFT, path);
+    EXPECT(GLS_ERROR_INVALID_ENUM, gls_surface_queue_png, s, 3u, path);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_wait_captures, NULL);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_wait_captures, BOGUS(gls_surface));
+    EXPECT(GLS_OK, gls_surface_queue_png, s, GLS_IMAGE_RIGHT, "/nonexistent-dir/queued.png");
+    EXPECT(GLS_ERROR_IO, gls_surface_wait_captures, s);
+    CHECK(has("/nonexistent-dir/queued.png"), "%s", gls_last_error_message());
+    EXPECT(GLS_OK, gls_surface_wait_captures, s); /* reported once */
     if (dir) rmdir(dir);
     CHECK(access(path, F_OK) != 0, "a failed save left %s", path);
 
@@ -942,6 +959,8 @@ static void surface_cases(void) {
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_get_attrib, s, GLS_SURFACE_AUTO_STEREO, &av);
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_read_pixels, s, GL_FRONT_LEFT, px, need);
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_save_png, s, GLS_IMAGE_LEFT, "/tmp/never.png");
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_queue_png, s, GLS_IMAGE_LEFT, "/tmp/never.png");
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_wait_captures, s);
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_set_output, s, GLS_OUTPUT_LEFT);
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_get_output, s, &out);
     EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_set_swap_eyes, s, true);
