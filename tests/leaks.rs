@@ -15,7 +15,8 @@
 //! make current on a new GLX window → 2 frames → destroy, and 30 cycles of
 //! XOpenDisplay → … → XCloseDisplay under LeakSanitizer; 3 context cycles
 //! under valgrind (full stacks through the layer's Rust code); resident
-//! memory flat over 10 000 frames and over 300 context cycles.
+//! memory flat over 10 000 frames (after 10 000 of warm-up) and over 300
+//! context cycles.
 //!
 //! Display cycles are checked for leaks, not for flat resident memory:
 //! each XOpenDisplay … XCloseDisplay grows the resident memory of a plain
@@ -226,13 +227,19 @@ fn resident_over_frames(backend: &str) {
 
 // ---- an unmodified GLX program under glstereo-run ---------------------------
 
-/// Frames of the preload's resident-memory run.
-const GLX_FRAMES: u32 = 10_000;
+/// Frames of the preload's resident-memory run: 10 000 of warm-up, then the
+/// 10 000 that must stay flat. The warm-up is long because llvmpipe takes a
+/// second 1 MiB upload buffer once, inside the window blit of frame 8193
+/// (found with gdb: one posix_memalign of 1 MiB under glBlitFramebuffer,
+/// never again up to frame 40 000), which is Mesa's, not a leak.
+const GLX_FRAMES: u32 = 20_000;
+/// The frame after which the preload's run must stay flat.
+const GLX_FRAMES_WARM: u32 = 10_000;
 /// Context cycles of the preload's resident-memory run.
 const GLX_CONTEXT_CYCLES: u32 = 300;
 /// "Flat" over the frames under the preload: at most this much growth from
-/// frame 1000 on (9000 frames; 28 bytes a frame, less than one allocation).
-/// Measured: 0 KiB.
+/// frame 10 000 on (10 000 frames; 26 bytes a frame, less than one
+/// allocation). Measured: 0 KiB.
 const GLX_FRAME_GROWTH_KIB: i64 = 256;
 /// "Flat" over the context cycles: at most this much growth from cycle 60
 /// on (240 cycles, 2 KiB a cycle; one leaked stereo context costs two GL
@@ -363,7 +370,7 @@ fn glx_resident(mode: &str, n: u32, from: u32, limit_kib: i64) {
 
 #[test]
 fn resident_memory_of_a_glx_stereo_program_under_the_preload_is_flat_over_ten_thousand_frames() {
-    glx_resident("frames", GLX_FRAMES, 1000, GLX_FRAME_GROWTH_KIB);
+    glx_resident("frames", GLX_FRAMES, GLX_FRAMES_WARM, GLX_FRAME_GROWTH_KIB);
 }
 
 #[test]
