@@ -21,7 +21,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use x11_dl::glx::{self, Glx};
 use x11_dl::xlib::{self, Xlib};
 
-use super::xshm::ShmImage;
+use super::xshm::{Connection, ShmImage};
 use super::{BackendKind, ContextRole, Platform, PlatformSurface, WindowEvent};
 use crate::config::{Config, ConfigRequest, EmulationPolicy, glx as attr};
 use crate::error::{Error, Result};
@@ -650,7 +650,7 @@ impl PlatformSurface for GlxSurface {
         if matches!(&*shm, ShmState::Ready(img) if img.size() != size) {
             if let ShmState::Ready(old) = std::mem::replace(&mut *shm, ShmState::Untried) {
                 // SAFETY: made on this live connection (checked above).
-                unsafe { old.destroy(&sh.xlib, sh.display, true) };
+                unsafe { old.destroy(&sh.xlib, sh.display, Connection::Open) };
             }
         }
         if matches!(&*shm, ShmState::Untried) {
@@ -734,7 +734,17 @@ impl Drop for GlxSurface {
         );
         if let ShmState::Ready(img) = shm {
             // SAFETY: made on this connection; X calls only while it is alive.
-            unsafe { img.destroy(&sh.xlib, sh.display, alive) };
+            unsafe {
+                img.destroy(
+                    &sh.xlib,
+                    sh.display,
+                    if alive {
+                        Connection::Open
+                    } else {
+                        Connection::Lost
+                    },
+                )
+            };
         }
         if !alive {
             return;

@@ -10,7 +10,7 @@
 pub mod egl;
 pub mod glx;
 pub mod osmesa;
-mod xshm;
+pub(crate) mod xshm;
 
 use std::ffi::{CStr, c_void};
 

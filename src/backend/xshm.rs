@@ -17,6 +17,7 @@
 //! the caller on the GL path.
 
 use std::ffi::c_int;
+use std::sync::OnceLock;
 
 use x11_dl::xlib::{self, Xlib};
 use x11_dl::xshm::{XShmSegmentInfo, Xext};
@@ -24,9 +25,32 @@ use x11_dl::xshm::{XShmSegmentInfo, Xext};
 use super::{PixelLayout as Layout, PixelTarget};
 use crate::error::Result;
 
+/// libXext, loaded once for the process and never unloaded: it keeps a
+/// record of each display's MIT-SHM extension in its own static data, which
+/// must outlive every display (unloading it would strand those records).
+fn xext() -> Option<&'static Xext> {
+    static XEXT: OnceLock<Option<Xext>> = OnceLock::new();
+    XEXT.get_or_init(|| Xext::open().ok()).as_ref()
+}
+
+/// The state of the connection an image is destroyed on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Connection {
+    /// Working: the segment is detached and the GC freed.
+    Open,
+    /// Inside XCloseDisplay's extension hooks: only core requests (the GC)
+    /// are sent. The MIT-SHM extension's own per-display record may be gone
+    /// already, and a call through it would make a new one that outlives
+    /// the display (a later display at the same address would inherit it);
+    /// the server detaches the segment when the client disconnects.
+    Closing,
+    /// Gone: only the local mapping is released.
+    Lost,
+}
+
 /// A shared-memory XImage attached to the server.
-pub(super) struct ShmImage {
-    xext: Xext,
+pub(crate) struct ShmImage {
+    xext: &'static Xext,
     /// Boxed: the XImage keeps a pointer to it (`obdata`).
     info: Box<XShmSegmentInfo>,
     image: *mut xlib::XImage,
@@ -38,6 +62,10 @@ pub(super) struct ShmImage {
     pending: bool,
 }
 
+// SAFETY: the image is plain memory plus X resource ids; its owner uses it
+// with its connection from one thread at a time (under a lock).
+unsafe impl Send for ShmImage {}
+
 impl ShmImage {
     /// Makes and attaches an image of `(width, height)` for `visual` of
     /// `depth`. `trap` runs X calls with protocol errors trapped and returns
@@ -46,7 +74,7 @@ impl ShmImage {
     ///
     /// # Safety
     /// `display` is a live connection and `visual`/`depth` one of its visuals.
-    pub(super) unsafe fn create(
+    pub(crate) unsafe fn create(
         xl: &Xlib,
         display: *mut xlib::Display,
         window: xlib::Window,
@@ -55,7 +83,7 @@ impl ShmImage {
         (width, height): (u32, u32),
         trap: &dyn Fn(&mut dyn FnMut()) -> i32,
     ) -> Option<ShmImage> {
-        let xext = Xext::open().ok()?;
+        let xext = xext()?;
         // SAFETY: live display (contract); every pointer below is checked
         // before use and released on every failure path.
         unsafe {
@@ -133,7 +161,7 @@ impl ShmImage {
     }
 
     /// The image's size.
-    pub(super) fn size(&self) -> (u32, u32) {
+    pub(crate) fn size(&self) -> (u32, u32) {
         (self.width, self.height)
     }
 
@@ -142,7 +170,7 @@ impl ShmImage {
     ///
     /// # Safety
     /// `display` is the live connection the image was made on.
-    pub(super) unsafe fn put_with(
+    pub(crate) unsafe fn put_with(
         &mut self,
         xl: &Xlib,
         display: *mut xlib::Display,
@@ -187,20 +215,31 @@ impl ShmImage {
         Ok(())
     }
 
-    /// Detaches and frees the image. `alive`: whether the connection still
-    /// works (if not, only the local mapping is released).
+    /// Detaches and frees the image; what is sent to the server depends on
+    /// the state of the connection.
     ///
     /// # Safety
-    /// `display` is the connection the image was made on (possibly dead
-    /// when `alive` is false).
-    pub(super) unsafe fn destroy(mut self, xl: &Xlib, display: *mut xlib::Display, alive: bool) {
+    /// `display` is the connection the image was made on, in the state
+    /// `connection` says.
+    pub(crate) unsafe fn destroy(
+        mut self,
+        xl: &Xlib,
+        display: *mut xlib::Display,
+        connection: Connection,
+    ) {
         // SAFETY: contract; the image's data pointer is cleared before
         // XDestroyImage so that Xlib does not free() the shared memory.
         unsafe {
-            if alive {
-                (self.xext.XShmDetach)(display, &mut *self.info);
-                (xl.XFreeGC)(display, self.gc);
-                (xl.XSync)(display, xlib::False);
+            match connection {
+                Connection::Open => {
+                    (self.xext.XShmDetach)(display, &mut *self.info);
+                    (xl.XFreeGC)(display, self.gc);
+                    (xl.XSync)(display, xlib::False);
+                }
+                Connection::Closing => {
+                    (xl.XFreeGC)(display, self.gc);
+                }
+                Connection::Lost => {}
             }
             (*self.image).data = std::ptr::null_mut();
             if let Some(destroy) = (*self.image).funcs.destroy_image {

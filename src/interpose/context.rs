@@ -13,7 +13,11 @@
 //! - the compositor's programs, vertex array and canvases live in the
 //!   layer's context, which is made current on the program's drawable to
 //!   compose into its real back buffer and swap, then the program's
-//!   context is made current again.
+//!   context is made current again. On a software renderer (llvmpipe) a
+//!   double-buffered window gets the composite from memory instead, through
+//!   a MIT-SHM image per drawable (`backend/xshm.rs`): the eyes are read
+//!   back in bands and composed on the CPU straight into the shared
+//!   segment, with no full-window GL pass and no swap.
 
 use std::cell::Cell;
 use std::collections::HashMap;
@@ -29,6 +33,7 @@ use super::real::{Real, real};
 use super::registry;
 use super::settings;
 use crate::backend::glx::trap_x_errors;
+use crate::backend::xshm::{Connection, ShmImage};
 use crate::error::{Error, Result};
 use crate::framing::InputFraming;
 use crate::gl::Gl;
@@ -45,9 +50,22 @@ const GLX_HEIGHT: i32 = 0x801E;
 /// Orders binds, to find the context a drawable was bound to last.
 static BIND_TICK: AtomicU64 = AtomicU64::new(1);
 
+/// How a drawable's composite reaches its window.
+enum WindowImage {
+    /// Not tried yet.
+    Untried,
+    /// Through the layer's GL context and glXSwapBuffers: a hardware
+    /// renderer, no MIT-SHM, a pixmap or pbuffer, an unsupported visual.
+    Gl,
+    /// From memory through MIT-SHM (remade when the window's size changes).
+    Shm(ShmImage),
+}
+
 /// One drawable's emulated framebuffer in one context.
 pub(super) struct Drawn {
     pub(super) fb: EmulatedFramebuffer,
+    /// How its frames are shown (software renderers: from memory).
+    image: WindowImage,
     /// Frames presented.
     frames: u64,
     /// [`BIND_TICK`] when last bound.
@@ -371,7 +389,27 @@ impl StereoContext {
     /// Marks it as belonging to a display the program closed (XCloseDisplay
     /// frees the connection: the layer must never use it again).
     pub fn mark_closed(&self) {
+        // XCloseDisplay's hooks run before it disconnects.
+        self.release_images(Connection::Closing);
         self.closed.store(true, Ordering::SeqCst);
+    }
+
+    /// Frees the MIT-SHM images of its drawables.
+    fn release_images(&self, connection: Connection) {
+        if self.is_closed() {
+            return;
+        }
+        let Ok(r) = real() else {
+            return;
+        };
+        let mut st = self.lock();
+        for drawn in st.fbs.values_mut() {
+            if let WindowImage::Shm(img) = std::mem::replace(&mut drawn.image, WindowImage::Untried)
+            {
+                // SAFETY: made on this display, in the state the caller says.
+                unsafe { img.destroy(&r.xlib, self.display as *mut xlib::Display, connection) };
+            }
+        }
     }
 
     fn is_closed(&self) -> bool {
@@ -414,6 +452,7 @@ impl StereoContext {
         if self.is_closed() {
             return;
         }
+        self.release_images(Connection::Open);
         if let Ok(r) = real() {
             // SAFETY: our own context, current nowhere (it is only made
             // current inside the layer's calls).
@@ -528,6 +567,7 @@ impl StereoContext {
                         d,
                         Drawn {
                             fb,
+                            image: WindowImage::Untried,
                             frames: 0,
                             last_bound: 0,
                             viewport_checked: false,
@@ -599,6 +639,7 @@ impl StereoContext {
                 return Err(e);
             }
         };
+        let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
         let Some(drawn) = st.fbs.get_mut(&drawable) else {
             drop(st);
@@ -618,21 +659,22 @@ impl StereoContext {
         drawn.frames += 1;
         drawn.viewport_checked = false;
         let frame_index = drawn.frames - 1;
-        let result = self
-            .make_ours_current(r, drawable)
-            .and_then(|()| self.compose_and_swap(r, &mut st, drawable, window, frame_index));
+        let result = self.make_ours_current(r, drawable).and_then(|()| {
+            self.compose_and_swap(r, &mut st, (drawable, x_window), window, frame_index)
+        });
         drop(st);
         saved.restore(r, self.display);
         result
     }
 
-    /// In the layer's context, current on `drawable` (of the given size):
-    /// composes, captures, swaps, and follows a resized window.
+    /// In the layer's context, current on `drawable` (of the given size;
+    /// `x_window` is its X drawable): composes, captures, shows the frame
+    /// (from memory or with a swap), and follows a resized window.
     fn compose_and_swap(
         &self,
         r: &Real,
         st: &mut CtxState,
-        drawable: u64,
+        (drawable, x_window): (u64, u64),
         (width, height): (u32, u32),
         frame_index: u64,
     ) -> Result<()> {
@@ -650,9 +692,34 @@ impl StereoContext {
             s.options,
             frame_index,
         );
-        // SAFETY: the layer's context is current on the drawable; the job's
-        // textures are shared with it.
-        let composed = unsafe { compositor.compose_window(gl, &job, 0, width, height) };
+        // A software renderer's frame goes to the window from memory when
+        // it can (one CPU pass instead of a full-window GL pass and the
+        // swap's own copy; see backend/xshm.rs), else through GL. Not for
+        // single-buffered windows: Mesa's software driver copies the
+        // program's real front buffer into the window when the program
+        // flushes, over the frame put there.
+        let shown = if self.shape.double_buffered {
+            // SAFETY: the layer's context is current on the drawable, whose
+            // X drawable is `x_window`; the job's textures are shared with it.
+            unsafe {
+                put_pixels(
+                    r,
+                    compositor,
+                    drawn,
+                    (self.display, x_window),
+                    (width, height),
+                    &job,
+                )
+            }
+        } else {
+            Ok(false)
+        };
+        let composed = match shown {
+            Ok(true) => Ok(()),
+            // SAFETY: as above.
+            Ok(false) => unsafe { compositor.compose_window(gl, &job, 0, width, height) },
+            Err(ref e) => Err(e.clone()),
+        };
         // Read the eyes back before the swap: with Mesa's software GLX,
         // binding framebuffer 0 after a swap (as reading back ends by doing)
         // fixes the window's size until the next swap, so a resize that
@@ -680,7 +747,9 @@ impl StereoContext {
         }
         // SAFETY: valid display and drawable, current in our context.
         unsafe {
-            if self.shape.double_buffered {
+            if shown.is_err() || shown == Ok(true) {
+                // Nothing composed into the window's GL buffers to show.
+            } else if self.shape.double_buffered {
                 (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable);
             } else {
                 // A single-buffered window was drawn in its front buffer.
@@ -689,7 +758,7 @@ impl StereoContext {
             // The frame is on the server when presenting returns: Mesa's
             // software swap sends the image in several requests without
             // waiting, and another client (a screenshot, a compositor)
-            // could otherwise see it half drawn. One round trip.
+            // could otherwise see it half drawn or not yet. One round trip.
             (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False);
         }
         if drawn.fb.size() != (width, height) {
@@ -701,4 +770,81 @@ impl StereoContext {
         }
         composed
     }
+}
+
+/// Shows `job`'s composite in the window `x_window` from memory through
+/// MIT-SHM, when the renderer is software and the window can take it.
+/// Ok(false): nothing shown, take the GL path (a hardware renderer, a
+/// composite of another size than the window, `quad`, no MIT-SHM, a pixmap
+/// or pbuffer drawable, an unsupported visual).
+///
+/// # Safety
+/// The layer's context is current on the drawable; `display` is open and
+/// `x_window` is the drawable's X drawable; the job's textures are shared
+/// with the layer's context.
+unsafe fn put_pixels(
+    r: &Real,
+    compositor: &mut GlCompositor,
+    drawn: &mut Drawn,
+    (display, x_window): (usize, u64),
+    size: (u32, u32),
+    job: &Job,
+) -> Result<bool> {
+    if matches!(drawn.image, WindowImage::Gl) {
+        return Ok(false);
+    }
+    let gl = &r.gl;
+    // SAFETY: the layer's context is current (contract).
+    let Some(plan) = (unsafe { compositor.pixel_plan(gl, job, size.0, size.1)? }) else {
+        return Ok(false);
+    };
+    let dpy = display as *mut xlib::Display;
+    if matches!(&drawn.image, WindowImage::Shm(img) if img.size() != size) {
+        if let WindowImage::Shm(old) = std::mem::replace(&mut drawn.image, WindowImage::Untried) {
+            // SAFETY: made on this open display.
+            unsafe { old.destroy(&r.xlib, dpy, Connection::Open) };
+        }
+    }
+    if matches!(drawn.image, WindowImage::Untried) {
+        // SAFETY: open display (contract).
+        drawn.image =
+            unsafe { shm_image(r, dpy, x_window, size) }.map_or(WindowImage::Gl, WindowImage::Shm);
+    }
+    let WindowImage::Shm(img) = &mut drawn.image else {
+        return Ok(false);
+    };
+    // SAFETY: the image was made on this open display for this window; the
+    // layer's context is current and the plan is for this job and size.
+    unsafe {
+        img.put_with(&r.xlib, dpy, x_window, &mut |t| {
+            compositor.fill_pixels(gl, job, plan, t)
+        })?
+    };
+    Ok(true)
+}
+
+/// A MIT-SHM image of `size` for `window` (its visual and depth); None when
+/// `window` is not an InputOutput window or MIT-SHM cannot serve it. X
+/// errors are trapped, never reach the program.
+///
+/// # Safety
+/// `dpy` is an open display.
+unsafe fn shm_image(
+    r: &Real,
+    dpy: *mut xlib::Display,
+    window: u64,
+    size: (u32, u32),
+) -> Option<ShmImage> {
+    // SAFETY: plain C struct, filled by Xlib.
+    let mut attrs: xlib::XWindowAttributes = unsafe { std::mem::zeroed() };
+    let (ok, err) = trap_x_errors(&r.xlib, dpy, || {
+        // SAFETY: open display; a bad window is an X error, trapped.
+        unsafe { (r.xlib.XGetWindowAttributes)(dpy, window, &mut attrs) }
+    });
+    if ok == 0 || err != 0 || attrs.class != xlib::InputOutput {
+        return None;
+    }
+    let trap = |f: &mut dyn FnMut()| trap_x_errors(&r.xlib, dpy, f).1;
+    // SAFETY: open display; the window's own visual and depth.
+    unsafe { ShmImage::create(&r.xlib, dpy, window, attrs.visual, attrs.depth, size, &trap) }
 }
