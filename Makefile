@@ -52,7 +52,8 @@ demo: examples
 
 lint:
 	$(CARGO) fmt --all -- --check
-	$(CARGO) clippy $(CARGO_PROFILE_FLAG) --all-targets -- -D warnings
+	$(CARGO) clippy $(CARGO_PROFILE_FLAG) --workspace --all-targets -- -D warnings
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc $(CARGO_PROFILE_FLAG) --workspace --no-deps
 
 # The bounded fuzz run of tests/fuzz.rs lasts this long (plain `cargo test`: 2 s).
 FUZZ_SECONDS ?= 60

@@ -1229,7 +1229,7 @@ gls_result gls_stereo_camera_eye(double convergence,
  * NVIDIA's clip-space stereo (seed 004): the projection that maps every
  * vertex to x_clip' = x_clip + eye·s·(w_clip − C), eye = −1 left, +1 right.
  * For a perspective projection P this is the parallel-axis camera with half
- * offset h = s·C / P[0][0] and zero parallax at depth C.
+ * offset h = s·C / `P[0][0]` and zero parallax at depth C.
  *
  * @param projection 16 doubles, column-major; must not be NULL.
  * @param separation s, finite. @param convergence C, finite.
@@ -1523,7 +1523,7 @@ gls_result gls_starbase_close(int32_t fildes);
 
 /**
  * Starbase's gescape(fildes, op, arg1, arg2). The emulation has one
- * escape, GLS_STARBASE_STEREO: arg1->i[0] non-zero (TRUE) turns
+ * escape, GLS_STARBASE_STEREO: `arg1->i[0]` non-zero (TRUE) turns
  * sync-doubling on for the surface fildes names — its mono frame is then
  * read as left eye = upper half, right eye = lower half, each stretched ×2
  * vertically (GLS_INPUT_SYNC_DOUBLED), and those eyes go to every output
@@ -1620,7 +1620,7 @@ gls_result gls_draw_buffer(uint32_t gl_buffer);
 
 /**
  * glDrawBuffers for the emulated default framebuffer: output i goes to
- * bufs[i] (GL_NONE, GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT,
+ * `bufs[i]` (GL_NONE, GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT,
  * GL_BACK_RIGHT; GL_BACK alone).
  *
  * @param n 0…GL_MAX_DRAW_BUFFERS (at most 8). @param bufs n values; must not be NULL when n > 0.

@@ -448,7 +448,7 @@ pub unsafe extern "C" fn gls_stereo_camera_eye(
 /// NVIDIA's clip-space stereo (seed 004): the projection that maps every
 /// vertex to x_clip' = x_clip + eye·s·(w_clip − C), eye = −1 left, +1 right.
 /// For a perspective projection P this is the parallel-axis camera with half
-/// offset h = s·C / P[0][0] and zero parallax at depth C.
+/// offset h = s·C / `P[0][0]` and zero parallax at depth C.
 ///
 /// @param projection 16 doubles, column-major; must not be NULL.
 /// @param separation s, finite. @param convergence C, finite.

@@ -1,5 +1,5 @@
 //! The C ABI: the only place with `extern "C"`. One module per handle or
-//! topic; every export goes through [`boundary`]'s `ffi_boundary!`.
+//! topic; every export goes through `boundary`'s `ffi_boundary!`.
 //!
 //! Conventions (see the README): functions are `gls_<object>_<verb>`, return
 //! a `gls_result`, write outputs through trailing `*_out` pointers only on

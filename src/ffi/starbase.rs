@@ -151,7 +151,7 @@ pub extern "C" fn gls_starbase_close(fildes: i32) -> gls_result {
 }
 
 /// Starbase's gescape(fildes, op, arg1, arg2). The emulation has one
-/// escape, GLS_STARBASE_STEREO: arg1->i[0] non-zero (TRUE) turns
+/// escape, GLS_STARBASE_STEREO: `arg1->i[0]` non-zero (TRUE) turns
 /// sync-doubling on for the surface fildes names — its mono frame is then
 /// read as left eye = upper half, right eye = lower half, each stretched ×2
 /// vertically (GLS_INPUT_SYNC_DOUBLED), and those eyes go to every output

@@ -150,7 +150,7 @@ pub extern "C" fn gls_draw_buffer(gl_buffer: u32) -> gls_result {
 }
 
 /// glDrawBuffers for the emulated default framebuffer: output i goes to
-/// bufs[i] (GL_NONE, GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT,
+/// `bufs[i]` (GL_NONE, GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT,
 /// GL_BACK_RIGHT; GL_BACK alone).
 ///
 /// @param n 0…GL_MAX_DRAW_BUFFERS (at most 8). @param bufs n values; must not be NULL when n > 0.

@@ -483,7 +483,7 @@ impl StereoContext {
         Ok(())
     }
 
-    /// After the real glXMake[Context]Current made this context current on
+    /// After the real `glXMake[Context]Current` made this context current on
     /// `draw` / `read`: makes sure each drawable has its emulated
     /// framebuffer at the drawable's size, and binds it where the program
     /// has framebuffer 0 (or had this context's framebuffer of another

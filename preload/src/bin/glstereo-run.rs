@@ -195,8 +195,8 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
 }
 
 /// The preload library: $GLSTEREO_PRELOAD_LIB, else beside this program
-/// (the build tree, target/<profile>/), else in ../lib, ../lib64 or
-/// ../lib/<arch>-linux-gnu (an installed prefix).
+/// (the build tree, `target/<profile>/`), else in ../lib, ../lib64 or
+/// `../lib/<arch>-linux-gnu` (an installed prefix).
 fn find_preload() -> Result<PathBuf, String> {
     if let Some(p) = std::env::var_os(ENV_PRELOAD_LIB).filter(|p| !p.is_empty()) {
         let p = PathBuf::from(p);
