@@ -121,6 +121,8 @@ bench:
 	$(CARGO) bench --bench frame_loop
 	$(CARGO) bench --bench frame_loop -- --scene light --capture --no-control
 	$(CARGO) bench --bench compose
+	$(CARGO) build --release -p glstereo-preload
+	sh benches/glx_frame_loop.sh
 
 clean:
 	$(CARGO) clean
