@@ -75,7 +75,7 @@ impl BufferSet {
 
     /// A set of the given buffers.
     pub fn of(buffers: &[ColorBuffer]) -> BufferSet {
-        BufferSet(buffers.iter().fold(0, |m, b| m | b.bit()))
+        buffers.iter().copied().collect()
     }
 
     /// Whether `b` is in the set.
@@ -103,6 +103,12 @@ impl BufferSet {
     /// Number of buffers.
     pub fn len(self) -> usize {
         self.0.count_ones() as usize
+    }
+}
+
+impl FromIterator<ColorBuffer> for BufferSet {
+    fn from_iter<I: IntoIterator<Item = ColorBuffer>>(buffers: I) -> BufferSet {
+        BufferSet(buffers.into_iter().fold(0, |m, b| m | b.bit()))
     }
 }
 

@@ -616,13 +616,12 @@ impl EmulatedFramebuffer {
         self.read_name
     }
 
-    /// The buffers the current draw state writes.
+    /// The buffers the current draw state writes (no allocation: asked on
+    /// every glFlush under the interposer).
     pub fn draw_set(&self) -> BufferSet {
         match self.draw {
             DrawState::Single { set, .. } => set,
-            DrawState::Multi { n, bufs, .. } => {
-                BufferSet::of(&bufs[..n].iter().flatten().copied().collect::<Vec<_>>())
-            }
+            DrawState::Multi { n, bufs, .. } => bufs[..n].iter().flatten().copied().collect(),
         }
     }
 
