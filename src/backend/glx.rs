@@ -551,49 +551,79 @@ unsafe impl Sync for GlxSurface {}
 /// Queued window events kept at most (older ones are dropped).
 const MAX_QUEUED_EVENTS: usize = 256;
 
+/// The event types [`GlxSurface::pump`] takes from the queue.
+const WINDOW_EVENT_TYPES: [c_int; 4] = [
+    xlib::ConfigureNotify,
+    xlib::ClientMessage,
+    xlib::KeyPress,
+    xlib::DestroyNotify,
+];
+
+/// XCheckIfEvent predicate: an event of [`WINDOW_EVENT_TYPES`] for the
+/// window `arg` points to. Runs with the display locked: calls no Xlib.
+unsafe extern "C" fn is_window_event(
+    _display: *mut xlib::Display,
+    ev: *mut xlib::XEvent,
+    arg: xlib::XPointer,
+) -> xlib::Bool {
+    // SAFETY: Xlib passes a queued event; `arg` is the &Window pump passed.
+    let (ty, window, ours) = unsafe {
+        (
+            (*ev).get_type(),
+            (*ev).any.window,
+            *arg.cast::<xlib::Window>(),
+        )
+    };
+    (window == ours && WINDOW_EVENT_TYPES.contains(&ty)) as xlib::Bool
+}
+
 impl GlxSurface {
-    /// Reads every pending event of this window (no round trip).
+    /// Reads every pending event of this window, in the order they came
+    /// (no round trip). Runs on every frame ([`PlatformSurface::drawable_size`]),
+    /// so the queue is scanned and the connection polled once per call,
+    /// not once per event type.
     fn pump(&self) {
         let sh = &self.shared;
         if sh.state.lost.load(Ordering::SeqCst) {
             return;
         }
         let mut st = self.state.recover();
-        // SAFETY: valid display and window; `ev` is a plain C union filled by Xlib.
+        let mut window = self.window;
+        // SAFETY: valid display; `ev` is a plain C union filled by Xlib; the
+        // predicate reads only the event and `window`, which outlives the call.
         unsafe {
             let mut ev: xlib::XEvent = std::mem::zeroed();
-            for ty in [
-                xlib::ConfigureNotify,
-                xlib::ClientMessage,
-                xlib::KeyPress,
-                xlib::DestroyNotify,
-            ] {
-                while (sh.xlib.XCheckTypedWindowEvent)(sh.display, self.window, ty, &mut ev) != 0 {
-                    match ty {
-                        xlib::ConfigureNotify => {
-                            let c = ev.configure;
-                            let size = (c.width as u32, c.height as u32);
-                            if c.width > 0 && c.height > 0 && size != st.size {
-                                st.size = size;
-                                st.events.push_back(WindowEvent::Resized(size.0, size.1));
-                            }
-                        }
-                        xlib::ClientMessage => {
-                            if ev.client_message.data.get_long(0) as xlib::Atom == sh.wm_delete {
-                                st.close_requested = true;
-                                st.events.push_back(WindowEvent::CloseRequested);
-                            }
-                        }
-                        xlib::DestroyNotify => st.close_requested = true,
-                        _ => {
-                            let mut key = ev.key;
-                            let sym = (sh.xlib.XLookupKeysym)(&mut key, 0);
-                            st.events.push_back(WindowEvent::Key(sym as u32));
+            while (sh.xlib.XCheckIfEvent)(
+                sh.display,
+                &mut ev,
+                Some(is_window_event),
+                (&mut window as *mut xlib::Window).cast(),
+            ) != 0
+            {
+                match ev.get_type() {
+                    xlib::ConfigureNotify => {
+                        let c = ev.configure;
+                        let size = (c.width as u32, c.height as u32);
+                        if c.width > 0 && c.height > 0 && size != st.size {
+                            st.size = size;
+                            st.events.push_back(WindowEvent::Resized(size.0, size.1));
                         }
                     }
-                    while st.events.len() > MAX_QUEUED_EVENTS {
-                        st.events.pop_front();
+                    xlib::ClientMessage => {
+                        if ev.client_message.data.get_long(0) as xlib::Atom == sh.wm_delete {
+                            st.close_requested = true;
+                            st.events.push_back(WindowEvent::CloseRequested);
+                        }
                     }
+                    xlib::DestroyNotify => st.close_requested = true,
+                    _ => {
+                        let mut key = ev.key;
+                        let sym = (sh.xlib.XLookupKeysym)(&mut key, 0);
+                        st.events.push_back(WindowEvent::Key(sym as u32));
+                    }
+                }
+                while st.events.len() > MAX_QUEUED_EVENTS {
+                    st.events.pop_front();
                 }
             }
         }
