@@ -29,7 +29,7 @@ use x11_dl::glx::GLXContext;
 use x11_dl::xlib;
 
 use super::capture;
-use super::real::{Real, real};
+use super::real::{Real, loaded, real};
 use super::registry;
 use super::settings;
 use crate::backend::glx::trap_x_errors;
@@ -490,7 +490,7 @@ impl StereoContext {
     /// drawable). The program's state is otherwise untouched; its pending
     /// GL errors are kept for its glGetError.
     pub fn bind(self: &Arc<Self>, draw: u64, read: u64) -> Result<()> {
-        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let r = loaded()?;
         self.check_open()?;
         let gl = &r.gl;
         // Sizes first: the registry lock is never taken under a state lock.
@@ -587,7 +587,7 @@ impl StereoContext {
     /// window was resized, and if so resizes the buffers before the program
     /// draws (as a real default framebuffer follows its window).
     pub fn viewport_hint(self: &Arc<Self>, cur: &Current, width: i32, height: i32) -> Result<()> {
-        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let r = loaded()?;
         let current_size = {
             let mut st = self.lock();
             let Some(drawn) = st.fbs.get_mut(&cur.draw) else {
@@ -614,7 +614,7 @@ impl StereoContext {
     /// current before is made current again. `cur` is this thread's
     /// current stereo context when it is this one.
     pub fn present(self: &Arc<Self>, drawable: u64, flip: bool, here: bool) -> Result<()> {
-        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let r = loaded()?;
         self.check_open()?;
         let gl = &r.gl;
         let saved = Saved::now(r);
