@@ -680,7 +680,7 @@ impl StereoContext {
     ) -> Result<()> {
         let gl = &r.gl;
         let s = settings::get();
-        let mode = s.window_mode();
+        let mode = settings::window_mode();
         let CtxState {
             fbs, compositor, ..
         } = st;
