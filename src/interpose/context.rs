@@ -611,20 +611,23 @@ impl StereoContext {
     /// as they are (glFlush/glFinish after drawing to a front buffer).
     /// The eyes are composed in the output mode into the drawable's real
     /// back buffer in the layer's context, which swaps it; then what was
-    /// current before is made current again. `cur` is this thread's
-    /// current stereo context when it is this one.
+    /// current before is made current again. `here`: this is the stereo
+    /// context current on this thread, on `drawable`.
     pub fn present(self: &Arc<Self>, drawable: u64, flip: bool, here: bool) -> Result<()> {
         let r = loaded()?;
         self.check_open()?;
-        let gl = &r.gl;
         let saved = Saved::now(r);
-        let dpy = self.display as *mut xlib::Display;
         if !here {
             // Not current on this thread (and not on another: checked by the
             // caller): bind it here for the flip.
             // SAFETY: valid display and drawable; the program's context.
             let ok = unsafe {
-                (r.glx.glXMakeContextCurrent)(dpy, drawable, drawable, self.ctx as GLXContext)
+                (r.glx.glXMakeContextCurrent)(
+                    self.display as *mut xlib::Display,
+                    drawable,
+                    drawable,
+                    self.ctx as GLXContext,
+                )
             };
             if ok == 0 {
                 return Err(Error::Gl(
@@ -632,22 +635,23 @@ impl StereoContext {
                 ));
             }
         }
-        let window = match drawable_size(r, self.display, drawable) {
-            Ok(size) => size,
-            Err(e) => {
-                saved.restore(r, self.display);
-                return Err(e);
-            }
-        };
+        let result = self.flip_and_show(r, drawable, flip);
+        saved.restore(r, self.display);
+        result
+    }
+
+    /// [`Self::present`] with the program's context current on `drawable`:
+    /// flips, then shows the fronts from the layer's context. Whatever it
+    /// leaves current, the caller puts back what was current before.
+    fn flip_and_show(&self, r: &Real, drawable: u64, flip: bool) -> Result<()> {
+        let gl = &r.gl;
+        let window = drawable_size(r, self.display, drawable)?;
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
-        let Some(drawn) = st.fbs.get_mut(&drawable) else {
-            drop(st);
-            saved.restore(r, self.display);
-            return Err(Error::invalid_operation(
-                "no stereo buffers for this drawable",
-            ));
-        };
+        let drawn = st
+            .fbs
+            .get_mut(&drawable)
+            .ok_or_else(|| Error::invalid_operation("no stereo buffers for this drawable"))?;
         // SAFETY: the program's context is current on this thread.
         unsafe {
             if flip {
@@ -659,12 +663,8 @@ impl StereoContext {
         drawn.frames += 1;
         drawn.viewport_checked = false;
         let frame_index = drawn.frames - 1;
-        let result = self.make_ours_current(r, drawable).and_then(|()| {
-            self.compose_and_swap(r, &mut st, (drawable, x_window), window, frame_index)
-        });
-        drop(st);
-        saved.restore(r, self.display);
-        result
+        self.make_ours_current(r, drawable)?;
+        self.compose_and_swap(r, &mut st, (drawable, x_window), window, frame_index)
     }
 
     /// In the layer's context, current on `drawable` (of the given size;
