@@ -714,11 +714,17 @@ impl StereoContext {
         } else {
             Ok(false)
         };
-        let composed = match shown {
-            Ok(true) => Ok(()),
+        // `in_gl`: the frame is shown through the window's GL buffers (the
+        // swap, or the glFinish of a single-buffered window, below), even
+        // when composing into them failed.
+        let (composed, in_gl) = match shown {
+            Ok(true) => (Ok(()), false),
             // SAFETY: as above.
-            Ok(false) => unsafe { compositor.compose_window(gl, &job, 0, width, height) },
-            Err(ref e) => Err(e.clone()),
+            Ok(false) => (
+                unsafe { compositor.compose_window(gl, &job, 0, width, height) },
+                true,
+            ),
+            Err(e) => (Err(e), false),
         };
         // Read the eyes back before the swap: with Mesa's software GLX,
         // binding framebuffer 0 after a swap (as reading back ends by doing)
@@ -747,11 +753,9 @@ impl StereoContext {
         }
         // SAFETY: valid display and drawable, current in our context.
         unsafe {
-            if shown.is_err() || shown == Ok(true) {
-                // Nothing composed into the window's GL buffers to show.
-            } else if self.shape.double_buffered {
+            if in_gl && self.shape.double_buffered {
                 (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable);
-            } else {
+            } else if in_gl {
                 // A single-buffered window was drawn in its front buffer.
                 gl.Finish();
             }
