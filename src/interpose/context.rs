@@ -29,7 +29,7 @@ use x11_dl::glx::GLXContext;
 use x11_dl::xlib;
 
 use super::capture;
-use super::real::{Real, real};
+use super::real::{Real, loaded, real};
 use super::registry;
 use super::settings;
 use crate::backend::glx::trap_x_errors;
@@ -490,7 +490,7 @@ impl StereoContext {
     /// drawable). The program's state is otherwise untouched; its pending
     /// GL errors are kept for its glGetError.
     pub fn bind(self: &Arc<Self>, draw: u64, read: u64) -> Result<()> {
-        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let r = loaded()?;
         self.check_open()?;
         let gl = &r.gl;
         // Sizes first: the registry lock is never taken under a state lock.
@@ -587,7 +587,7 @@ impl StereoContext {
     /// window was resized, and if so resizes the buffers before the program
     /// draws (as a real default framebuffer follows its window).
     pub fn viewport_hint(self: &Arc<Self>, cur: &Current, width: i32, height: i32) -> Result<()> {
-        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let r = loaded()?;
         let current_size = {
             let mut st = self.lock();
             let Some(drawn) = st.fbs.get_mut(&cur.draw) else {
@@ -611,20 +611,23 @@ impl StereoContext {
     /// as they are (glFlush/glFinish after drawing to a front buffer).
     /// The eyes are composed in the output mode into the drawable's real
     /// back buffer in the layer's context, which swaps it; then what was
-    /// current before is made current again. `cur` is this thread's
-    /// current stereo context when it is this one.
+    /// current before is made current again. `here`: this is the stereo
+    /// context current on this thread, on `drawable`.
     pub fn present(self: &Arc<Self>, drawable: u64, flip: bool, here: bool) -> Result<()> {
-        let r = real().map_err(|e| Error::BackendUnavailable(e.into()))?;
+        let r = loaded()?;
         self.check_open()?;
-        let gl = &r.gl;
         let saved = Saved::now(r);
-        let dpy = self.display as *mut xlib::Display;
         if !here {
             // Not current on this thread (and not on another: checked by the
             // caller): bind it here for the flip.
             // SAFETY: valid display and drawable; the program's context.
             let ok = unsafe {
-                (r.glx.glXMakeContextCurrent)(dpy, drawable, drawable, self.ctx as GLXContext)
+                (r.glx.glXMakeContextCurrent)(
+                    self.display as *mut xlib::Display,
+                    drawable,
+                    drawable,
+                    self.ctx as GLXContext,
+                )
             };
             if ok == 0 {
                 return Err(Error::Gl(
@@ -632,22 +635,23 @@ impl StereoContext {
                 ));
             }
         }
-        let window = match drawable_size(r, self.display, drawable) {
-            Ok(size) => size,
-            Err(e) => {
-                saved.restore(r, self.display);
-                return Err(e);
-            }
-        };
+        let result = self.flip_and_show(r, drawable, flip);
+        saved.restore(r, self.display);
+        result
+    }
+
+    /// [`Self::present`] with the program's context current on `drawable`:
+    /// flips, then shows the fronts from the layer's context. Whatever it
+    /// leaves current, the caller puts back what was current before.
+    fn flip_and_show(&self, r: &Real, drawable: u64, flip: bool) -> Result<()> {
+        let gl = &r.gl;
+        let window = drawable_size(r, self.display, drawable)?;
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
-        let Some(drawn) = st.fbs.get_mut(&drawable) else {
-            drop(st);
-            saved.restore(r, self.display);
-            return Err(Error::invalid_operation(
-                "no stereo buffers for this drawable",
-            ));
-        };
+        let drawn = st
+            .fbs
+            .get_mut(&drawable)
+            .ok_or_else(|| Error::invalid_operation("no stereo buffers for this drawable"))?;
         // SAFETY: the program's context is current on this thread.
         unsafe {
             if flip {
@@ -659,12 +663,8 @@ impl StereoContext {
         drawn.frames += 1;
         drawn.viewport_checked = false;
         let frame_index = drawn.frames - 1;
-        let result = self.make_ours_current(r, drawable).and_then(|()| {
-            self.compose_and_swap(r, &mut st, (drawable, x_window), window, frame_index)
-        });
-        drop(st);
-        saved.restore(r, self.display);
-        result
+        self.make_ours_current(r, drawable)?;
+        self.compose_and_swap(r, &mut st, (drawable, x_window), window, frame_index)
     }
 
     /// In the layer's context, current on `drawable` (of the given size;
@@ -680,7 +680,7 @@ impl StereoContext {
     ) -> Result<()> {
         let gl = &r.gl;
         let s = settings::get();
-        let mode = s.window_mode();
+        let mode = settings::window_mode();
         let CtxState {
             fbs, compositor, ..
         } = st;
@@ -714,11 +714,17 @@ impl StereoContext {
         } else {
             Ok(false)
         };
-        let composed = match shown {
-            Ok(true) => Ok(()),
+        // `in_gl`: the frame is shown through the window's GL buffers (the
+        // swap, or the glFinish of a single-buffered window, below), even
+        // when composing into them failed.
+        let (composed, in_gl) = match shown {
+            Ok(true) => (Ok(()), false),
             // SAFETY: as above.
-            Ok(false) => unsafe { compositor.compose_window(gl, &job, 0, width, height) },
-            Err(ref e) => Err(e.clone()),
+            Ok(false) => (
+                unsafe { compositor.compose_window(gl, &job, 0, width, height) },
+                true,
+            ),
+            Err(e) => (Err(e), false),
         };
         // Read the eyes back before the swap: with Mesa's software GLX,
         // binding framebuffer 0 after a swap (as reading back ends by doing)
@@ -747,11 +753,9 @@ impl StereoContext {
         }
         // SAFETY: valid display and drawable, current in our context.
         unsafe {
-            if shown.is_err() || shown == Ok(true) {
-                // Nothing composed into the window's GL buffers to show.
-            } else if self.shape.double_buffered {
+            if in_gl && self.shape.double_buffered {
                 (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable);
-            } else {
+            } else if in_gl {
                 // A single-buffered window was drawn in its front buffer.
                 gl.Finish();
             }

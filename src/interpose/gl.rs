@@ -195,7 +195,8 @@ pub fn get_error() -> Result<u32> {
     Ok(unsafe { r.gl.GetError() })
 }
 
-/// Whether the layer may answer `pname` for the default framebuffer.
+/// Whether the layer may answer `pname` for the default framebuffer: the
+/// pnames of [`default_framebuffer_query`], and those [`from_window`].
 fn answered(pname: u32) -> bool {
     matches!(
         pname,
@@ -205,15 +206,8 @@ fn answered(pname: u32) -> bool {
             | GL_READ_BUFFER
             | GL_DRAW_FRAMEBUFFER_BINDING
             | GL_READ_FRAMEBUFFER_BINDING
-            | GL_RED_BITS
-            | GL_GREEN_BITS
-            | GL_BLUE_BITS
-            | GL_ALPHA_BITS
-            | GL_DEPTH_BITS
-            | GL_STENCIL_BITS
-            | GL_SAMPLES
-            | GL_SAMPLE_BUFFERS
     ) || (GL_DRAW_BUFFER0..=GL_DRAW_BUFFER15).contains(&pname)
+        || from_window(pname)
 }
 
 /// Whether `pname` describes the draw framebuffer's buffers, which the
@@ -279,25 +273,41 @@ fn emulated_value(gl: &Gl, pname: u32) -> Option<i32> {
     default_framebuffer_query(pname, cur.sc.shape(), draw, read)
 }
 
-/// glGetIntegerv. Refused: `data` NULL (`refuse_null`).
+/// glGetIntegerv / Booleanv / Floatv / Doublev: the driver's answer
+/// (`forward`), then the layer's for the pnames it answers, converted as
+/// GL converts an integer state to `T`. Refused: `data` NULL (`refuse_null`).
 ///
 /// # Safety
 /// `data` must be valid for the values `pname` returns (GL's contract).
-pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
+unsafe fn get_v<T>(
+    pname: u32,
+    data: *mut T,
+    forward: unsafe fn(&Gl, u32, *mut T),
+    convert: fn(i32) -> T,
+) -> Result<()> {
     let r = loaded()?;
     if data.is_null() {
         return Err(refuse_null(r, "data"));
     }
     // SAFETY: forwarded call.
-    unsafe { r.gl.GetIntegerv(pname, data) };
+    unsafe { forward(&r.gl, pname, data) };
     if !answered(pname) || !stereo_current() {
         return Ok(());
     }
     if let Some(v) = emulated_value(&r.gl, pname) {
         // SAFETY: non-NULL; every answered pname returns one value.
-        unsafe { *data = v };
+        unsafe { *data = convert(v) };
     }
     Ok(())
+}
+
+/// glGetIntegerv. Refused: `data` NULL (`refuse_null`).
+///
+/// # Safety
+/// `data` must be valid for the values `pname` returns (GL's contract).
+pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
+    // SAFETY: forwarded contract.
+    unsafe { get_v(pname, data, Gl::GetIntegerv, |v| v) }
 }
 
 /// glGetBooleanv.
@@ -305,20 +315,8 @@ pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
 /// # Safety
 /// As [`get_integerv`].
 pub unsafe fn get_booleanv(pname: u32, data: *mut u8) -> Result<()> {
-    let r = loaded()?;
-    if data.is_null() {
-        return Err(refuse_null(r, "data"));
-    }
-    // SAFETY: forwarded call.
-    unsafe { r.gl.GetBooleanv(pname, data) };
-    if !answered(pname) || !stereo_current() {
-        return Ok(());
-    }
-    if let Some(v) = emulated_value(&r.gl, pname) {
-        // SAFETY: non-NULL; one value.
-        unsafe { *data = (v != 0) as u8 };
-    }
-    Ok(())
+    // SAFETY: forwarded contract.
+    unsafe { get_v(pname, data, Gl::GetBooleanv, |v| (v != 0) as u8) }
 }
 
 /// glGetFloatv.
@@ -326,20 +324,8 @@ pub unsafe fn get_booleanv(pname: u32, data: *mut u8) -> Result<()> {
 /// # Safety
 /// As [`get_integerv`].
 pub unsafe fn get_floatv(pname: u32, data: *mut f32) -> Result<()> {
-    let r = loaded()?;
-    if data.is_null() {
-        return Err(refuse_null(r, "data"));
-    }
-    // SAFETY: forwarded call.
-    unsafe { r.gl.GetFloatv(pname, data) };
-    if !answered(pname) || !stereo_current() {
-        return Ok(());
-    }
-    if let Some(v) = emulated_value(&r.gl, pname) {
-        // SAFETY: non-NULL; one value.
-        unsafe { *data = v as f32 };
-    }
-    Ok(())
+    // SAFETY: forwarded contract.
+    unsafe { get_v(pname, data, Gl::GetFloatv, |v| v as f32) }
 }
 
 /// glGetDoublev.
@@ -347,20 +333,8 @@ pub unsafe fn get_floatv(pname: u32, data: *mut f32) -> Result<()> {
 /// # Safety
 /// As [`get_integerv`].
 pub unsafe fn get_doublev(pname: u32, data: *mut f64) -> Result<()> {
-    let r = loaded()?;
-    if data.is_null() {
-        return Err(refuse_null(r, "data"));
-    }
-    // SAFETY: forwarded call.
-    unsafe { r.gl.GetDoublev(pname, data) };
-    if !answered(pname) || !stereo_current() {
-        return Ok(());
-    }
-    if let Some(v) = emulated_value(&r.gl, pname) {
-        // SAFETY: non-NULL; one value.
-        unsafe { *data = v as f64 };
-    }
-    Ok(())
+    // SAFETY: forwarded contract.
+    unsafe { get_v(pname, data, Gl::GetDoublev, f64::from) }
 }
 
 /// Binds the emulated framebuffer(s) at `target` in place of framebuffer

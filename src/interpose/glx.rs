@@ -127,7 +127,7 @@ pub unsafe fn choose_visual(
     // SAFETY: the caller's list, read by its structure.
     let list = unsafe { read_visual_list(attribs) };
     let (mut stripped, stereo) = strip_visual_stereo(&list);
-    if stereo && settings::get().wants_native_quad() {
+    if stereo && settings::wants_native_quad() {
         // SAFETY: forwarded call.
         let v = unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) };
         if !v.is_null() {
@@ -219,7 +219,7 @@ pub unsafe fn choose_fbconfig(
     if !stereo {
         return Ok(choose(attribs));
     }
-    if settings::get().wants_native_quad() {
+    if settings::wants_native_quad() {
         let native = choose(attribs);
         // SAFETY: nelements was written by the real call when it returned a list.
         if !native.is_null() && unsafe { *nelements } > 0 {

@@ -6,53 +6,35 @@
 use std::sync::OnceLock;
 
 use crate::output::OutputMode;
-use crate::output::options::{OutputOptions, OutputSettings};
+use crate::output::options::OutputSettings;
 use crate::surface::DEFAULT_OUTPUT;
-
-/// The output settings in effect.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Settings {
-    /// GLSTEREO_MODE (None: unset).
-    pub mode: Option<OutputMode>,
-    /// Swap, crosstalk, saturation.
-    pub options: OutputOptions,
-}
-
-impl Settings {
-    /// The mode windows are composed in: GLSTEREO_MODE, or
-    /// [`DEFAULT_OUTPUT`] (anaglyph-red-cyan) when it is unset or `quad`
-    /// (a window of an emulated stereo visual has no right buffers).
-    pub fn window_mode(&self) -> OutputMode {
-        match self.mode {
-            None | Some(OutputMode::Quad) => DEFAULT_OUTPUT,
-            Some(m) => m,
-        }
-    }
-
-    /// Whether the user asked for the driver's own quad buffer
-    /// (GLSTEREO_MODE=quad): then a server with real stereo visuals is
-    /// used as it is, and the layer stays out of the way.
-    pub fn wants_native_quad(&self) -> bool {
-        self.mode == Some(OutputMode::Quad)
-    }
-}
 
 /// The settings, read on first use. A bad value is reported on stderr once
 /// and the defaults are used (glstereo-run refuses bad values before the
 /// program starts).
-pub fn get() -> &'static Settings {
-    static SETTINGS: OnceLock<Settings> = OnceLock::new();
-    SETTINGS.get_or_init(|| match OutputSettings::from_env() {
-        Ok(s) => Settings {
-            mode: s.mode,
-            options: s.options,
-        },
-        Err(e) => {
+pub fn get() -> &'static OutputSettings {
+    static SETTINGS: OnceLock<OutputSettings> = OnceLock::new();
+    SETTINGS.get_or_init(|| {
+        OutputSettings::from_env().unwrap_or_else(|e| {
             super::warn(&format!("{e}; using the defaults"));
-            Settings {
-                mode: None,
-                options: OutputOptions::default(),
-            }
-        }
+            OutputSettings::default()
+        })
     })
+}
+
+/// The mode windows are composed in: GLSTEREO_MODE, or [`DEFAULT_OUTPUT`]
+/// (anaglyph-red-cyan) when it is unset or `quad` (a window of an emulated
+/// stereo visual has no right buffers).
+pub fn window_mode() -> OutputMode {
+    match get().mode {
+        None | Some(OutputMode::Quad) => DEFAULT_OUTPUT,
+        Some(m) => m,
+    }
+}
+
+/// Whether the user asked for the driver's own quad buffer
+/// (GLSTEREO_MODE=quad): then a server with real stereo visuals is used as
+/// it is, and the layer stays out of the way.
+pub fn wants_native_quad() -> bool {
+    get().mode == Some(OutputMode::Quad)
 }

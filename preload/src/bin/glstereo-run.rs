@@ -10,6 +10,7 @@ use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
+use glstereo::interpose::capture::ENV_CAPTURE_DIR;
 use glstereo::output::mode::{ALIASES, AliasSource};
 use glstereo::output::options::{ENV_MODE, ENV_SWAP_EYES, OutputSettings};
 use glstereo::output::{AnaglyphColors, AnaglyphMethod, OutputMode};
@@ -18,8 +19,6 @@ use glstereo::output::{AnaglyphColors, AnaglyphMethod, OutputMode};
 const PRELOAD: &str = "libglstereo_preload.so";
 /// Overrides where the preload library is looked for.
 const ENV_PRELOAD_LIB: &str = "GLSTEREO_PRELOAD_LIB";
-/// Where captures go (read by the layer).
-const ENV_CAPTURE_DIR: &str = "GLSTEREO_CAPTURE_DIR";
 /// Exit status for a usage or set-up error (the program never ran).
 const USAGE_ERROR: u8 = 2;
 
