@@ -21,7 +21,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use x11_dl::glx::{self, Glx};
 use x11_dl::xlib::{self, Xlib};
 
-use super::xshm::{Connection, ShmImage};
+use super::xshm::{Connection, ShmImage, ShmSlot};
 use super::{BackendKind, ContextRole, Platform, PlatformSurface, WindowEvent};
 use crate::config::{Config, ConfigRequest, EmulationPolicy, glx as attr};
 use crate::error::{Error, Result};
@@ -474,7 +474,7 @@ impl Platform for GlxPlatform {
             colormap,
             visual: info.visual,
             depth: info.depth,
-            shm: Mutex::new(ShmState::Untried),
+            shm: Mutex::new(ShmSlot::Untried),
             app: std::ptr::null_mut(),
             compositor: std::ptr::null_mut(),
             state: Mutex::new(WindowState {
@@ -518,16 +518,6 @@ struct WindowState {
     events: VecDeque<WindowEvent>,
 }
 
-/// Whether the window shows CPU pixels through MIT-SHM ([`super::xshm`]).
-enum ShmState {
-    /// Not tried yet.
-    Untried,
-    /// MIT-SHM is missing or unusable here: always the GL path.
-    Unsupported,
-    /// An attached image (remade when the window's size changes).
-    Ready(ShmImage),
-}
-
 /// A window with two GLX contexts sharing objects.
 struct GlxSurface {
     shared: Arc<GlxShared>,
@@ -536,7 +526,8 @@ struct GlxSurface {
     /// The window's visual and depth (for MIT-SHM images).
     visual: *mut xlib::Visual,
     depth: c_int,
-    shm: Mutex<ShmState>,
+    /// Its MIT-SHM image, when it shows CPU pixels ([`super::xshm`]).
+    shm: Mutex<ShmSlot>,
     app: glx::GLXContext,
     compositor: glx::GLXContext,
     state: Mutex<WindowState>,
@@ -663,7 +654,7 @@ impl PlatformSurface for GlxSurface {
     }
 
     fn accepts_pixels(&self) -> bool {
-        !matches!(*self.shm.recover(), ShmState::Unsupported)
+        !self.shm.recover().unsupported()
     }
 
     fn present_pixels(
@@ -676,36 +667,31 @@ impl PlatformSurface for GlxSurface {
         if size != self.state.recover().size {
             return Ok(false);
         }
-        let mut shm = self.shm.recover();
-        if matches!(&*shm, ShmState::Ready(img) if img.size() != size) {
-            if let ShmState::Ready(old) = std::mem::replace(&mut *shm, ShmState::Untried) {
-                // SAFETY: made on this live connection (checked above).
-                unsafe { old.destroy(&sh.xlib, sh.display, Connection::Open) };
-            }
-        }
-        if matches!(&*shm, ShmState::Untried) {
-            let trap = |f: &mut dyn FnMut()| sh.trap(f).1;
-            // SAFETY: live connection; the window's own visual and depth.
-            let made = unsafe {
-                ShmImage::create(
-                    &sh.xlib,
-                    sh.display,
-                    self.window,
-                    self.visual,
-                    self.depth,
-                    size,
-                    &trap,
-                )
-            };
-            *shm = made.map_or(ShmState::Unsupported, ShmState::Ready);
-        }
-        let ShmState::Ready(img) = &mut *shm else {
-            return Ok(false);
+        let trap = |f: &mut dyn FnMut()| sh.trap(f).1;
+        // SAFETY: live connection (checked above); the window's own visual
+        // and depth.
+        let shown = unsafe {
+            self.shm.recover().put(
+                &sh.xlib,
+                sh.display,
+                self.window,
+                size,
+                || {
+                    ShmImage::create(
+                        &sh.xlib,
+                        sh.display,
+                        self.window,
+                        self.visual,
+                        self.depth,
+                        size,
+                        &trap,
+                    )
+                },
+                fill,
+            )?
         };
-        // SAFETY: the image was made on this live connection for this window.
-        unsafe { img.put_with(&sh.xlib, sh.display, self.window, fill)? };
         sh.check_alive()?;
-        Ok(true)
+        Ok(shown)
     }
 
     fn drawable_size(&self) -> Option<(u32, u32)> {
@@ -758,24 +744,13 @@ impl Drop for GlxSurface {
     fn drop(&mut self) {
         let sh = &self.shared;
         let alive = !sh.state.lost.load(Ordering::SeqCst);
-        let shm = std::mem::replace(
-            &mut *self.shm.lock().unwrap_or_else(|e| e.into_inner()),
-            ShmState::Unsupported,
-        );
-        if let ShmState::Ready(img) = shm {
-            // SAFETY: made on this connection; X calls only while it is alive.
-            unsafe {
-                img.destroy(
-                    &sh.xlib,
-                    sh.display,
-                    if alive {
-                        Connection::Open
-                    } else {
-                        Connection::Lost
-                    },
-                )
-            };
-        }
+        let connection = if alive {
+            Connection::Open
+        } else {
+            Connection::Lost
+        };
+        // SAFETY: made on this connection; X calls only while it is alive.
+        unsafe { self.shm.recover().release(&sh.xlib, sh.display, connection) };
         if !alive {
             return;
         }

@@ -48,6 +48,75 @@ pub(crate) enum Connection {
     Lost,
 }
 
+/// A window's MIT-SHM image: made on first use, remade when the window's
+/// size changes, given up for good when MIT-SHM cannot serve the window.
+#[derive(Default)]
+pub(crate) enum ShmSlot {
+    /// Not tried yet (or released).
+    #[default]
+    Untried,
+    /// MIT-SHM cannot serve this window: its frames take the GL path.
+    Unsupported,
+    /// An attached image.
+    Ready(ShmImage),
+}
+
+impl ShmSlot {
+    /// Whether MIT-SHM was found unable to serve the window.
+    pub(crate) fn unsupported(&self) -> bool {
+        matches!(self, ShmSlot::Unsupported)
+    }
+
+    /// Lets `fill` write a frame of `size` into the window's image and
+    /// sends it; the image is made with `make` first when there is none of
+    /// that size (None from `make`: unsupported from now on). Ok(false):
+    /// nothing shown, MIT-SHM cannot serve the window.
+    ///
+    /// # Safety
+    /// `display` is the open connection the image is (or `make` makes it)
+    /// on, `window` the window it was made for.
+    pub(crate) unsafe fn put(
+        &mut self,
+        xl: &Xlib,
+        display: *mut xlib::Display,
+        window: xlib::Window,
+        size: (u32, u32),
+        make: impl FnOnce() -> Option<ShmImage>,
+        fill: &mut dyn FnMut(PixelTarget<'_>) -> Result<()>,
+    ) -> Result<bool> {
+        if matches!(self, ShmSlot::Ready(img) if img.size() != size) {
+            // SAFETY: made on this open connection (contract).
+            unsafe { self.release(xl, display, Connection::Open) };
+        }
+        if matches!(self, ShmSlot::Untried) {
+            *self = make().map_or(ShmSlot::Unsupported, ShmSlot::Ready);
+        }
+        let ShmSlot::Ready(img) = self else {
+            return Ok(false);
+        };
+        // SAFETY: made on this open connection for this window (contract).
+        unsafe { img.put_with(xl, display, window, fill)? };
+        Ok(true)
+    }
+
+    /// Frees the image, if any (the slot is untried again); what is sent
+    /// to the server depends on `connection`.
+    ///
+    /// # Safety
+    /// As [`ShmImage::destroy`].
+    pub(crate) unsafe fn release(
+        &mut self,
+        xl: &Xlib,
+        display: *mut xlib::Display,
+        connection: Connection,
+    ) {
+        if let ShmSlot::Ready(img) = std::mem::take(self) {
+            // SAFETY: contract.
+            unsafe { img.destroy(xl, display, connection) };
+        }
+    }
+}
+
 /// A shared-memory XImage attached to the server.
 pub(crate) struct ShmImage {
     xext: &'static Xext,
@@ -58,8 +127,10 @@ pub(crate) struct ShmImage {
     layout: Layout,
     width: u32,
     height: u32,
-    /// A put was sent and not yet known to be finished.
-    pending: bool,
+    /// The request number of the last put: the segment may be rewritten
+    /// once the server is known to have processed it (any XSync since, the
+    /// caller's own included, tells).
+    put_serial: Option<std::ffi::c_ulong>,
 }
 
 // SAFETY: the image is plain memory plus X resource ids; its owner uses it
@@ -155,7 +226,7 @@ impl ShmImage {
                 layout,
                 width,
                 height,
-                pending: false,
+                put_serial: None,
             })
         }
     }
@@ -179,11 +250,13 @@ impl ShmImage {
     ) -> Result<()> {
         // SAFETY: live display (contract); the segment holds
         // bytes_per_line × height bytes, mapped until drop; the server only
-        // reads it between a put and the XSync that follows.
+        // reads it between a put and the reply that shows it processed it.
         unsafe {
-            if self.pending {
+            if self
+                .put_serial
+                .is_some_and(|put| (xl.XLastKnownRequestProcessed)(display) < put)
+            {
                 (xl.XSync)(display, xlib::False);
-                self.pending = false;
             }
             let stride = (*self.image).bytes_per_line as usize;
             let data = std::slice::from_raw_parts_mut(
@@ -196,6 +269,7 @@ impl ShmImage {
                 size: (self.width, self.height),
                 layout: self.layout,
             })?;
+            self.put_serial = Some((xl.XNextRequest)(display));
             (self.xext.XShmPutImage)(
                 display,
                 window,
@@ -210,7 +284,6 @@ impl ShmImage {
                 xlib::False,
             );
             (xl.XFlush)(display);
-            self.pending = true;
         }
         Ok(())
     }

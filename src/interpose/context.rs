@@ -33,7 +33,7 @@ use super::real::{Real, loaded, real};
 use super::registry;
 use super::settings;
 use crate::backend::glx::trap_x_errors;
-use crate::backend::xshm::{Connection, ShmImage};
+use crate::backend::xshm::{Connection, ShmImage, ShmSlot};
 use crate::error::{Error, Result};
 use crate::framing::InputFraming;
 use crate::gl::Gl;
@@ -50,22 +50,13 @@ const GLX_HEIGHT: i32 = 0x801E;
 /// Orders binds, to find the context a drawable was bound to last.
 static BIND_TICK: AtomicU64 = AtomicU64::new(1);
 
-/// How a drawable's composite reaches its window.
-enum WindowImage {
-    /// Not tried yet.
-    Untried,
-    /// Through the layer's GL context and glXSwapBuffers: a hardware
-    /// renderer, no MIT-SHM, a pixmap or pbuffer, an unsupported visual.
-    Gl,
-    /// From memory through MIT-SHM (remade when the window's size changes).
-    Shm(ShmImage),
-}
-
 /// One drawable's emulated framebuffer in one context.
 pub(super) struct Drawn {
     pub(super) fb: EmulatedFramebuffer,
-    /// How its frames are shown (software renderers: from memory).
-    image: WindowImage,
+    /// Its window's MIT-SHM image, when frames are shown from memory
+    /// (unsupported: through the layer's GL context and glXSwapBuffers —
+    /// a pixmap or pbuffer, no MIT-SHM, an unsupported visual).
+    image: ShmSlot,
     /// Frames presented.
     frames: u64,
     /// [`BIND_TICK`] when last bound.
@@ -404,11 +395,12 @@ impl StereoContext {
         };
         let mut st = self.lock();
         for drawn in st.fbs.values_mut() {
-            if let WindowImage::Shm(img) = std::mem::replace(&mut drawn.image, WindowImage::Untried)
-            {
-                // SAFETY: made on this display, in the state the caller says.
-                unsafe { img.destroy(&r.xlib, self.display as *mut xlib::Display, connection) };
-            }
+            // SAFETY: made on this display, in the state the caller says.
+            unsafe {
+                drawn
+                    .image
+                    .release(&r.xlib, self.display as *mut xlib::Display, connection)
+            };
         }
     }
 
@@ -567,7 +559,7 @@ impl StereoContext {
                         d,
                         Drawn {
                             fb,
-                            image: WindowImage::Untried,
+                            image: ShmSlot::Untried,
                             frames: 0,
                             last_bound: 0,
                             viewport_checked: false,
@@ -794,7 +786,7 @@ unsafe fn put_pixels(
     size: (u32, u32),
     job: &Job,
 ) -> Result<bool> {
-    if matches!(drawn.image, WindowImage::Gl) {
+    if drawn.image.unsupported() {
         return Ok(false);
     }
     let gl = &r.gl;
@@ -803,28 +795,18 @@ unsafe fn put_pixels(
         return Ok(false);
     };
     let dpy = display as *mut xlib::Display;
-    if matches!(&drawn.image, WindowImage::Shm(img) if img.size() != size) {
-        if let WindowImage::Shm(old) = std::mem::replace(&mut drawn.image, WindowImage::Untried) {
-            // SAFETY: made on this open display.
-            unsafe { old.destroy(&r.xlib, dpy, Connection::Open) };
-        }
-    }
-    if matches!(drawn.image, WindowImage::Untried) {
-        // SAFETY: open display (contract).
-        drawn.image =
-            unsafe { shm_image(r, dpy, x_window, size) }.map_or(WindowImage::Gl, WindowImage::Shm);
-    }
-    let WindowImage::Shm(img) = &mut drawn.image else {
-        return Ok(false);
-    };
-    // SAFETY: the image was made on this open display for this window; the
+    // SAFETY: open display, the drawable's X drawable (contract); the
     // layer's context is current and the plan is for this job and size.
     unsafe {
-        img.put_with(&r.xlib, dpy, x_window, &mut |t| {
-            compositor.fill_pixels(gl, job, plan, t)
-        })?
-    };
-    Ok(true)
+        drawn.image.put(
+            &r.xlib,
+            dpy,
+            x_window,
+            size,
+            || shm_image(r, dpy, x_window, size),
+            &mut |t| compositor.fill_pixels(gl, job, plan, t),
+        )
+    }
 }
 
 /// A MIT-SHM image of `size` for `window` (its visual and depth); None when
