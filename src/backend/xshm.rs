@@ -158,7 +158,15 @@ impl ShmImage {
         // SAFETY: live display (contract); every pointer below is checked
         // before use and released on every failure path.
         unsafe {
-            if (xext.XShmQueryExtension)(display) == 0 {
+            // libXext makes its MIT-SHM extension record on the first query,
+            // unlocked: two threads querying at once each made one, and the
+            // loser's was leaked (LeakSanitizer, tests/c/glx_threads.c).
+            static QUERY: std::sync::Mutex<()> = std::sync::Mutex::new(());
+            let known = {
+                let _one_at_a_time = QUERY.lock().unwrap_or_else(|e| e.into_inner());
+                (xext.XShmQueryExtension)(display)
+            };
+            if known == 0 {
                 return None;
             }
             let mut info: Box<XShmSegmentInfo> = Box::new(std::mem::zeroed());
