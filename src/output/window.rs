@@ -140,6 +140,50 @@ fn bottom_first(mode: OutputMode, eye_height: u32) -> Option<bool> {
     }
 }
 
+/// Where the eyes of a copy mode (see [`window_path`]'s Blit) go: each
+/// eye's placement in the composite and its rectangle, indexed by the eye
+/// placed (at most one place each), and whether they leave gaps to clear.
+fn copies(job: &Job, options: &OutputOptions) -> ([Option<(Placement, TexRect)>; 2], bool) {
+    let (w, h) = job.eye_size;
+    let [left, right] = job.eyes;
+    let (l, r) = if options.swap_eyes {
+        (right, left)
+    } else {
+        (left, right)
+    };
+    let full = |eye| Placement {
+        eye,
+        x: 0,
+        y: 0,
+        width: w,
+        height: h,
+    };
+    let mut draws = [None, None];
+    let mut put =
+        |p: Placement, rect: TexRect| draws[usize::from(p.eye == Eye::Right)] = Some((p, rect));
+    match job.mode {
+        OutputMode::Left => put(full(Eye::Left), l),
+        OutputMode::Right => put(full(Eye::Right), r),
+        OutputMode::FrameSequential => {
+            // The eye accounts for the swap: pick from the unswapped inputs.
+            let eye = options.frame_sequential_eye(job.frame_index);
+            put(full(eye), if eye == Eye::Left { left } else { right });
+        }
+        mode => {
+            for p in placements(mode, w, h).expect("a rectangle mode") {
+                put(p, if p.eye == Eye::Left { l } else { r });
+            }
+        }
+    }
+    let (cw, ch) = composite_size(job.mode, w, h);
+    let covered: u64 = draws
+        .iter()
+        .flatten()
+        .map(|(p, _)| u64::from(p.width) * u64::from(p.height))
+        .sum();
+    (draws, covered < u64::from(cw) * u64::from(ch))
+}
+
 /// Reused GL objects and buffers of the window paths (made on first use,
 /// in the compositor context).
 #[derive(Debug)]
@@ -251,49 +295,13 @@ impl WindowPaths {
         framebuffer: u32,
         buffer: u32,
     ) -> Result<()> {
-        let (w, h) = job.eye_size;
-        let [left, right] = job.eyes;
-        let (l, r) = if options.swap_eyes {
-            (right, left)
-        } else {
-            (left, right)
-        };
-        let full = |eye| Placement {
-            eye,
-            x: 0,
-            y: 0,
-            width: w,
-            height: h,
-        };
-        // (placement, the eye's rectangle), at most two.
-        let mut draws: [Option<(Placement, TexRect)>; 2] = [None, None];
-        match job.mode {
-            OutputMode::Left => draws[0] = Some((full(Eye::Left), l)),
-            OutputMode::Right => draws[0] = Some((full(Eye::Right), r)),
-            OutputMode::FrameSequential => {
-                // The eye accounts for the swap: pick from the unswapped inputs.
-                let eye = options.frame_sequential_eye(job.frame_index);
-                let rect = if eye == Eye::Left { left } else { right };
-                draws[0] = Some((full(eye), rect));
-            }
-            mode => {
-                let places = placements(mode, w, h).expect("a rectangle mode");
-                for (d, p) in draws.iter_mut().zip(places.iter()) {
-                    *d = Some((*p, if p.eye == Eye::Left { l } else { r }));
-                }
-            }
-        }
-        let (cw, ch) = composite_size(job.mode, w, h);
-        let covered: u64 = draws
-            .iter()
-            .flatten()
-            .map(|(p, _)| u64::from(p.width) * u64::from(p.height))
-            .sum();
+        let (draws, gaps) = copies(job, options);
+        let ch = composite_size(job.mode, job.eye_size.0, job.eye_size.1).1;
         // SAFETY: the compositor context is current (contract of the callers).
         unsafe {
             gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
             gl.DrawBuffer(buffer);
-            if covered < u64::from(cw) * u64::from(ch) {
+            if gaps {
                 gl.ClearColor(0.0, 0.0, 0.0, 1.0);
                 gl.Clear(GL_COLOR_BUFFER_BIT);
             }
@@ -495,49 +503,12 @@ impl WindowPaths {
                 };
             }
             Plan::Copies => {
-                let [left, right] = job.eyes;
-                let (l, r) = if options.swap_eyes {
-                    (right, left)
-                } else {
-                    (left, right)
-                };
-                let full = |eye| Placement {
-                    eye,
-                    x: 0,
-                    y: 0,
-                    width: w,
-                    height: h,
-                };
-                // Where each eye goes (at most one place each).
-                let mut places: [Option<Placement>; 2] = [None, None];
-                let mut sources: [Option<TexRect>; 2] = [None, None];
-                let mut put = |p: Placement, rect: TexRect| {
-                    let i = usize::from(p.eye == Eye::Right);
-                    places[i] = Some(p);
-                    sources[i] = Some(rect);
-                };
-                match job.mode {
-                    OutputMode::Left => put(full(Eye::Left), l),
-                    OutputMode::Right => put(full(Eye::Right), r),
-                    OutputMode::FrameSequential => {
-                        let eye = options.frame_sequential_eye(job.frame_index);
-                        put(full(eye), if eye == Eye::Left { left } else { right });
-                    }
-                    mode => {
-                        for p in placements(mode, w, h).expect("a rectangle mode") {
-                            put(p, if p.eye == Eye::Left { l } else { r });
-                        }
-                    }
-                }
-                let (cw, ch) = target.size;
-                let covered: u64 = places
-                    .iter()
-                    .flatten()
-                    .map(|p| u64::from(p.width) * u64::from(p.height))
-                    .sum();
-                if covered < u64::from(cw) * u64::from(ch) {
+                let (draws, gaps) = copies(job, options);
+                let places = draws.map(|d| d.map(|(p, _)| p));
+                let sources = draws.map(|d| d.map(|(_, rect)| rect));
+                if gaps {
                     let black = target.layout.convert(0);
-                    for y in 0..ch {
+                    for y in 0..target.size.1 {
                         fill_words(target.row_mut(y), black);
                     }
                 }
