@@ -145,7 +145,8 @@ pub fn compose_into(
         },
     };
 
-    resize(out, cw, ch)?;
+    // Every mode writes every pixel (or fills first).
+    out.resize(cw, ch, "composite")?;
     with_scratch(|scratch| {
         compose_mode(
             mode,
@@ -333,29 +334,6 @@ fn desaturate(row: &mut [Rgb], s: f32) {
             *c = y + s * (*c - y);
         }
     }
-}
-
-/// Gives `out` the size `width`×`height`, keeping its allocation. The
-/// contents are unspecified: every mode writes every pixel (or fills first).
-/// `OutOfMemory` (and `out` unchanged) when the memory cannot be had.
-fn resize(out: &mut Image, width: u32, height: u32) -> Result<()> {
-    if (out.width(), out.height()) == (width, height) {
-        return Ok(());
-    }
-    let len = width as usize * height as usize * 4;
-    let extra = len.saturating_sub(out.pixels().len());
-    let (old_w, old_h) = (out.width(), out.height());
-    let mut pixels = std::mem::replace(out, Image::new(1, 1)).into_pixels();
-    if pixels.try_reserve_exact(extra).is_err() {
-        *out = Image::from_pixels(old_w, old_h, pixels).expect("its own pixels");
-        return Err(Error::OutOfMemory(format!(
-            "{} MiB for a {width}x{height} composite could not be allocated: free memory or use smaller eyes",
-            len >> 20
-        )));
-    }
-    pixels.resize(len, 0);
-    *out = Image::from_pixels(width, height, pixels).expect("size checked by the caller");
-    Ok(())
 }
 
 /// Alpha 255 and black, as a little-endian RGBA8 word.

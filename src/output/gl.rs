@@ -756,9 +756,7 @@ impl GlCompositor {
             if unscaled && preferred_path(software, job.mode, &options) == ComposePath::Cpu {
                 let (img, bottom_first) = self.window.cpu_image(gl, job, &options)?;
                 gl.check("reading the eyes back")?;
-                if (out.width(), out.height()) != (cw, ch) {
-                    *out = Image::try_new(cw, ch)?;
-                }
+                out.resize(cw, ch, "composite")?;
                 let stride = cw as usize * 4;
                 for y in 0..ch {
                     let src = img.row(if bottom_first { ch - 1 - y } else { y });
@@ -770,9 +768,7 @@ impl GlCompositor {
                 return Ok(false);
             }
             self.compose_capture(gl, job)?;
-            if (out.width(), out.height()) != (cw, ch) {
-                *out = Image::try_new(cw, ch)?;
-            }
+            out.resize(cw, ch, "composite")?;
             self.read_capture(gl, out)?;
         }
         Ok(true)

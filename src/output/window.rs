@@ -205,16 +205,6 @@ impl Default for WindowPaths {
     }
 }
 
-/// Gives `img` the size `w`×`h` (contents undefined), keeping its buffer
-/// when the size is unchanged.
-/// Fails with `OutOfMemory` (the old image kept) when memory runs out.
-fn ensure_size(img: &mut Image, w: u32, h: u32) -> Result<()> {
-    if (img.width(), img.height()) != (w, h) {
-        *img = Image::try_new(w, h)?;
-    }
-    Ok(())
-}
-
 /// Binds `texture` as the colour buffer of `fbo`, bound for reading.
 ///
 /// # Safety
@@ -349,7 +339,7 @@ impl WindowPaths {
         }
         for (i, rect) in job.eyes.iter().enumerate().take(if same { 1 } else { 2 }) {
             let img = &mut self.eyes[i];
-            ensure_size(img, w, h)?;
+            img.resize(w, h, "read-back eye")?;
             // SAFETY: the compositor context is current (contract); the
             // image holds w×h×4 bytes.
             unsafe {
@@ -386,7 +376,8 @@ impl WindowPaths {
     /// # Safety
     /// The compositor context must be current and `canvas` complete.
     pub(crate) unsafe fn read_canvas(&mut self, gl: &Gl, canvas: &Canvas) -> Result<&Image> {
-        ensure_size(&mut self.out, canvas.width, canvas.height)?;
+        self.out
+            .resize(canvas.width, canvas.height, "read-back composite")?;
         // SAFETY: contract; the image holds width×height×4 bytes.
         unsafe {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, canvas.fbo);
@@ -432,7 +423,7 @@ impl WindowPaths {
             gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
         }
         for img in &mut self.eyes {
-            ensure_size(img, w, rows)?;
+            img.resize(w, rows, "band of an eye")?;
         }
         let mut y0 = 0;
         while y0 < h {

@@ -41,9 +41,7 @@ impl Surface {
         match source {
             // An eye that is a whole buffer: one read-back into `out`.
             Some(s) if (s.x, s.y, s.width, s.height) == (0, 0, w, h) => {
-                if (out.width(), out.height()) != (w, h) {
-                    *out = Image::try_new(w, h)?;
-                }
+                out.resize(w, h, "image")?;
                 self.with_compositor(|gl, st| {
                     // SAFETY: the compositor context is current; `out` holds w×h×4 bytes.
                     unsafe { st.fb.read_pixels(gl, s.buffer, out.pixels_mut()) }
