@@ -222,6 +222,14 @@ impl Image {
         self.pixels[i..i + 4].copy_from_slice(&rgba);
     }
 
+    /// Sets every pixel's alpha to 255 (a display shows no alpha).
+    pub(crate) fn make_opaque(&mut self) {
+        match as_words_mut(&mut self.pixels) {
+            Some(words) => words.iter_mut().for_each(|w| *w |= 0xFF00_0000),
+            None => self.pixels.chunks_exact_mut(4).for_each(|p| p[3] = 255),
+        }
+    }
+
     /// Reverses the row order in place (GL reads rows bottom first).
     pub fn flip_vertical(&mut self) {
         flip_rows(&mut self.pixels, self.width as usize * 4);
