@@ -258,9 +258,6 @@ impl WindowPaths {
     ) -> Result<()> {
         // SAFETY: contract.
         unsafe {
-            if self.read_fbo == 0 {
-                self.read_fbo = gl.gen_framebuffer();
-            }
             gl.Disable(GL_SCISSOR_TEST);
             gl.Disable(GL_FRAMEBUFFER_SRGB);
             gl.ColorMask(1, 1, 1, 1);
@@ -271,10 +268,16 @@ impl WindowPaths {
         }
     }
 
-    /// Binds `texture` as the read framebuffer's colour buffer.
-    unsafe fn read_from(&self, gl: &Gl, texture: u32) {
-        // SAFETY: contract of the callers.
-        unsafe { read_from(gl, self.read_fbo, texture) }
+    /// The framebuffer the eyes are read through, made on first use.
+    ///
+    /// # Safety
+    /// The compositor context must be current.
+    unsafe fn read_fbo(&mut self, gl: &Gl) -> u32 {
+        if self.read_fbo == 0 {
+            // SAFETY: contract.
+            self.read_fbo = unsafe { gl.gen_framebuffer() };
+        }
+        self.read_fbo
     }
 
     unsafe fn blit_eyes(
@@ -289,6 +292,7 @@ impl WindowPaths {
         let ch = composite_size(job.mode, job.eye_size.0, job.eye_size.1).1;
         // SAFETY: the compositor context is current (contract of the callers).
         unsafe {
+            let fbo = self.read_fbo(gl);
             gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
             gl.DrawBuffer(buffer);
             if gaps {
@@ -297,7 +301,7 @@ impl WindowPaths {
             }
             for (p, src) in draws.into_iter().flatten() {
                 debug_assert_eq!((p.width, p.height), (src.width, src.height));
-                self.read_from(gl, src.texture);
+                read_from(gl, fbo, src.texture);
                 let y = (ch - p.y - p.height) as i32;
                 gl.BlitFramebuffer(
                     src.x as i32,
@@ -332,18 +336,14 @@ impl WindowPaths {
         let order = bottom_first(job.mode, h);
         let same = job.eyes[1] == job.eyes[0];
         // SAFETY: contract.
-        unsafe {
-            if self.read_fbo == 0 {
-                self.read_fbo = gl.gen_framebuffer();
-            }
-        }
+        let fbo = unsafe { self.read_fbo(gl) };
         for (i, rect) in job.eyes.iter().enumerate().take(if same { 1 } else { 2 }) {
             let img = &mut self.eyes[i];
             img.resize(w, h, "read-back eye")?;
             // SAFETY: the compositor context is current (contract); the
             // image holds w×h×4 bytes.
             unsafe {
-                read_from(gl, self.read_fbo, rect.texture);
+                read_from(gl, fbo, rect.texture);
                 gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
                 gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
                 gl.ReadPixels(
@@ -415,13 +415,11 @@ impl WindowPaths {
         let rows = ((BAND_BYTES / (w as usize * 4)).max(1) as u32).min(h);
         let same = rects[0].is_some() && rects[0] == rects[1];
         // SAFETY: contract.
-        unsafe {
-            if self.read_fbo == 0 {
-                self.read_fbo = gl.gen_framebuffer();
-            }
+        let fbo = unsafe {
             gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
             gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-        }
+            self.read_fbo(gl)
+        };
         for img in &mut self.eyes {
             img.resize(w, rows, "band of an eye")?;
         }
@@ -435,7 +433,7 @@ impl WindowPaths {
                 }
                 // SAFETY: contract; the band holds w × rows × 4 bytes ≥ n rows.
                 unsafe {
-                    read_from(gl, self.read_fbo, rect.texture);
+                    read_from(gl, fbo, rect.texture);
                     gl.ReadPixels(
                         rect.x as i32,
                         (rect.y + y0) as i32,
