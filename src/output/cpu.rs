@@ -69,7 +69,7 @@ use crate::math::Eye;
 
 use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
 use super::dubois_lut::{Products, dubois_row};
-use super::layout::{Placement, composite_size, placements};
+use super::layout::{Placement, composite_size, leaves_gaps, placements};
 use super::mode::{AnaglyphColors, AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 
@@ -178,7 +178,6 @@ fn compose_mode(
     scratch: &mut Scratch,
 ) {
     let (w, h) = (left.width(), left.height());
-    let (cw, ch) = (out.width(), out.height());
     match mode {
         OutputMode::Quad => {} // refused above
         OutputMode::Left => copy_opaque(l.pixels(), out.pixels_mut()),
@@ -216,14 +215,7 @@ fn compose_mode(
         | OutputMode::StrRect => {
             // Always Some for these modes (a layout test checks it).
             let places = placements(mode, w, h);
-            // Placements never overlap, so they leave gaps exactly when
-            // they cover less than the frame: only then paint it black.
-            let covered: u64 = places
-                .iter()
-                .flatten()
-                .map(|p| u64::from(p.width) * u64::from(p.height))
-                .sum();
-            if covered < u64::from(cw) * u64::from(ch) {
+            if leaves_gaps(mode, w, h) {
                 fill(out.pixels_mut(), ALPHA);
             }
             for p in places.iter().flatten() {

@@ -53,7 +53,7 @@ use crate::math::Eye;
 
 use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices};
 use super::cpu::check_composite;
-use super::layout::{placements, window_fit};
+use super::layout::{leaves_gaps, placements, window_fit};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 use super::window::{Plan, WindowPaths, pixel_plan, window_path};
@@ -980,12 +980,7 @@ impl GlCompositor {
                 | OutputMode::Starbase
                 | OutputMode::StrRect => {
                     let places = placements(mode, w, h).expect("a rectangle mode");
-                    let (cw, _) = super::layout::composite_size(mode, w, h);
-                    let covered: u64 = places
-                        .iter()
-                        .map(|p| u64::from(p.width) * u64::from(p.height))
-                        .sum();
-                    if covered < u64::from(cw) * u64::from(ch) {
+                    if leaves_gaps(mode, w, h) {
                         gl.ClearColor(0.0, 0.0, 0.0, 1.0);
                         gl.Clear(GL_COLOR_BUFFER_BIT);
                     }

@@ -37,7 +37,7 @@ use crate::math::Eye;
 
 use super::cpu;
 use super::gl::{Canvas, ComposePath, Job, TexRect, preferred_path};
-use super::layout::{Placement, composite_size, placements};
+use super::layout::{Placement, composite_size, leaves_gaps, placements};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 
@@ -142,8 +142,8 @@ fn bottom_first(mode: OutputMode, eye_height: u32) -> Option<bool> {
 
 /// Where the eyes of a copy mode (see [`window_path`]'s Blit) go: each
 /// eye's placement in the composite and its rectangle, indexed by the eye
-/// placed (at most one place each), and whether they leave gaps to clear.
-fn copies(job: &Job, options: &OutputOptions) -> ([Option<(Placement, TexRect)>; 2], bool) {
+/// placed (at most one place each).
+fn copies(job: &Job, options: &OutputOptions) -> [Option<(Placement, TexRect)>; 2] {
     let (w, h) = job.eye_size;
     let [left, right] = job.eyes;
     let (l, r) = if options.swap_eyes {
@@ -175,13 +175,7 @@ fn copies(job: &Job, options: &OutputOptions) -> ([Option<(Placement, TexRect)>;
             }
         }
     }
-    let (cw, ch) = composite_size(job.mode, w, h);
-    let covered: u64 = draws
-        .iter()
-        .flatten()
-        .map(|(p, _)| u64::from(p.width) * u64::from(p.height))
-        .sum();
-    (draws, covered < u64::from(cw) * u64::from(ch))
+    draws
 }
 
 /// Reused GL objects and buffers of the window paths (made on first use,
@@ -288,14 +282,15 @@ impl WindowPaths {
         framebuffer: u32,
         buffer: u32,
     ) -> Result<()> {
-        let (draws, gaps) = copies(job, options);
-        let ch = composite_size(job.mode, job.eye_size.0, job.eye_size.1).1;
+        let (w, h) = job.eye_size;
+        let draws = copies(job, options);
+        let (_, ch) = composite_size(job.mode, w, h);
         // SAFETY: the compositor context is current (contract of the callers).
         unsafe {
             let fbo = self.read_fbo(gl);
             gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
             gl.DrawBuffer(buffer);
-            if gaps {
+            if leaves_gaps(job.mode, w, h) {
                 gl.ClearColor(0.0, 0.0, 0.0, 1.0);
                 gl.Clear(GL_COLOR_BUFFER_BIT);
             }
@@ -492,10 +487,10 @@ impl WindowPaths {
                 };
             }
             Plan::Copies => {
-                let (draws, gaps) = copies(job, options);
+                let draws = copies(job, options);
                 let places = draws.map(|d| d.map(|(p, _)| p));
                 let sources = draws.map(|d| d.map(|(_, rect)| rect));
-                if gaps {
+                if leaves_gaps(job.mode, w, h) {
                     let black = target.layout.convert(0);
                     for y in 0..target.size.1 {
                         fill_words(target.row_mut(y), black);
