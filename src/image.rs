@@ -119,6 +119,30 @@ impl Image {
         })
     }
 
+    /// Gives the image the size `width`×`height`, keeping its allocation
+    /// (a frame loop avoids a fresh multi-megabyte buffer, and its page
+    /// faults, per frame); the contents are unspecified after a change.
+    /// `InvalidValue` for a size outside 1…MAX_DIMENSION, `OutOfMemory`
+    /// naming `what` when the memory cannot be had; the image is unchanged
+    /// on error.
+    pub(crate) fn resize(&mut self, width: u32, height: u32, what: &str) -> Result<()> {
+        if (self.width, self.height) == (width, height) {
+            return Ok(());
+        }
+        check_size(width, height)?;
+        let len = width as usize * height as usize * 4;
+        let extra = len.saturating_sub(self.pixels.len());
+        if self.pixels.try_reserve_exact(extra).is_err() {
+            return Err(Error::OutOfMemory(format!(
+                "{} MiB for a {width}x{height} {what} could not be allocated: free memory or use a smaller surface",
+                len >> 20
+            )));
+        }
+        self.pixels.resize(len, 0);
+        (self.width, self.height) = (width, height);
+        Ok(())
+    }
+
     /// An image of the given pixels (rows top first, 4 bytes a pixel).
     pub fn from_pixels(width: u32, height: u32, pixels: Vec<u8>) -> Result<Image> {
         check_size(width, height)?;
@@ -198,6 +222,14 @@ impl Image {
         self.pixels[i..i + 4].copy_from_slice(&rgba);
     }
 
+    /// Sets every pixel's alpha to 255 (a display shows no alpha).
+    pub(crate) fn make_opaque(&mut self) {
+        match as_words_mut(&mut self.pixels) {
+            Some(words) => words.iter_mut().for_each(|w| *w |= 0xFF00_0000),
+            None => self.pixels.chunks_exact_mut(4).for_each(|p| p[3] = 255),
+        }
+    }
+
     /// Reverses the row order in place (GL reads rows bottom first).
     pub fn flip_vertical(&mut self) {
         flip_rows(&mut self.pixels, self.width as usize * 4);
@@ -237,6 +269,17 @@ mod tests {
         assert_eq!(img.get(2, 0), [2, 4, 0, 255]);
         assert_eq!(img.get(1, 2), [1, 2, 0, 255]);
         assert_eq!(img.get(0, 4), [0, 0, 0, 255]);
+    }
+
+    #[test]
+    fn resize_keeps_the_allocation_and_refuses_bad_sizes() {
+        let mut img = Image::new(8, 8);
+        let ptr = img.pixels().as_ptr();
+        img.resize(4, 2, "image").unwrap();
+        assert_eq!((img.width(), img.height(), img.pixels().len()), (4, 2, 32));
+        assert_eq!(img.pixels().as_ptr(), ptr);
+        assert!(img.resize(0, 2, "image").is_err());
+        assert_eq!((img.width(), img.height()), (4, 2));
     }
 
     #[test]

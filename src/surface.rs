@@ -523,7 +523,7 @@ impl Surface {
         })?;
         if self.config.request.color[3] == 0 {
             // GL reads alpha as 1.0 from a framebuffer without alpha bits.
-            set_opaque(&mut img);
+            img.make_opaque();
         }
         Ok(img)
     }
@@ -565,7 +565,7 @@ impl Surface {
         // as `extract` makes it); only rectangles are taken apart.
         let whole = |s: &EyeSource| (s.x, s.y, s.width, s.height) == (0, 0, w, h);
         let opaque = |mut img: Image| {
-            set_opaque(&mut img);
+            img.make_opaque();
             img
         };
         let right = match right_buf {
@@ -811,12 +811,6 @@ fn effective_mode(mode: OutputMode, config: &Config) -> OutputMode {
     match mode {
         OutputMode::Quad if config.stereo != StereoKind::Native => DEFAULT_OUTPUT,
         m => m,
-    }
-}
-
-fn set_opaque(img: &mut Image) {
-    for px in img.pixels_mut().chunks_exact_mut(4) {
-        px[3] = 255;
     }
 }
 

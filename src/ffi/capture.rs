@@ -5,27 +5,13 @@ use std::ffi::c_char;
 
 use super::boundary::{arg_str, ffi_boundary};
 use super::handles::{self, Kind};
-use super::surface::{GLS_IMAGE_COMPOSITE, GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT, gls_surface};
+use super::surface::{gls_surface, image_arg};
 use super::types::*;
-use crate::error::Error;
-use crate::surface::{CaptureImage, Surface};
+use crate::surface::Surface;
 
 /// Captures a surface may queue before gls_surface_queue_png waits for the
 /// oldest to be written.
 pub const GLS_CAPTURE_QUEUE_LENGTH: u32 = 4;
-
-fn image_arg(image: u32) -> Result<CaptureImage, Error> {
-    match image {
-        GLS_IMAGE_LEFT => Ok(CaptureImage::Left),
-        GLS_IMAGE_RIGHT => Ok(CaptureImage::Right),
-        GLS_IMAGE_COMPOSITE => Ok(CaptureImage::Composite),
-        v => Err(Error::invalid_enum(
-            "image",
-            v,
-            "use GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE",
-        )),
-    }
-}
 
 /// Like gls_surface_save_png, but returns as soon as the pixels are read
 /// back: the PNG is encoded and written (atomically, temporary file then

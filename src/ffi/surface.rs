@@ -28,6 +28,20 @@ pub const GLS_IMAGE_RIGHT: u32 = 1;
 /// Both eyes composed in the surface's output mode, as a viewer sees them.
 pub const GLS_IMAGE_COMPOSITE: u32 = 2;
 
+/// The capture a GLS_IMAGE_* value names.
+pub(super) fn image_arg(image: u32) -> Result<CaptureImage, Error> {
+    match image {
+        GLS_IMAGE_LEFT => Ok(CaptureImage::Left),
+        GLS_IMAGE_RIGHT => Ok(CaptureImage::Right),
+        GLS_IMAGE_COMPOSITE => Ok(CaptureImage::Composite),
+        v => Err(Error::invalid_enum(
+            "image",
+            v,
+            "use GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE",
+        )),
+    }
+}
+
 fn surface_arg(s: *const gls_surface) -> Result<Arc<Surface>, Error> {
     handles::get(s, Kind::Surface, "surface")
 }
@@ -361,18 +375,7 @@ pub unsafe extern "C" fn gls_surface_save_png(
 ) -> gls_result {
     ffi_boundary!("gls_surface_save_png", {
         let s = surface_arg(surface)?;
-        let which = match image {
-            GLS_IMAGE_LEFT => CaptureImage::Left,
-            GLS_IMAGE_RIGHT => CaptureImage::Right,
-            GLS_IMAGE_COMPOSITE => CaptureImage::Composite,
-            v => {
-                return Err(Error::invalid_enum(
-                    "image",
-                    v,
-                    "use GLS_IMAGE_LEFT, GLS_IMAGE_RIGHT or GLS_IMAGE_COMPOSITE",
-                ));
-            }
-        };
+        let which = image_arg(image)?;
         // SAFETY: NUL-terminated (contract).
         let path = unsafe { arg_str(path, "path")? };
         s.save_png(which, std::path::Path::new(path))

@@ -69,7 +69,7 @@ use crate::math::Eye;
 
 use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
 use super::dubois_lut::{Products, dubois_row};
-use super::layout::{Placement, composite_size, placements};
+use super::layout::{Placement, composite_size, leaves_gaps, placements};
 use super::mode::{AnaglyphColors, AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 
@@ -145,7 +145,8 @@ pub fn compose_into(
         },
     };
 
-    resize(out, cw, ch)?;
+    // Every mode writes every pixel (or fills first).
+    out.resize(cw, ch, "composite")?;
     with_scratch(|scratch| {
         compose_mode(
             mode,
@@ -177,7 +178,6 @@ fn compose_mode(
     scratch: &mut Scratch,
 ) {
     let (w, h) = (left.width(), left.height());
-    let (cw, ch) = (out.width(), out.height());
     match mode {
         OutputMode::Quad => {} // refused above
         OutputMode::Left => copy_opaque(l.pixels(), out.pixels_mut()),
@@ -215,14 +215,7 @@ fn compose_mode(
         | OutputMode::StrRect => {
             // Always Some for these modes (a layout test checks it).
             let places = placements(mode, w, h);
-            // Placements never overlap, so they leave gaps exactly when
-            // they cover less than the frame: only then paint it black.
-            let covered: u64 = places
-                .iter()
-                .flatten()
-                .map(|p| u64::from(p.width) * u64::from(p.height))
-                .sum();
-            if covered < u64::from(cw) * u64::from(ch) {
+            if leaves_gaps(mode, w, h) {
                 fill(out.pixels_mut(), ALPHA);
             }
             for p in places.iter().flatten() {
@@ -333,29 +326,6 @@ fn desaturate(row: &mut [Rgb], s: f32) {
             *c = y + s * (*c - y);
         }
     }
-}
-
-/// Gives `out` the size `width`×`height`, keeping its allocation. The
-/// contents are unspecified: every mode writes every pixel (or fills first).
-/// `OutOfMemory` (and `out` unchanged) when the memory cannot be had.
-fn resize(out: &mut Image, width: u32, height: u32) -> Result<()> {
-    if (out.width(), out.height()) == (width, height) {
-        return Ok(());
-    }
-    let len = width as usize * height as usize * 4;
-    let extra = len.saturating_sub(out.pixels().len());
-    let (old_w, old_h) = (out.width(), out.height());
-    let mut pixels = std::mem::replace(out, Image::new(1, 1)).into_pixels();
-    if pixels.try_reserve_exact(extra).is_err() {
-        *out = Image::from_pixels(old_w, old_h, pixels).expect("its own pixels");
-        return Err(Error::OutOfMemory(format!(
-            "{} MiB for a {width}x{height} composite could not be allocated: free memory or use smaller eyes",
-            len >> 20
-        )));
-    }
-    pixels.resize(len, 0);
-    *out = Image::from_pixels(width, height, pixels).expect("size checked by the caller");
-    Ok(())
 }
 
 /// Alpha 255 and black, as a little-endian RGBA8 word.

@@ -53,7 +53,7 @@ use crate::math::Eye;
 
 use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices};
 use super::cpu::check_composite;
-use super::layout::{placements, window_fit};
+use super::layout::{leaves_gaps, placements, window_fit};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 use super::window::{Plan, WindowPaths, pixel_plan, window_path};
@@ -756,9 +756,7 @@ impl GlCompositor {
             if unscaled && preferred_path(software, job.mode, &options) == ComposePath::Cpu {
                 let (img, bottom_first) = self.window.cpu_image(gl, job, &options)?;
                 gl.check("reading the eyes back")?;
-                if (out.width(), out.height()) != (cw, ch) {
-                    *out = Image::try_new(cw, ch)?;
-                }
+                out.resize(cw, ch, "composite")?;
                 let stride = cw as usize * 4;
                 for y in 0..ch {
                     let src = img.row(if bottom_first { ch - 1 - y } else { y });
@@ -770,9 +768,7 @@ impl GlCompositor {
                 return Ok(false);
             }
             self.compose_capture(gl, job)?;
-            if (out.width(), out.height()) != (cw, ch) {
-                *out = Image::try_new(cw, ch)?;
-            }
+            out.resize(cw, ch, "composite")?;
             self.read_capture(gl, out)?;
         }
         Ok(true)
@@ -984,12 +980,7 @@ impl GlCompositor {
                 | OutputMode::Starbase
                 | OutputMode::StrRect => {
                     let places = placements(mode, w, h).expect("a rectangle mode");
-                    let (cw, _) = super::layout::composite_size(mode, w, h);
-                    let covered: u64 = places
-                        .iter()
-                        .map(|p| u64::from(p.width) * u64::from(p.height))
-                        .sum();
-                    if covered < u64::from(cw) * u64::from(ch) {
+                    if leaves_gaps(mode, w, h) {
                         gl.ClearColor(0.0, 0.0, 0.0, 1.0);
                         gl.Clear(GL_COLOR_BUFFER_BIT);
                     }

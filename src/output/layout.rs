@@ -170,6 +170,22 @@ pub fn placements(mode: OutputMode, eye_width: u32, eye_height: u32) -> Option<[
     }
 }
 
+/// Whether the [`placements`] of `mode` leave pixels of the composite
+/// uncovered, to be painted black (the gap of `hdmi-frame-packing`, the
+/// middle rows of `str-rect`): placements never overlap, so exactly when
+/// they cover less than the frame. False for the modes without placements.
+pub(crate) fn leaves_gaps(mode: OutputMode, eye_width: u32, eye_height: u32) -> bool {
+    let Some(places) = placements(mode, eye_width, eye_height) else {
+        return false;
+    };
+    let covered: u64 = places
+        .iter()
+        .map(|p| u64::from(p.width) * u64::from(p.height))
+        .sum();
+    let (cw, ch) = composite_size(mode, eye_width, eye_height);
+    covered < u64::from(cw) * u64::from(ch)
+}
+
 /// The eye shown at output pixel (x, y) of the pixel-interleaved modes,
 /// counted from the top-left pixel: `rows` by y, `columns` by x,
 /// `checkerboard` by x + y; even = left. None for other modes.
@@ -272,6 +288,23 @@ mod tests {
         assert_eq!(hdmi_gap(35), 1);
         assert_eq!(hdmi_gap(36), 2);
         assert_eq!(hdmi_gap(1), 0);
+    }
+
+    #[test]
+    fn only_gaps_between_placements_are_left_to_paint_black() {
+        let m = OutputMode::HdmiFramePacking;
+        assert!(leaves_gaps(m, 1280, 720));
+        assert!(!leaves_gaps(m, 64, 11), "no gap under 12 rows");
+        assert!(leaves_gaps(OutputMode::StrRect, 1280, 1024));
+        for m in [
+            OutputMode::SideBySide,
+            OutputMode::SideBySideHalf,
+            OutputMode::TopBottomHalf,
+            OutputMode::Left,
+            OutputMode::Rows,
+        ] {
+            assert!(!leaves_gaps(m, 7, 5), "{m}");
+        }
     }
 
     #[test]

@@ -37,7 +37,7 @@ use crate::math::Eye;
 
 use super::cpu;
 use super::gl::{Canvas, ComposePath, Job, TexRect, preferred_path};
-use super::layout::{Placement, composite_size, placements};
+use super::layout::{Placement, composite_size, leaves_gaps, placements};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
 
@@ -140,6 +140,44 @@ fn bottom_first(mode: OutputMode, eye_height: u32) -> Option<bool> {
     }
 }
 
+/// Where the eyes of a copy mode (see [`window_path`]'s Blit) go: each
+/// eye's placement in the composite and its rectangle, indexed by the eye
+/// placed (at most one place each).
+fn copies(job: &Job, options: &OutputOptions) -> [Option<(Placement, TexRect)>; 2] {
+    let (w, h) = job.eye_size;
+    let [left, right] = job.eyes;
+    let (l, r) = if options.swap_eyes {
+        (right, left)
+    } else {
+        (left, right)
+    };
+    let full = |eye| Placement {
+        eye,
+        x: 0,
+        y: 0,
+        width: w,
+        height: h,
+    };
+    let mut draws = [None, None];
+    let mut put =
+        |p: Placement, rect: TexRect| draws[usize::from(p.eye == Eye::Right)] = Some((p, rect));
+    match job.mode {
+        OutputMode::Left => put(full(Eye::Left), l),
+        OutputMode::Right => put(full(Eye::Right), r),
+        OutputMode::FrameSequential => {
+            // The eye accounts for the swap: pick from the unswapped inputs.
+            let eye = options.frame_sequential_eye(job.frame_index);
+            put(full(eye), if eye == Eye::Left { left } else { right });
+        }
+        mode => {
+            for p in placements(mode, w, h).expect("a rectangle mode") {
+                put(p, if p.eye == Eye::Left { l } else { r });
+            }
+        }
+    }
+    draws
+}
+
 /// Reused GL objects and buffers of the window paths (made on first use,
 /// in the compositor context).
 #[derive(Debug)]
@@ -159,16 +197,6 @@ impl Default for WindowPaths {
             out: Image::new(1, 1),
         }
     }
-}
-
-/// Gives `img` the size `w`×`h` (contents undefined), keeping its buffer
-/// when the size is unchanged.
-/// Fails with `OutOfMemory` (the old image kept) when memory runs out.
-fn ensure_size(img: &mut Image, w: u32, h: u32) -> Result<()> {
-    if (img.width(), img.height()) != (w, h) {
-        *img = Image::try_new(w, h)?;
-    }
-    Ok(())
 }
 
 /// Binds `texture` as the colour buffer of `fbo`, bound for reading.
@@ -224,9 +252,6 @@ impl WindowPaths {
     ) -> Result<()> {
         // SAFETY: contract.
         unsafe {
-            if self.read_fbo == 0 {
-                self.read_fbo = gl.gen_framebuffer();
-            }
             gl.Disable(GL_SCISSOR_TEST);
             gl.Disable(GL_FRAMEBUFFER_SRGB);
             gl.ColorMask(1, 1, 1, 1);
@@ -237,10 +262,16 @@ impl WindowPaths {
         }
     }
 
-    /// Binds `texture` as the read framebuffer's colour buffer.
-    unsafe fn read_from(&self, gl: &Gl, texture: u32) {
-        // SAFETY: contract of the callers.
-        unsafe { read_from(gl, self.read_fbo, texture) }
+    /// The framebuffer the eyes are read through, made on first use.
+    ///
+    /// # Safety
+    /// The compositor context must be current.
+    unsafe fn read_fbo(&mut self, gl: &Gl) -> u32 {
+        if self.read_fbo == 0 {
+            // SAFETY: contract.
+            self.read_fbo = unsafe { gl.gen_framebuffer() };
+        }
+        self.read_fbo
     }
 
     unsafe fn blit_eyes(
@@ -252,54 +283,20 @@ impl WindowPaths {
         buffer: u32,
     ) -> Result<()> {
         let (w, h) = job.eye_size;
-        let [left, right] = job.eyes;
-        let (l, r) = if options.swap_eyes {
-            (right, left)
-        } else {
-            (left, right)
-        };
-        let full = |eye| Placement {
-            eye,
-            x: 0,
-            y: 0,
-            width: w,
-            height: h,
-        };
-        // (placement, the eye's rectangle), at most two.
-        let mut draws: [Option<(Placement, TexRect)>; 2] = [None, None];
-        match job.mode {
-            OutputMode::Left => draws[0] = Some((full(Eye::Left), l)),
-            OutputMode::Right => draws[0] = Some((full(Eye::Right), r)),
-            OutputMode::FrameSequential => {
-                // The eye accounts for the swap: pick from the unswapped inputs.
-                let eye = options.frame_sequential_eye(job.frame_index);
-                let rect = if eye == Eye::Left { left } else { right };
-                draws[0] = Some((full(eye), rect));
-            }
-            mode => {
-                let places = placements(mode, w, h).expect("a rectangle mode");
-                for (d, p) in draws.iter_mut().zip(places.iter()) {
-                    *d = Some((*p, if p.eye == Eye::Left { l } else { r }));
-                }
-            }
-        }
-        let (cw, ch) = composite_size(job.mode, w, h);
-        let covered: u64 = draws
-            .iter()
-            .flatten()
-            .map(|(p, _)| u64::from(p.width) * u64::from(p.height))
-            .sum();
+        let draws = copies(job, options);
+        let (_, ch) = composite_size(job.mode, w, h);
         // SAFETY: the compositor context is current (contract of the callers).
         unsafe {
+            let fbo = self.read_fbo(gl);
             gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
             gl.DrawBuffer(buffer);
-            if covered < u64::from(cw) * u64::from(ch) {
+            if leaves_gaps(job.mode, w, h) {
                 gl.ClearColor(0.0, 0.0, 0.0, 1.0);
                 gl.Clear(GL_COLOR_BUFFER_BIT);
             }
             for (p, src) in draws.into_iter().flatten() {
                 debug_assert_eq!((p.width, p.height), (src.width, src.height));
-                self.read_from(gl, src.texture);
+                read_from(gl, fbo, src.texture);
                 let y = (ch - p.y - p.height) as i32;
                 gl.BlitFramebuffer(
                     src.x as i32,
@@ -334,18 +331,14 @@ impl WindowPaths {
         let order = bottom_first(job.mode, h);
         let same = job.eyes[1] == job.eyes[0];
         // SAFETY: contract.
-        unsafe {
-            if self.read_fbo == 0 {
-                self.read_fbo = gl.gen_framebuffer();
-            }
-        }
+        let fbo = unsafe { self.read_fbo(gl) };
         for (i, rect) in job.eyes.iter().enumerate().take(if same { 1 } else { 2 }) {
             let img = &mut self.eyes[i];
-            ensure_size(img, w, h)?;
+            img.resize(w, h, "read-back eye")?;
             // SAFETY: the compositor context is current (contract); the
             // image holds w×h×4 bytes.
             unsafe {
-                read_from(gl, self.read_fbo, rect.texture);
+                read_from(gl, fbo, rect.texture);
                 gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
                 gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
                 gl.ReadPixels(
@@ -378,7 +371,8 @@ impl WindowPaths {
     /// # Safety
     /// The compositor context must be current and `canvas` complete.
     pub(crate) unsafe fn read_canvas(&mut self, gl: &Gl, canvas: &Canvas) -> Result<&Image> {
-        ensure_size(&mut self.out, canvas.width, canvas.height)?;
+        self.out
+            .resize(canvas.width, canvas.height, "read-back composite")?;
         // SAFETY: contract; the image holds width×height×4 bytes.
         unsafe {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, canvas.fbo);
@@ -416,15 +410,13 @@ impl WindowPaths {
         let rows = ((BAND_BYTES / (w as usize * 4)).max(1) as u32).min(h);
         let same = rects[0].is_some() && rects[0] == rects[1];
         // SAFETY: contract.
-        unsafe {
-            if self.read_fbo == 0 {
-                self.read_fbo = gl.gen_framebuffer();
-            }
+        let fbo = unsafe {
             gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
             gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-        }
+            self.read_fbo(gl)
+        };
         for img in &mut self.eyes {
-            ensure_size(img, w, rows)?;
+            img.resize(w, rows, "band of an eye")?;
         }
         let mut y0 = 0;
         while y0 < h {
@@ -436,7 +428,7 @@ impl WindowPaths {
                 }
                 // SAFETY: contract; the band holds w × rows × 4 bytes ≥ n rows.
                 unsafe {
-                    read_from(gl, self.read_fbo, rect.texture);
+                    read_from(gl, fbo, rect.texture);
                     gl.ReadPixels(
                         rect.x as i32,
                         (rect.y + y0) as i32,
@@ -495,49 +487,12 @@ impl WindowPaths {
                 };
             }
             Plan::Copies => {
-                let [left, right] = job.eyes;
-                let (l, r) = if options.swap_eyes {
-                    (right, left)
-                } else {
-                    (left, right)
-                };
-                let full = |eye| Placement {
-                    eye,
-                    x: 0,
-                    y: 0,
-                    width: w,
-                    height: h,
-                };
-                // Where each eye goes (at most one place each).
-                let mut places: [Option<Placement>; 2] = [None, None];
-                let mut sources: [Option<TexRect>; 2] = [None, None];
-                let mut put = |p: Placement, rect: TexRect| {
-                    let i = usize::from(p.eye == Eye::Right);
-                    places[i] = Some(p);
-                    sources[i] = Some(rect);
-                };
-                match job.mode {
-                    OutputMode::Left => put(full(Eye::Left), l),
-                    OutputMode::Right => put(full(Eye::Right), r),
-                    OutputMode::FrameSequential => {
-                        let eye = options.frame_sequential_eye(job.frame_index);
-                        put(full(eye), if eye == Eye::Left { left } else { right });
-                    }
-                    mode => {
-                        for p in placements(mode, w, h).expect("a rectangle mode") {
-                            put(p, if p.eye == Eye::Left { l } else { r });
-                        }
-                    }
-                }
-                let (cw, ch) = target.size;
-                let covered: u64 = places
-                    .iter()
-                    .flatten()
-                    .map(|p| u64::from(p.width) * u64::from(p.height))
-                    .sum();
-                if covered < u64::from(cw) * u64::from(ch) {
+                let draws = copies(job, options);
+                let places = draws.map(|d| d.map(|(p, _)| p));
+                let sources = draws.map(|d| d.map(|(_, rect)| rect));
+                if leaves_gaps(job.mode, w, h) {
                     let black = target.layout.convert(0);
-                    for y in 0..ch {
+                    for y in 0..target.size.1 {
                         fill_words(target.row_mut(y), black);
                     }
                 }

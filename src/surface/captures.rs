@@ -9,19 +9,8 @@ use std::sync::Arc;
 use super::{CaptureImage, Surface};
 use crate::capture::queue::{DEFAULT_CAPACITY, PngQueue};
 use crate::error::Result;
-use crate::image::{Image, as_words_mut};
+use crate::image::Image;
 use crate::output::layout::composite_size;
-
-/// Alpha 255 everywhere (a display shows no alpha, so neither does a capture).
-fn make_opaque(img: &mut Image) {
-    match as_words_mut(img.pixels_mut()) {
-        Some(words) => words.iter_mut().for_each(|w| *w |= 0xFF00_0000),
-        None => img
-            .pixels_mut()
-            .chunks_exact_mut(4)
-            .for_each(|p| p[3] = 255),
-    }
-}
 
 impl Surface {
     /// Reads one of the images a viewer sees now into `out` (resized when
@@ -41,9 +30,7 @@ impl Surface {
         match source {
             // An eye that is a whole buffer: one read-back into `out`.
             Some(s) if (s.x, s.y, s.width, s.height) == (0, 0, w, h) => {
-                if (out.width(), out.height()) != (w, h) {
-                    *out = Image::try_new(w, h)?;
-                }
+                out.resize(w, h, "image")?;
                 self.with_compositor(|gl, st| {
                     // SAFETY: the compositor context is current; `out` holds w×h×4 bytes.
                     unsafe { st.fb.read_pixels(gl, s.buffer, out.pixels_mut()) }
@@ -68,7 +55,7 @@ impl Surface {
                 }
             }
         }
-        make_opaque(out);
+        out.make_opaque();
         Ok(())
     }
 
