@@ -25,6 +25,10 @@ fn modes_writes_one_composite_per_listed_mode_in_that_mode() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     let left = common::png(&out.join("left.png"));
     let right = common::png(&out.join("right.png"));
+    // RedBlue: at (20, 15) the left eye is blue, the right red, so the
+    // placement checks below would catch swapped eyes.
+    assert_eq!(left.get(20, 15), [1, 1, 255, 255], "left eye: blue");
+    assert_eq!(right.get(20, 15), [255, 1, 1, 255], "right eye: red");
     // composite.png is written first, in --mode.
     assert_eq!(common::png(&out.join("composite.png")), left, "--mode left");
     // Aliases are written under their canonical name.
@@ -35,9 +39,14 @@ fn modes_writes_one_composite_per_listed_mode_in_that_mode() {
     let sbs = common::png(&out.join("composite-side-by-side.png"));
     assert_eq!((sbs.width(), sbs.height()), (80, 30));
     assert_eq!(sbs.get(45, 20), right.get(5, 20), "right eye on the right");
+    assert_eq!(sbs.get(20, 15), left.get(20, 15), "left eye on the left");
+    assert_eq!(sbs.get(60, 15), right.get(20, 15), "right eye on the right");
     let tb = common::png(&out.join("composite-top-bottom.png"));
     assert_eq!((tb.width(), tb.height()), (40, 60));
     assert_eq!(tb.get(10, 35), right.get(10, 5), "right eye below");
+    // (10, 5) is grey in both eyes: where they differ, too.
+    assert_eq!(tb.get(20, 15), left.get(20, 15), "left eye above");
+    assert_eq!(tb.get(20, 45), right.get(20, 15), "right eye below");
     let rows = common::png(&out.join("composite-rows.png"));
     for y in 0..30 {
         let eye = if y % 2 == 0 { &left } else { &right };

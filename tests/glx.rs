@@ -13,6 +13,26 @@ use glstereo::surface;
 
 use common::xvfb::Xvfb;
 
+/// Display on `x`, a stereo (GLX_STEREO, double-buffered RGBA) window of
+/// `w`x`h` per eye, made current on this thread. Keep the display while
+/// the surface lives.
+fn current_stereo_window(
+    x: &Xvfb,
+    w: u32,
+    h: u32,
+) -> (
+    std::sync::Arc<Display>,
+    std::sync::Arc<glstereo::surface::Surface>,
+) {
+    let d = Display::open_x11(Some(&x.display)).unwrap();
+    let c = d
+        .choose_config(&[GLX_RGBA, GLX_DOUBLEBUFFER, GLX_STEREO])
+        .unwrap();
+    let s = d.create_surface(&c, w, h).unwrap();
+    surface::make_current(Some(&s)).unwrap();
+    (d, s)
+}
+
 #[test]
 fn xvfb_has_no_stereo_visual_so_stereo_is_emulated_in_a_window() {
     let x = Xvfb::start(640, 480);
@@ -86,12 +106,7 @@ fn no_display_is_a_clear_error_naming_the_fix() {
 #[test]
 fn a_killed_server_is_reported_not_an_exit() {
     let mut x = Xvfb::start(320, 240);
-    let d = Display::open_x11(Some(&x.display)).unwrap();
-    let c = d
-        .choose_config(&[GLX_RGBA, GLX_DOUBLEBUFFER, GLX_STEREO])
-        .unwrap();
-    let s = d.create_surface(&c, 32, 32).unwrap();
-    surface::make_current(Some(&s)).unwrap();
+    let (d, s) = current_stereo_window(&x, 32, 32);
     s.swap_buffers().unwrap();
     x.kill();
     // The next calls that talk to the server fail with DISPLAY_LOST; the test process lives on.
@@ -202,12 +217,7 @@ fn sync(s: &glstereo::surface::Surface) {
 fn the_window_shows_the_composite_of_each_mode_pixel_for_pixel() {
     use glstereo::output::OutputMode;
     let x = Xvfb::start(1280, 1024);
-    let d = Display::open_x11(Some(&x.display)).unwrap();
-    let c = d
-        .choose_config(&[GLX_RGBA, GLX_DOUBLEBUFFER, GLX_STEREO])
-        .unwrap();
-    let s = d.create_surface(&c, 160, 120).unwrap();
-    surface::make_current(Some(&s)).unwrap();
+    let (_d, s) = current_stereo_window(&x, 160, 120);
     for name in [
         "anaglyph-red-cyan",
         "side-by-side-half",
@@ -239,12 +249,7 @@ fn the_window_shows_the_composite_of_each_mode_pixel_for_pixel() {
 fn resizing_the_window_resizes_the_eyes_by_the_next_frame() {
     use glstereo::backend::{NativeHandles, WindowEvent};
     let x = Xvfb::start(1280, 1024);
-    let d = Display::open_x11(Some(&x.display)).unwrap();
-    let c = d
-        .choose_config(&[GLX_RGBA, GLX_DOUBLEBUFFER, GLX_STEREO])
-        .unwrap();
-    let s = d.create_surface(&c, 200, 100).unwrap();
-    surface::make_current(Some(&s)).unwrap();
+    let (_d, s) = current_stereo_window(&x, 200, 100);
     draw_eye_patterns(&s);
     s.swap_buffers().unwrap();
     // The user (or XResizeWindow) makes the window 300x150.

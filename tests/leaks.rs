@@ -59,26 +59,74 @@ const CYCLE_GROWTH_KIB: i64 = 1024;
 /// nothing is allocated for good. Measured growth: 0 KiB on both backends.
 const FRAME_GROWTH_KIB: i64 = 256;
 
-/// tests/c/cycles.c, built once per flavour (plain or sanitized).
-fn cycles(sanitized: bool) -> PathBuf {
-    static BUILT: OnceLock<Mutex<[Option<PathBuf>; 2]>> = OnceLock::new();
-    let mut built = BUILT
+/// Programs built by these tests, one slot per flavour (plain, sanitized).
+type Built = OnceLock<Mutex<[Option<PathBuf>; 2]>>;
+
+/// `name` (or `name-asan` when sanitized) built once by `build(exe)` into
+/// its scratch directory; later calls, from any test thread, get that path.
+fn built_once(
+    cache: &Built,
+    name: &str,
+    sanitized: bool,
+    build: impl FnOnce(&std::path::Path),
+) -> PathBuf {
+    let mut built = cache
         .get_or_init(Default::default)
         .lock()
         .unwrap_or_else(|e| e.into_inner());
     if let Some(p) = &built[sanitized as usize] {
         return p.clone();
     }
-    let name = if sanitized { "cycles-asan" } else { "cycles" };
-    let exe = common::scratch(&format!("leaks-{name}")).join(name);
-    let src = [common::root().join("tests/c/cycles.c")];
-    if sanitized {
-        sanitize::compile(&src, &exe, &[]);
+    let name = if sanitized {
+        format!("{name}-asan")
     } else {
-        common::compile_c(&src, &exe, &["-O1"]);
-    }
+        name.to_owned()
+    };
+    let exe = common::scratch(&format!("leaks-{name}")).join(&name);
+    build(&exe);
     built[sanitized as usize] = Some(exe.clone());
     exe
+}
+
+/// valgrind memcheck as every run here uses it: definitely-lost blocks are
+/// errors (exit 99), full stacks, Mesa's own losses suppressed
+/// (tests/sanitize/valgrind.supp), llvmpipe on the calling thread.
+fn memcheck() -> Command {
+    let mut cmd = Command::new("valgrind");
+    cmd.args([
+        "--tool=memcheck",
+        "--leak-check=full",
+        "--show-leak-kinds=definite",
+        "--errors-for-leak-kinds=definite",
+        "--error-exitcode=99",
+        "--num-callers=40",
+    ])
+    .arg(format!(
+        "--suppressions={}",
+        common::root()
+            .join("tests/sanitize/valgrind.supp")
+            .display()
+    ))
+    // llvmpipe renders on the calling thread: the same work, much
+    // faster under valgrind, which runs one thread at a time anyway.
+    .env("LP_NUM_THREADS", "0")
+    // Mesa's shader disk cache compresses with zstd, which trips
+    // valgrind's uninitialised-value check; it is not under test.
+    .env("MESA_SHADER_CACHE_DISABLE", "true");
+    cmd
+}
+
+/// tests/c/cycles.c, built once per flavour (plain or sanitized).
+fn cycles(sanitized: bool) -> PathBuf {
+    static BUILT: Built = OnceLock::new();
+    built_once(&BUILT, "cycles", sanitized, |exe| {
+        let src = [common::root().join("tests/c/cycles.c")];
+        if sanitized {
+            sanitize::compile(&src, exe, &[]);
+        } else {
+            common::compile_c(&src, exe, &["-O1"]);
+        }
+    })
 }
 
 /// The "rss N KIB" lines of a run.
@@ -131,30 +179,9 @@ fn a_thousand_cycles_on_osmesa_leak_nothing_of_glstereo_under_leak_sanitizer() {
 }
 
 fn valgrind_cycles(backend: &str) {
-    let exe = cycles(false);
-    let o = Command::new("valgrind")
-        .args([
-            "--tool=memcheck",
-            "--leak-check=full",
-            "--show-leak-kinds=definite",
-            "--errors-for-leak-kinds=definite",
-            "--error-exitcode=99",
-            "--num-callers=40",
-        ])
-        .arg(format!(
-            "--suppressions={}",
-            common::root()
-                .join("tests/sanitize/valgrind.supp")
-                .display()
-        ))
-        .arg(exe)
+    let o = memcheck()
+        .arg(cycles(false))
         .args(["cycles", backend, "3", "3"])
-        // llvmpipe renders on the calling thread: the same work, much
-        // faster under valgrind, which runs one thread at a time anyway.
-        .env("LP_NUM_THREADS", "0")
-        // Mesa's shader disk cache compresses with zstd, which trips
-        // valgrind's uninitialised-value check; it is not under test.
-        .env("MESA_SHADER_CACHE_DISABLE", "true")
         .output()
         .expect("valgrind runs (package valgrind; `make deps` installs it)");
     let stderr = String::from_utf8_lossy(&o.stderr);
@@ -249,30 +276,17 @@ const GLX_CONTEXT_GROWTH_KIB: i64 = 512;
 /// tests/c/glx_cycles.c as a plain GLX program (-lGL -lX11 only), built
 /// once per flavour (plain or sanitized).
 fn glx_cycles(sanitized: bool) -> PathBuf {
-    static BUILT: OnceLock<Mutex<[Option<PathBuf>; 2]>> = OnceLock::new();
-    let mut built = BUILT
-        .get_or_init(Default::default)
-        .lock()
-        .unwrap_or_else(|e| e.into_inner());
-    if let Some(p) = &built[sanitized as usize] {
-        return p.clone();
-    }
-    let name = if sanitized {
-        "glx_cycles-asan"
-    } else {
-        "glx_cycles"
-    };
-    let exe = common::scratch(&format!("leaks-{name}")).join(name);
-    let src = common::root().join("tests/c/glx_cycles.c");
-    let include = format!("-I{}", common::root().join("tests/c").display());
-    let args = [include.as_str(), "-O1", "-lGL", "-lX11"];
-    if sanitized {
-        sanitize::compile_plain(&src, &exe, &args);
-    } else {
-        common::preload::compile_plain(&src, &exe, &args);
-    }
-    built[sanitized as usize] = Some(exe.clone());
-    exe
+    static BUILT: Built = OnceLock::new();
+    built_once(&BUILT, "glx_cycles", sanitized, |exe| {
+        let src = common::root().join("tests/c/glx_cycles.c");
+        let include = format!("-I{}", common::root().join("tests/c").display());
+        let args = [include.as_str(), "-O1", "-lGL", "-lX11"];
+        if sanitized {
+            sanitize::compile_plain(&src, exe, &args);
+        } else {
+            common::preload::compile_plain(&src, exe, &args);
+        }
+    })
 }
 
 /// `glx_cycles MODE N` under glstereo-run on a private Xvfb.
@@ -319,27 +333,11 @@ fn a_glx_stereo_program_under_the_preload_loses_nothing_definitely_under_valgrin
         common::preload::built().preload.display(),
         sanitize::keep_modules().display()
     );
-    let o = Command::new("valgrind")
-        .args([
-            "--tool=memcheck",
-            "--leak-check=full",
-            "--show-leak-kinds=definite",
-            "--errors-for-leak-kinds=definite",
-            "--error-exitcode=99",
-            "--num-callers=40",
-        ])
-        .arg(format!(
-            "--suppressions={}",
-            common::root()
-                .join("tests/sanitize/valgrind.supp")
-                .display()
-        ))
+    let o = memcheck()
         .arg(glx_cycles(false))
         .args(["contexts", "3"])
         .env("DISPLAY", &x.display)
         .env("LD_PRELOAD", preload)
-        .env("LP_NUM_THREADS", "0")
-        .env("MESA_SHADER_CACHE_DISABLE", "true")
         .env_remove("GLSTEREO_MODE")
         .output()
         .expect("valgrind runs (package valgrind; `make deps` installs it)");

@@ -482,6 +482,20 @@ fn glstereo_run_checks_its_options_before_the_program_starts_and_sets_the_enviro
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(127));
+    // A program that exists but cannot be executed (no x bit; refused even
+    // to root): 126, as the manual's EXIT STATUS says.
+    let not_executable = dir.join("not-executable");
+    std::fs::write(&not_executable, "#!/bin/sh\n").unwrap();
+    let out = Command::new(&built().run)
+        .arg(&not_executable)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(126),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 
     // What the program gets: the preload library first (an existing
     // LD_PRELOAD kept after it), the canonical mode, swap, the capture

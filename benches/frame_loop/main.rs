@@ -39,6 +39,10 @@
 
 mod plain;
 mod scene;
+// The tests' private Xvfb (-displayfd), stopped when dropped.
+#[allow(dead_code)]
+#[path = "../../tests/common/xvfb.rs"]
+mod xvfb;
 
 use std::process::{Command, Stdio};
 use std::sync::Arc;
@@ -56,6 +60,7 @@ use glstereo::surface::{self, Surface};
 
 use plain::Plain;
 use scene::{Scene, SceneGl, Weight};
+use xvfb::Xvfb;
 
 struct Args {
     backend: Option<String>,
@@ -386,50 +391,4 @@ fn save_eyes(s: &Arc<Surface>, dir: &std::path::Path, frame: u64, sync: bool) {
 
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
-}
-
-/// A private Xvfb (-displayfd), stopped when dropped.
-struct Xvfb {
-    child: std::process::Child,
-    display: String,
-}
-
-impl Xvfb {
-    fn start(width: u32, height: u32) -> Xvfb {
-        let file = std::env::temp_dir().join(format!("glstereo-bench-xvfb-{}", std::process::id()));
-        let _ = std::fs::remove_file(&file);
-        let child = Command::new("sh")
-            .arg("-c")
-            .arg(format!(
-                "exec Xvfb -displayfd 3 -screen 0 {width}x{height}x24 -nolisten tcp -noreset 3>'{}'",
-                file.display()
-            ))
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("Xvfb starts (package xvfb)");
-        let mut x = Xvfb {
-            child,
-            display: String::new(),
-        };
-        let deadline = Instant::now() + Duration::from_secs(20);
-        loop {
-            if let Ok(s) = std::fs::read_to_string(&file) {
-                if s.ends_with('\n') {
-                    let _ = std::fs::remove_file(&file);
-                    x.display = format!(":{}", s.trim());
-                    return x;
-                }
-            }
-            assert!(Instant::now() < deadline, "Xvfb did not start within 20 s");
-            std::thread::sleep(Duration::from_millis(20));
-        }
-    }
-}
-
-impl Drop for Xvfb {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
 }

@@ -1,5 +1,8 @@
 //! A private X server for one test: Xvfb on a display number it picks itself
 //! (-displayfd), stopped when dropped.
+//!
+//! Self-contained (no `super::`), so benches/frame_loop includes it too with
+//! `#[path = "../../tests/common/xvfb.rs"]`.
 
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -19,7 +22,9 @@ impl Xvfb {
 
     /// As [`Xvfb::start`], with more Xvfb arguments (e.g. "-extension GLX").
     pub fn start_with(width: u32, height: u32, extra: &str) -> Xvfb {
-        let dir = super::lib_dir().join("xvfb");
+        // Beside the test (or bench) binary: target/<profile>/deps/xvfb.
+        let exe = std::env::current_exe().expect("test binary path");
+        let dir = exe.parent().expect("target/<profile>/deps").join("xvfb");
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir
             .join(format!(
