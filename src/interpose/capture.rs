@@ -140,9 +140,7 @@ fn work(dir: &Path, rx: &Mutex<Receiver<(u64, Frame)>>) {
 }
 
 fn opaque(mut img: Image) -> Image {
-    for px in img.pixels_mut().chunks_exact_mut(4) {
-        px[3] = 255;
-    }
+    img.make_opaque();
     img
 }
 
