@@ -387,6 +387,15 @@ impl Surface {
     /// Emulated glGetIntegerv values of the default framebuffer, None for
     /// any other `pname` (or when the program has its own FBO bound).
     pub fn emulated_integer(self: &Arc<Self>, pname: u32) -> Result<Option<i32>> {
+        Ok(self.emulated_integers([pname])?[0])
+    }
+
+    /// [`Surface::emulated_integer`] of several `pnames` at once (one lock,
+    /// one look at the framebuffer bindings).
+    pub fn emulated_integers<const N: usize>(
+        self: &Arc<Self>,
+        pnames: [u32; N],
+    ) -> Result<[Option<i32>; N]> {
         let st = self.current_state()?;
         // SAFETY: the application context is current (checked).
         let (draw_fbo, read_fbo) = unsafe {
@@ -396,12 +405,9 @@ impl Surface {
             )
         };
         let ours = st.fb.app_fbo();
-        Ok(default_framebuffer_query(
-            pname,
-            self.config.shape(),
-            Some(&st.fb).filter(|_| draw_fbo == ours),
-            Some(&st.fb).filter(|_| read_fbo == ours),
-        ))
+        let draw = Some(&st.fb).filter(|_| draw_fbo == ours);
+        let read = Some(&st.fb).filter(|_| read_fbo == ours);
+        Ok(pnames.map(|p| default_framebuffer_query(p, self.config.shape(), draw, read)))
     }
 
     /// glBindFramebuffer with 0 meaning the emulated default framebuffer.

@@ -124,13 +124,16 @@ enum Selection {
 
 impl Selection {
     fn read(s: &Arc<Surface>) -> Result<Option<Selection>> {
-        let Some(first) = s.emulated_integer(GL_DRAW_BUFFER)? else {
+        // GL_DRAW_BUFFER, then GL_DRAW_BUFFER0.., in one query.
+        let mut pnames = [GL_DRAW_BUFFER; MAX_DRAW_BUFFERS + 1];
+        for (i, p) in pnames[1..].iter_mut().enumerate() {
+            *p = GL_DRAW_BUFFER0 + i as u32;
+        }
+        let values = s.emulated_integers(pnames)?;
+        let Some(first) = values[0] else {
             return Ok(None);
         };
-        let mut names = Vec::with_capacity(MAX_DRAW_BUFFERS);
-        for i in 0..MAX_DRAW_BUFFERS as u32 {
-            names.push(s.emulated_integer(GL_DRAW_BUFFER0 + i)?.unwrap_or(0) as u32);
-        }
+        let mut names: Vec<u32> = values[1..].iter().map(|v| v.unwrap_or(0) as u32).collect();
         while names.len() > 1 && names.last() == Some(&GL_NONE) {
             names.pop();
         }
