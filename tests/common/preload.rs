@@ -254,6 +254,83 @@ impl Screen {
     }
 }
 
+impl Screen {
+    /// The top-level windows whose WM_CLASS class is `class` (e.g.
+    /// OpenSceneGraph's unnamed "osgViewer" windows).
+    pub fn find_class(&self, class: &str) -> Option<u64> {
+        let x = &self.xlib;
+        // SAFETY: valid display; the lists and strings are freed with XFree.
+        unsafe {
+            let root = (x.XDefaultRootWindow)(self.display);
+            let (mut r, mut parent) = (0, 0);
+            let mut children: *mut xlib::Window = std::ptr::null_mut();
+            let mut n = 0u32;
+            (x.XQueryTree)(
+                self.display,
+                root,
+                &mut r,
+                &mut parent,
+                &mut children,
+                &mut n,
+            );
+            let mut found = None;
+            for i in 0..n as usize {
+                let w = *children.add(i);
+                let mut hint: xlib::XClassHint = std::mem::zeroed();
+                if (x.XGetClassHint)(self.display, w, &mut hint) != 0 {
+                    for s in [hint.res_name, hint.res_class] {
+                        if !s.is_null() {
+                            if std::ffi::CStr::from_ptr(s).to_string_lossy() == class {
+                                found = Some(w);
+                            }
+                            (x.XFree)(s.cast());
+                        }
+                    }
+                }
+            }
+            if !children.is_null() {
+                (x.XFree)(children.cast());
+            }
+            found
+        }
+    }
+
+    /// Sends `window` a key press and release of `keysym` (e.g.
+    /// `x11_dl::keysym::XK_Escape`), as a user's key would arrive.
+    pub fn press_key(&self, window: u64, keysym: u32) {
+        let x = &self.xlib;
+        // SAFETY: valid display and window; the events are plain structs.
+        unsafe {
+            let code = (x.XKeysymToKeycode)(self.display, keysym as xlib::KeySym);
+            for (kind, mask) in [
+                (xlib::KeyPress, xlib::KeyPressMask),
+                (xlib::KeyRelease, xlib::KeyReleaseMask),
+            ] {
+                let mut ev: xlib::XEvent = std::mem::zeroed();
+                ev.key = xlib::XKeyEvent {
+                    type_: kind,
+                    serial: 0,
+                    send_event: 1,
+                    display: self.display,
+                    window,
+                    root: (x.XDefaultRootWindow)(self.display),
+                    subwindow: 0,
+                    time: 0,
+                    x: 1,
+                    y: 1,
+                    x_root: 1,
+                    y_root: 1,
+                    state: 0,
+                    keycode: code as u32,
+                    same_screen: 1,
+                };
+                (x.XSendEvent)(self.display, window, 0, mask, &mut ev);
+            }
+            (x.XFlush)(self.display);
+        }
+    }
+}
+
 impl Drop for Screen {
     fn drop(&mut self) {
         // SAFETY: our own connection, closed once.

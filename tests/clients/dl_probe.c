@@ -1,0 +1,77 @@
+/*
+ * What the dynamic loader answers for the calls a program makes around
+ * libGL, printed as facts that do not depend on addresses, so the output
+ * under glstereo-run can be compared with the output without it
+ * (tests/clients.rs). Links neither libGL nor glstereo: -ldl only.
+ *
+ * Lines:
+ *   other-library OPENED SYMBOL VALUE   dlopen("libm.so.6"), dlsym "cos", cos(0)
+ *   other-handle-gl-name NULL ERROR     dlsym(libm handle, "glClear")
+ *   open NAME OPENED                    dlopen(NAME) for each GL library name
+ *   known NAME FOUND                    dlsym(handle, "glClear")
+ *   unknown NAME NULL ERROR             dlsym(handle, "glNoSuchFunctionGLS"), dlerror() != NULL
+ *   close NAME RESULT                   dlclose(handle)
+ *   default-unknown NULL ERROR          dlsym(RTLD_DEFAULT, "glNoSuchFunctionGLS")
+ *   next-unknown NULL ERROR             dlsym(RTLD_NEXT, "glNoSuchFunctionGLS")
+ *   missing-library NULL ERROR          dlopen("libglstereo-no-such.so.1")
+ *   layer NAME SAME                     with GLSTEREO_PROBE_LAYERED set (under
+ *                                       the layer): dlsym(handle, "glXChooseVisual")
+ *                                       ("glDrawBuffer" for libOpenGL, which has
+ *                                       no GLX) is the function dlsym(RTLD_DEFAULT,
+ *                                       …) finds: the layer's
+ */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const gl_names[] = {"libGL.so.1", "libGL.so", "libGLX.so.0", "libOpenGL.so.0",
+                                       "/usr/lib/x86_64-linux-gnu/libGL.so.1"};
+
+int main(void)
+{
+    int layered = getenv("GLSTEREO_PROBE_LAYERED") != NULL;
+    size_t i;
+    void *m = dlopen("libm.so.6", RTLD_NOW | RTLD_LOCAL);
+    void *cos_sym = m != NULL ? dlsym(m, "cos") : NULL;
+    double (*cos_fn)(double) = NULL;
+    if (cos_sym != NULL) {
+        *(void **)(&cos_fn) = cos_sym;
+    }
+    printf("other-library %d %d %g\n", m != NULL, cos_sym != NULL, cos_fn != NULL ? cos_fn(0.0) : -1.0);
+    if (m != NULL) {
+        void *p;
+        dlerror();
+        p = dlsym(m, "glClear");
+        printf("other-handle-gl-name %d %d\n", p == NULL, dlerror() != NULL);
+    }
+    for (i = 0; i < sizeof gl_names / sizeof gl_names[0]; i++) {
+        const char *name = gl_names[i];
+        void *h = dlopen(name, RTLD_NOW | RTLD_LOCAL);
+        void *p;
+        printf("open %s %d\n", name, h != NULL);
+        if (h == NULL) {
+            continue;
+        }
+        printf("known %s %d\n", name, dlsym(h, "glClear") != NULL);
+        dlerror();
+        p = dlsym(h, "glNoSuchFunctionGLS");
+        printf("unknown %s %d %d\n", name, p == NULL, dlerror() != NULL);
+        if (layered) {
+            const char *fn = strstr(name, "libOpenGL") != NULL ? "glDrawBuffer" : "glXChooseVisual";
+            void *mine = dlsym(h, fn);
+            printf("layer %s %d\n", name, mine != NULL && mine == dlsym(RTLD_DEFAULT, fn));
+        }
+        printf("close %s %d\n", name, dlclose(h));
+    }
+    dlerror();
+    void *p = dlsym(RTLD_DEFAULT, "glNoSuchFunctionGLS");
+    printf("default-unknown %d %d\n", p == NULL, dlerror() != NULL);
+    dlerror();
+    p = dlsym(RTLD_NEXT, "glNoSuchFunctionGLS");
+    printf("next-unknown %d %d\n", p == NULL, dlerror() != NULL);
+    p = dlopen("libglstereo-no-such.so.1", RTLD_NOW);
+    printf("missing-library %d %d\n", p == NULL, dlerror() != NULL);
+    return 0;
+}
