@@ -16,6 +16,14 @@ use std::ffi::{c_int, c_uchar, c_ulong, c_void};
 
 use glstereo::ffi::interpose as gls;
 
+use glstereo::interpose::next;
+
+/// Each export enters the layer ([`next::enter`]) and calls glstereo's
+/// implementation; entered again from inside the layer (a layer below
+/// calling the name back globally while the layer forwards to it), it goes
+/// straight to libGL's own function instead ([`next::bottom_symbol`]), so a
+/// look-up loop never recurses. `own_export` maps each name to its export
+/// for glXGetProcAddress.
 macro_rules! export {
     ($( $name:ident => $target:ident ( $($arg:ident : $ty:ty),* ) $(-> $ret:ty)? ; )*) => {
         $(
@@ -23,12 +31,46 @@ macro_rules! export {
             #[unsafe(no_mangle)]
             #[allow(unused_unsafe)]
             pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+                let Some(_inside) = next::enter() else {
+                    next::loop_detected(stringify!($name));
+                    let name = concat!(stringify!($name), "\0");
+                    let f = bottom(name);
+                    // SAFETY: libGL's function of this name, with its
+                    // signature, and the caller's arguments.
+                    return unsafe {
+                        std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
+                    };
+                };
                 // SAFETY: the caller's arguments, under the contract of the
                 // GLX/GL function this replaces, which the target shares.
                 unsafe { gls::$target($($arg),*) }
             }
         )*
+
+        /// The export standing for `name`, for glXGetProcAddress.
+        fn own_export(name: &[u8]) -> Option<*mut c_void> {
+            match name {
+                $( n if n == stringify!($name).as_bytes() => Some($name as *mut c_void), )*
+                _ => None,
+            }
+        }
     };
+}
+
+/// libGL's own function `name` (NUL-terminated) for a re-entered export;
+/// a process without it cannot have called the export through libGL, so
+/// its absence ends the process with a message rather than a jump to NULL.
+fn bottom(name: &'static str) -> *mut c_void {
+    let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+    let f = next::bottom_symbol(cname);
+    if f.is_null() {
+        eprintln!(
+            "glstereo: {} re-entered and libGL.so.1 has no such function; aborting",
+            cname.to_string_lossy()
+        );
+        std::process::abort();
+    }
+    f
 }
 
 export! {
@@ -86,17 +128,54 @@ fn as_proc(p: *mut c_void) -> ProcAddress {
     unsafe { std::mem::transmute::<*mut c_void, ProcAddress>(p) }
 }
 
-/// `glXGetProcAddressARB`: the interposed functions for their names, the
-/// real libGL's for every other.
+/// Both glXGetProcAddress names: this library's exports for their names
+/// (so a function found this way is guarded as the direct link is), the
+/// layer's other replacements (aliases such as glXMakeCurrentReadSGI), the
+/// function below the layer for every other name.
+unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAddress {
+    let Some(_inside) = next::enter() else {
+        next::loop_detected(which);
+        let gpa = bottom("glXGetProcAddressARB\0");
+        // SAFETY: libGL's glXGetProcAddressARB, with the caller's name.
+        return unsafe {
+            std::mem::transmute::<*mut c_void, unsafe extern "C" fn(*const c_uchar) -> ProcAddress>(
+                gpa,
+            )(name)
+        };
+    };
+    if !name.is_null() {
+        // SAFETY: non-NULL, NUL-terminated (GLX's contract).
+        let n = unsafe { std::ffi::CStr::from_ptr(name.cast()) };
+        if let Some(f) = own_export(n.to_bytes()) {
+            return as_proc(f);
+        }
+    }
+    // SAFETY: a NUL-terminated name (GLX's contract; NULL is refused there).
+    as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
+}
+
+/// `glXGetProcAddressARB`: this library's exports for their names (so a
+/// function found this way is guarded as a direct link is), the layer's
+/// other replacements, the function below the layer for every other name.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddressARB(name: *const c_uchar) -> ProcAddress {
-    // SAFETY: a NUL-terminated name (GLX's contract).
-    as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddressARB") }
 }
 
 /// `glXGetProcAddress`: as [`glXGetProcAddressARB`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddress(name: *const c_uchar) -> ProcAddress {
-    // SAFETY: a NUL-terminated name (GLX's contract).
-    as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddress") }
+}
+
+/// `dlopen`: libGL.so(.1), libGLX.so(.0) and libOpenGL.so(.0) opened by a
+/// program come back as a stub whose look-ups find this library's exports
+/// first; everything else is the next dlopen's
+/// ([`glstereo::interpose::next`] says how and why).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn dlopen(filename: *const std::ffi::c_char, flags: c_int) -> *mut c_void {
+    // SAFETY: dlopen's contract, forwarded.
+    unsafe { next::dlopen_for_program(filename, flags) }
 }
