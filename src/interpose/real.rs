@@ -219,14 +219,15 @@ fn load() -> Result<Real, String> {
 }
 
 /// A GL or GLX function below the layer: the next glXGetProcAddressARB's
-/// answer, unless that is the layer's own (a layer below handing the
-/// layer's exports back), then libGL's own.
+/// answer; where that is the layer's own (a layer below that looks names
+/// up globally hands the layer's exports back), the next definition of
+/// the name ([`super::next::next_symbol`], which is never the layer's).
 fn gl_symbol(glx: &Glx, name: &CStr) -> *const c_void {
     // SAFETY: NUL-terminated name; the next glXGetProcAddressARB.
     let p = unsafe { (glx.glXGetProcAddressARB)(name.as_ptr() as *const u8) }
         .map_or(std::ptr::null(), |f| f as *const c_void);
     if super::next::is_own(p) {
-        super::next::bottom_symbol(name)
+        super::next::next_symbol(name)
     } else {
         p
     }
