@@ -13,17 +13,18 @@
 #![allow(clippy::missing_safety_doc, non_snake_case)]
 
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
+use std::sync::atomic::{AtomicPtr, Ordering};
 
 use glstereo::ffi::interpose as gls;
 
 use glstereo::interpose::next;
 
-/// Each export enters the layer ([`next::enter`]) and calls glstereo's
-/// implementation; entered again from inside the layer (a layer below
-/// calling the name back globally while the layer forwards to it), it goes
-/// straight to libGL's own function instead ([`next::bottom_symbol`]), so a
-/// look-up loop never recurses. `own_export` maps each name to its export
-/// for glXGetProcAddress.
+/// Each export enters the layer ([`next::enter`]) and calls
+/// glstereo's implementation. Entered again while the thread is inside the
+/// layer — libGL's own code, or a layer below, calling the name back while
+/// the layer calls down — it is not the program calling: it forwards to the
+/// next definition of the name ([`pass_down`]). `own_export` maps each name
+/// to its export for glXGetProcAddress.
 macro_rules! export {
     ($( $name:ident => $target:ident ( $($arg:ident : $ty:ty),* ) $(-> $ret:ty)? ; )*) => {
         $(
@@ -31,16 +32,16 @@ macro_rules! export {
             #[unsafe(no_mangle)]
             #[allow(unused_unsafe)]
             pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
-                let Some(_inside) = next::enter() else {
-                    next::loop_detected(stringify!($name));
-                    let name = concat!(stringify!($name), "\0");
-                    let f = bottom(name);
-                    // SAFETY: libGL's function of this name, with its
+                static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                let (_inside, depth) = next::enter();
+                if depth > 0 {
+                    let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
+                    // SAFETY: the next definition of this function, with its
                     // signature, and the caller's arguments.
                     return unsafe {
                         std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
                     };
-                };
+                }
                 // SAFETY: the caller's arguments, under the contract of the
                 // GLX/GL function this replaces, which the target shares.
                 unsafe { gls::$target($($arg),*) }
@@ -57,9 +58,30 @@ macro_rules! export {
     };
 }
 
-/// libGL's own function `name` (NUL-terminated) for a re-entered export;
-/// a process without it cannot have called the export through libGL, so
-/// its absence ends the process with a message rather than a jump to NULL.
+/// Where an export called from inside the layer goes: the next definition
+/// of `name` (NUL-terminated; cached in `slot`), or, nested
+/// [`next::NESTING_LIMIT`] deep — a layer below that calls the name back by
+/// a global look-up, a loop — libGL's own function, said once on stderr.
+fn pass_down(slot: &AtomicPtr<c_void>, name: &'static str, depth: u32) -> *mut c_void {
+    if depth >= next::NESTING_LIMIT {
+        next::loop_detected(name.trim_end_matches('\0'));
+        return bottom(name);
+    }
+    let mut f = slot.load(Ordering::Acquire);
+    if f.is_null() {
+        let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+        f = next::next_symbol(cname);
+        if f.is_null() {
+            f = bottom(name);
+        }
+        slot.store(f, Ordering::Release);
+    }
+    f
+}
+
+/// libGL's own function `name` (NUL-terminated); a process without it
+/// cannot have reached the export through libGL, so its absence ends the
+/// process with a message rather than a jump to NULL.
 fn bottom(name: &'static str) -> *mut c_void {
     let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
     let f = next::bottom_symbol(cname);
@@ -133,9 +155,10 @@ fn as_proc(p: *mut c_void) -> ProcAddress {
 /// layer's other replacements (aliases such as glXMakeCurrentReadSGI), the
 /// function below the layer for every other name.
 unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAddress {
-    let Some(_inside) = next::enter() else {
-        next::loop_detected(which);
-        let gpa = bottom("glXGetProcAddressARB\0");
+    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+    let (_inside, depth) = next::enter();
+    if depth > 0 {
+        let gpa = pass_down(&NEXT, which, depth);
         // SAFETY: libGL's glXGetProcAddressARB, with the caller's name.
         return unsafe {
             std::mem::transmute::<*mut c_void, unsafe extern "C" fn(*const c_uchar) -> ProcAddress>(
@@ -160,14 +183,14 @@ unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAdd
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddressARB(name: *const c_uchar) -> ProcAddress {
     // SAFETY: GLX's contract.
-    unsafe { get_proc_address(name, "glXGetProcAddressARB") }
+    unsafe { get_proc_address(name, "glXGetProcAddressARB\0") }
 }
 
 /// `glXGetProcAddress`: as [`glXGetProcAddressARB`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddress(name: *const c_uchar) -> ProcAddress {
     // SAFETY: GLX's contract.
-    unsafe { get_proc_address(name, "glXGetProcAddress") }
+    unsafe { get_proc_address(name, "glXGetProcAddress\0") }
 }
 
 /// `dlopen`: libGL.so(.1), libGLX.so(.0) and libOpenGL.so(.0) opened by a
@@ -178,4 +201,55 @@ pub unsafe extern "C" fn glXGetProcAddress(name: *const c_uchar) -> ProcAddress 
 pub unsafe extern "C" fn dlopen(filename: *const std::ffi::c_char, flags: c_int) -> *mut c_void {
     // SAFETY: dlopen's contract, forwarded.
     unsafe { next::dlopen_for_program(filename, flags) }
+}
+
+/// GLX 1.4 functions the layer does not change, exported only to forward:
+/// a program that dlopens libGL gets the stub's handle, and dlsym of these
+/// names on it must reach the next layer (a VirtualGL faker below, which
+/// replaces many of them), then libGL, as the program's own link would.
+/// Each is resolved once, by [`next::next_symbol`]; nested
+/// [`next::NESTING_LIMIT`] deep, it takes the call for a loop and goes
+/// straight to libGL ([`pass_down`]).
+macro_rules! forward {
+    ($( $name:ident ( $($arg:ident : $ty:ty),* ) $(-> $ret:ty)? ; )*) => {
+        $(
+            #[doc = concat!("`", stringify!($name), "`: forwarded to the next definition (a layer below, then libGL).")]
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+                static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                let (_inside, depth) = next::enter();
+                let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
+                // SAFETY: the next definition of this GLX function, with its
+                // GLX 1.4 signature, and the caller's arguments.
+                unsafe {
+                    std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
+                }
+            }
+        )*
+    };
+}
+
+forward! {
+    glXQueryExtension(dpy: *mut c_void, error_base: *mut c_int, event_base: *mut c_int) -> c_int;
+    glXQueryVersion(dpy: *mut c_void, major: *mut c_int, minor: *mut c_int) -> c_int;
+    glXQueryExtensionsString(dpy: *mut c_void, screen: c_int) -> *const std::ffi::c_char;
+    glXQueryServerString(dpy: *mut c_void, screen: c_int, name: c_int) -> *const std::ffi::c_char;
+    glXGetClientString(dpy: *mut c_void, name: c_int) -> *const std::ffi::c_char;
+    glXIsDirect(dpy: *mut c_void, ctx: *mut c_void) -> c_int;
+    glXCopyContext(dpy: *mut c_void, src: *mut c_void, dst: *mut c_void, mask: c_ulong);
+    glXCreateGLXPixmap(dpy: *mut c_void, vis: *mut c_void, pixmap: c_ulong) -> c_ulong;
+    glXDestroyGLXPixmap(dpy: *mut c_void, pixmap: c_ulong);
+    glXDestroyPixmap(dpy: *mut c_void, pixmap: c_ulong);
+    glXDestroyPbuffer(dpy: *mut c_void, pbuffer: c_ulong);
+    glXWaitGL();
+    glXWaitX();
+    glXUseXFont(font: c_ulong, first: c_int, count: c_int, list_base: c_int);
+    glXGetCurrentContext() -> *mut c_void;
+    glXGetCurrentDrawable() -> c_ulong;
+    glXGetCurrentReadDrawable() -> c_ulong;
+    glXGetCurrentDisplay() -> *mut c_void;
+    glXQueryContext(dpy: *mut c_void, ctx: *mut c_void, attribute: c_int, value: *mut c_int) -> c_int;
+    glXQueryDrawable(dpy: *mut c_void, draw: c_ulong, attribute: c_int, value: *mut u32);
+    glXSelectEvent(dpy: *mut c_void, draw: c_ulong, mask: c_ulong);
+    glXGetSelectedEvent(dpy: *mut c_void, draw: c_ulong, mask: *mut c_ulong);
 }

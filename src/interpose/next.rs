@@ -25,13 +25,15 @@
 //!
 //! # Loops found at run time
 //!
-//! A layer below may also call a GL or GLX name globally *while the layer is
-//! forwarding to it*, which lands in the layer's export again. The preload's
-//! exports count how deep the calling thread is inside the layer
-//! ([`enter`]); an export entered while the thread is already inside is such
-//! a loop: it says so on stderr once per function and calls libGL's own
-//! function directly, without stereo (a mono answer for the layer below,
-//! which asked GL, not the stereo program). It never recurses.
+//! Code below the layer may call a GL or GLX name globally *while the layer
+//! is calling down*, which lands in the layer's export again: libGL's own
+//! code now and then, or a layer below whose "real" function is a global
+//! look-up. The preload's exports count how deep the calling thread is
+//! inside the layer ([`enter`]). Entered from inside, an export is not
+//! serving the program: it forwards to the next definition of its name,
+//! without stereo. A layer below that keeps calling back is a loop: at
+//! [`NESTING_LIMIT`] deep the export says so on stderr, once per function,
+//! and calls libGL's own function directly. It never recurses unbounded.
 //!
 //! # Programs that load GL themselves
 //!
@@ -75,19 +77,19 @@ impl Drop for Entered {
     }
 }
 
-/// Enters the layer: `Some` when the thread was outside it, `None` when an
-/// export is entered again from inside (a loop through a layer below:
-/// answer with [`bottom_symbol`] and [`loop_detected`]).
-pub fn enter() -> Option<Entered> {
+/// How deep exports may nest on one thread before a re-entry is taken
+/// for a loop ([`enter`]).
+pub const NESTING_LIMIT: u32 = 8;
+
+/// Enters the layer and says how deep the thread was inside it already:
+/// 0 for a call from the program; more for a call back by name while the
+/// layer is calling down (libGL's own code may do that: no loop, the call
+/// goes to the next definition); [`NESTING_LIMIT`] or more, a loop.
+pub fn enter() -> (Entered, u32) {
     DEPTH.with(|d| {
         let depth = d.get();
         d.set(depth + 1);
-        if depth == 0 {
-            Some(Entered(()))
-        } else {
-            d.set(depth);
-            None
-        }
+        (Entered(()), depth)
     })
 }
 
@@ -327,3 +329,60 @@ pub unsafe fn dlopen_for_program(filename: *const c_char, flags: c_int) -> *mut 
 }
 
 use std::os::unix::ffi::{OsStrExt, OsStringExt};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_gl_libraries_are_recognised_by_file_name_in_any_directory() {
+        let cases: [(&CStr, Option<&str>); 14] = [
+            (c"libGL.so.1", Some(STUB_GL)),
+            (c"libGL.so", Some(STUB_GL)),
+            (c"/usr/lib/x86_64-linux-gnu/libGL.so.1.7.0", Some(STUB_GL)),
+            (c"libGLX.so.0", Some(STUB_GLX)),
+            (c"./lib/libGLX.so", Some(STUB_GLX)),
+            (c"libOpenGL.so.0", Some(STUB_OPENGL)),
+            (c"/opt/x/libOpenGL.so.0.0.0", Some(STUB_OPENGL)),
+            (c"libGLU.so.1", None),
+            (c"libGLX_mesa.so.0", None),
+            (c"libGLESv2.so.2", None),
+            (c"libEGL.so.1", None),
+            (c"libGL.so1", None),
+            (c"/usr/lib/libGL.so.1/libm.so.6", None),
+            (c"", None),
+        ];
+        for (name, stub) in cases {
+            assert_eq!(stub_for(name), stub, "{name:?}");
+        }
+    }
+
+    #[test]
+    fn the_layer_depth_counts_nested_entries_and_unwinds() {
+        let (a, d0) = enter();
+        assert_eq!(d0, 0);
+        {
+            let (_b, d1) = enter();
+            assert_eq!(d1, 1);
+            assert!(inside());
+        }
+        drop(a);
+        assert!(!inside());
+        let caught = std::panic::catch_unwind(|| {
+            let _e = enter();
+            panic!("unwinds");
+        });
+        assert!(caught.is_err());
+        assert!(!inside(), "a panic leaves the depth where it was");
+    }
+
+    #[test]
+    fn the_next_definition_is_never_the_layers_own() {
+        // In a test binary the crate is linked into the executable: the
+        // next definition of a libc name is libc's, outside this object.
+        let p = next_symbol(c"strlen");
+        assert!(!p.is_null());
+        assert!(!is_own(p));
+        assert!(is_own(own_object as *const c_void));
+    }
+}
