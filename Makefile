@@ -100,6 +100,8 @@ install:
 	ln -sf libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so
 	install -m 644 $(INSTALL_BUILT)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a
 	install -m 755 $(INSTALL_BUILT)/libglstereo_preload.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so
+	install -m 755 $(INSTALL_BUILT)/libglstereo_stub_GL.so $(INSTALL_BUILT)/libglstereo_stub_GLX.so \
+	  $(INSTALL_BUILT)/libglstereo_stub_OpenGL.so $(DESTDIR)$(INSTALL_LIBDIR)/
 	install -m 644 include/glstereo.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h
 	install -m 644 include/glstereo/*.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(INSTALL_LIBDIR)|' \
@@ -112,6 +114,8 @@ uninstall:
 	rm -f $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.$(VERSION) \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GL.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GLX.so \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_OpenGL.so \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig/glstereo.pc $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h \
 	  $(DESTDIR)$(INSTALL_BINDIR)/glstereo-run $(DESTDIR)$(INSTALL_MANDIR)/man1/glstereo-run.1
 	rm -rf $(DESTDIR)$(INSTALL_INCDIR)/glstereo

@@ -13,9 +13,18 @@
 #![allow(clippy::missing_safety_doc, non_snake_case)]
 
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
+use std::sync::atomic::{AtomicPtr, Ordering};
 
 use glstereo::ffi::interpose as gls;
 
+use glstereo::interpose::next;
+
+/// Each export enters the layer ([`next::enter`]) and calls
+/// glstereo's implementation. Entered again while the thread is inside the
+/// layer — libGL's own code, or a layer below, calling the name back while
+/// the layer calls down — it is not the program calling: it forwards to the
+/// next definition of the name ([`pass_down`]). `own_export` maps each name
+/// to its export for glXGetProcAddress.
 macro_rules! export {
     ($( $name:ident => $target:ident ( $($arg:ident : $ty:ty),* ) $(-> $ret:ty)? ; )*) => {
         $(
@@ -23,12 +32,67 @@ macro_rules! export {
             #[unsafe(no_mangle)]
             #[allow(unused_unsafe)]
             pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+                static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                let (_inside, depth) = next::enter();
+                if depth > 0 {
+                    let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
+                    // SAFETY: the next definition of this function, with its
+                    // signature, and the caller's arguments.
+                    return unsafe {
+                        std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
+                    };
+                }
                 // SAFETY: the caller's arguments, under the contract of the
                 // GLX/GL function this replaces, which the target shares.
                 unsafe { gls::$target($($arg),*) }
             }
         )*
+
+        /// The export standing for `name`, for glXGetProcAddress.
+        fn own_export(name: &[u8]) -> Option<*mut c_void> {
+            match name {
+                $( n if n == stringify!($name).as_bytes() => Some($name as *mut c_void), )*
+                _ => None,
+            }
+        }
     };
+}
+
+/// Where an export called from inside the layer goes: the next definition
+/// of `name` (NUL-terminated; cached in `slot`), or, nested
+/// [`next::NESTING_LIMIT`] deep — a layer below that calls the name back by
+/// a global look-up, a loop — libGL's own function, said once on stderr.
+fn pass_down(slot: &AtomicPtr<c_void>, name: &'static str, depth: u32) -> *mut c_void {
+    if depth >= next::NESTING_LIMIT {
+        next::loop_detected(name.trim_end_matches('\0'));
+        return bottom(name);
+    }
+    let mut f = slot.load(Ordering::Acquire);
+    if f.is_null() {
+        let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+        f = next::next_symbol(cname);
+        if f.is_null() {
+            f = bottom(name);
+        }
+        slot.store(f, Ordering::Release);
+    }
+    f
+}
+
+/// libGL's own function `name` (NUL-terminated); a process without it
+/// cannot have reached the export through libGL, so its absence ends the
+/// process with a message rather than a jump to NULL.
+fn bottom(name: &'static str) -> *mut c_void {
+    let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+    let f = next::bottom_symbol(cname);
+    if f.is_null() {
+        eprintln!(
+            "glstereo: {} re-entered and libGL.so.1 has no such function; aborting",
+            cname.to_string_lossy()
+        );
+        std::process::abort();
+    }
+    f
 }
 
 export! {
@@ -86,17 +150,106 @@ fn as_proc(p: *mut c_void) -> ProcAddress {
     unsafe { std::mem::transmute::<*mut c_void, ProcAddress>(p) }
 }
 
-/// `glXGetProcAddressARB`: the interposed functions for their names, the
-/// real libGL's for every other.
+/// Both glXGetProcAddress names: this library's exports for their names
+/// (so a function found this way is guarded as the direct link is), the
+/// layer's other replacements (aliases such as glXMakeCurrentReadSGI), the
+/// function below the layer for every other name.
+unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAddress {
+    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+    let (_inside, depth) = next::enter();
+    if depth > 0 {
+        let gpa = pass_down(&NEXT, which, depth);
+        // SAFETY: libGL's glXGetProcAddressARB, with the caller's name.
+        return unsafe {
+            std::mem::transmute::<*mut c_void, unsafe extern "C" fn(*const c_uchar) -> ProcAddress>(
+                gpa,
+            )(name)
+        };
+    };
+    if !name.is_null() {
+        // SAFETY: non-NULL, NUL-terminated (GLX's contract).
+        let n = unsafe { std::ffi::CStr::from_ptr(name.cast()) };
+        if let Some(f) = own_export(n.to_bytes()) {
+            return as_proc(f);
+        }
+    }
+    // SAFETY: a NUL-terminated name (GLX's contract; NULL is refused there).
+    as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
+}
+
+/// `glXGetProcAddressARB`: this library's exports for their names (so a
+/// function found this way is guarded as a direct link is), the layer's
+/// other replacements, the function below the layer for every other name.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddressARB(name: *const c_uchar) -> ProcAddress {
-    // SAFETY: a NUL-terminated name (GLX's contract).
-    as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddressARB\0") }
 }
 
 /// `glXGetProcAddress`: as [`glXGetProcAddressARB`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddress(name: *const c_uchar) -> ProcAddress {
-    // SAFETY: a NUL-terminated name (GLX's contract).
-    as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddress\0") }
+}
+
+/// `dlopen`: libGL.so(.1), libGLX.so(.0) and libOpenGL.so(.0) opened by a
+/// program come back as a stub whose look-ups find this library's exports
+/// first; everything else is the next dlopen's
+/// ([`glstereo::interpose::next`] says how and why).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn dlopen(filename: *const std::ffi::c_char, flags: c_int) -> *mut c_void {
+    // SAFETY: dlopen's contract, forwarded.
+    unsafe { next::dlopen_for_program(filename, flags) }
+}
+
+/// GLX 1.4 functions the layer does not change, exported only to forward:
+/// a program that dlopens libGL gets the stub's handle, and dlsym of these
+/// names on it must reach the next layer (a VirtualGL faker below, which
+/// replaces many of them), then libGL, as the program's own link would.
+/// Each is resolved once, by [`next::next_symbol`]; nested
+/// [`next::NESTING_LIMIT`] deep, it takes the call for a loop and goes
+/// straight to libGL ([`pass_down`]).
+macro_rules! forward {
+    ($( $name:ident ( $($arg:ident : $ty:ty),* ) $(-> $ret:ty)? ; )*) => {
+        $(
+            #[doc = concat!("`", stringify!($name), "`: forwarded to the next definition (a layer below, then libGL).")]
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+                static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                let (_inside, depth) = next::enter();
+                let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
+                // SAFETY: the next definition of this GLX function, with its
+                // GLX 1.4 signature, and the caller's arguments.
+                unsafe {
+                    std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
+                }
+            }
+        )*
+    };
+}
+
+forward! {
+    glXQueryExtension(dpy: *mut c_void, error_base: *mut c_int, event_base: *mut c_int) -> c_int;
+    glXQueryVersion(dpy: *mut c_void, major: *mut c_int, minor: *mut c_int) -> c_int;
+    glXQueryExtensionsString(dpy: *mut c_void, screen: c_int) -> *const std::ffi::c_char;
+    glXQueryServerString(dpy: *mut c_void, screen: c_int, name: c_int) -> *const std::ffi::c_char;
+    glXGetClientString(dpy: *mut c_void, name: c_int) -> *const std::ffi::c_char;
+    glXIsDirect(dpy: *mut c_void, ctx: *mut c_void) -> c_int;
+    glXCopyContext(dpy: *mut c_void, src: *mut c_void, dst: *mut c_void, mask: c_ulong);
+    glXCreateGLXPixmap(dpy: *mut c_void, vis: *mut c_void, pixmap: c_ulong) -> c_ulong;
+    glXDestroyGLXPixmap(dpy: *mut c_void, pixmap: c_ulong);
+    glXDestroyPixmap(dpy: *mut c_void, pixmap: c_ulong);
+    glXDestroyPbuffer(dpy: *mut c_void, pbuffer: c_ulong);
+    glXWaitGL();
+    glXWaitX();
+    glXUseXFont(font: c_ulong, first: c_int, count: c_int, list_base: c_int);
+    glXGetCurrentContext() -> *mut c_void;
+    glXGetCurrentDrawable() -> c_ulong;
+    glXGetCurrentReadDrawable() -> c_ulong;
+    glXGetCurrentDisplay() -> *mut c_void;
+    glXQueryContext(dpy: *mut c_void, ctx: *mut c_void, attribute: c_int, value: *mut c_int) -> c_int;
+    glXQueryDrawable(dpy: *mut c_void, draw: c_ulong, attribute: c_int, value: *mut u32);
+    glXSelectEvent(dpy: *mut c_void, draw: c_ulong, mask: c_ulong);
+    glXGetSelectedEvent(dpy: *mut c_void, draw: c_ulong, mask: *mut c_ulong);
 }

@@ -132,6 +132,7 @@ pub mod capture;
 pub mod context;
 pub mod gl;
 pub mod glx;
+pub mod next;
 pub mod real;
 pub mod registry;
 pub mod settings;

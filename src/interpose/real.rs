@@ -1,14 +1,14 @@
-//! The real GLX and GL entry points, whatever the program calls: libGL is
-//! opened by name (`dlopen("libGL.so.1")`) and its symbols looked up in it,
-//! never by global name, so the interposer's own exports (preloaded, hence
-//! first in the global scope) are never found by mistake. GL functions come
-//! from the real `glXGetProcAddressARB` (libglvnd's dispatch stubs, which
-//! call the context current on the calling thread).
+//! The real GLX and GL entry points, whatever the program calls: each is
+//! the next definition of its name after the layer in the chain of
+//! preloaded libraries, else libGL's ([`super::next`] says how, and why
+//! never the layer's own). GL functions come from the next
+//! `glXGetProcAddressARB` (libglvnd's dispatch stubs, which call the
+//! context current on the calling thread, or a layer's below).
 
-use std::ffi::{CStr, c_char, c_int, c_ulong, c_void};
+use std::ffi::{CStr, c_char, c_int, c_uchar, c_uint, c_ulong, c_void};
 use std::sync::OnceLock;
 
-use x11_dl::glx::{GLXContext, GLXFBConfig, Glx};
+use x11_dl::glx::{GLXContext, GLXFBConfig};
 use x11_dl::xlib::{self, Xlib};
 
 use crate::gl::Gl;
@@ -82,11 +82,72 @@ pub struct Sgix {
     >,
 }
 
+macro_rules! glx_table {
+    ($( $name:ident ( $($arg:ty),* ) $(-> $ret:ty)? ; )*) => {
+        /// The GLX functions the layer forwards to, as [`super::next`] finds them.
+        #[allow(non_snake_case, missing_docs)]
+        pub struct Glx {
+            $( pub $name: unsafe extern "C" fn($($arg),*) $(-> $ret)?, )*
+        }
+
+        impl Glx {
+            /// Looks every function up; Err names the first one missing.
+            fn load() -> Result<Glx, String> {
+                Ok(Glx {
+                    $( $name: {
+                        let name = concat!(stringify!($name), "\0");
+                        let p = super::next::next_symbol(
+                            CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated"),
+                        );
+                        if p.is_null() {
+                            return Err(format!(
+                                "the real libGL.so.1 could not be loaded or lacks {}: install \
+                                 libgl1 and libglx-mesa0 (Debian) or your GL driver's libGL",
+                                stringify!($name)
+                            ));
+                        }
+                        // SAFETY: the named GLX function's address, transmuted
+                        // to its GLX 1.4 signature (the field's type).
+                        unsafe {
+                            std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p)
+                        }
+                    }, )*
+                })
+            }
+        }
+    };
+}
+
+glx_table! {
+    glXChooseFBConfig(*mut xlib::Display, c_int, *const c_int, *mut c_int) -> *mut GLXFBConfig;
+    glXChooseVisual(*mut xlib::Display, c_int, *mut c_int) -> *mut xlib::XVisualInfo;
+    glXCreateContext(*mut xlib::Display, *mut xlib::XVisualInfo, GLXContext, c_int) -> GLXContext;
+    glXCreateNewContext(*mut xlib::Display, GLXFBConfig, c_int, GLXContext, c_int) -> GLXContext;
+    glXCreatePbuffer(*mut xlib::Display, GLXFBConfig, *const c_int) -> c_ulong;
+    glXCreatePixmap(*mut xlib::Display, GLXFBConfig, c_ulong, *const c_int) -> c_ulong;
+    glXCreateWindow(*mut xlib::Display, GLXFBConfig, c_ulong, *const c_int) -> c_ulong;
+    glXDestroyContext(*mut xlib::Display, GLXContext);
+    glXDestroyWindow(*mut xlib::Display, c_ulong);
+    glXGetConfig(*mut xlib::Display, *mut xlib::XVisualInfo, c_int, *mut c_int) -> c_int;
+    glXGetCurrentContext() -> GLXContext;
+    glXGetCurrentDisplay() -> *mut xlib::Display;
+    glXGetCurrentDrawable() -> c_ulong;
+    glXGetCurrentReadDrawable() -> c_ulong;
+    glXGetFBConfigAttrib(*mut xlib::Display, GLXFBConfig, c_int, *mut c_int) -> c_int;
+    glXGetFBConfigs(*mut xlib::Display, c_int, *mut c_int) -> *mut GLXFBConfig;
+    glXGetProcAddressARB(*const c_uchar) -> Option<unsafe extern "C" fn()>;
+    glXGetVisualFromFBConfig(*mut xlib::Display, GLXFBConfig) -> *mut xlib::XVisualInfo;
+    glXMakeContextCurrent(*mut xlib::Display, c_ulong, c_ulong, GLXContext) -> c_int;
+    glXMakeCurrent(*mut xlib::Display, c_ulong, GLXContext) -> c_int;
+    glXQueryDrawable(*mut xlib::Display, c_ulong, c_int, *mut c_uint);
+    glXSwapBuffers(*mut xlib::Display, c_ulong);
+}
+
 /// libX11, libGL's GLX functions, and the GL table, as loaded once.
 pub struct Real {
     /// libX11 (XGetGeometry, XFree, error handling).
     pub xlib: Xlib,
-    /// libGL's GLX functions.
+    /// The GLX functions below the layer.
     pub glx: Glx,
     /// GL functions (dispatch stubs). Textures and renderbuffers made
     /// through it take reserved names ([`Gl::reserve_names`]).
@@ -118,19 +179,10 @@ pub fn loaded() -> crate::Result<&'static Real> {
 fn load() -> Result<Real, String> {
     let xlib = Xlib::open()
         .map_err(|e| format!("libX11 could not be loaded ({e}): install libx11-6 (Debian)"))?;
-    let glx = Glx::open().map_err(|e| {
-        format!(
-            "the real libGL.so.1 could not be loaded ({e}): install libgl1 and \
-             libglx-mesa0 (Debian) or your GL driver's libGL"
-        )
-    })?;
-    let get = |name: &CStr| -> *const c_void {
-        // SAFETY: NUL-terminated name; libGL's own glXGetProcAddressARB.
-        unsafe { (glx.glXGetProcAddressARB)(name.as_ptr() as *const u8) }
-            .map_or(std::ptr::null(), |f| f as *const c_void)
-    };
-    // SAFETY: glXGetProcAddressARB returns each named GL function (libglvnd
-    // returns a dispatch stub for every gl* name) or NULL.
+    let glx = Glx::load()?;
+    let get = |name: &CStr| -> *const c_void { gl_symbol(&glx, name) };
+    // SAFETY: the next glXGetProcAddressARB returns each named GL function
+    // (libglvnd returns a dispatch stub for every gl* name) or NULL.
     let mut gl = unsafe { Gl::load(get) }.map_err(|e| e.to_string())?;
     gl.reserve_names();
     macro_rules! lookup {
@@ -166,12 +218,29 @@ fn load() -> Result<Real, String> {
     })
 }
 
-/// The real `glXGetProcAddressARB(name)`.
+/// A GL or GLX function below the layer: the next glXGetProcAddressARB's
+/// answer; where that is the layer's own (a layer below that looks names
+/// up globally hands the layer's exports back), the next definition of
+/// the name ([`super::next::next_symbol`], which is never the layer's).
+fn gl_symbol(glx: &Glx, name: &CStr) -> *const c_void {
+    // SAFETY: NUL-terminated name; the next glXGetProcAddressARB.
+    let p = unsafe { (glx.glXGetProcAddressARB)(name.as_ptr() as *const u8) }
+        .map_or(std::ptr::null(), |f| f as *const c_void);
+    if super::next::is_own(p) {
+        super::next::next_symbol(name)
+    } else {
+        p
+    }
+}
+
+/// The real `glXGetProcAddressARB(name)`: the function below the layer.
 ///
 /// # Safety
 /// `name` must be a NUL-terminated string.
 pub unsafe fn get_proc_address(name: *const c_char) -> Option<AnyFn> {
     let r = real().ok()?;
-    // SAFETY: forwarded contract.
-    unsafe { (r.glx.glXGetProcAddressARB)(name as *const u8) }
+    // SAFETY: the caller's NUL-terminated name.
+    let p = gl_symbol(&r.glx, unsafe { CStr::from_ptr(name) });
+    // SAFETY: NULL or a function's address, as glXGetProcAddress returns.
+    unsafe { std::mem::transmute::<*const c_void, Option<AnyFn>>(p) }
 }
