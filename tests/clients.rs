@@ -200,9 +200,12 @@ fn run_client(x: &Xvfb, cmd: Command, title: &str) -> Outcome {
     let shot = screen.grab(window);
     let lines = p.stdout.clone();
     let stderr = p.finish();
+    // Kept for a person looking into a failure: test-scratch/shot-N/.
+    static SHOTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = SHOTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let _ = glstereo::capture::write_png(
         &shot,
-        &common::scratch(&format!("shot-{title}-{}", lines.len())).join("window.png"),
+        &common::scratch(&format!("shot-{n}")).join(format!("{title}.png")),
     );
     assert!(
         !stderr.contains("glstereo:"),
@@ -313,6 +316,49 @@ fn glfw_core_profile_stereo_window_shows_both_eyes() {
         "glfw_stereo",
         "GLFW 3.3 core",
     );
+}
+
+#[test]
+fn a_mono_glfw_program_runs_as_without_the_layer() {
+    // GLFW dlopens libGL: under the layer it gets the layer's stubs, and a
+    // program that never asks for stereo must see the driver's answers.
+    let x = Xvfb::start(320, 240);
+    let exe = c_client("glfw_stereo", &["-lglfw"]);
+    let mut plain = Command::new(&exe);
+    plain.arg("mono").env("DISPLAY", &x.display);
+    let without = run_client(&x, plain, "glfw_stereo");
+    let with = run_client(&x, under_layer(&x, &exe, &["mono"]), "glfw_stereo");
+    assert!(
+        without
+            .lines
+            .iter()
+            .any(|l| l == "report gl_stereo 0 toolkit_stereo 0 error 0x0"),
+        "{:?}",
+        without.lines
+    );
+    for l in without
+        .lines
+        .iter()
+        .filter(|l| l.starts_with("pixel BACK "))
+    {
+        let n: Vec<u32> = l
+            .split_whitespace()
+            .skip(2)
+            .map(|v| v.parse().unwrap())
+            .collect();
+        let want = eye_colour(true, n[0], n[1]);
+        assert_eq!([n[2] as u8, n[3] as u8, n[4] as u8], want, "{l}");
+    }
+    assert_eq!(with.lines, without.lines, "what the program saw");
+    assert_eq!(
+        with.shot.max_difference(&without.shot).map(|d| d.0),
+        Some(0),
+        "the window differs under the layer (difference, x, y, channel): {:?}",
+        with.shot.max_difference(&without.shot)
+    );
+    // Not a blank window: the left eye's picture.
+    assert_eq!(with.shot.get(40, 30), [0, 255, 0, 255]);
+    assert_eq!(with.shot.get(80, 60), [255, 0, 0, 255]);
 }
 
 #[test]

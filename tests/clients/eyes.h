@@ -11,6 +11,9 @@
  * The squares are drawn with glRectf (compatibility contexts) or with a
  * GLSL 1.50 program and a vertex array (core contexts).
  *
+ * A mono program draws the left eye's picture into GL_BACK (eyes_draw_mono)
+ * and reports GL_BACK and GL_FRONT.
+ *
  * The report, one line each, on stdout:
  *   pixel BUFFER X Y R G B     glReadPixels of BUFFER at (X, Y), rows bottom up,
  *                              at the centre, the left square's and the right
@@ -233,6 +236,20 @@ static void eyes_report(GLenum buffer, const char *name, int width, int height)
         eyes_gl.ReadPixels(points[i][0], points[i][1], 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
         printf("pixel %s %d %d %u %u %u\n", name, points[i][0], points[i][1], px[0], px[1], px[2]);
     }
+}
+
+/* A mono frame: the left eye's picture in GL_BACK (inline: not every
+ * program uses it). */
+static inline int eyes_draw_mono(int width, int height)
+{
+    static const GLfloat red[3] = {1, 0, 0}, green[3] = {0, 1, 0};
+    static const GLfloat left_square[4] = {-0.75f, 0.25f, -0.25f, 0.75f};
+    if (eyes_core && eyes_program == 0 && !eyes_core_setup()) {
+        return 0;
+    }
+    eyes_gl.Viewport(0, 0, width, height);
+    eyes_one(GL_BACK, red, green, 0, left_square);
+    return 1;
 }
 
 /* The back buffers' report (call before the swap). */

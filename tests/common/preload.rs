@@ -119,10 +119,21 @@ impl Running {
                     }
                 }
                 Err(_) => {
+                    // Its stdout closed: it is exiting (a crash shows as its
+                    // signal); or 60 s passed: it is killed.
+                    let mut status = None;
+                    for _ in 0..20 {
+                        status = self.child.try_wait().ok().flatten();
+                        if status.is_some() {
+                            break;
+                        }
+                        std::thread::sleep(Duration::from_millis(100));
+                    }
                     let _ = self.child.kill();
                     let out = self.child.wait_with_output_now();
+                    let status = status.map_or("still running, killed".into(), |s| s.to_string());
                     panic!(
-                        "the program never said ready; stdout {:?}\nstderr:\n{out}",
+                        "the program never said ready ({status}); stdout {:?}\nstderr:\n{out}",
                         self.stdout
                     );
                 }
