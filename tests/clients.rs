@@ -792,29 +792,50 @@ fn dlopen_of_every_gl_library_name_reaches_the_layer() {
     }
 }
 
+/// How the forwarder below glstereo finds the functions it forwards to.
+#[derive(Clone, Copy, Debug)]
+enum Below {
+    /// dlsym(RTLD_NEXT); dlopen of libGL is not faked.
+    Next,
+    /// dlsym(RTLD_NEXT); dlopen of libGL gives the forwarder's handle
+    /// (VirtualGL's dlfaker).
+    FakedDlopen,
+    /// In libGL.so.1 opened at load time through the global dlopen, as
+    /// VirtualGL's faker loads its "real" libGL: under glstereo that finds
+    /// glstereo's exports, a loop.
+    DlopenedLibGl,
+}
+
 /// Runs the legacy stereo program under glstereo-run with `forwarder`
-/// preloaded below it; returns the forwarder's call counts.
-fn legacy_over_forwarder(forwarder: &Path, dlopen: bool) -> HashMap<String, u64> {
+/// preloaded below it: it must get stereo and show both eyes. Returns the
+/// forwarder's call counts and the program's stderr.
+fn legacy_over_forwarder(forwarder: &Path, below: Below) -> (HashMap<String, u64>, String) {
     let x = Xvfb::start(320, 240);
     let counts = common::scratch(&format!(
-        "forwarder-{}-{dlopen}",
+        "forwarder-{}-{below:?}",
         forwarder.file_name().unwrap().to_string_lossy()
     ))
     .join("counts");
     let mut cmd = under_layer(&x, &legacy_stereo(), &[&W.to_string(), &H.to_string()]);
     cmd.env("LD_PRELOAD", forwarder)
         .env("FORWARDER_COUNTS", &counts)
-        .env("FORWARDER_DLOPEN", if dlopen { "1" } else { "0" });
+        .env(
+            "FORWARDER_DLOPEN",
+            if matches!(below, Below::FakedDlopen) {
+                "1"
+            } else {
+                "0"
+            },
+        );
+    if matches!(below, Below::DlopenedLibGl) {
+        cmd.env("FORWARDER_NEXT", "dlopen");
+    }
     let mut p = Running::start(cmd);
     let id = p.ready();
     let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id");
     let shot = Screen::open(&x.display).grab(window);
     let report = p.stdout.first().cloned().unwrap_or_default();
     let stderr = p.finish();
-    assert!(
-        !stderr.contains("glstereo:"),
-        "the layer complained: {stderr}"
-    );
     assert!(
         report.contains("glx_stereo 1 gl_stereo 1"),
         "stereo granted over the forwarder: {report}"
@@ -831,7 +852,18 @@ fn legacy_over_forwarder(forwarder: &Path, dlopen: bool) -> HashMap<String, u64>
     assert_eq!(at(0, 0.5, 0.5), [51, 51, 51, 255], "left eye background");
     assert_eq!(at(1, 0.5, 0.5), [255, 0, 0, 255], "right eye, right half");
     assert_eq!(at(1, -0.5, -0.5), [51, 51, 51, 255], "right eye background");
-    read_counts(&counts)
+    (read_counts(&counts), stderr)
+}
+
+/// As [`legacy_over_forwarder`], for a layer that composes cleanly: the
+/// layer says nothing.
+fn counts_over_forwarder(forwarder: &Path, below: Below) -> HashMap<String, u64> {
+    let (counts, stderr) = legacy_over_forwarder(forwarder, below);
+    assert!(
+        !stderr.contains("glstereo:"),
+        "the layer complained: {stderr}"
+    );
+    counts
 }
 
 fn read_counts(path: &Path) -> HashMap<String, u64> {
@@ -891,7 +923,7 @@ fn the_forwarder_counts_a_plain_programs_calls() {
 #[test]
 fn stereo_composes_with_a_plain_forwarding_layer_below() {
     // A layer that neither fakes dlopen nor hands out interposed wrappers.
-    let counts = legacy_over_forwarder(&forwarder(true), false);
+    let counts = counts_over_forwarder(&forwarder(true), Below::Next);
     assert_layer_calls_went_through(&counts, "plain forwarder");
 }
 
@@ -899,7 +931,7 @@ fn stereo_composes_with_a_plain_forwarding_layer_below() {
 fn stereo_composes_with_a_layer_that_fakes_dlopen_like_virtualgl() {
     // dlopen("libGL.so.1") gives the forwarder's handle; its
     // glXGetProcAddress hands out its own wrappers.
-    let counts = legacy_over_forwarder(&forwarder(true), true);
+    let counts = counts_over_forwarder(&forwarder(true), Below::FakedDlopen);
     assert_layer_calls_went_through(&counts, "dlopen-faking forwarder");
 }
 
@@ -908,7 +940,7 @@ fn stereo_composes_with_a_layer_linked_like_virtualgls_faker() {
     // As above, linked as VirtualGL's faker is: the wrapper addresses it
     // hands out resolve through the global scope, to glstereo's exports
     // (`vglrun glstereo-run` recursed on that until the stack overflowed).
-    let counts = legacy_over_forwarder(&forwarder(false), true);
+    let counts = counts_over_forwarder(&forwarder(false), Below::FakedDlopen);
     assert_layer_calls_went_through(&counts, "VirtualGL-like forwarder");
 }
 
@@ -929,6 +961,32 @@ fn a_glfw_program_composes_with_a_layer_below() {
         assert!(
             counts.get(name).copied().unwrap_or(0) > 0,
             "glstereo's {name} did not go through the layer below it: {counts:?}"
+        );
+    }
+}
+
+#[test]
+fn a_layer_below_whose_real_functions_are_glstereos_is_a_loop_broken_with_a_message() {
+    // The forwarder's "real" functions come from dlopen("libGL.so.1") made
+    // through glstereo's dlopen at load time: glstereo's own exports. Each
+    // call glstereo forwards comes straight back; glstereo must say so and
+    // answer with libGL's function, never recurse.
+    for local in [true, false] {
+        let (counts, stderr) = legacy_over_forwarder(&forwarder(local), Below::DlopenedLibGl);
+        assert!(
+            stderr.contains("glstereo: glXSwapBuffers") && stderr.contains("loop"),
+            "no message about the loop: {stderr}"
+        );
+        for line in stderr.lines() {
+            assert_eq!(
+                stderr.lines().filter(|l| *l == line).count(),
+                1,
+                "said more than once: {line}"
+            );
+        }
+        assert!(
+            counts.get("glXSwapBuffers").copied().unwrap_or(0) > 0,
+            "{counts:?}"
         );
     }
 }

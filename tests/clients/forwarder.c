@@ -19,6 +19,12 @@
  *                        issue's `vglrun glstereo-run` crash comes from);
  *   forwarder-local.so   linked -Bsymbolic-functions: its own wrappers.
  *
+ * FORWARDER_NEXT=dlopen makes it find the functions it forwards to in
+ * dlopen("libGL.so.1") opened at load time, through whichever dlopen is
+ * first in the chain, as VirtualGL's faker loads its "real" libGL: under
+ * glstereo that is glstereo's, so its "real" functions are glstereo's own
+ * exports, a loop glstereo must break.
+ *
  * At exit it writes "NAME COUNT" lines (calls > 0 only) to the file named
  * by FORWARDER_COUNTS, if set; "dlopen-gl" counts redirected dlopens.
  */
@@ -92,10 +98,27 @@ static void count(int id)
     __atomic_fetch_add(&counts[id], 1, __ATOMIC_RELAXED);
 }
 
-/* The next `name` in the preload chain, into the function pointer `slot`. */
+/* With FORWARDER_NEXT=dlopen: libGL opened at load time through the global
+ * dlopen (whichever layer is first), as VirtualGL's faker loads its "real"
+ * functions; NULL: the next in the chain (RTLD_NEXT). */
+static void *real_gl;
+
+__attribute__((constructor)) static void open_real_gl(void)
+{
+    const char *how = getenv("FORWARDER_NEXT");
+    if (how != NULL && strcmp(how, "dlopen") == 0) {
+        /* The global dlopen: the first layer's, not this library's own. */
+        void *(*global_dlopen)(const char *, int);
+        void *p = dlsym(RTLD_DEFAULT, "dlopen");
+        memcpy(&global_dlopen, &p, sizeof global_dlopen);
+        real_gl = global_dlopen("libGL.so.1", RTLD_LAZY | RTLD_LOCAL);
+    }
+}
+
+/* The next `name`, into the function pointer `slot`. */
 static void next_in_chain(const char *name, void *slot, size_t size)
 {
-    void *p = dlsym(RTLD_NEXT, name);
+    void *p = dlsym(real_gl != NULL ? real_gl : RTLD_NEXT, name);
     if (p == NULL) {
         fprintf(stderr, "forwarder: no next %s: %s\n", name, dlerror());
         abort();
