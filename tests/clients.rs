@@ -1,6 +1,6 @@
 //! Real clients under glstereo-run, each unmodified, on a private Xvfb:
 //! programs written on Debian's own toolkits (GLFW 3.3, SDL2, PyOpenGL +
-//! freeglut, Qt 5), OpenSceneGraph's osgshape and Mesa's glxgears, each
+//! freeglut, libepoxy, Qt 5), OpenSceneGraph's osgshape and Mesa's glxgears, each
 //! finding GL the way its toolkit does (a direct link, dlopen + dlsym,
 //! ctypes, glXGetProcAddress). Each must get stereo, land each eye's
 //! clears and draws in that eye's buffers, and show both eyes in its window
@@ -395,6 +395,14 @@ fn pyopengl_freeglut_stereo_window_shows_both_eyes() {
         "pyopengl_stereo",
         "PyOpenGL + freeglut",
     );
+}
+
+#[test]
+fn libepoxy_glx_stereo_window_shows_both_eyes() {
+    // GTK's GL loader: every GLX and GL call through epoxy's dispatch.
+    let x = Xvfb::start(320, 240);
+    let exe = c_client("epoxy_stereo", &["-lepoxy", "-lX11"]);
+    check_client(&x, under_layer(&x, &exe, &[]), "epoxy_stereo", "libepoxy");
 }
 
 #[test]
