@@ -158,15 +158,15 @@ fn one_renderer_at_a_time() -> MutexGuard<'static, ()> {
 /// `glstereo-run -m side-by-side PROGRAM ARGS` on `x`, with the
 /// environment a desktop session would give (Qt wants XDG_RUNTIME_DIR).
 fn under_layer(x: &Xvfb, program: &Path, args: &[&str]) -> Command {
-    let runtime = common::scratch(&format!(
-        "xdg-{}",
-        program.file_name().unwrap().to_string_lossy()
-    ));
-    std::fs::set_permissions(
-        &runtime,
-        std::os::unix::fs::PermissionsExt::from_mode(0o700),
-    )
-    .unwrap();
+    // One private runtime directory for every client of this test binary
+    // (made once: tests run in parallel).
+    static RUNTIME: OnceLock<PathBuf> = OnceLock::new();
+    let runtime = RUNTIME.get_or_init(|| {
+        let dir = common::scratch("xdg-runtime");
+        std::fs::set_permissions(&dir, std::os::unix::fs::PermissionsExt::from_mode(0o700))
+            .unwrap();
+        dir
+    });
     let mut cmd = Command::new(&built().run);
     cmd.args(["-m", "side-by-side"])
         .arg(program)
