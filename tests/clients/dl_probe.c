@@ -7,7 +7,9 @@
  * Lines:
  *   other-library OPENED SYMBOL VALUE   dlopen("libm.so.6"), dlsym "cos", cos(0)
  *   other-handle-gl-name NULL ERROR     dlsym(libm handle, "glClear")
- *   open NAME OPENED                    dlopen(NAME) for each GL library name
+ *   open NAME OPENED                    dlopen(NAME) for each GL library name,
+ *                                       and libGL.so.1 by its absolute path
+ *                                       (NAME "by-path")
  *   known NAME FOUND                    dlsym(handle, "glClear")
  *   unknown NAME NULL ERROR             dlsym(handle, "glNoSuchFunctionGLS"), dlerror() != NULL
  *   close NAME RESULT                   dlclose(handle)
@@ -26,8 +28,26 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const gl_names[] = {"libGL.so.1", "libGL.so", "libGLX.so.0", "libOpenGL.so.0",
-                                       "/usr/lib/x86_64-linux-gnu/libGL.so.1"};
+/* The names; "by-path" stands for libGL.so.1's absolute file name as the
+ * loader found it (it depends on the architecture). */
+static const char *const gl_names[] = {"libGL.so.1", "libGL.so", "libGLX.so.0", "libOpenGL.so.0", "by-path"};
+
+/* libGL.so.1's absolute file name (static storage), or "" if not found:
+ * the file of its glClear, which no layer replaces. */
+static const char *libgl_path(void)
+{
+    static char path[4096];
+    Dl_info info;
+    void *h = dlopen("libGL.so.1", RTLD_NOW | RTLD_LOCAL);
+    void *clear = h != NULL ? dlsym(h, "glClear") : NULL;
+    if (clear != NULL && dladdr(clear, &info) != 0 && info.dli_fname != NULL && info.dli_fname[0] == '/') {
+        snprintf(path, sizeof path, "%s", info.dli_fname);
+    }
+    if (h != NULL) {
+        dlclose(h);
+    }
+    return path;
+}
 
 int main(void)
 {
@@ -48,7 +68,8 @@ int main(void)
     }
     for (i = 0; i < sizeof gl_names / sizeof gl_names[0]; i++) {
         const char *name = gl_names[i];
-        void *h = dlopen(name, RTLD_NOW | RTLD_LOCAL);
+        const char *file = strcmp(name, "by-path") == 0 ? libgl_path() : name;
+        void *h = dlopen(file, RTLD_NOW | RTLD_LOCAL);
         void *p;
         printf("open %s %d\n", name, h != NULL);
         if (h == NULL) {
