@@ -61,11 +61,16 @@ macro_rules! export {
 /// Where an export called from inside the layer goes: the next definition
 /// of `name` (NUL-terminated; cached in `slot`), or, nested
 /// [`next::NESTING_LIMIT`] deep — a layer below that calls the name back by
-/// a global look-up, a loop — libGL's own function, said once on stderr.
+/// a global look-up, a loop — libGL's own function, said once on stderr and
+/// used for every later call back into this function.
 fn pass_down(slot: &AtomicPtr<c_void>, name: &'static str, depth: u32) -> *mut c_void {
     if depth >= next::NESTING_LIMIT {
         next::loop_detected(name.trim_end_matches('\0'));
-        return bottom(name);
+        // Remembered: from now on a call back into this function goes
+        // straight to libGL instead of round the loop again.
+        let f = bottom(name);
+        slot.store(f, Ordering::Release);
+        return f;
     }
     let mut f = slot.load(Ordering::Acquire);
     if f.is_null() {
