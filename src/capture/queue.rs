@@ -132,10 +132,18 @@ impl PngQueue {
     /// unless the queue is full (then when an image is done).
     ///
     /// # Errors
-    /// The first write that failed since the last report (this image is
-    /// queued all the same); [`Error::Io`] if the writer thread is gone.
+    /// The first write of an earlier image that failed since the last
+    /// report (this image is queued all the same; its own failure is
+    /// reported by the next call); [`Error::Io`] if the writer thread is gone.
     pub fn submit(&self, image: Image, path: PathBuf) -> Result<()> {
-        self.shared.state.recover().pending += 1;
+        // What failed before this image, taken before it is sent: this
+        // image's own failure is always the next call's to report, never
+        // this one's, however fast the writer fails it.
+        let earlier = {
+            let mut st = self.shared.state.recover();
+            st.pending += 1;
+            st.error.take()
+        };
         let sent = self
             .sender
             .as_ref()
@@ -145,7 +153,7 @@ impl PngQueue {
             self.shared.state.recover().pending -= 1;
             return Err(Error::Io("the capture thread has stopped".into()));
         }
-        match self.shared.state.recover().error.take() {
+        match earlier {
             Some(e) => Err(e),
             None => Ok(()),
         }
