@@ -2276,6 +2276,168 @@ void gls_gl_finish(void);
 void *gls_glx_get_proc_address(const unsigned char *name);
 
 /**
+ * `glClearBufferfv`: with the emulated default framebuffer bound and a
+ * draw buffer name selecting several buffers (GL_BACK, GL_FRONT, GL_LEFT,
+ * GL_RIGHT, GL_FRONT_AND_BACK), GL_COLOR draw buffer 0 clears each of
+ * them, as GL 4.5 §17.4.3 says (draw buffers 1… are GL_NONE then).
+ * Refused: `value` NULL (GL_INVALID_VALUE, nothing cleared).
+ */
+void gls_gl_clear_bufferfv(uint32_t buffer, int32_t drawbuffer, const float *value);
+
+/**
+ * `glClearBufferiv`: as gls_gl_clear_bufferfv().
+ */
+void gls_gl_clear_bufferiv(uint32_t buffer, int32_t drawbuffer, const int32_t *value);
+
+/**
+ * `glClearBufferuiv`: as gls_gl_clear_bufferfv().
+ */
+void gls_gl_clear_bufferuiv(uint32_t buffer, int32_t drawbuffer, const uint32_t *value);
+
+/**
+ * `glClearNamedFramebufferfv`: framebuffer 0 is the emulated default
+ * framebuffer, cleared as gls_gl_clear_bufferfv() clears it. Refused:
+ * `value` NULL.
+ */
+void gls_gl_clear_named_framebufferfv(uint32_t framebuffer,
+                                      uint32_t buffer,
+                                      int32_t drawbuffer,
+                                      const float *value);
+
+/**
+ * `glClearNamedFramebufferiv`: as gls_gl_clear_named_framebufferfv().
+ */
+void gls_gl_clear_named_framebufferiv(uint32_t framebuffer,
+                                      uint32_t buffer,
+                                      int32_t drawbuffer,
+                                      const int32_t *value);
+
+/**
+ * `glClearNamedFramebufferuiv`: as gls_gl_clear_named_framebufferfv().
+ */
+void gls_gl_clear_named_framebufferuiv(uint32_t framebuffer,
+                                       uint32_t buffer,
+                                       int32_t drawbuffer,
+                                       const uint32_t *value);
+
+/**
+ * `glClearNamedFramebufferfi`: framebuffer 0's depth/stencil buffer is
+ * the emulated one, which both eyes share.
+ */
+void gls_gl_clear_named_framebufferfi(uint32_t framebuffer,
+                                      uint32_t buffer,
+                                      int32_t drawbuffer,
+                                      float depth,
+                                      int32_t stencil);
+
+/**
+ * `glNamedFramebufferDrawBuffer`: on framebuffer 0, as
+ * gls_gl_draw_buffer() with framebuffer 0 bound (same selections, same GL
+ * errors), whatever framebuffer is bound.
+ */
+void gls_gl_named_framebuffer_draw_buffer(uint32_t framebuffer, uint32_t buf);
+
+/**
+ * `glNamedFramebufferDrawBuffers`: on framebuffer 0, as
+ * gls_gl_draw_buffers() with framebuffer 0 bound. Refused: `bufs` NULL
+ * with n > 0.
+ */
+void gls_gl_named_framebuffer_draw_buffers(uint32_t framebuffer, int32_t n, const uint32_t *bufs);
+
+/**
+ * `glNamedFramebufferReadBuffer`: on framebuffer 0, as
+ * gls_gl_read_buffer() with framebuffer 0 bound.
+ */
+void gls_gl_named_framebuffer_read_buffer(uint32_t framebuffer, uint32_t src);
+
+/**
+ * `glBlitNamedFramebuffer`: 0 on either side is the emulated default
+ * framebuffer (its read buffer; its draw buffers, every buffer a name
+ * such as GL_BACK selects).
+ */
+void gls_gl_blit_named_framebuffer(uint32_t read_framebuffer,
+                                   uint32_t draw_framebuffer,
+                                   int32_t src_x0,
+                                   int32_t src_y0,
+                                   int32_t src_x1,
+                                   int32_t src_y1,
+                                   int32_t dst_x0,
+                                   int32_t dst_y0,
+                                   int32_t dst_x1,
+                                   int32_t dst_y1,
+                                   uint32_t mask,
+                                   uint32_t filter);
+
+/**
+ * `glInvalidateFramebuffer`: with framebuffer 0 bound, the attachments a
+ * default framebuffer takes (GL_COLOR, GL_FRONT_LEFT … GL_BACK_RIGHT,
+ * GL_DEPTH, GL_STENCIL) with the driver's errors; the emulated buffers
+ * keep their contents (invalidation is a hint). Refused: `attachments`
+ * NULL with n > 0.
+ */
+void gls_gl_invalidate_framebuffer(uint32_t target,
+                                   int32_t num_attachments,
+                                   const uint32_t *attachments);
+
+/**
+ * `glInvalidateSubFramebuffer`: as gls_gl_invalidate_framebuffer().
+ */
+void gls_gl_invalidate_sub_framebuffer(uint32_t target,
+                                       int32_t num_attachments,
+                                       const uint32_t *attachments,
+                                       int32_t x,
+                                       int32_t y,
+                                       int32_t width,
+                                       int32_t height);
+
+/**
+ * `glGetNamedFramebufferAttachmentParameteriv`: on framebuffer 0, as
+ * gls_gl_get_framebuffer_attachment_parameteriv() with framebuffer 0
+ * bound (GL_FRAMEBUFFER_DEFAULT, the window's component sizes; the right
+ * buffers as their left twins). Refused: `params` NULL.
+ */
+void gls_gl_get_named_framebuffer_attachment_parameteriv(uint32_t framebuffer,
+                                                         uint32_t attachment,
+                                                         uint32_t pname,
+                                                         int32_t *params);
+
+/**
+ * `glGetNamedFramebufferParameteriv`: on framebuffer 0, GL_STEREO and
+ * GL_DOUBLEBUFFER of the emulated framebuffer; GL_SAMPLES,
+ * GL_SAMPLE_BUFFERS, the implementation read format and type (and the
+ * errors) of the window's. Refused: `params` NULL.
+ */
+void gls_gl_get_named_framebuffer_parameteriv(uint32_t framebuffer,
+                                              uint32_t pname,
+                                              int32_t *params);
+
+/**
+ * `glGetFramebufferParameteriv`: with framebuffer 0 bound, as
+ * gls_gl_get_named_framebuffer_parameteriv() on 0. Refused: `params` NULL.
+ */
+void gls_gl_get_framebuffer_parameteriv(uint32_t target, uint32_t pname, int32_t *params);
+
+/**
+ * `glLinkProgram`: in a stereo context, a program whose fragment shader
+ * writes a user-defined output at location 0 is linked a second time
+ * with that output also written to locations 5, 6 and 7 (outputs
+ * `gls_stereo_copy5`…`7`), which the emulated framebuffer maps to the
+ * other buffers a name such as GL_BACK selects: output 0 then reaches
+ * every selected buffer, as on a real stereo framebuffer, with the shader
+ * run once per fragment. Where that cannot be done (no GLSL source,
+ * several fragment shaders, locations 5…7 or dual-source outputs in use)
+ * the program is linked as asked and stderr says why, once.
+ */
+void gls_gl_link_program(uint32_t program);
+
+/**
+ * `glCreateShaderProgramv`: a fragment program is linked as
+ * gls_gl_link_program() links one. Refused: `strings` NULL with count > 0
+ * (returns 0).
+ */
+uint32_t gls_gl_create_shader_programv(uint32_t kind, int32_t count, const char *const *strings);
+
+/**
  * Like gls_surface_save_png, but returns as soon as the pixels are read
  * back: the PNG is encoded and written (atomically, temporary file then
  * rename) by the surface's capture threads, in the order queued, so a

@@ -130,6 +130,7 @@
 pub mod attribs;
 pub mod capture;
 pub mod context;
+pub mod dsa;
 pub mod gl;
 pub mod glx;
 pub mod real;
