@@ -590,13 +590,20 @@ pub unsafe fn get_named_framebuffer_parameteriv(
     if params.is_null() {
         return Err(refuse_null(r, "params"));
     }
-    // SAFETY: forwarded call.
-    unsafe { real(framebuffer, pname, params) };
     if framebuffer == 0 {
         if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
+            // The window's framebuffer bound: the driver brings its read
+            // state up to date only for a bound framebuffer (Mesa answers
+            // GL_IMPLEMENTATION_COLOR_READ_FORMAT with GL_INVALID_OPERATION
+            // otherwise).
+            // SAFETY: forwarded call, on the window's framebuffer.
+            with_window_framebuffer(&r.gl, || unsafe { real(0, pname, params) });
             stereo_parameter(&cur, pname, params);
+            return Ok(());
         }
     }
+    // SAFETY: forwarded call.
+    unsafe { real(framebuffer, pname, params) };
     Ok(())
 }
 
