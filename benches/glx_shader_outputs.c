@@ -17,6 +17,8 @@
  *   fbo      the relinked program drawing into the program's own one-
  *            attachment framebuffer object (copies written to no buffer) /
  *            the same source linked once in the mono context, same FBO size
+ *   control  the gl_FragColor program (never relinked) into those two
+ *            FBOs: what the two contexts differ by without any copies
  *
  *   glx_shader_outputs WIDTH HEIGHT ROUNDS
  */
@@ -201,22 +203,22 @@ int main(int argc, char **argv)
     glDrawBuffer(GL_BACK);
     glXMakeContextCurrent(d, mo.w, mo.w, mo.ctx);
     quad();
-    GLuint m_out = link(FS_OUT, NULL), m_fbo = user_fbo();
+    GLuint m_out = link(FS_OUT, NULL), m_builtin = link(FS_BUILTIN, NULL), m_fbo = user_fbo();
 
     static double link_s[MAXR], link_m[MAXR], d_out[MAXR], d_builtin[MAXR], d_eye[MAXR],
-        f_s[MAXR], f_m[MAXR];
+        f_s[MAXR], f_m[MAXR], c_s[MAXR], c_m[MAXR];
     for (int r = -1; r < rounds; r++) { /* round -1 warms up */
         double a, b;
         glXMakeContextCurrent(d, st.w, st.w, st.ctx);
         glDeleteProgram(link(FS_OUT, &a));
         double o = draw(p_out, 0), bi = draw(p_builtin, 0), e = draw(p_out, 1);
         glBindFramebuffer(GL_FRAMEBUFFER, s_fbo);
-        double fs = draw(p_out, 0);
+        double fs = draw(p_out, 0), cs = draw(p_builtin, 0);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glXMakeContextCurrent(d, mo.w, mo.w, mo.ctx);
         glDeleteProgram(link(FS_OUT, &b));
         glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
-        double fm = draw(m_out, 0);
+        double fm = draw(m_out, 0), cm = draw(m_builtin, 0);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         if (r < 0) continue;
         link_s[r] = a;
@@ -226,14 +228,20 @@ int main(int argc, char **argv)
         d_eye[r] = e;
         f_s[r] = fs;
         f_m[r] = fm;
+        c_s[r] = cs;
+        c_m[r] = cm;
     }
     double ls = median(link_s, rounds), lm = median(link_m, rounds);
     double o = median(d_out, rounds), bi = median(d_builtin, rounds), e = median(d_eye, rounds);
     double fs = median(f_s, rounds), fm = median(f_m, rounds);
+    double cs = median(c_s, rounds), cm = median(c_m, rounds);
     printf("link    stereo %.2f ms  mono %.2f ms  ratio %.2f\n", ls, lm, ls / lm);
     printf("draw    user output %.2f ms  gl_FragColor %.2f ms  ratio %.2f\n", o, bi, o / bi);
     printf("per-eye two passes %.2f ms  one relinked pass %.2f ms  ratio %.2f\n", e, o, e / o);
     printf("fbo     relinked %.2f ms  linked once %.2f ms  ratio %.2f\n", fs, fm, fs / fm);
+    printf("control gl_FragColor into the FBO: stereo context %.2f ms  mono context %.2f ms  "
+           "ratio %.2f\n",
+           cs, cm, cs / cm);
     glXMakeContextCurrent(d, None, None, NULL);
     glXDestroyContext(d, st.ctx);
     glXDestroyContext(d, mo.ctx);
