@@ -409,12 +409,12 @@ impl Surface {
             let outcome = fns.duplicate_output_zero(program, None);
             while gl.GetError() != GL_NO_ERROR {}
             match outcome {
-                crate::stereo::outputs::Outcome::Kept(why) => Err(Error::invalid_operation(
-                    format!(
+                crate::stereo::outputs::Outcome::Kept(why) => {
+                    Err(Error::invalid_operation(format!(
                         "{why}: program {program} is linked as glLinkProgram links it, and its \
                          output 0 reaches only the first selected buffer"
-                    ),
-                )),
+                    )))
+                }
                 _ => Ok(()),
             }
         }

@@ -15,7 +15,7 @@
 //!   emulated buffers (the read buffer, the draw buffers);
 //! - glGetNamedFramebufferAttachmentParameteriv(0, …) answers as
 //!   glGetFramebufferAttachmentParameteriv on framebuffer 0 does
-//!   ([`super::gl::emulated_attachment`]); glGetNamedFramebufferParameteriv
+//!   (the rules of glGetFramebufferAttachmentParameteriv there); glGetNamedFramebufferParameteriv
 //!   (0, …) and glGetFramebufferParameteriv with framebuffer 0 bound
 //!   answer from the window's framebuffer (GL_SAMPLES, GL_SAMPLE_BUFFERS,
 //!   the implementation read format and type, and the errors), with
@@ -201,7 +201,7 @@ unsafe fn clear_buffer<T>(
 /// glClearBufferfv.
 ///
 /// # Safety
-/// As [`clear_buffer`].
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
 pub unsafe fn clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32) -> Result<()> {
     // SAFETY: forwarded contract.
     unsafe { clear_buffer(fns().clear_fv, "glClearBufferfv", buffer, drawbuffer, value) }
@@ -210,7 +210,7 @@ pub unsafe fn clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32) ->
 /// glClearBufferiv.
 ///
 /// # Safety
-/// As [`clear_buffer`].
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
 pub unsafe fn clear_bufferiv(buffer: u32, drawbuffer: i32, value: *const i32) -> Result<()> {
     // SAFETY: forwarded contract.
     unsafe { clear_buffer(fns().clear_iv, "glClearBufferiv", buffer, drawbuffer, value) }
@@ -219,10 +219,18 @@ pub unsafe fn clear_bufferiv(buffer: u32, drawbuffer: i32, value: *const i32) ->
 /// glClearBufferuiv.
 ///
 /// # Safety
-/// As [`clear_buffer`].
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
 pub unsafe fn clear_bufferuiv(buffer: u32, drawbuffer: i32, value: *const u32) -> Result<()> {
     // SAFETY: forwarded contract.
-    unsafe { clear_buffer(fns().clear_uiv, "glClearBufferuiv", buffer, drawbuffer, value) }
+    unsafe {
+        clear_buffer(
+            fns().clear_uiv,
+            "glClearBufferuiv",
+            buffer,
+            drawbuffer,
+            value,
+        )
+    }
 }
 
 /// Framebuffer 0's object and the slots of `drawbuffer` (for GL_COLOR),
@@ -242,7 +250,7 @@ fn fb0_slots(buffer: u32, drawbuffer: i32) -> Option<(u32, DrawSlots)> {
 /// glClearNamedFramebuffer{fv,iv,uiv}. Refused: `value` NULL.
 ///
 /// # Safety
-/// As [`clear_buffer`].
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
 unsafe fn clear_named<T>(
     real: Option<ClearNamedFn<T>>,
     name: &str,
@@ -273,7 +281,7 @@ unsafe fn clear_named<T>(
 /// glClearNamedFramebufferfv.
 ///
 /// # Safety
-/// As [`clear_buffer`].
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
 pub unsafe fn clear_named_framebufferfv(
     framebuffer: u32,
     buffer: u32,
@@ -296,7 +304,7 @@ pub unsafe fn clear_named_framebufferfv(
 /// glClearNamedFramebufferiv.
 ///
 /// # Safety
-/// As [`clear_buffer`].
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
 pub unsafe fn clear_named_framebufferiv(
     framebuffer: u32,
     buffer: u32,
@@ -319,7 +327,7 @@ pub unsafe fn clear_named_framebufferiv(
 /// glClearNamedFramebufferuiv.
 ///
 /// # Safety
-/// As [`clear_buffer`].
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
 pub unsafe fn clear_named_framebufferuiv(
     framebuffer: u32,
     buffer: u32,
@@ -366,10 +374,12 @@ pub fn clear_named_framebufferfi(
 pub fn named_framebuffer_draw_buffer(framebuffer: u32, buf: u32) -> Result<()> {
     let r = loaded()?;
     let real = need(fns().named_draw_buffer, "glNamedFramebufferDrawBuffer")?;
-    if framebuffer == 0 && select_fb0(r, false, |fb| {
-        // SAFETY: the program's context is current.
-        unsafe { fb.set_draw_buffer(&r.gl, buf) }
-    }) {
+    if framebuffer == 0
+        && select_fb0(r, false, |fb| {
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_draw_buffer(&r.gl, buf) }
+        })
+    {
         return Ok(());
     }
     // SAFETY: forwarded call.
@@ -419,10 +429,12 @@ pub unsafe fn named_framebuffer_draw_buffers(
 pub fn named_framebuffer_read_buffer(framebuffer: u32, src: u32) -> Result<()> {
     let r = loaded()?;
     let real = need(fns().named_read_buffer, "glNamedFramebufferReadBuffer")?;
-    if framebuffer == 0 && select_fb0(r, true, |fb| {
-        // SAFETY: the program's context is current.
-        unsafe { fb.set_read_buffer(&r.gl, src) }
-    }) {
+    if framebuffer == 0
+        && select_fb0(r, true, |fb| {
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_read_buffer(&r.gl, src) }
+        })
+    {
         return Ok(());
     }
     // SAFETY: forwarded call.
@@ -517,7 +529,9 @@ pub unsafe fn invalidate_sub_framebuffer(
     match current() {
         Some(cur) if emulated_at(r, &cur, target) => {
             // SAFETY: forwarded call, on the window's framebuffer.
-            with_window_framebuffer(&r.gl, || unsafe { real(target, n, attachments, x, y, w, h) })
+            with_window_framebuffer(&r.gl, || unsafe {
+                real(target, n, attachments, x, y, w, h)
+            })
         }
         // SAFETY: forwarded call.
         _ => unsafe { real(target, n, attachments, x, y, w, h) },

@@ -328,12 +328,7 @@ impl LinkFns {
         let mut n = 0;
         // SAFETY: contract of the callers; buffers sized as GL is told.
         unsafe {
-            (self.get_program_interfaceiv)(
-                program,
-                GL_PROGRAM_OUTPUT,
-                GL_ACTIVE_RESOURCES,
-                &mut n,
-            );
+            (self.get_program_interfaceiv)(program, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &mut n);
             (0..n.max(0) as u32)
                 .map(|i| {
                     let props = [GL_LOCATION, GL_LOCATION_INDEX, GL_TYPE, GL_ARRAY_SIZE];
@@ -426,7 +421,6 @@ impl LinkFns {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -447,7 +441,11 @@ mod tests {
 
     #[test]
     fn a_source_without_version_gets_the_define_first() {
-        let out = duplicate_output("out ivec4 c[2];\nvoid main(){c[0]=ivec4(1);}", "c[0]", "ivec4");
+        let out = duplicate_output(
+            "out ivec4 c[2];\nvoid main(){c[0]=ivec4(1);}",
+            "c[0]",
+            "ivec4",
+        );
         assert!(out.starts_with("#define main gls_stereo_user_main\nout ivec4 c[2];"));
         assert!(out.contains("gls_stereo_copy7 = c[0];"));
         assert!(out.contains("out ivec4 gls_stereo_copy7;"));
