@@ -72,7 +72,11 @@ use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
 /// made current or destroyed again before its release. In GL, a NULL
 /// pointer GL would read or write through (glGet*v data, glDrawBuffers
 /// and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
-/// params): nothing happens but GL_INVALID_VALUE for glGetError in the
+/// params; glClearBuffer* and glClearNamedFramebuffer* values,
+/// glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
+/// with n > 0, glGet(Named)FramebufferParameteriv and
+/// glGetNamedFramebufferAttachmentParameteriv params, glCreateShaderProgramv
+/// strings with count > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
 /// current context (none with no context current). A pointer that is not
 /// NULL but wrong (freed, too short, not terminated) cannot be detected.
 /// An internal failure (a bug) is caught and reported as a refusal.

@@ -15,7 +15,8 @@
 //!   emulated buffers (the read buffer, the draw buffers);
 //! - glGetNamedFramebufferAttachmentParameteriv(0, …) answers as
 //!   glGetFramebufferAttachmentParameteriv on framebuffer 0 does
-//!   (the rules of glGetFramebufferAttachmentParameteriv there); glGetNamedFramebufferParameteriv
+//!   (GL_FRAMEBUFFER_DEFAULT, the window's sizes, right buffers as their
+//!   left twins); glGetNamedFramebufferParameteriv
 //!   (0, …) and glGetFramebufferParameteriv with framebuffer 0 bound
 //!   answer from the window's framebuffer (GL_SAMPLES, GL_SAMPLE_BUFFERS,
 //!   the implementation read format and type, and the errors), with

@@ -94,7 +94,12 @@
 //!   destruction waits for the release ([`context::StereoContext::defer_destroy`]),
 //!   and making it current or destroying it again meanwhile is refused;
 //! - GL: a NULL pointer GL reads or writes through (glGet*v, glDrawBuffers
-//!   and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv):
+//!   and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv,
+//!   and the functions of [`dsa`]: glClearBuffer* and glClearNamedFramebuffer*
+//!   values, glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer
+//!   lists with n > 0, the glGet*FramebufferParameteriv and
+//!   glGetNamedFramebufferAttachmentParameteriv params,
+//!   glCreateShaderProgramv strings):
 //!   nothing happens but GL_INVALID_VALUE, in the stereo context's queue of
 //!   emulated errors or, in any other context, raised by the driver itself
 //!   with glViewport(0, 0, -1, -1) (GL rejects it with exactly that error
