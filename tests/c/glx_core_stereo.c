@@ -643,33 +643,6 @@ static void dsa(void)
     drain_errors("dsa queries");
 }
 
-/* NULL where GL would read or write through it: refused with
- * GL_INVALID_VALUE (libGL would crash), nothing else happens. */
-static void null_pointers(void)
-{
-    clear_all();
-    glDrawBuffer(GL_BACK);
-    glClearBufferfv(GL_COLOR, 0, NULL);
-    CHECK(glGetError() == GL_INVALID_VALUE, "glClearBufferfv(NULL)");
-    glClearNamedFramebufferfv(0, GL_COLOR, 0, NULL);
-    CHECK(glGetError() == GL_INVALID_VALUE, "glClearNamedFramebufferfv(NULL)");
-    expect_buffers("after the refused clears", 0, 0, 0, 0);
-    glNamedFramebufferDrawBuffers(0, 1, NULL);
-    CHECK(glGetError() == GL_INVALID_VALUE, "glNamedFramebufferDrawBuffers(1, NULL)");
-    CHECK(get_int(GL_DRAW_BUFFER) == GL_BACK, "unchanged after the refused call");
-    glGetNamedFramebufferParameteriv(0, GL_STEREO, NULL);
-    CHECK(glGetError() == GL_INVALID_VALUE, "glGetNamedFramebufferParameteriv(NULL)");
-    glGetNamedFramebufferAttachmentParameteriv(0, GL_BACK_LEFT,
-                                               GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, NULL);
-    CHECK(glGetError() == GL_INVALID_VALUE, "glGetNamedFramebufferAttachmentParameteriv(NULL)");
-    glInvalidateFramebuffer(GL_FRAMEBUFFER, 1, NULL);
-    CHECK(glGetError() == GL_INVALID_VALUE, "glInvalidateFramebuffer(1, NULL)");
-    CHECK(glCreateShaderProgramv(GL_FRAGMENT_SHADER, 1, NULL) == 0 &&
-              glGetError() == GL_INVALID_VALUE,
-          "glCreateShaderProgramv(1, NULL)");
-    drain_errors("null pointers");
-}
-
 /* The answers GL gives about a default framebuffer that do not depend on
  * stereo: printed, for the test to compare with the driver's on a mono
  * configuration. */
@@ -893,7 +866,6 @@ int main(int argc, char **argv)
         atomic_counter_once();
         feedback_and_separable();
         dsa();
-        null_pointers();
     }
     if (compat) immediate_mode();
     if (core45 || mono45) probes();
