@@ -2461,7 +2461,9 @@ void gls_gl_get_framebuffer_parameteriv(uint32_t target, uint32_t pname, int32_t
  * every selected buffer, as on a real stereo framebuffer, with the shader
  * run once per fragment. Where that cannot be done (no GLSL source,
  * several fragment shaders, locations 5…7 or dual-source outputs in use)
- * the program is linked as asked and stderr says why, once.
+ * the program is linked as asked and stderr says why, once. It also
+ * stands for `glLinkProgramARB` (whose handles are program names in Mesa
+ * and the libglvnd drivers).
  */
 void gls_gl_link_program(uint32_t program);
 

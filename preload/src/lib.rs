@@ -92,6 +92,7 @@ export! {
     glGetNamedFramebufferParameteriv => gls_gl_get_named_framebuffer_parameteriv(framebuffer: u32, pname: u32, params: *mut i32);
     glGetFramebufferParameteriv => gls_gl_get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut i32);
     glLinkProgram => gls_gl_link_program(program: u32);
+    glLinkProgramARB => gls_gl_link_program(program: u32);
     glCreateShaderProgramv => gls_gl_create_shader_programv(kind: u32, count: i32, strings: *const *const std::ffi::c_char) -> u32;
 }
 

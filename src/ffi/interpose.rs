@@ -725,7 +725,7 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
             gls_gl_get_named_framebuffer_parameteriv as *mut c_void
         }
         b"glGetFramebufferParameteriv" => gls_gl_get_framebuffer_parameteriv as *mut c_void,
-        b"glLinkProgram" => gls_gl_link_program as *mut c_void,
+        b"glLinkProgram" | b"glLinkProgramARB" => gls_gl_link_program as *mut c_void,
         b"glCreateShaderProgramv" => gls_gl_create_shader_programv as *mut c_void,
         _ => return None,
     };
@@ -976,7 +976,9 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_parameteriv(
 /// every selected buffer, as on a real stereo framebuffer, with the shader
 /// run once per fragment. Where that cannot be done (no GLSL source,
 /// several fragment shaders, locations 5…7 or dual-source outputs in use)
-/// the program is linked as asked and stderr says why, once.
+/// the program is linked as asked and stderr says why, once. It also
+/// stands for `glLinkProgramARB` (whose handles are program names in Mesa
+/// and the libglvnd drivers).
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_link_program(program: u32) {
     ffi_boundary!("gls_gl_link_program" for "glLinkProgram", () => {

@@ -23,7 +23,10 @@
 //!   context wherever the program has framebuffer 0;
 //! - GL calls about the default framebuffer are answered as a stereo
 //!   visual would ([`gl`]), with the exact GL errors of
-//!   [`crate::stereo::buffers`];
+//!   [`crate::stereo::buffers`]; so are glClearBuffer and GL 4.5 direct
+//!   state access on framebuffer 0, and programs are linked so that a
+//!   shader's output 0 reaches every buffer a name such as GL_BACK selects
+//!   ([`dsa`], [`crate::stereo::outputs`]);
 //! - glXSwapBuffers flips back and front buffers and shows the front
 //!   buffers composed in GLSTEREO_MODE (default anaglyph-red-cyan) in the
 //!   window ([`context::StereoContext::present`]), and, with
