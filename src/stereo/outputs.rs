@@ -147,6 +147,8 @@ macro_rules! link_fns {
 
 link_fns! {
     link_program = c"glLinkProgram": fn(u32);
+    create_program = c"glCreateProgram": fn() -> u32;
+    delete_program = c"glDeleteProgram": fn(u32);
     get_programiv = c"glGetProgramiv": fn(u32, u32, *mut i32);
     get_attached_shaders = c"glGetAttachedShaders": fn(u32, i32, *mut i32, *mut u32);
     get_shaderiv = c"glGetShaderiv": fn(u32, u32, *mut i32);
@@ -257,13 +259,18 @@ impl LinkFns {
             let Some(copy) = self.compile(&rewritten) else {
                 return Outcome::Kept("the rewritten fragment shader does not compile".into());
             };
-            let user_deleted =
-                attached.is_some_and(|fs| self.shader_int(fs, GL_DELETE_STATUS) != 0);
-            if let Some(fs) = attached {
-                // A shader the user already deleted goes away here; a fresh
-                // copy of it is attached back below.
-                (self.detach_shader)(program, fs);
-            }
+            // While the user's shader is detached, a scratch program holds
+            // it: a shader the user already deleted would otherwise go away
+            // (its name with it, which the user may still detach).
+            let holder = match attached {
+                Some(fs) => {
+                    let h = (self.create_program)();
+                    (self.attach_shader)(h, fs);
+                    (self.detach_shader)(program, fs);
+                    Some((h, fs))
+                }
+                None => None,
+            };
             (self.attach_shader)(program, copy);
             for loc in COPY_LOCATIONS {
                 let name = std::ffi::CString::new(format!("{COPY_PREFIX}{loc}")).unwrap();
@@ -275,35 +282,24 @@ impl LinkFns {
                 && (self.get_frag_data_location)(program, zero_name.as_ptr()) == 0;
             (self.detach_shader)(program, copy);
             (self.delete_shader)(copy);
-            // The user's shader attached again (a compiled copy of it if
-            // the user had deleted it), as after the user's link.
-            let restore = match attached {
-                Some(fs) if !user_deleted => Some(fs),
-                Some(_) => self.compile(&original),
-                None => None,
-            };
+            // The user's shader attached again, as after the user's link.
+            if let Some((h, fs)) = holder {
+                (self.attach_shader)(program, fs);
+                (self.delete_program)(h);
+            }
             if ok {
-                if let Some(fs) = restore {
-                    (self.attach_shader)(program, fs);
-                    if user_deleted {
-                        (self.delete_shader)(fs);
-                    }
-                }
                 return Outcome::Duplicated;
             }
-            // Linked as the user linked it.
-            let temp = match restore {
-                Some(fs) => Some(fs),
-                None => self.compile(&original),
-            };
-            if let Some(fs) = temp {
-                (self.attach_shader)(program, fs);
-                (self.link_program)(program);
-                if attached.is_none() {
-                    (self.detach_shader)(program, fs);
-                }
-                if attached.is_none() || user_deleted {
-                    (self.delete_shader)(fs);
+            // Linked again as the user linked it.
+            match attached {
+                Some(_) => (self.link_program)(program),
+                None => {
+                    if let Some(fs) = self.compile(&original) {
+                        (self.attach_shader)(program, fs);
+                        (self.link_program)(program);
+                        (self.detach_shader)(program, fs);
+                        (self.delete_shader)(fs);
+                    }
                 }
             }
             Outcome::Kept("the rewritten program does not link".into())

@@ -137,6 +137,14 @@ static GLuint program(const char *vs, const char *fs)
     GLint attached = 0;
     glGetProgramiv(p, GL_ATTACHED_SHADERS, &attached);
     CHECK(attached == 2, "the program keeps its two shaders attached (%d)", attached);
+    GLuint names[2] = {0, 0};
+    glGetAttachedShaders(p, 2, NULL, names);
+    CHECK((names[0] == v && names[1] == f) || (names[0] == f && names[1] == v),
+          "the attached shaders are the program's own (%u %u, wanted %u %u)", names[0],
+          names[1], v, f);
+    glDetachShader(p, v);
+    glDetachShader(p, f);
+    CHECK(glGetError() == GL_NO_ERROR, "the program's shaders can be detached after the link");
     return p;
 }
 
