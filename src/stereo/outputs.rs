@@ -35,7 +35,6 @@ use crate::stereo::emulated::COPY_LOCATIONS;
 
 const GL_FRAGMENT_SHADER: u32 = 0x8B30;
 const GL_SHADER_TYPE: u32 = 0x8B4F;
-const GL_DELETE_STATUS: u32 = 0x8B80;
 const GL_COMPILE_STATUS: u32 = 0x8B81;
 const GL_LINK_STATUS: u32 = 0x8B82;
 const GL_ATTACHED_SHADERS: u32 = 0x8B85;
