@@ -80,6 +80,18 @@ fn shaders_clears_and_dsa_reach_both_eyes_under_glstereo_run() {
     passes("compat", &mut run("compat"), 10);
     let stereo = passes("core45", &mut run("core45"), 190);
 
+    // A program the copies cannot be added to: linked as asked, and stderr
+    // says why.
+    let out = common::run_ok(&mut run("kept"));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stdout.ends_with(" passed, 0 failed\n"), "{stdout}\n{stderr}");
+    assert!(
+        stderr.contains("glstereo: a linked program keeps its fragment output 0")
+            && stderr.contains("output b uses location 6"),
+        "{stderr}"
+    );
+
     // The probes' answers are Mesa's own for a default framebuffer.
     let mono = common::run_ok(
         Command::new(&exe)

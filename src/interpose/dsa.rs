@@ -658,9 +658,12 @@ fn duplicate(r: &Real, cur: &Current, program: u32, source: Option<&str>) {
     // SAFETY: as above; drops the relink's own errors.
     while unsafe { r.gl.GetError() } != GL_NO_ERROR {}
     if let Outcome::Kept(why) = outcome {
+        // Once per reason, not per program: engines link many variants of
+        // one shader (and the ones drawing only into their own framebuffer
+        // objects lose nothing).
         super::warn(&format!(
-            "program {program}: {why}; its fragment output 0 reaches only the first buffer \
-             a glDrawBuffer name such as GL_BACK selects"
+            "a linked program keeps its fragment output 0 in the first buffer a glDrawBuffer \
+             name such as GL_BACK selects: {why}"
         ));
     }
 }

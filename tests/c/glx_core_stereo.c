@@ -16,6 +16,9 @@
  *                            then prints the probes (lines "probe ...")
  *   glx_core_stereo compat   immediate mode (glBegin/glEnd) with a GLSL
  *                            1.30 `out` shader in a compatibility context
+ *   glx_core_stereo kept     GL 3.3 core: a program using location 6 itself
+ *                            keeps output 0 in the first selected buffer
+ *                            (the layer says why on stderr)
  *   glx_core_stereo mono45   no checks: a mono configuration, prints the
  *                            probes (the test compares them with core45's:
  *                            the errors and values GL gives a default
@@ -471,6 +474,27 @@ static void feedback_and_separable(void)
     drain_errors("feedback and separable");
 }
 
+/* A program the copies cannot be added to (it uses location 6 itself):
+ * linked as asked, still drawing output 0 into the first selected buffer;
+ * the layer says so on stderr (the test reads it). */
+static void kept_program(void)
+{
+    static const char *fs = "#version 330 core\n"
+                            "layout(location = 0) out vec4 a;\n"
+                            "layout(location = 6) out vec4 b;\n"
+                            "void main() { a = vec4(0.0, 1.0, 0.0, 1.0); b = vec4(1.0); }\n";
+    GLuint p = program(VS33, fs);
+    glUseProgram(p);
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    draw_with(0);
+    CHECK(buffer_is(BL, 0, 255, 0), "a kept program draws output 0 into back-left");
+    CHECK(glGetFragDataLocation(p, "b") == 6, "its own location 6 stays");
+    glUseProgram(0);
+    glDeleteProgram(p);
+    drain_errors("kept program");
+}
+
 /* What each draw-buffer name selects (GL 4.5 table 17.4) and bad values. */
 static const struct {
     GLenum name;
@@ -846,8 +870,10 @@ int main(int argc, char **argv)
     const char *mode = argc > 1 ? argv[1] : "";
     int core33 = strcmp(mode, "core33") == 0, core45 = strcmp(mode, "core45") == 0;
     int compat = strcmp(mode, "compat") == 0, mono45 = strcmp(mode, "mono45") == 0;
+    int kept = strcmp(mode, "kept") == 0;
+    core33 |= kept;
     if (!core33 && !core45 && !compat && !mono45) {
-        fprintf(stderr, "usage: glx_core_stereo core33|core45|compat|mono45\n");
+        fprintf(stderr, "usage: glx_core_stereo core33|core45|compat|mono45|kept\n");
         return 1;
     }
     Display *d = XOpenDisplay(NULL);
@@ -864,7 +890,9 @@ int main(int argc, char **argv)
         CHECK(st == GL_TRUE, "GL_STEREO");
         if (!compat) geometry();
     }
-    if (core33 || core45) {
+    if (kept) {
+        kept_program();
+    } else if (core33 || core45) {
         user_outputs(core45 ? 11 : 9);
         side_effects_once();
         draw_buffers_routing();
