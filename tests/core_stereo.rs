@@ -85,7 +85,10 @@ fn shaders_clears_and_dsa_reach_both_eyes_under_glstereo_run() {
     let out = common::run_ok(&mut run("kept"));
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stdout.ends_with(" passed, 0 failed\n"), "{stdout}\n{stderr}");
+    assert!(
+        stdout.ends_with(" passed, 0 failed\n"),
+        "{stdout}\n{stderr}"
+    );
     assert!(
         stderr.contains("glstereo: a linked program keeps its fragment output 0")
             && stderr.contains("output b uses location 6"),
