@@ -131,6 +131,7 @@ bench:
 	$(CARGO) bench --bench compose
 	$(CARGO) build --release -p glstereo-preload
 	sh benches/glx_frame_loop.sh
+	sh benches/glx_shader_outputs.sh
 
 clean:
 	$(CARGO) clean

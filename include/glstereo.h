@@ -1602,12 +1602,17 @@ gls_result gls_make_current(struct gls_surface *surface);
  * GL_BACK (both back buffers on stereo), GL_FRONT, GL_LEFT, GL_RIGHT,
  * GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT, GL_BACK_RIGHT,
  * GL_FRONT_AND_BACK and GL_NONE select what GL 4.5 says. Fixed-function
- * colour, gl_FragColor and glClear reach every selected buffer. A shader
- * that writes a user-defined `out vec4` (location 0) reaches only the first
- * selected buffer, which is the left eye's when both eyes are selected; the
- * other buffers get undefined values (GL's rule for outputs a shader does
- * not write). Such programs should draw each eye with its own buffer
- * selected, or write gl_FragColor.
+ * colour, gl_FragColor, glClear and glBlitFramebuffer reach every selected
+ * buffer. A shader's user-defined output 0 (`layout(location = 0) out
+ * vec4`) reaches every selected buffer when its program was linked with
+ * gls_link_program() in place of glLinkProgram (which writes copies of it
+ * to locations 5…7, where the emulated framebuffer keeps the other
+ * selected buffers); linked with glLinkProgram it reaches only the first
+ * selected buffer (the left eye's when both are selected), and the others
+ * get undefined values. glClearBuffer(GL_COLOR, 0, …) clears only the
+ * first selected buffer: clear with glClear, or select each buffer in
+ * turn. (Programs under glstereo-run or rebuilt with
+ * <glstereo/compat.h> get all of this from their usual GL calls.)
  *
  * @param gl_buffer a GL buffer name.
  * @return GLS_OK; GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_INVALID_ENUM (not
@@ -1638,6 +1643,32 @@ gls_result gls_draw_buffers(int32_t n, const uint32_t *bufs);
  * @return as gls_draw_buffer(). Thread: the surface's.
  */
 gls_result gls_read_buffer(uint32_t gl_buffer);
+
+/**
+ * glLinkProgram for a program that draws into the current surface's
+ * emulated default framebuffer: links `program`, then, when its fragment
+ * shader writes a user-defined output at location 0, links it again with
+ * that output also written to outputs `gls_stereo_copy5`…`7` (locations
+ * 5…7), so that output 0 reaches every buffer gls_draw_buffer() selects
+ * (GL_BACK: both eyes) in one pass: the shader runs once per fragment, so
+ * atomic counters, image stores and queries count as on a real stereo
+ * framebuffer. The program keeps its shaders attached; its introspection
+ * shows the three extra outputs. Use it in place of glLinkProgram; check
+ * GL_LINK_STATUS as usual.
+ *
+ * @param program a program object of the current surface's context.
+ * @return GLS_OK (also when the link failed or the program needs no
+ * copies: no fragment shader, gl_FragColor); GLS_ERROR_NO_CURRENT_SURFACE;
+ * GLS_ERROR_INVALID_VALUE / GLS_ERROR_INVALID_OPERATION when glLinkProgram
+ * itself raises that GL error (not a program name; gls_get_error()
+ * reports it); GLS_ERROR_INVALID_OPERATION, with the reason in
+ * gls_last_error_message(), when the copies cannot be added (no GLSL
+ * source, as with SPIR-V; several fragment shaders; outputs at locations
+ * 5…7 or dual-source outputs; a driver before GL 4.3): the program is then
+ * linked as glLinkProgram links it, and output 0 reaches only the first
+ * selected buffer. Thread: the surface's.
+ */
+gls_result gls_link_program(uint32_t program);
 
 /**
  * glGetError for the current surface: an error the emulation raised
@@ -1981,7 +2012,11 @@ gls_result gls_parallax_report_describe(const struct gls_parallax_report *report
  * made current or destroyed again before its release. In GL, a NULL
  * pointer GL would read or write through (glGet*v data, glDrawBuffers
  * and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
- * params): nothing happens but GL_INVALID_VALUE for glGetError in the
+ * params; glClearBuffer* and glClearNamedFramebuffer* values,
+ * glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
+ * with n > 0, glGet(Named)FramebufferParameteriv and
+ * glGetNamedFramebufferAttachmentParameteriv params, glCreateShaderProgramv
+ * strings with count > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
  * current context (none with no context current). A pointer that is not
  * NULL but wrong (freed, too short, not terminated) cannot be detected.
  * An internal failure (a bug) is caught and reported as a refusal.
@@ -2274,6 +2309,170 @@ void gls_gl_finish(void);
  * the stereo versions), the real libGL's for every other name.
  */
 void *gls_glx_get_proc_address(const unsigned char *name);
+
+/**
+ * `glClearBufferfv`: with the emulated default framebuffer bound and a
+ * draw buffer name selecting several buffers (GL_BACK, GL_FRONT, GL_LEFT,
+ * GL_RIGHT, GL_FRONT_AND_BACK), GL_COLOR draw buffer 0 clears each of
+ * them, as GL 4.5 §17.4.3 says (draw buffers 1… are GL_NONE then).
+ * Refused: `value` NULL (GL_INVALID_VALUE, nothing cleared).
+ */
+void gls_gl_clear_bufferfv(uint32_t buffer, int32_t drawbuffer, const float *value);
+
+/**
+ * `glClearBufferiv`: as gls_gl_clear_bufferfv().
+ */
+void gls_gl_clear_bufferiv(uint32_t buffer, int32_t drawbuffer, const int32_t *value);
+
+/**
+ * `glClearBufferuiv`: as gls_gl_clear_bufferfv().
+ */
+void gls_gl_clear_bufferuiv(uint32_t buffer, int32_t drawbuffer, const uint32_t *value);
+
+/**
+ * `glClearNamedFramebufferfv`: framebuffer 0 is the emulated default
+ * framebuffer, cleared as gls_gl_clear_bufferfv() clears it. Refused:
+ * `value` NULL.
+ */
+void gls_gl_clear_named_framebufferfv(uint32_t framebuffer,
+                                      uint32_t buffer,
+                                      int32_t drawbuffer,
+                                      const float *value);
+
+/**
+ * `glClearNamedFramebufferiv`: as gls_gl_clear_named_framebufferfv().
+ */
+void gls_gl_clear_named_framebufferiv(uint32_t framebuffer,
+                                      uint32_t buffer,
+                                      int32_t drawbuffer,
+                                      const int32_t *value);
+
+/**
+ * `glClearNamedFramebufferuiv`: as gls_gl_clear_named_framebufferfv().
+ */
+void gls_gl_clear_named_framebufferuiv(uint32_t framebuffer,
+                                       uint32_t buffer,
+                                       int32_t drawbuffer,
+                                       const uint32_t *value);
+
+/**
+ * `glClearNamedFramebufferfi`: framebuffer 0's depth/stencil buffer is
+ * the emulated one, which both eyes share.
+ */
+void gls_gl_clear_named_framebufferfi(uint32_t framebuffer,
+                                      uint32_t buffer,
+                                      int32_t drawbuffer,
+                                      float depth,
+                                      int32_t stencil);
+
+/**
+ * `glNamedFramebufferDrawBuffer`: on framebuffer 0, as
+ * gls_gl_draw_buffer() with framebuffer 0 bound (same selections, same GL
+ * errors), whatever framebuffer is bound.
+ */
+void gls_gl_named_framebuffer_draw_buffer(uint32_t framebuffer, uint32_t buf);
+
+/**
+ * `glNamedFramebufferDrawBuffers`: on framebuffer 0, as
+ * gls_gl_draw_buffers() with framebuffer 0 bound. Refused: `bufs` NULL
+ * with n > 0.
+ */
+void gls_gl_named_framebuffer_draw_buffers(uint32_t framebuffer, int32_t n, const uint32_t *bufs);
+
+/**
+ * `glNamedFramebufferReadBuffer`: on framebuffer 0, as
+ * gls_gl_read_buffer() with framebuffer 0 bound.
+ */
+void gls_gl_named_framebuffer_read_buffer(uint32_t framebuffer, uint32_t src);
+
+/**
+ * `glBlitNamedFramebuffer`: 0 on either side is the emulated default
+ * framebuffer (its read buffer; its draw buffers, every buffer a name
+ * such as GL_BACK selects).
+ */
+void gls_gl_blit_named_framebuffer(uint32_t read_framebuffer,
+                                   uint32_t draw_framebuffer,
+                                   int32_t src_x0,
+                                   int32_t src_y0,
+                                   int32_t src_x1,
+                                   int32_t src_y1,
+                                   int32_t dst_x0,
+                                   int32_t dst_y0,
+                                   int32_t dst_x1,
+                                   int32_t dst_y1,
+                                   uint32_t mask,
+                                   uint32_t filter);
+
+/**
+ * `glInvalidateFramebuffer`: with framebuffer 0 bound, the attachments a
+ * default framebuffer takes (GL_COLOR, GL_FRONT_LEFT … GL_BACK_RIGHT,
+ * GL_DEPTH, GL_STENCIL) with the driver's errors; the emulated buffers
+ * keep their contents (invalidation is a hint). Refused: `attachments`
+ * NULL with n > 0.
+ */
+void gls_gl_invalidate_framebuffer(uint32_t target,
+                                   int32_t num_attachments,
+                                   const uint32_t *attachments);
+
+/**
+ * `glInvalidateSubFramebuffer`: as gls_gl_invalidate_framebuffer().
+ */
+void gls_gl_invalidate_sub_framebuffer(uint32_t target,
+                                       int32_t num_attachments,
+                                       const uint32_t *attachments,
+                                       int32_t x,
+                                       int32_t y,
+                                       int32_t width,
+                                       int32_t height);
+
+/**
+ * `glGetNamedFramebufferAttachmentParameteriv`: on framebuffer 0, as
+ * gls_gl_get_framebuffer_attachment_parameteriv() with framebuffer 0
+ * bound (GL_FRAMEBUFFER_DEFAULT, the window's component sizes; the right
+ * buffers as their left twins). Refused: `params` NULL.
+ */
+void gls_gl_get_named_framebuffer_attachment_parameteriv(uint32_t framebuffer,
+                                                         uint32_t attachment,
+                                                         uint32_t pname,
+                                                         int32_t *params);
+
+/**
+ * `glGetNamedFramebufferParameteriv`: on framebuffer 0, GL_STEREO and
+ * GL_DOUBLEBUFFER of the emulated framebuffer; GL_SAMPLES,
+ * GL_SAMPLE_BUFFERS, the implementation read format and type (and the
+ * errors) of the window's. Refused: `params` NULL.
+ */
+void gls_gl_get_named_framebuffer_parameteriv(uint32_t framebuffer,
+                                              uint32_t pname,
+                                              int32_t *params);
+
+/**
+ * `glGetFramebufferParameteriv`: with framebuffer 0 bound, as
+ * gls_gl_get_named_framebuffer_parameteriv() on 0. Refused: `params` NULL.
+ */
+void gls_gl_get_framebuffer_parameteriv(uint32_t target, uint32_t pname, int32_t *params);
+
+/**
+ * `glLinkProgram`: in a stereo context, a program whose fragment shader
+ * writes a user-defined output at location 0 is linked a second time
+ * with that output also written to locations 5, 6 and 7 (outputs
+ * `gls_stereo_copy5`…`7`), which the emulated framebuffer maps to the
+ * other buffers a name such as GL_BACK selects: output 0 then reaches
+ * every selected buffer, as on a real stereo framebuffer, with the shader
+ * run once per fragment. Where that cannot be done (no GLSL source,
+ * several fragment shaders, locations 5…7 or dual-source outputs in use)
+ * the program is linked as asked and stderr says why, once. It also
+ * stands for `glLinkProgramARB` (whose handles are program names in Mesa
+ * and the libglvnd drivers).
+ */
+void gls_gl_link_program(uint32_t program);
+
+/**
+ * `glCreateShaderProgramv`: a fragment program is linked as
+ * gls_gl_link_program() links one. Refused: `strings` NULL with count > 0
+ * (returns 0).
+ */
+uint32_t gls_gl_create_shader_programv(uint32_t kind, int32_t count, const char *const *strings);
 
 /**
  * Like gls_surface_save_png, but returns as soon as the pixels are read

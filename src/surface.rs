@@ -372,6 +372,54 @@ impl Surface {
         r
     }
 
+    /// glLinkProgram with output 0 copied to the other selected buffers
+    /// ([`crate::stereo::outputs`]; `gls_link_program`).
+    pub fn link_program(self: &Arc<Self>, program: u32) -> Result<()> {
+        let mut st = self.current_state()?;
+        let gl = &self.gl;
+        // SAFETY: the application context is current (checked).
+        unsafe {
+            // The program's pending error is kept for gls_get_error().
+            let pending = gl.GetError();
+            if st.pending_gl_error == GL_NO_ERROR {
+                st.pending_gl_error = pending;
+            }
+            gl.LinkProgram(program);
+            match gl.GetError() {
+                GL_NO_ERROR => {}
+                e => {
+                    if st.pending_gl_error == GL_NO_ERROR {
+                        st.pending_gl_error = e;
+                    }
+                    let what = format!("glLinkProgram({program}) raised GL error {e:#06x}");
+                    return Err(if e == GL_INVALID_VALUE {
+                        Error::invalid_value(format!("{what}: not a program name"))
+                    } else {
+                        Error::invalid_operation(format!("{what}: not a program object"))
+                    });
+                }
+            }
+            let Some(fns) = crate::stereo::outputs::LinkFns::load(|n| self.get_proc_address(n))
+            else {
+                return Err(Error::invalid_operation(
+                    "the driver lacks GL 4.3 program interface queries: the program is linked \
+                     once, and its output 0 reaches only the first selected buffer",
+                ));
+            };
+            let outcome = fns.duplicate_output_zero(program, None);
+            while gl.GetError() != GL_NO_ERROR {}
+            match outcome {
+                crate::stereo::outputs::Outcome::Kept(why) => {
+                    Err(Error::invalid_operation(format!(
+                        "{why}: program {program} is linked as glLinkProgram links it, and its \
+                         output 0 reaches only the first selected buffer"
+                    )))
+                }
+                _ => Ok(()),
+            }
+        }
+    }
+
     /// The GL error glGetError would report: one the emulation raised
     /// first, else the driver's.
     pub fn take_gl_error(self: &Arc<Self>) -> Result<u32> {

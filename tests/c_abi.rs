@@ -72,3 +72,21 @@ fn the_readme_example_builds_runs_and_draws_redblue() {
     assert_eq!(img.get(540, 80), [51, 1, 1, 255], "right-only area");
     assert_eq!(img.get(5, 5), [51, 51, 51, 255], "grey background");
 }
+
+#[test]
+fn c_program_linked_with_gls_link_program_draws_output_0_into_both_eyes() {
+    let dir = common::scratch("shader_outputs_abi");
+    let exe = dir.join("shader_outputs_abi");
+    common::compile_c(
+        &[common::root().join("tests/c/shader_outputs_abi.c")],
+        &exe,
+        &[],
+    );
+    let out = common::run_ok(&mut Command::new(&exe));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains(" passed, 0 failed") && !stdout.starts_with("0 "),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -233,6 +233,43 @@ fn legacy_name(gls: &str) -> &'static str {
             "gls_gl_get_framebuffer_attachment_parameteriv_ext",
             "glGetFramebufferAttachmentParameterivEXT",
         ),
+        ("gls_gl_clear_bufferfv", "glClearBufferfv"),
+        ("gls_gl_clear_bufferiv", "glClearBufferiv"),
+        ("gls_gl_clear_bufferuiv", "glClearBufferuiv"),
+        (
+            "gls_gl_clear_named_framebufferfv",
+            "glClearNamedFramebufferfv",
+        ),
+        (
+            "gls_gl_clear_named_framebufferiv",
+            "glClearNamedFramebufferiv",
+        ),
+        (
+            "gls_gl_clear_named_framebufferuiv",
+            "glClearNamedFramebufferuiv",
+        ),
+        (
+            "gls_gl_named_framebuffer_draw_buffers",
+            "glNamedFramebufferDrawBuffers",
+        ),
+        ("gls_gl_invalidate_framebuffer", "glInvalidateFramebuffer"),
+        (
+            "gls_gl_invalidate_sub_framebuffer",
+            "glInvalidateSubFramebuffer",
+        ),
+        (
+            "gls_gl_get_named_framebuffer_attachment_parameteriv",
+            "glGetNamedFramebufferAttachmentParameteriv",
+        ),
+        (
+            "gls_gl_get_named_framebuffer_parameteriv",
+            "glGetNamedFramebufferParameteriv",
+        ),
+        (
+            "gls_gl_get_framebuffer_parameteriv",
+            "glGetFramebufferParameteriv",
+        ),
+        ("gls_gl_create_shader_programv", "glCreateShaderProgramv"),
     ];
     NAMES
         .iter()

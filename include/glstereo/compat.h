@@ -35,6 +35,15 @@
  *     composed as GLSTEREO_MODE says (default anaglyph-red-cyan; every
  *     mode of glstereo-run --help), with GLSTEREO_SWAP_EYES and friends;
  *     GLSTEREO_CAPTURE_DIR writes each frame's eyes and composite.
+ *   Shaders, glClearBuffer and GL 4.5 direct state access (core profile)
+ *     see a real stereo framebuffer: under GL_BACK (or any name selecting
+ *     several buffers) a shader's user-defined output 0 and
+ *     glClearBuffer(GL_COLOR, 0, ...) reach every selected buffer
+ *     (glLinkProgram adds copies of output 0 at locations 5-7, see
+ *     README); glNamedFramebuffer*(0, ...), glBlitNamedFramebuffer,
+ *     glClearNamedFramebuffer* and the framebuffer queries on 0 mean the
+ *     emulated framebuffer. Call them by name or through
+ *     glXGetProcAddress; both reach the gls_ versions.
  *
  * A program (or context) that never asks for stereo is served by the real
  * libGL as before. glXGetProcAddress returns the gls_ versions for these
@@ -213,6 +222,99 @@ static inline void gls_compat_glFinish(void)
 {
     gls_gl_finish();
 }
+static inline void gls_compat_glClearBufferfv(GLenum buffer, GLint drawbuffer,
+                                              const GLfloat *value)
+{
+    gls_gl_clear_bufferfv(buffer, drawbuffer, value);
+}
+static inline void gls_compat_glClearBufferiv(GLenum buffer, GLint drawbuffer, const GLint *value)
+{
+    gls_gl_clear_bufferiv(buffer, drawbuffer, value);
+}
+static inline void gls_compat_glClearBufferuiv(GLenum buffer, GLint drawbuffer,
+                                               const GLuint *value)
+{
+    gls_gl_clear_bufferuiv(buffer, drawbuffer, value);
+}
+static inline void gls_compat_glClearNamedFramebufferfv(GLuint framebuffer, GLenum buffer,
+                                                        GLint drawbuffer, const GLfloat *value)
+{
+    gls_gl_clear_named_framebufferfv(framebuffer, buffer, drawbuffer, value);
+}
+static inline void gls_compat_glClearNamedFramebufferiv(GLuint framebuffer, GLenum buffer,
+                                                        GLint drawbuffer, const GLint *value)
+{
+    gls_gl_clear_named_framebufferiv(framebuffer, buffer, drawbuffer, value);
+}
+static inline void gls_compat_glClearNamedFramebufferuiv(GLuint framebuffer, GLenum buffer,
+                                                         GLint drawbuffer, const GLuint *value)
+{
+    gls_gl_clear_named_framebufferuiv(framebuffer, buffer, drawbuffer, value);
+}
+static inline void gls_compat_glClearNamedFramebufferfi(GLuint framebuffer, GLenum buffer,
+                                                        GLint drawbuffer, GLfloat depth,
+                                                        GLint stencil)
+{
+    gls_gl_clear_named_framebufferfi(framebuffer, buffer, drawbuffer, depth, stencil);
+}
+static inline void gls_compat_glNamedFramebufferDrawBuffer(GLuint framebuffer, GLenum buf)
+{
+    gls_gl_named_framebuffer_draw_buffer(framebuffer, buf);
+}
+static inline void gls_compat_glNamedFramebufferDrawBuffers(GLuint framebuffer, GLsizei n,
+                                                            const GLenum *bufs)
+{
+    gls_gl_named_framebuffer_draw_buffers(framebuffer, n, bufs);
+}
+static inline void gls_compat_glNamedFramebufferReadBuffer(GLuint framebuffer, GLenum src)
+{
+    gls_gl_named_framebuffer_read_buffer(framebuffer, src);
+}
+static inline void gls_compat_glBlitNamedFramebuffer(GLuint read, GLuint draw, GLint sx0,
+                                                     GLint sy0, GLint sx1, GLint sy1, GLint dx0,
+                                                     GLint dy0, GLint dx1, GLint dy1,
+                                                     GLbitfield mask, GLenum filter)
+{
+    gls_gl_blit_named_framebuffer(read, draw, sx0, sy0, sx1, sy1, dx0, dy0, dx1, dy1, mask,
+                                  filter);
+}
+static inline void gls_compat_glInvalidateFramebuffer(GLenum target, GLsizei n,
+                                                      const GLenum *attachments)
+{
+    gls_gl_invalidate_framebuffer(target, n, attachments);
+}
+static inline void gls_compat_glInvalidateSubFramebuffer(GLenum target, GLsizei n,
+                                                         const GLenum *attachments, GLint x,
+                                                         GLint y, GLsizei width, GLsizei height)
+{
+    gls_gl_invalidate_sub_framebuffer(target, n, attachments, x, y, width, height);
+}
+static inline void gls_compat_glGetNamedFramebufferAttachmentParameteriv(GLuint framebuffer,
+                                                                         GLenum attachment,
+                                                                         GLenum pname,
+                                                                         GLint *params)
+{
+    gls_gl_get_named_framebuffer_attachment_parameteriv(framebuffer, attachment, pname, params);
+}
+static inline void gls_compat_glGetNamedFramebufferParameteriv(GLuint framebuffer, GLenum pname,
+                                                               GLint *params)
+{
+    gls_gl_get_named_framebuffer_parameteriv(framebuffer, pname, params);
+}
+static inline void gls_compat_glGetFramebufferParameteriv(GLenum target, GLenum pname,
+                                                          GLint *params)
+{
+    gls_gl_get_framebuffer_parameteriv(target, pname, params);
+}
+static inline void gls_compat_glLinkProgram(GLuint program)
+{
+    gls_gl_link_program(program);
+}
+static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei count,
+                                                       const char *const *strings)
+{
+    return gls_gl_create_shader_programv(type, count, strings);
+}
 
 #ifdef __cplusplus
 }
@@ -254,5 +356,23 @@ static inline void gls_compat_glFinish(void)
 #define glViewport gls_compat_glViewport
 #define glFlush gls_compat_glFlush
 #define glFinish gls_compat_glFinish
+#define glClearBufferfv gls_compat_glClearBufferfv
+#define glClearBufferiv gls_compat_glClearBufferiv
+#define glClearBufferuiv gls_compat_glClearBufferuiv
+#define glClearNamedFramebufferfv gls_compat_glClearNamedFramebufferfv
+#define glClearNamedFramebufferiv gls_compat_glClearNamedFramebufferiv
+#define glClearNamedFramebufferuiv gls_compat_glClearNamedFramebufferuiv
+#define glClearNamedFramebufferfi gls_compat_glClearNamedFramebufferfi
+#define glNamedFramebufferDrawBuffer gls_compat_glNamedFramebufferDrawBuffer
+#define glNamedFramebufferDrawBuffers gls_compat_glNamedFramebufferDrawBuffers
+#define glNamedFramebufferReadBuffer gls_compat_glNamedFramebufferReadBuffer
+#define glBlitNamedFramebuffer gls_compat_glBlitNamedFramebuffer
+#define glInvalidateFramebuffer gls_compat_glInvalidateFramebuffer
+#define glInvalidateSubFramebuffer gls_compat_glInvalidateSubFramebuffer
+#define glGetNamedFramebufferAttachmentParameteriv gls_compat_glGetNamedFramebufferAttachmentParameteriv
+#define glGetNamedFramebufferParameteriv gls_compat_glGetNamedFramebufferParameteriv
+#define glGetFramebufferParameteriv gls_compat_glGetFramebufferParameteriv
+#define glLinkProgram gls_compat_glLinkProgram
+#define glCreateShaderProgramv gls_compat_glCreateShaderProgramv
 
 #endif /* GLSTEREO_COMPAT_H */

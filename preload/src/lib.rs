@@ -144,6 +144,25 @@ export! {
     glViewport => gls_gl_viewport(x: i32, y: i32, width: i32, height: i32);
     glFlush => gls_gl_flush();
     glFinish => gls_gl_finish();
+    glClearBufferfv => gls_gl_clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32);
+    glClearBufferiv => gls_gl_clear_bufferiv(buffer: u32, drawbuffer: i32, value: *const i32);
+    glClearBufferuiv => gls_gl_clear_bufferuiv(buffer: u32, drawbuffer: i32, value: *const u32);
+    glClearNamedFramebufferfv => gls_gl_clear_named_framebufferfv(framebuffer: u32, buffer: u32, drawbuffer: i32, value: *const f32);
+    glClearNamedFramebufferiv => gls_gl_clear_named_framebufferiv(framebuffer: u32, buffer: u32, drawbuffer: i32, value: *const i32);
+    glClearNamedFramebufferuiv => gls_gl_clear_named_framebufferuiv(framebuffer: u32, buffer: u32, drawbuffer: i32, value: *const u32);
+    glClearNamedFramebufferfi => gls_gl_clear_named_framebufferfi(framebuffer: u32, buffer: u32, drawbuffer: i32, depth: f32, stencil: i32);
+    glNamedFramebufferDrawBuffer => gls_gl_named_framebuffer_draw_buffer(framebuffer: u32, buf: u32);
+    glNamedFramebufferDrawBuffers => gls_gl_named_framebuffer_draw_buffers(framebuffer: u32, n: i32, bufs: *const u32);
+    glNamedFramebufferReadBuffer => gls_gl_named_framebuffer_read_buffer(framebuffer: u32, src: u32);
+    glBlitNamedFramebuffer => gls_gl_blit_named_framebuffer(read: u32, draw: u32, sx0: i32, sy0: i32, sx1: i32, sy1: i32, dx0: i32, dy0: i32, dx1: i32, dy1: i32, mask: u32, filter: u32);
+    glInvalidateFramebuffer => gls_gl_invalidate_framebuffer(target: u32, n: i32, attachments: *const u32);
+    glInvalidateSubFramebuffer => gls_gl_invalidate_sub_framebuffer(target: u32, n: i32, attachments: *const u32, x: i32, y: i32, width: i32, height: i32);
+    glGetNamedFramebufferAttachmentParameteriv => gls_gl_get_named_framebuffer_attachment_parameteriv(framebuffer: u32, attachment: u32, pname: u32, params: *mut i32);
+    glGetNamedFramebufferParameteriv => gls_gl_get_named_framebuffer_parameteriv(framebuffer: u32, pname: u32, params: *mut i32);
+    glGetFramebufferParameteriv => gls_gl_get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut i32);
+    glLinkProgram => gls_gl_link_program(program: u32);
+    glLinkProgramARB => gls_gl_link_program(program: u32);
+    glCreateShaderProgramv => gls_gl_create_shader_programv(kind: u32, count: i32, strings: *const *const std::ffi::c_char) -> u32;
 }
 
 /// A function as `glXGetProcAddress` returns it.

@@ -31,6 +31,7 @@ use x11_dl::glx::{GLXContext, GLXFBConfig};
 use x11_dl::xlib::XVisualInfo;
 
 use super::boundary::ffi_boundary;
+use crate::interpose::dsa as idsa;
 use crate::interpose::gl as igl;
 use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
 
@@ -71,7 +72,11 @@ use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
 /// made current or destroyed again before its release. In GL, a NULL
 /// pointer GL would read or write through (glGet*v data, glDrawBuffers
 /// and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
-/// params): nothing happens but GL_INVALID_VALUE for glGetError in the
+/// params; glClearBuffer* and glClearNamedFramebuffer* values,
+/// glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
+/// with n > 0, glGet(Named)FramebufferParameteriv and
+/// glGetNamedFramebufferAttachmentParameteriv params, glCreateShaderProgramv
+/// strings with count > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
 /// current context (none with no context current). A pointer that is not
 /// NULL but wrong (freed, too short, not terminated) cannot be detected.
 /// An internal failure (a bug) is caught and reported as a refusal.
@@ -700,7 +705,298 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glViewport" => gls_gl_viewport as *mut c_void,
         b"glFlush" => gls_gl_flush as *mut c_void,
         b"glFinish" => gls_gl_finish as *mut c_void,
+        b"glClearBufferfv" => gls_gl_clear_bufferfv as *mut c_void,
+        b"glClearBufferiv" => gls_gl_clear_bufferiv as *mut c_void,
+        b"glClearBufferuiv" => gls_gl_clear_bufferuiv as *mut c_void,
+        b"glClearNamedFramebufferfv" => gls_gl_clear_named_framebufferfv as *mut c_void,
+        b"glClearNamedFramebufferiv" => gls_gl_clear_named_framebufferiv as *mut c_void,
+        b"glClearNamedFramebufferuiv" => gls_gl_clear_named_framebufferuiv as *mut c_void,
+        b"glClearNamedFramebufferfi" => gls_gl_clear_named_framebufferfi as *mut c_void,
+        b"glNamedFramebufferDrawBuffer" => gls_gl_named_framebuffer_draw_buffer as *mut c_void,
+        b"glNamedFramebufferDrawBuffers" => gls_gl_named_framebuffer_draw_buffers as *mut c_void,
+        b"glNamedFramebufferReadBuffer" => gls_gl_named_framebuffer_read_buffer as *mut c_void,
+        b"glBlitNamedFramebuffer" => gls_gl_blit_named_framebuffer as *mut c_void,
+        b"glInvalidateFramebuffer" => gls_gl_invalidate_framebuffer as *mut c_void,
+        b"glInvalidateSubFramebuffer" => gls_gl_invalidate_sub_framebuffer as *mut c_void,
+        b"glGetNamedFramebufferAttachmentParameteriv" => {
+            gls_gl_get_named_framebuffer_attachment_parameteriv as *mut c_void
+        }
+        b"glGetNamedFramebufferParameteriv" => {
+            gls_gl_get_named_framebuffer_parameteriv as *mut c_void
+        }
+        b"glGetFramebufferParameteriv" => gls_gl_get_framebuffer_parameteriv as *mut c_void,
+        b"glLinkProgram" | b"glLinkProgramARB" => gls_gl_link_program as *mut c_void,
+        b"glCreateShaderProgramv" => gls_gl_create_shader_programv as *mut c_void,
         _ => return None,
     };
     Some(f)
+}
+
+/// `glClearBufferfv`: with the emulated default framebuffer bound and a
+/// draw buffer name selecting several buffers (GL_BACK, GL_FRONT, GL_LEFT,
+/// GL_RIGHT, GL_FRONT_AND_BACK), GL_COLOR draw buffer 0 clears each of
+/// them, as GL 4.5 §17.4.3 says (draw buffers 1… are GL_NONE then).
+/// Refused: `value` NULL (GL_INVALID_VALUE, nothing cleared).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32) {
+    ffi_boundary!("gls_gl_clear_bufferfv" for "glClearBufferfv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::clear_bufferfv(buffer, drawbuffer, value) }
+    })
+}
+
+/// `glClearBufferiv`: as gls_gl_clear_bufferfv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_clear_bufferiv(buffer: u32, drawbuffer: i32, value: *const i32) {
+    ffi_boundary!("gls_gl_clear_bufferiv" for "glClearBufferiv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::clear_bufferiv(buffer, drawbuffer, value) }
+    })
+}
+
+/// `glClearBufferuiv`: as gls_gl_clear_bufferfv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_clear_bufferuiv(buffer: u32, drawbuffer: i32, value: *const u32) {
+    ffi_boundary!("gls_gl_clear_bufferuiv" for "glClearBufferuiv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::clear_bufferuiv(buffer, drawbuffer, value) }
+    })
+}
+
+/// `glClearNamedFramebufferfv`: framebuffer 0 is the emulated default
+/// framebuffer, cleared as gls_gl_clear_bufferfv() clears it. Refused:
+/// `value` NULL.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_clear_named_framebufferfv(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const f32,
+) {
+    ffi_boundary!("gls_gl_clear_named_framebufferfv" for "glClearNamedFramebufferfv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::clear_named_framebufferfv(framebuffer, buffer, drawbuffer, value) }
+    })
+}
+
+/// `glClearNamedFramebufferiv`: as gls_gl_clear_named_framebufferfv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_clear_named_framebufferiv(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const i32,
+) {
+    ffi_boundary!("gls_gl_clear_named_framebufferiv" for "glClearNamedFramebufferiv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::clear_named_framebufferiv(framebuffer, buffer, drawbuffer, value) }
+    })
+}
+
+/// `glClearNamedFramebufferuiv`: as gls_gl_clear_named_framebufferfv().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_clear_named_framebufferuiv(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const u32,
+) {
+    ffi_boundary!("gls_gl_clear_named_framebufferuiv" for "glClearNamedFramebufferuiv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::clear_named_framebufferuiv(framebuffer, buffer, drawbuffer, value) }
+    })
+}
+
+/// `glClearNamedFramebufferfi`: framebuffer 0's depth/stencil buffer is
+/// the emulated one, which both eyes share.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear_named_framebufferfi(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    depth: f32,
+    stencil: i32,
+) {
+    ffi_boundary!("gls_gl_clear_named_framebufferfi" for "glClearNamedFramebufferfi", () => {
+        idsa::clear_named_framebufferfi(framebuffer, buffer, drawbuffer, depth, stencil)
+    })
+}
+
+/// `glNamedFramebufferDrawBuffer`: on framebuffer 0, as
+/// gls_gl_draw_buffer() with framebuffer 0 bound (same selections, same GL
+/// errors), whatever framebuffer is bound.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_named_framebuffer_draw_buffer(framebuffer: u32, buf: u32) {
+    ffi_boundary!("gls_gl_named_framebuffer_draw_buffer" for "glNamedFramebufferDrawBuffer", () => {
+        idsa::named_framebuffer_draw_buffer(framebuffer, buf)
+    })
+}
+
+/// `glNamedFramebufferDrawBuffers`: on framebuffer 0, as
+/// gls_gl_draw_buffers() with framebuffer 0 bound. Refused: `bufs` NULL
+/// with n > 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_named_framebuffer_draw_buffers(
+    framebuffer: u32,
+    n: i32,
+    bufs: *const u32,
+) {
+    ffi_boundary!("gls_gl_named_framebuffer_draw_buffers" for "glNamedFramebufferDrawBuffers", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::named_framebuffer_draw_buffers(framebuffer, n, bufs) }
+    })
+}
+
+/// `glNamedFramebufferReadBuffer`: on framebuffer 0, as
+/// gls_gl_read_buffer() with framebuffer 0 bound.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_named_framebuffer_read_buffer(framebuffer: u32, src: u32) {
+    ffi_boundary!("gls_gl_named_framebuffer_read_buffer" for "glNamedFramebufferReadBuffer", () => {
+        idsa::named_framebuffer_read_buffer(framebuffer, src)
+    })
+}
+
+/// `glBlitNamedFramebuffer`: 0 on either side is the emulated default
+/// framebuffer (its read buffer; its draw buffers, every buffer a name
+/// such as GL_BACK selects).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn gls_gl_blit_named_framebuffer(
+    read_framebuffer: u32,
+    draw_framebuffer: u32,
+    src_x0: i32,
+    src_y0: i32,
+    src_x1: i32,
+    src_y1: i32,
+    dst_x0: i32,
+    dst_y0: i32,
+    dst_x1: i32,
+    dst_y1: i32,
+    mask: u32,
+    filter: u32,
+) {
+    ffi_boundary!("gls_gl_blit_named_framebuffer" for "glBlitNamedFramebuffer", () => {
+        idsa::blit_named_framebuffer(
+            read_framebuffer,
+            draw_framebuffer,
+            [src_x0, src_y0, src_x1, src_y1],
+            [dst_x0, dst_y0, dst_x1, dst_y1],
+            mask,
+            filter,
+        )
+    })
+}
+
+/// `glInvalidateFramebuffer`: with framebuffer 0 bound, the attachments a
+/// default framebuffer takes (GL_COLOR, GL_FRONT_LEFT … GL_BACK_RIGHT,
+/// GL_DEPTH, GL_STENCIL) with the driver's errors; the emulated buffers
+/// keep their contents (invalidation is a hint). Refused: `attachments`
+/// NULL with n > 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_invalidate_framebuffer(
+    target: u32,
+    num_attachments: i32,
+    attachments: *const u32,
+) {
+    ffi_boundary!("gls_gl_invalidate_framebuffer" for "glInvalidateFramebuffer", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::invalidate_framebuffer(target, num_attachments, attachments) }
+    })
+}
+
+/// `glInvalidateSubFramebuffer`: as gls_gl_invalidate_framebuffer().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_invalidate_sub_framebuffer(
+    target: u32,
+    num_attachments: i32,
+    attachments: *const u32,
+    x: i32,
+    y: i32,
+    width: i32,
+    height: i32,
+) {
+    ffi_boundary!("gls_gl_invalidate_sub_framebuffer" for "glInvalidateSubFramebuffer", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::invalidate_sub_framebuffer(target, num_attachments, attachments, [x, y, width, height]) }
+    })
+}
+
+/// `glGetNamedFramebufferAttachmentParameteriv`: on framebuffer 0, as
+/// gls_gl_get_framebuffer_attachment_parameteriv() with framebuffer 0
+/// bound (GL_FRAMEBUFFER_DEFAULT, the window's component sizes; the right
+/// buffers as their left twins). Refused: `params` NULL.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_named_framebuffer_attachment_parameteriv(
+    framebuffer: u32,
+    attachment: u32,
+    pname: u32,
+    params: *mut i32,
+) {
+    ffi_boundary!("gls_gl_get_named_framebuffer_attachment_parameteriv" for "glGetNamedFramebufferAttachmentParameteriv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::get_named_framebuffer_attachment_parameteriv(framebuffer, attachment, pname, params) }
+    })
+}
+
+/// `glGetNamedFramebufferParameteriv`: on framebuffer 0, GL_STEREO and
+/// GL_DOUBLEBUFFER of the emulated framebuffer; GL_SAMPLES,
+/// GL_SAMPLE_BUFFERS, the implementation read format and type (and the
+/// errors) of the window's. Refused: `params` NULL.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_named_framebuffer_parameteriv(
+    framebuffer: u32,
+    pname: u32,
+    params: *mut i32,
+) {
+    ffi_boundary!("gls_gl_get_named_framebuffer_parameteriv" for "glGetNamedFramebufferParameteriv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::get_named_framebuffer_parameteriv(framebuffer, pname, params) }
+    })
+}
+
+/// `glGetFramebufferParameteriv`: with framebuffer 0 bound, as
+/// gls_gl_get_named_framebuffer_parameteriv() on 0. Refused: `params` NULL.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_framebuffer_parameteriv(
+    target: u32,
+    pname: u32,
+    params: *mut i32,
+) {
+    ffi_boundary!("gls_gl_get_framebuffer_parameteriv" for "glGetFramebufferParameteriv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::get_framebuffer_parameteriv(target, pname, params) }
+    })
+}
+
+/// `glLinkProgram`: in a stereo context, a program whose fragment shader
+/// writes a user-defined output at location 0 is linked a second time
+/// with that output also written to locations 5, 6 and 7 (outputs
+/// `gls_stereo_copy5`…`7`), which the emulated framebuffer maps to the
+/// other buffers a name such as GL_BACK selects: output 0 then reaches
+/// every selected buffer, as on a real stereo framebuffer, with the shader
+/// run once per fragment. Where that cannot be done (no GLSL source,
+/// several fragment shaders, locations 5…7 or dual-source outputs in use)
+/// the program is linked as asked and stderr says why, once. It also
+/// stands for `glLinkProgramARB` (whose handles are program names in Mesa
+/// and the libglvnd drivers).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_link_program(program: u32) {
+    ffi_boundary!("gls_gl_link_program" for "glLinkProgram", () => {
+        idsa::link_program(program)
+    })
+}
+
+/// `glCreateShaderProgramv`: a fragment program is linked as
+/// gls_gl_link_program() links one. Refused: `strings` NULL with count > 0
+/// (returns 0).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_create_shader_programv(
+    kind: u32,
+    count: i32,
+    strings: *const *const std::ffi::c_char,
+) -> u32 {
+    ffi_boundary!("gls_gl_create_shader_programv" for "glCreateShaderProgramv", 0 => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::create_shader_programv(kind, count, strings) }
+    })
 }

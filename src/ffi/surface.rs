@@ -143,12 +143,17 @@ pub extern "C" fn gls_make_current(surface: *mut gls_surface) -> gls_result {
 /// GL_BACK (both back buffers on stereo), GL_FRONT, GL_LEFT, GL_RIGHT,
 /// GL_FRONT_LEFT, GL_FRONT_RIGHT, GL_BACK_LEFT, GL_BACK_RIGHT,
 /// GL_FRONT_AND_BACK and GL_NONE select what GL 4.5 says. Fixed-function
-/// colour, gl_FragColor and glClear reach every selected buffer. A shader
-/// that writes a user-defined `out vec4` (location 0) reaches only the first
-/// selected buffer, which is the left eye's when both eyes are selected; the
-/// other buffers get undefined values (GL's rule for outputs a shader does
-/// not write). Such programs should draw each eye with its own buffer
-/// selected, or write gl_FragColor.
+/// colour, gl_FragColor, glClear and glBlitFramebuffer reach every selected
+/// buffer. A shader's user-defined output 0 (`layout(location = 0) out
+/// vec4`) reaches every selected buffer when its program was linked with
+/// gls_link_program() in place of glLinkProgram (which writes copies of it
+/// to locations 5…7, where the emulated framebuffer keeps the other
+/// selected buffers); linked with glLinkProgram it reaches only the first
+/// selected buffer (the left eye's when both are selected), and the others
+/// get undefined values. glClearBuffer(GL_COLOR, 0, …) clears only the
+/// first selected buffer: clear with glClear, or select each buffer in
+/// turn. (Programs under glstereo-run or rebuilt with
+/// <glstereo/compat.h> get all of this from their usual GL calls.)
 ///
 /// @param gl_buffer a GL buffer name.
 /// @return GLS_OK; GLS_ERROR_NO_CURRENT_SURFACE; GLS_ERROR_INVALID_ENUM (not
@@ -210,6 +215,35 @@ pub unsafe extern "C" fn gls_draw_buffers(n: i32, bufs: *const u32) -> gls_resul
 pub extern "C" fn gls_read_buffer(gl_buffer: u32) -> gls_result {
     ffi_boundary!("gls_read_buffer", {
         surface::require_current()?.read_buffer(gl_buffer)
+    })
+}
+
+/// glLinkProgram for a program that draws into the current surface's
+/// emulated default framebuffer: links `program`, then, when its fragment
+/// shader writes a user-defined output at location 0, links it again with
+/// that output also written to outputs `gls_stereo_copy5`…`7` (locations
+/// 5…7), so that output 0 reaches every buffer gls_draw_buffer() selects
+/// (GL_BACK: both eyes) in one pass: the shader runs once per fragment, so
+/// atomic counters, image stores and queries count as on a real stereo
+/// framebuffer. The program keeps its shaders attached; its introspection
+/// shows the three extra outputs. Use it in place of glLinkProgram; check
+/// GL_LINK_STATUS as usual.
+///
+/// @param program a program object of the current surface's context.
+/// @return GLS_OK (also when the link failed or the program needs no
+/// copies: no fragment shader, gl_FragColor); GLS_ERROR_NO_CURRENT_SURFACE;
+/// GLS_ERROR_INVALID_VALUE / GLS_ERROR_INVALID_OPERATION when glLinkProgram
+/// itself raises that GL error (not a program name; gls_get_error()
+/// reports it); GLS_ERROR_INVALID_OPERATION, with the reason in
+/// gls_last_error_message(), when the copies cannot be added (no GLSL
+/// source, as with SPIR-V; several fragment shaders; outputs at locations
+/// 5…7 or dual-source outputs; a driver before GL 4.3): the program is then
+/// linked as glLinkProgram links it, and output 0 reaches only the first
+/// selected buffer. Thread: the surface's.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_link_program(program: u32) -> gls_result {
+    ffi_boundary!("gls_link_program", {
+        surface::require_current()?.link_program(program)
     })
 }
 

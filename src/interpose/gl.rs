@@ -56,7 +56,7 @@ const GL_ATTRIB_STACK_DEPTH: u32 = 0x0BB0;
 /// glViewport(0, 0, -1, -1), which GL rejects with exactly that error and
 /// no other effect. With no context current nothing is raised (GL calls do
 /// nothing then).
-fn refuse_null(r: &Real, what: &'static str) -> Error {
+pub(super) fn refuse_null(r: &Real, what: &'static str) -> Error {
     match current() {
         Some(cur) => cur.sc.lock().push_error(GL_INVALID_VALUE),
         // SAFETY: an erroneous call GL ignores, in whatever context is current.
@@ -66,12 +66,12 @@ fn refuse_null(r: &Real, what: &'static str) -> Error {
 }
 
 /// `p` is NULL while GL needs `n` values there.
-fn missing<T>(n: i32, p: *const T) -> bool {
+pub(super) fn missing<T>(n: i32, p: *const T) -> bool {
     n > 0 && p.is_null()
 }
 
 /// The emulated framebuffer of `drawable`, when it is what `binding` has bound.
-fn bound<'a>(
+pub(super) fn bound<'a>(
     gl: &Gl,
     fbs: &'a mut std::collections::HashMap<u64, super::context::Drawn>,
     drawable: u64,
@@ -84,7 +84,7 @@ fn bound<'a>(
         .filter(|fb| name != 0 && fb.app_fbo() == name)
 }
 
-fn read_drawable(cur: &Current) -> u64 {
+pub(super) fn read_drawable(cur: &Current) -> u64 {
     if cur.read == 0 { cur.draw } else { cur.read }
 }
 
@@ -228,7 +228,7 @@ fn from_window(pname: u32) -> bool {
 
 /// Runs `f` with the window's real framebuffer bound for drawing and
 /// reading, then puts the program's bindings back.
-fn with_window_framebuffer<T>(gl: &Gl, f: impl FnOnce() -> T) -> T {
+pub(super) fn with_window_framebuffer<T>(gl: &Gl, f: impl FnOnce() -> T) -> T {
     // SAFETY: the program's context is current (callers).
     unsafe {
         let draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
@@ -482,40 +482,58 @@ unsafe fn attachment_parameter(
         GL_READ_FRAMEBUFFER => (GL_READ_FRAMEBUFFER_BINDING, read_drawable(&cur)),
         _ => return forward(attachment),
     };
-    let mut st = cur.sc.lock();
-    if bound(gl, &mut st.fbs, drawable, binding).is_none() {
-        drop(st);
-        return forward(attachment);
+    {
+        let mut st = cur.sc.lock();
+        if bound(gl, &mut st.fbs, drawable, binding).is_none() {
+            drop(st);
+            return forward(attachment);
+        }
     }
+    // SAFETY: forwarded contract.
+    unsafe {
+        emulated_attachment(&cur, attachment, pname, params, |twin| {
+            with_window_framebuffer(gl, || forward(twin))
+        })
+    }
+}
+
+/// The answer of glGetFramebufferAttachmentParameteriv (or its named form)
+/// for `attachment` of an emulated default framebuffer: GL_FRONT_LEFT …
+/// GL_BACK_RIGHT (GL_FRONT, GL_BACK as their left buffers), GL_DEPTH and
+/// GL_STENCIL; any other attachment is GL_INVALID_ENUM. A colour buffer the
+/// shape lacks has type GL_NONE; the others are answered by the window's
+/// own buffer (`window(attachment)`): right buffers as their left twins
+/// (same format), depth and stencil as they are.
+///
+/// # Safety
+/// The program's context is current; `params` is not NULL.
+pub(super) unsafe fn emulated_attachment(
+    cur: &Current,
+    attachment: u32,
+    pname: u32,
+    params: *mut i32,
+    window: impl FnOnce(u32),
+) {
     let color = match attachment {
         GL_FRONT_LEFT | GL_FRONT => Some(ColorBuffer::FrontLeft),
         GL_BACK_LEFT | GL_BACK => Some(ColorBuffer::BackLeft),
         GL_FRONT_RIGHT => Some(ColorBuffer::FrontRight),
         GL_BACK_RIGHT => Some(ColorBuffer::BackRight),
         GL_DEPTH | GL_STENCIL => None,
-        _ => {
-            st.push_error(GL_INVALID_ENUM);
-            return;
-        }
+        _ => return cur.sc.lock().push_error(GL_INVALID_ENUM),
     };
     match color {
         Some(b) if !cur.sc.shape().allocated().contains(b) => match pname {
-            // SAFETY: not NULL (checked by the caller), one value (GL's contract).
+            // SAFETY: not NULL (contract), one value (GL's contract).
             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE => unsafe { *params = GL_NONE as i32 },
-            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => st.push_error(GL_INVALID_ENUM),
-            _ => st.push_error(GL_INVALID_OPERATION),
+            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => cur.sc.lock().push_error(GL_INVALID_ENUM),
+            _ => cur.sc.lock().push_error(GL_INVALID_OPERATION),
         },
-        _ => {
-            // The window's own buffer answers: the right buffers as their
-            // left twins (same format), depth and stencil as they are.
-            let twin = match color {
-                Some(ColorBuffer::FrontRight) => GL_FRONT_LEFT,
-                Some(ColorBuffer::BackRight) => GL_BACK_LEFT,
-                _ => attachment,
-            };
-            drop(st);
-            with_window_framebuffer(gl, || forward(twin));
-        }
+        _ => window(match color {
+            Some(ColorBuffer::FrontRight) => GL_FRONT_LEFT,
+            Some(ColorBuffer::BackRight) => GL_BACK_LEFT,
+            _ => attachment,
+        }),
     }
 }
 

@@ -23,7 +23,10 @@
 //!   context wherever the program has framebuffer 0;
 //! - GL calls about the default framebuffer are answered as a stereo
 //!   visual would ([`gl`]), with the exact GL errors of
-//!   [`crate::stereo::buffers`];
+//!   [`crate::stereo::buffers`]; so are glClearBuffer and GL 4.5 direct
+//!   state access on framebuffer 0, and programs are linked so that a
+//!   shader's output 0 reaches every buffer a name such as GL_BACK selects
+//!   ([`dsa`], [`crate::stereo::outputs`]);
 //! - glXSwapBuffers flips back and front buffers and shows the front
 //!   buffers composed in GLSTEREO_MODE (default anaglyph-red-cyan) in the
 //!   window ([`context::StereoContext::present`]), and, with
@@ -94,7 +97,12 @@
 //!   destruction waits for the release ([`context::StereoContext::defer_destroy`]),
 //!   and making it current or destroying it again meanwhile is refused;
 //! - GL: a NULL pointer GL reads or writes through (glGet*v, glDrawBuffers
-//!   and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv):
+//!   and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv,
+//!   and the functions of [`dsa`]: glClearBuffer* and glClearNamedFramebuffer*
+//!   values, glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer
+//!   lists with n > 0, the glGet*FramebufferParameteriv and
+//!   glGetNamedFramebufferAttachmentParameteriv params,
+//!   glCreateShaderProgramv strings):
 //!   nothing happens but GL_INVALID_VALUE, in the stereo context's queue of
 //!   emulated errors or, in any other context, raised by the driver itself
 //!   with glViewport(0, 0, -1, -1) (GL rejects it with exactly that error
@@ -130,6 +138,7 @@
 pub mod attribs;
 pub mod capture;
 pub mod context;
+pub mod dsa;
 pub mod gl;
 pub mod glx;
 pub mod next;

@@ -18,8 +18,43 @@ use crate::stereo::buffers::{
     resolve_read_buffer,
 };
 
-/// Largest number of fragment outputs the draw state tracks.
+/// Largest number of fragment outputs the draw state tracks (GL 3.0's
+/// minimum GL_MAX_DRAW_BUFFERS, which every host of the emulation has).
 pub const MAX_DRAW_BUFFERS: usize = 8;
+
+/// The fragment-output locations (and draw-buffer slots of the emulated
+/// framebuffer object) that carry copies of output 0 to the second, third
+/// and fourth buffer a glDrawBuffer name selects: the top three of
+/// [`MAX_DRAW_BUFFERS`], which programs drawing into a default framebuffer
+/// leave unused (only output 0 reaches a default framebuffer under
+/// glDrawBuffer).
+pub const COPY_LOCATIONS: [u32; 3] = [7, 6, 5];
+
+/// Up to four draw-buffer indices ([`EmulatedFramebuffer::draw_buffer_slots`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DrawSlots {
+    slots: [i32; 4],
+    n: usize,
+}
+
+impl DrawSlots {
+    /// Just `i`.
+    pub fn one(i: i32) -> DrawSlots {
+        let mut v = DrawSlots::default();
+        v.push(i);
+        v
+    }
+
+    fn push(&mut self, i: i32) {
+        self.slots[self.n] = i;
+        self.n += 1;
+    }
+
+    /// The indices.
+    pub fn as_slice(&self) -> &[i32] {
+        &self.slots[..self.n]
+    }
+}
 
 /// What glGetIntegerv(`pname`) reports about an emulated default
 /// framebuffer of `shape`, or None where the driver's own answer stands.
@@ -444,18 +479,27 @@ impl EmulatedFramebuffer {
         })
     }
 
-    /// The attachments glDrawBuffers must get for the current draw state:
-    /// for glDrawBuffer(GL_BACK) on stereo, [back-left, back-right], so
-    /// output 0 (fixed-function colour, gl_FragColor) reaches both eyes.
+    /// The attachments glDrawBuffers must get for the current draw state.
+    /// A glDrawBuffer name selecting several buffers (GL_BACK on stereo is
+    /// back-left and back-right) puts the first in slot 0 and the others in
+    /// the slots of [`COPY_LOCATIONS`]: fixed-function colour and
+    /// gl_FragColor reach every enabled slot, and a shader's user-defined
+    /// output 0 reaches them through the copies
+    /// [`crate::stereo::outputs`] adds at link time. Slots 1…4 stay
+    /// GL_NONE, so outputs 1…4 go nowhere, as GL says for glDrawBuffer.
     fn draw_attachments(&self) -> ([u32; MAX_DRAW_BUFFERS], usize) {
         let mut out = [GL_NONE; MAX_DRAW_BUFFERS];
         match self.draw {
             DrawState::Single { set, .. } if set.is_empty() => (out, 1),
             DrawState::Single { set, .. } => {
-                let mut n = 0;
-                for b in set.iter() {
-                    out[n] = self.attachment(Some(b));
-                    n += 1;
+                let mut buffers = set.iter();
+                if let Some(first) = buffers.next() {
+                    out[0] = self.attachment(Some(first));
+                }
+                let mut n = 1;
+                for (b, &slot) in buffers.zip(COPY_LOCATIONS.iter()) {
+                    out[slot as usize] = self.attachment(Some(b));
+                    n = MAX_DRAW_BUFFERS;
                 }
                 (out, n)
             }
@@ -465,6 +509,32 @@ impl EmulatedFramebuffer {
                 }
                 (out, n.max(1))
             }
+        }
+    }
+
+    /// The draw-buffer indices of the framebuffer object that stand for
+    /// the program's draw buffer `i`: under a glDrawBuffer name selecting
+    /// several buffers, draw buffer 0 is slot 0 and the copy slots in use,
+    /// and draw buffers 1… are none (GL_NONE); otherwise `i` itself. For
+    /// glClearBuffer, which clears one draw buffer by index.
+    pub fn draw_buffer_slots(&self, i: i32) -> DrawSlots {
+        match self.draw {
+            DrawState::Single { set, .. } if set.len() > 1 => {
+                if i == 0 {
+                    let mut v = DrawSlots::default();
+                    v.push(0);
+                    for &slot in &COPY_LOCATIONS[..set.len() - 1] {
+                        v.push(slot as i32);
+                    }
+                    v
+                } else if (1..MAX_DRAW_BUFFERS as i32).contains(&i) {
+                    DrawSlots::default()
+                } else {
+                    // Out of range: the driver raises GL_INVALID_VALUE.
+                    DrawSlots::one(i)
+                }
+            }
+            _ => DrawSlots::one(i),
         }
     }
 

@@ -6,3 +6,4 @@
 
 pub mod buffers;
 pub mod emulated;
+pub mod outputs;

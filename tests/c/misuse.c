@@ -595,6 +595,7 @@ static void no_current_cases(void) {
     CHECK(has("gls_make_current"), "the message says what to do: %s", gls_last_error_message());
     EXPECT(GLS_ERROR_NO_CURRENT_SURFACE, gls_draw_buffers, 2, bufs);
     EXPECT(GLS_ERROR_NO_CURRENT_SURFACE, gls_read_buffer, GL_BACK_LEFT);
+    EXPECT(GLS_ERROR_NO_CURRENT_SURFACE, gls_link_program, 1u);
     uint32_t e;
     EXPECT_RET0(e == 0, 1, e, gls_get_error);
     EXPECT(GLS_ERROR_NO_CURRENT_SURFACE, gls_get_integerv, GL_STEREO, &iv);
@@ -758,6 +759,8 @@ static void surface_cases(void) {
     EXPECT(GLS_OK, gls_read_buffer, GL_NONE); /* legal in GL: reading then fails */
     EXPECT(GLS_ERROR_INVALID_ENUM, gls_read_buffer, 0x1234u);
     EXPECT_RET0(e == GL_INVALID_ENUM, 0, e, gls_get_error);
+    EXPECT(GLS_ERROR_INVALID_VALUE, gls_link_program, 0x7777u); /* not a program name */
+    EXPECT_RET0(e == GL_INVALID_VALUE, 0, e, gls_get_error);
     int32_t iv = -3;
     EXPECT(GLS_OK, gls_get_integerv, GL_STEREO, &iv);
     CHECK(iv == 1, "GL_STEREO %d", iv);

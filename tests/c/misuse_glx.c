@@ -51,6 +51,8 @@
 #define GL_FRAMEBUFFER_ 0x8D40u
 #define GL_DRAW_FRAMEBUFFER_BINDING_ 0x8CA6u
 #define GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_ 0x8CD0u
+#define GL_COLOR_ 0x1800u
+#define GL_FRAGMENT_SHADER_ 0x8B30u
 #define GLX_CONTEXT_MAJOR_VERSION_ARB_ 0x2091
 #define GLX_CONTEXT_MINOR_VERSION_ARB_ 0x2092
 #define GLX_CONTEXT_PROFILE_MASK_ARB_ 0x9126
@@ -73,6 +75,24 @@ typedef void (*draw_buffers_fn)(GLsizei, const GLenum *);
 typedef void (*bind_framebuffer_fn)(GLenum, GLuint);
 typedef void (*delete_framebuffers_fn)(GLsizei, const GLuint *);
 typedef void (*attachment_fn)(GLenum, GLenum, GLenum, GLint *);
+typedef void (*clear_fv_fn)(GLenum, GLint, const GLfloat *);
+typedef void (*clear_iv_fn)(GLenum, GLint, const GLint *);
+typedef void (*clear_uiv_fn)(GLenum, GLint, const GLuint *);
+typedef void (*clear_named_fv_fn)(GLuint, GLenum, GLint, const GLfloat *);
+typedef void (*clear_named_iv_fn)(GLuint, GLenum, GLint, const GLint *);
+typedef void (*clear_named_uiv_fn)(GLuint, GLenum, GLint, const GLuint *);
+typedef void (*clear_named_fi_fn)(GLuint, GLenum, GLint, GLfloat, GLint);
+typedef void (*named_buffer_fn)(GLuint, GLenum);
+typedef void (*named_buffers_fn)(GLuint, GLsizei, const GLenum *);
+typedef void (*blit_named_fn)(GLuint, GLuint, GLint, GLint, GLint, GLint, GLint, GLint, GLint,
+                              GLint, GLbitfield, GLenum);
+typedef void (*invalidate_fn)(GLenum, GLsizei, const GLenum *);
+typedef void (*invalidate_sub_fn)(GLenum, GLsizei, const GLenum *, GLint, GLint, GLsizei,
+                                  GLsizei);
+typedef void (*named_attachment_fn)(GLuint, GLenum, GLenum, GLint *);
+typedef void (*parameter_fn)(GLuint, GLenum, GLint *);
+typedef void (*link_program_fn)(GLuint);
+typedef GLuint (*create_shader_programv_fn)(GLenum, GLsizei, const char *const *);
 
 static choose_fbconfig_sgix_fn p_choose_fbconfig_sgix;
 static get_fbconfig_attrib_sgix_fn p_get_fbconfig_attrib_sgix;
@@ -85,6 +105,22 @@ static draw_buffers_fn p_draw_buffers, p_draw_buffers_arb;
 static bind_framebuffer_fn p_bind_framebuffer, p_bind_framebuffer_ext;
 static delete_framebuffers_fn p_delete_framebuffers, p_delete_framebuffers_ext;
 static attachment_fn p_attachment, p_attachment_ext;
+static clear_fv_fn p_clear_fv;
+static clear_iv_fn p_clear_iv;
+static clear_uiv_fn p_clear_uiv;
+static clear_named_fv_fn p_clear_named_fv;
+static clear_named_iv_fn p_clear_named_iv;
+static clear_named_uiv_fn p_clear_named_uiv;
+static clear_named_fi_fn p_clear_named_fi;
+static named_buffer_fn p_named_draw_buffer, p_named_read_buffer;
+static named_buffers_fn p_named_draw_buffers;
+static blit_named_fn p_blit_named;
+static invalidate_fn p_invalidate;
+static invalidate_sub_fn p_invalidate_sub;
+static named_attachment_fn p_named_attachment;
+static parameter_fn p_named_parameter, p_parameter;
+static link_program_fn p_link_program;
+static create_shader_programv_fn p_create_shader_programv;
 
 /* Extension functions, looked up as programs do (the layer's for its names). */
 #define LOOKUP(var, name)                                                    \
@@ -110,6 +146,24 @@ static void load_procs(void) {
     LOOKUP(p_delete_framebuffers_ext, "glDeleteFramebuffersEXT");
     LOOKUP(p_attachment, "glGetFramebufferAttachmentParameteriv");
     LOOKUP(p_attachment_ext, "glGetFramebufferAttachmentParameterivEXT");
+    LOOKUP(p_clear_fv, "glClearBufferfv");
+    LOOKUP(p_clear_iv, "glClearBufferiv");
+    LOOKUP(p_clear_uiv, "glClearBufferuiv");
+    LOOKUP(p_clear_named_fv, "glClearNamedFramebufferfv");
+    LOOKUP(p_clear_named_iv, "glClearNamedFramebufferiv");
+    LOOKUP(p_clear_named_uiv, "glClearNamedFramebufferuiv");
+    LOOKUP(p_clear_named_fi, "glClearNamedFramebufferfi");
+    LOOKUP(p_named_draw_buffer, "glNamedFramebufferDrawBuffer");
+    LOOKUP(p_named_read_buffer, "glNamedFramebufferReadBuffer");
+    LOOKUP(p_named_draw_buffers, "glNamedFramebufferDrawBuffers");
+    LOOKUP(p_blit_named, "glBlitNamedFramebuffer");
+    LOOKUP(p_invalidate, "glInvalidateFramebuffer");
+    LOOKUP(p_invalidate_sub, "glInvalidateSubFramebuffer");
+    LOOKUP(p_named_attachment, "glGetNamedFramebufferAttachmentParameteriv");
+    LOOKUP(p_named_parameter, "glGetNamedFramebufferParameteriv");
+    LOOKUP(p_parameter, "glGetFramebufferParameteriv");
+    LOOKUP(p_link_program, "glLinkProgram");
+    LOOKUP(p_create_shader_programv, "glCreateShaderProgramv");
 }
 
 static void *proc_pointer(void (*f)(void)) {
@@ -171,6 +225,27 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_viewport(x, y, w, h) glViewport((x), (y), (w), (h))
 #define gls_gl_flush() glFlush()
 #define gls_gl_finish() glFinish()
+#define gls_gl_clear_bufferfv(b, i, v) p_clear_fv((b), (i), (v))
+#define gls_gl_clear_bufferiv(b, i, v) p_clear_iv((b), (i), (v))
+#define gls_gl_clear_bufferuiv(b, i, v) p_clear_uiv((b), (i), (v))
+#define gls_gl_clear_named_framebufferfv(f, b, i, v) p_clear_named_fv((f), (b), (i), (v))
+#define gls_gl_clear_named_framebufferiv(f, b, i, v) p_clear_named_iv((f), (b), (i), (v))
+#define gls_gl_clear_named_framebufferuiv(f, b, i, v) p_clear_named_uiv((f), (b), (i), (v))
+#define gls_gl_clear_named_framebufferfi(f, b, i, d, s) p_clear_named_fi((f), (b), (i), (d), (s))
+#define gls_gl_named_framebuffer_draw_buffer(f, b) p_named_draw_buffer((f), (b))
+#define gls_gl_named_framebuffer_read_buffer(f, b) p_named_read_buffer((f), (b))
+#define gls_gl_named_framebuffer_draw_buffers(f, n, b) p_named_draw_buffers((f), (n), (b))
+#define gls_gl_blit_named_framebuffer(r, w, a, b, c, d, e, f, g, h, m, fl) \
+    p_blit_named((r), (w), (a), (b), (c), (d), (e), (f), (g), (h), (m), (fl))
+#define gls_gl_invalidate_framebuffer(t, n, a) p_invalidate((t), (n), (a))
+#define gls_gl_invalidate_sub_framebuffer(t, n, a, x, y, w, h) \
+    p_invalidate_sub((t), (n), (a), (x), (y), (w), (h))
+#define gls_gl_get_named_framebuffer_attachment_parameteriv(f, a, p, v) \
+    p_named_attachment((f), (a), (p), (v))
+#define gls_gl_get_named_framebuffer_parameteriv(f, p, v) p_named_parameter((f), (p), (v))
+#define gls_gl_get_framebuffer_parameteriv(t, p, v) p_parameter((t), (p), (v))
+#define gls_gl_link_program(p) p_link_program(p)
+#define gls_gl_create_shader_programv(t, n, s) p_create_shader_programv((t), (n), (s))
 
 /* Messages go to stderr here, where tests/misuse.rs reads them. */
 static void sentinel(void) {}
@@ -645,6 +720,34 @@ static void null_gl_pointers(const char *where) {
     EXPECT_VOID(1, gls_gl_get_framebuffer_attachment_parameteriv_ext, GL_FRAMEBUFFER_, GL_BACK_LEFT,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_clear_bufferfv, GL_COLOR_, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_clear_bufferiv, GL_STENCIL, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_clear_bufferuiv, GL_COLOR_, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_clear_named_framebufferfv, 0, GL_COLOR_, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_clear_named_framebufferiv, 0, GL_STENCIL, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_clear_named_framebufferuiv, 0, GL_COLOR_, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_named_framebuffer_draw_buffers, 0, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_invalidate_framebuffer, GL_FRAMEBUFFER_, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_invalidate_sub_framebuffer, GL_FRAMEBUFFER_, 2, NULL, 0, 0, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_named_framebuffer_attachment_parameteriv, 0, GL_BACK_LEFT,
+                GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_named_framebuffer_parameteriv, 0, GL_STEREO, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_framebuffer_parameteriv, GL_FRAMEBUFFER_, GL_STEREO, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    GLuint prog = 7;
+    EXPECT_RET(prog == 0, 1, prog, gls_gl_create_shader_programv, GL_FRAGMENT_SHADER_, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
     /* n = 0 needs no pointer. */
     EXPECT_VOID(0, gls_gl_draw_buffers, 0, NULL);
     EXPECT_VOID(0, gls_gl_delete_framebuffers, 0, NULL);
@@ -697,6 +800,52 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(0, gls_gl_get_framebuffer_attachment_parameteriv, GL_FRAMEBUFFER_, 0x7777,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, &iv);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    /* glClearBuffer, DSA on framebuffer 0, links: GL's errors. */
+    const GLfloat color[4] = {0, 0, 0, 1};
+    const GLint ivals[4] = {0, 0, 0, 0};
+    const GLuint uvals[4] = {0, 0, 0, 0};
+    EXPECT_VOID(0, gls_gl_clear_bufferfv, GL_COLOR_, 8, color);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_clear_bufferiv, 0x7777, 0, ivals);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_clear_bufferuiv, GL_COLOR_, -1, uvals);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_clear_named_framebufferfv, 0, GL_COLOR_, 8, color);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_clear_named_framebufferiv, 0, 0x7777, 0, ivals);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_clear_named_framebufferuiv, 0, GL_COLOR_, -1, uvals);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_clear_named_framebufferfi, 0, GL_COLOR_, 0, 1.0f, 0);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_named_framebuffer_draw_buffer, 0, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_named_framebuffer_draw_buffers, 0, -1, two);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_named_framebuffer_read_buffer, 0, GL_AUX0);
+    EXPECT_GL_ERROR(GL_INVALID_OPERATION);
+    EXPECT_VOID(0, gls_gl_blit_named_framebuffer, 0, 0, 0, 0, 1, 1, 0, 0, 1, 1,
+                GL_COLOR_BUFFER_BIT, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    const GLenum bad_attachment[1] = {0x7777};
+    EXPECT_VOID(0, gls_gl_invalidate_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_invalidate_sub_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment, 0, 0,
+                1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_get_named_framebuffer_attachment_parameteriv, 0, 0x7777,
+                GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, &iv);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_get_named_framebuffer_parameteriv, 0, 0x7777, &iv);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_get_framebuffer_parameteriv, 0x7777, GL_STEREO, &iv);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_link_program, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    const char *src[1] = {"void main() {}"};
+    GLuint sp = 7;
+    EXPECT_RET(sp == 0, 0, sp, gls_gl_create_shader_programv, 0x7777, 1, src);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
     EXPECT_VOID(0, gls_gl_get_framebuffer_attachment_parameteriv_ext, 0x7777, GL_BACK_LEFT,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, &iv);

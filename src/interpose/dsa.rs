@@ -1,0 +1,716 @@
+//! glClearBuffer and GL 4.5 direct state access on framebuffer 0, and the
+//! link of programs whose fragment output 0 must reach every selected
+//! buffer, while a stereo context is current. With none current, each goes
+//! straight to the driver after one thread-local test.
+//!
+//! - glClearBuffer{fv,iv,uiv}(GL_COLOR, 0, …) and glClearNamedFramebuffer*
+//!   (0, GL_COLOR, 0, …) under a glDrawBuffer name selecting several
+//!   buffers clear each of them (GL 4.5 §17.4.3); draw buffers 1… are
+//!   GL_NONE then and clear nothing. glClearBufferfi and depth/stencil
+//!   clears need nothing: both eyes share one depth/stencil buffer.
+//! - glNamedFramebufferDrawBuffer(s) / ReadBuffer(0, …) set the emulated
+//!   selections with the errors of [`crate::stereo::buffers`], wherever
+//!   the program has bound its own framebuffer;
+//! - glBlitNamedFramebuffer with 0 on either side blits from or into the
+//!   emulated buffers (the read buffer, the draw buffers);
+//! - glGetNamedFramebufferAttachmentParameteriv(0, …) answers as
+//!   glGetFramebufferAttachmentParameteriv on framebuffer 0 does
+//!   (GL_FRAMEBUFFER_DEFAULT, the window's sizes, right buffers as their
+//!   left twins); glGetNamedFramebufferParameteriv
+//!   (0, …) and glGetFramebufferParameteriv with framebuffer 0 bound
+//!   answer from the window's framebuffer (GL_SAMPLES, GL_SAMPLE_BUFFERS,
+//!   the implementation read format and type, and the errors), with
+//!   GL_STEREO and GL_DOUBLEBUFFER those of the emulated one;
+//! - glInvalidate(Sub)Framebuffer with framebuffer 0 bound is validated as
+//!   the driver validates it on a window (GL_COLOR, GL_FRONT_LEFT …,
+//!   GL_DEPTH, GL_STENCIL), by asking the window: invalidation is a hint,
+//!   and the emulated buffers keep their contents. The named forms on 0,
+//!   glCheckNamedFramebufferStatus(0, …) and glReadnPixels go to the
+//!   driver unchanged: the window's answers are the right ones (the read
+//!   framebuffer bound is the emulated one).
+//! - glLinkProgram / glCreateShaderProgramv: a program with a user-defined
+//!   fragment output at location 0 is relinked with copies of it
+//!   ([`crate::stereo::outputs`]), so output 0 reaches every buffer a
+//!   glDrawBuffer name selects.
+
+use std::ffi::{CStr, c_char, c_void};
+use std::sync::OnceLock;
+
+use super::context::{Current, current};
+use super::gl::{
+    bound, emulated_attachment, missing, read_drawable, refuse_null, with_window_framebuffer,
+};
+use super::real::{Real, loaded};
+use crate::error::{Error, Result};
+use crate::gl::enums::*;
+use crate::stereo::buffers::gl_error_code;
+use crate::stereo::emulated::{DrawSlots, EmulatedFramebuffer};
+use crate::stereo::outputs::{LinkFns, Outcome};
+
+const GL_COLOR: u32 = 0x1800;
+const GL_FRAGMENT_SHADER: u32 = 0x8B30;
+
+type ClearFn<T> = unsafe extern "system" fn(u32, i32, *const T);
+type ClearNamedFn<T> = unsafe extern "system" fn(u32, u32, i32, *const T);
+type InvalidateFn = unsafe extern "system" fn(u32, i32, *const u32);
+type InvalidateSubFn = unsafe extern "system" fn(u32, i32, *const u32, i32, i32, i32, i32);
+type ParamFn = unsafe extern "system" fn(u32, u32, *mut i32);
+type AttachmentFn = unsafe extern "system" fn(u32, u32, u32, *mut i32);
+type BlitFn = unsafe extern "system" fn(u32, u32, i32, i32, i32, i32, i32, i32, i32, i32, u32, u32);
+
+macro_rules! fns {
+    ($( $field:ident: $ty:ty = $sym:literal; )*) => {
+        /// The real functions of this module (None where the driver lacks
+        /// one: the program cannot have called it then, as
+        /// glXGetProcAddress gave it nothing to call).
+        pub struct Fns {
+            $( $field: Option<$ty>, )*
+            /// What relinking needs (None before GL 4.3).
+            link: Option<LinkFns>,
+        }
+
+        fn load() -> Fns {
+            let get = |name: &CStr| -> *const c_void {
+                // SAFETY: a NUL-terminated name.
+                unsafe { super::real::get_proc_address(name.as_ptr()) }
+                    .map_or(std::ptr::null(), |f| f as *const c_void)
+            };
+            Fns {
+                $( $field: {
+                    let p = get($sym);
+                    // SAFETY: the named function, with its Khronos signature (the field's type).
+                    (!p.is_null()).then(|| unsafe { std::mem::transmute::<*const c_void, $ty>(p) })
+                }, )*
+                // SAFETY: `get` returns the named function or NULL.
+                link: unsafe { LinkFns::load(get) },
+            }
+        }
+    };
+}
+
+fns! {
+    clear_fv: ClearFn<f32> = c"glClearBufferfv";
+    clear_iv: ClearFn<i32> = c"glClearBufferiv";
+    clear_uiv: ClearFn<u32> = c"glClearBufferuiv";
+    clear_named_fv: ClearNamedFn<f32> = c"glClearNamedFramebufferfv";
+    clear_named_iv: ClearNamedFn<i32> = c"glClearNamedFramebufferiv";
+    clear_named_uiv: ClearNamedFn<u32> = c"glClearNamedFramebufferuiv";
+    clear_named_fi: unsafe extern "system" fn(u32, u32, i32, f32, i32) = c"glClearNamedFramebufferfi";
+    named_draw_buffer: unsafe extern "system" fn(u32, u32) = c"glNamedFramebufferDrawBuffer";
+    named_draw_buffers: unsafe extern "system" fn(u32, i32, *const u32) = c"glNamedFramebufferDrawBuffers";
+    named_read_buffer: unsafe extern "system" fn(u32, u32) = c"glNamedFramebufferReadBuffer";
+    blit_named: BlitFn = c"glBlitNamedFramebuffer";
+    invalidate: InvalidateFn = c"glInvalidateFramebuffer";
+    invalidate_sub: InvalidateSubFn = c"glInvalidateSubFramebuffer";
+    named_attachment: AttachmentFn = c"glGetNamedFramebufferAttachmentParameteriv";
+    named_parameter: ParamFn = c"glGetNamedFramebufferParameteriv";
+    parameter: ParamFn = c"glGetFramebufferParameteriv";
+    create_shader_programv: unsafe extern "system" fn(u32, i32, *const *const c_char) -> u32 = c"glCreateShaderProgramv";
+}
+
+fn fns() -> &'static Fns {
+    static FNS: OnceLock<Fns> = OnceLock::new();
+    FNS.get_or_init(load)
+}
+
+/// The real function, or the refusal a missing one gets (the program
+/// called a function the driver does not have).
+fn need<T>(f: Option<T>, name: &str) -> Result<T> {
+    f.ok_or_else(|| {
+        Error::BackendUnavailable(format!(
+            "the GL library lacks {name}: it needs a newer GL driver"
+        ))
+    })
+}
+
+/// The emulated framebuffer of the context's draw drawable (`read` false)
+/// or read drawable, when the current context is a stereo one that has it:
+/// what framebuffer 0 names in direct state access.
+fn with_fb0<T>(
+    cur: &Current,
+    read: bool,
+    f: impl FnOnce(&mut EmulatedFramebuffer, &mut Vec<u32>) -> T,
+) -> Option<T> {
+    let drawable = if read { read_drawable(cur) } else { cur.draw };
+    let mut st = cur.sc.lock();
+    let st = &mut *st;
+    let fb = &mut st.fbs.get_mut(&drawable)?.fb;
+    let mut errors = Vec::new();
+    let v = f(fb, &mut errors);
+    for e in errors {
+        st.push_error(e);
+    }
+    Some(v)
+}
+
+/// Runs a selection change on framebuffer 0's emulated buffers, queueing
+/// its GL error; false when framebuffer 0 is not emulated.
+fn select_fb0(
+    r: &Real,
+    read: bool,
+    f: impl FnOnce(&mut EmulatedFramebuffer) -> crate::Result<()>,
+) -> bool {
+    let _ = r;
+    let Some(cur) = current() else {
+        return false;
+    };
+    with_fb0(&cur, read, |fb, errors| {
+        if let Err(e) = f(fb) {
+            errors.push(gl_error_code(&e));
+        }
+    })
+    .is_some()
+}
+
+/// glClearBuffer{fv,iv,uiv}. Refused: `value` NULL (`refuse_null`).
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+unsafe fn clear_buffer<T>(
+    real: Option<ClearFn<T>>,
+    name: &str,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const T,
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(real, name)?;
+    if value.is_null() {
+        return Err(refuse_null(r, "value"));
+    }
+    if buffer == GL_COLOR {
+        if let Some(cur) = current() {
+            let slots: Option<DrawSlots> = {
+                let mut st = cur.sc.lock();
+                bound(&r.gl, &mut st.fbs, cur.draw, GL_DRAW_FRAMEBUFFER_BINDING)
+                    .map(|fb| fb.draw_buffer_slots(drawbuffer))
+            };
+            if let Some(slots) = slots {
+                for &slot in slots.as_slice() {
+                    // SAFETY: forwarded call, one slot at a time.
+                    unsafe { real(buffer, slot, value) };
+                }
+                return Ok(());
+            }
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { real(buffer, drawbuffer, value) };
+    Ok(())
+}
+
+/// glClearBufferfv.
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+pub unsafe fn clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32) -> Result<()> {
+    // SAFETY: forwarded contract.
+    unsafe { clear_buffer(fns().clear_fv, "glClearBufferfv", buffer, drawbuffer, value) }
+}
+
+/// glClearBufferiv.
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+pub unsafe fn clear_bufferiv(buffer: u32, drawbuffer: i32, value: *const i32) -> Result<()> {
+    // SAFETY: forwarded contract.
+    unsafe { clear_buffer(fns().clear_iv, "glClearBufferiv", buffer, drawbuffer, value) }
+}
+
+/// glClearBufferuiv.
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+pub unsafe fn clear_bufferuiv(buffer: u32, drawbuffer: i32, value: *const u32) -> Result<()> {
+    // SAFETY: forwarded contract.
+    unsafe {
+        clear_buffer(
+            fns().clear_uiv,
+            "glClearBufferuiv",
+            buffer,
+            drawbuffer,
+            value,
+        )
+    }
+}
+
+/// Framebuffer 0's object and the slots of `drawbuffer` (for GL_COLOR),
+/// when framebuffer 0 is emulated.
+fn fb0_slots(buffer: u32, drawbuffer: i32) -> Option<(u32, DrawSlots)> {
+    let cur = current()?;
+    with_fb0(&cur, false, |fb, _| {
+        let slots = if buffer == GL_COLOR {
+            fb.draw_buffer_slots(drawbuffer)
+        } else {
+            DrawSlots::one(drawbuffer)
+        };
+        (fb.app_fbo(), slots)
+    })
+}
+
+/// glClearNamedFramebuffer{fv,iv,uiv}. Refused: `value` NULL.
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+unsafe fn clear_named<T>(
+    real: Option<ClearNamedFn<T>>,
+    name: &str,
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const T,
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(real, name)?;
+    if value.is_null() {
+        return Err(refuse_null(r, "value"));
+    }
+    if framebuffer == 0 {
+        if let Some((fbo, slots)) = fb0_slots(buffer, drawbuffer) {
+            for &slot in slots.as_slice() {
+                // SAFETY: forwarded call on the emulated framebuffer object.
+                unsafe { real(fbo, buffer, slot, value) };
+            }
+            return Ok(());
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { real(framebuffer, buffer, drawbuffer, value) };
+    Ok(())
+}
+
+/// glClearNamedFramebufferfv.
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+pub unsafe fn clear_named_framebufferfv(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const f32,
+) -> Result<()> {
+    // SAFETY: forwarded contract.
+    unsafe {
+        clear_named(
+            fns().clear_named_fv,
+            "glClearNamedFramebufferfv",
+            framebuffer,
+            buffer,
+            drawbuffer,
+            value,
+        )
+    }
+}
+
+/// glClearNamedFramebufferiv.
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+pub unsafe fn clear_named_framebufferiv(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const i32,
+) -> Result<()> {
+    // SAFETY: forwarded contract.
+    unsafe {
+        clear_named(
+            fns().clear_named_iv,
+            "glClearNamedFramebufferiv",
+            framebuffer,
+            buffer,
+            drawbuffer,
+            value,
+        )
+    }
+}
+
+/// glClearNamedFramebufferuiv.
+///
+/// # Safety
+/// `value` must hold the values GL reads for `buffer` (GL's contract).
+pub unsafe fn clear_named_framebufferuiv(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    value: *const u32,
+) -> Result<()> {
+    // SAFETY: forwarded contract.
+    unsafe {
+        clear_named(
+            fns().clear_named_uiv,
+            "glClearNamedFramebufferuiv",
+            framebuffer,
+            buffer,
+            drawbuffer,
+            value,
+        )
+    }
+}
+
+/// glClearNamedFramebufferfi: framebuffer 0's depth/stencil buffer is the
+/// emulated one (both eyes share it).
+pub fn clear_named_framebufferfi(
+    framebuffer: u32,
+    buffer: u32,
+    drawbuffer: i32,
+    depth: f32,
+    stencil: i32,
+) -> Result<()> {
+    loaded()?;
+    let real = need(fns().clear_named_fi, "glClearNamedFramebufferfi")?;
+    let fbo = if framebuffer == 0 {
+        current()
+            .and_then(|cur| with_fb0(&cur, false, |fb, _| fb.app_fbo()))
+            .unwrap_or(0)
+    } else {
+        framebuffer
+    };
+    // SAFETY: forwarded call.
+    unsafe { real(fbo, buffer, drawbuffer, depth, stencil) };
+    Ok(())
+}
+
+/// glNamedFramebufferDrawBuffer.
+pub fn named_framebuffer_draw_buffer(framebuffer: u32, buf: u32) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().named_draw_buffer, "glNamedFramebufferDrawBuffer")?;
+    if framebuffer == 0
+        && select_fb0(r, false, |fb| {
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_draw_buffer(&r.gl, buf) }
+        })
+    {
+        return Ok(());
+    }
+    // SAFETY: forwarded call.
+    unsafe { real(framebuffer, buf) };
+    Ok(())
+}
+
+/// glNamedFramebufferDrawBuffers. Refused: `bufs` NULL with `n` > 0.
+///
+/// # Safety
+/// `bufs` must hold `n` values (GL's contract).
+pub unsafe fn named_framebuffer_draw_buffers(
+    framebuffer: u32,
+    n: i32,
+    bufs: *const u32,
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().named_draw_buffers, "glNamedFramebufferDrawBuffers")?;
+    if missing(n, bufs) {
+        return Err(refuse_null(r, "bufs"));
+    }
+    if framebuffer == 0
+        && select_fb0(r, false, |fb| {
+            if n < 0 {
+                return Err(Error::invalid_value(
+                    "glNamedFramebufferDrawBuffers: n is negative (GL_INVALID_VALUE)",
+                ));
+            }
+            let names = if n == 0 {
+                &[][..]
+            } else {
+                // SAFETY: GL's contract: `bufs` holds n values.
+                unsafe { std::slice::from_raw_parts(bufs, n as usize) }
+            };
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_draw_buffers(&r.gl, names) }
+        })
+    {
+        return Ok(());
+    }
+    // SAFETY: forwarded call.
+    unsafe { real(framebuffer, n, bufs) };
+    Ok(())
+}
+
+/// glNamedFramebufferReadBuffer.
+pub fn named_framebuffer_read_buffer(framebuffer: u32, src: u32) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().named_read_buffer, "glNamedFramebufferReadBuffer")?;
+    if framebuffer == 0
+        && select_fb0(r, true, |fb| {
+            // SAFETY: the program's context is current.
+            unsafe { fb.set_read_buffer(&r.gl, src) }
+        })
+    {
+        return Ok(());
+    }
+    // SAFETY: forwarded call.
+    unsafe { real(framebuffer, src) };
+    Ok(())
+}
+
+/// glBlitNamedFramebuffer: 0 on either side is the emulated framebuffer
+/// (its read buffer, its draw buffers).
+#[allow(clippy::too_many_arguments)]
+pub fn blit_named_framebuffer(
+    read: u32,
+    draw: u32,
+    src: [i32; 4],
+    dst: [i32; 4],
+    mask: u32,
+    filter: u32,
+) -> Result<()> {
+    loaded()?;
+    let real = need(fns().blit_named, "glBlitNamedFramebuffer")?;
+    let (mut read, mut draw) = (read, draw);
+    if let Some(cur) = current() {
+        if read == 0 {
+            read = with_fb0(&cur, true, |fb, _| fb.app_fbo()).unwrap_or(0);
+        }
+        if draw == 0 {
+            draw = with_fb0(&cur, false, |fb, _| fb.app_fbo()).unwrap_or(0);
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe {
+        real(
+            read, draw, src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask,
+            filter,
+        )
+    };
+    Ok(())
+}
+
+/// Whether the emulated framebuffer is what `target` has bound (GL_FRAMEBUFFER
+/// and GL_DRAW_FRAMEBUFFER: the draw binding).
+fn emulated_at(r: &Real, cur: &Current, target: u32) -> bool {
+    let (binding, drawable) = match target {
+        GL_FRAMEBUFFER | GL_DRAW_FRAMEBUFFER => (GL_DRAW_FRAMEBUFFER_BINDING, cur.draw),
+        GL_READ_FRAMEBUFFER => (GL_READ_FRAMEBUFFER_BINDING, read_drawable(cur)),
+        _ => return false,
+    };
+    let mut st = cur.sc.lock();
+    bound(&r.gl, &mut st.fbs, drawable, binding).is_some()
+}
+
+/// glInvalidateFramebuffer: with framebuffer 0 bound at `target`, validated
+/// by the window's framebuffer (the driver's errors for a default
+/// framebuffer); the emulated buffers keep their contents (a hint GL lets
+/// an implementation ignore). Refused: `attachments` NULL with n > 0.
+///
+/// # Safety
+/// `attachments` must hold `n` values (GL's contract).
+pub unsafe fn invalidate_framebuffer(target: u32, n: i32, attachments: *const u32) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().invalidate, "glInvalidateFramebuffer")?;
+    if missing(n, attachments) {
+        return Err(refuse_null(r, "attachments"));
+    }
+    match current() {
+        Some(cur) if emulated_at(r, &cur, target) => {
+            // SAFETY: forwarded call, on the window's framebuffer.
+            with_window_framebuffer(&r.gl, || unsafe { real(target, n, attachments) })
+        }
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, n, attachments) },
+    }
+    Ok(())
+}
+
+/// glInvalidateSubFramebuffer: as [`invalidate_framebuffer`].
+///
+/// # Safety
+/// As [`invalidate_framebuffer`].
+pub unsafe fn invalidate_sub_framebuffer(
+    target: u32,
+    n: i32,
+    attachments: *const u32,
+    rect: [i32; 4],
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().invalidate_sub, "glInvalidateSubFramebuffer")?;
+    if missing(n, attachments) {
+        return Err(refuse_null(r, "attachments"));
+    }
+    let [x, y, w, h] = rect;
+    match current() {
+        Some(cur) if emulated_at(r, &cur, target) => {
+            // SAFETY: forwarded call, on the window's framebuffer.
+            with_window_framebuffer(&r.gl, || unsafe {
+                real(target, n, attachments, x, y, w, h)
+            })
+        }
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, n, attachments, x, y, w, h) },
+    }
+    Ok(())
+}
+
+/// glGetNamedFramebufferAttachmentParameteriv: on framebuffer 0, as
+/// glGetFramebufferAttachmentParameteriv on the emulated default
+/// framebuffer. Refused: `params` NULL.
+///
+/// # Safety
+/// `params` must be valid for one value (GL's contract).
+pub unsafe fn get_named_framebuffer_attachment_parameteriv(
+    framebuffer: u32,
+    attachment: u32,
+    pname: u32,
+    params: *mut i32,
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(
+        fns().named_attachment,
+        "glGetNamedFramebufferAttachmentParameteriv",
+    )?;
+    if params.is_null() {
+        return Err(refuse_null(r, "params"));
+    }
+    if framebuffer == 0 {
+        if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
+            // SAFETY: the program's context is current; `params` not NULL.
+            unsafe {
+                emulated_attachment(&cur, attachment, pname, params, |twin| {
+                    real(0, twin, pname, params)
+                })
+            };
+            return Ok(());
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { real(framebuffer, attachment, pname, params) };
+    Ok(())
+}
+
+/// GL_STEREO and GL_DOUBLEBUFFER of the emulated framebuffer, written over
+/// the window's answer.
+fn stereo_parameter(cur: &Current, pname: u32, params: *mut i32) {
+    let shape = cur.sc.shape();
+    let v = match pname {
+        GL_STEREO => shape.stereo,
+        GL_DOUBLEBUFFER => shape.double_buffered,
+        _ => return,
+    };
+    // SAFETY: not NULL (callers), one value.
+    unsafe { *params = v as i32 };
+}
+
+/// glGetNamedFramebufferParameteriv: on framebuffer 0, the window's
+/// framebuffer answers (values and errors), with the emulated GL_STEREO
+/// and GL_DOUBLEBUFFER. Refused: `params` NULL.
+///
+/// # Safety
+/// `params` must be valid for one value (GL's contract).
+pub unsafe fn get_named_framebuffer_parameteriv(
+    framebuffer: u32,
+    pname: u32,
+    params: *mut i32,
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().named_parameter, "glGetNamedFramebufferParameteriv")?;
+    if params.is_null() {
+        return Err(refuse_null(r, "params"));
+    }
+    if framebuffer == 0 {
+        if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
+            // The window's framebuffer bound: the driver brings its read
+            // state up to date only for a bound framebuffer (Mesa answers
+            // GL_IMPLEMENTATION_COLOR_READ_FORMAT with GL_INVALID_OPERATION
+            // otherwise).
+            // SAFETY: forwarded call, on the window's framebuffer.
+            with_window_framebuffer(&r.gl, || unsafe { real(0, pname, params) });
+            stereo_parameter(&cur, pname, params);
+            return Ok(());
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { real(framebuffer, pname, params) };
+    Ok(())
+}
+
+/// glGetFramebufferParameteriv: with framebuffer 0 bound at `target`, as
+/// [`get_named_framebuffer_parameteriv`] on 0. Refused: `params` NULL.
+///
+/// # Safety
+/// `params` must be valid for one value (GL's contract).
+pub unsafe fn get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut i32) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().parameter, "glGetFramebufferParameteriv")?;
+    if params.is_null() {
+        return Err(refuse_null(r, "params"));
+    }
+    match current() {
+        Some(cur) if emulated_at(r, &cur, target) => {
+            // SAFETY: forwarded call, on the window's framebuffer.
+            with_window_framebuffer(&r.gl, || unsafe { real(target, pname, params) });
+            stereo_parameter(&cur, pname, params);
+        }
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, pname, params) },
+    }
+    Ok(())
+}
+
+/// Relinks `program` with output 0 copied ([`LinkFns::duplicate_output_zero`])
+/// in the program's context, keeping its GL errors apart: the driver's
+/// pending errors are queued first and the relink's own dropped.
+fn duplicate(r: &Real, cur: &Current, program: u32, source: Option<&str>) {
+    let Some(link) = fns().link.as_ref() else {
+        return;
+    };
+    cur.sc.lock().save_driver_errors(&r.gl);
+    // SAFETY: the program's context is current.
+    let outcome = unsafe { link.duplicate_output_zero(program, source) };
+    // SAFETY: as above; drops the relink's own errors.
+    while unsafe { r.gl.GetError() } != GL_NO_ERROR {}
+    if let Outcome::Kept(why) = outcome {
+        // Once per reason, not per program: engines link many variants of
+        // one shader (and the ones drawing only into their own framebuffer
+        // objects lose nothing).
+        super::warn(&format!(
+            "a linked program keeps its fragment output 0 in the first buffer a glDrawBuffer \
+             name such as GL_BACK selects: {why}"
+        ));
+    }
+}
+
+/// glLinkProgram: in a stereo context, a program with a user-defined
+/// fragment output at location 0 is linked again with copies of it.
+pub fn link_program(program: u32) -> Result<()> {
+    let r = loaded()?;
+    // SAFETY: forwarded call.
+    unsafe { r.gl.LinkProgram(program) };
+    if let Some(cur) = current() {
+        duplicate(r, &cur, program, None);
+    }
+    Ok(())
+}
+
+/// glCreateShaderProgramv: as [`link_program`] for a fragment program.
+/// Refused: `strings` NULL with `count` > 0.
+///
+/// # Safety
+/// `strings` must hold `count` NUL-terminated strings (GL's contract).
+pub unsafe fn create_shader_programv(
+    kind: u32,
+    count: i32,
+    strings: *const *const c_char,
+) -> Result<u32> {
+    let r = loaded()?;
+    let real = need(fns().create_shader_programv, "glCreateShaderProgramv")?;
+    if missing(count, strings) {
+        return Err(refuse_null(r, "strings"));
+    }
+    // SAFETY: forwarded call.
+    let program = unsafe { real(kind, count, strings) };
+    if program == 0 || kind != GL_FRAGMENT_SHADER {
+        return Ok(program);
+    }
+    if let Some(cur) = current() {
+        let mut source = String::new();
+        // SAFETY: GL's contract: `count` NUL-terminated strings.
+        for i in 0..count.max(0) as usize {
+            let s = unsafe { *strings.add(i) };
+            if !s.is_null() {
+                // SAFETY: as above.
+                source.push_str(&unsafe { CStr::from_ptr(s) }.to_string_lossy());
+            }
+        }
+        duplicate(r, &cur, program, Some(&source));
+    }
+    Ok(program)
+}

@@ -1,0 +1,462 @@
+//! Fragment output 0 in every buffer a glDrawBuffer name selects.
+//!
+//! GL 4.5 §17.4.1: under glDrawBuffer(GL_BACK) on a stereo framebuffer,
+//! fragment colour zero is written to back-left *and* back-right. The
+//! emulated framebuffer is a framebuffer object, where output i goes to
+//! draw buffer i only; fixed-function colour and gl_FragColor are
+//! broadcast to every draw buffer, but a user-defined `out` variable is
+//! not. So when a program with a user-defined output at location 0 is
+//! linked, it is linked a second time with a fragment shader that also
+//! writes that output to the locations of
+//! [`crate::stereo::emulated::COPY_LOCATIONS`], the draw-buffer slots the
+//! emulated framebuffer gives the other selected buffers.
+//!
+//! Why at link time and not a pass per eye: the shader runs once per
+//! fragment as on a real stereo framebuffer, so atomic counters, image and
+//! SSBO stores, transform feedback and queries count what they would (a
+//! second pass would double them), every draw entry point is covered
+//! without being interposed, and a draw costs what it did. The price is
+//! paid once per link (the fragment shader is compiled and the program
+//! linked again) and a program's introspection shows three more outputs
+//! (`gls_stereo_copy5`…`7`, locations 5…7; see the README).
+//!
+//! How: the user's `main` is renamed by a `#define` after `#version`, and
+//! a new `main` calling it then copying output 0 is appended; the copies'
+//! locations are set with glBindFragDataLocation (GLSL 1.30 and newer).
+//! The program keeps the user's shader objects attached, and a failure at
+//! any step (no source: SPIR-V or program binaries; several fragment
+//! shaders; locations 5…7 or dual-source outputs in use; the rewritten
+//! shader not compiling) relinks the program as the user linked it and
+//! says why ([`Outcome::Kept`]).
+
+use std::ffi::{CStr, c_char, c_void};
+
+use crate::stereo::emulated::COPY_LOCATIONS;
+
+const GL_FRAGMENT_SHADER: u32 = 0x8B30;
+const GL_SHADER_TYPE: u32 = 0x8B4F;
+const GL_COMPILE_STATUS: u32 = 0x8B81;
+const GL_LINK_STATUS: u32 = 0x8B82;
+const GL_ATTACHED_SHADERS: u32 = 0x8B85;
+const GL_SHADER_SOURCE_LENGTH: u32 = 0x8B88;
+const GL_PROGRAM_OUTPUT: u32 = 0x92E4;
+const GL_ACTIVE_RESOURCES: u32 = 0x92F5;
+const GL_TYPE: u32 = 0x92FA;
+const GL_ARRAY_SIZE: u32 = 0x92FB;
+const GL_LOCATION: u32 = 0x930E;
+const GL_LOCATION_INDEX: u32 = 0x930F;
+
+/// Prefix of the copies' names (`gls_stereo_copy7` is location 7).
+pub const COPY_PREFIX: &str = "gls_stereo_copy";
+const USER_MAIN: &str = "gls_stereo_user_main";
+
+/// The GLSL type name of a fragment output type, or None for a type a
+/// fragment output cannot have.
+pub fn glsl_type(gl_type: u32) -> Option<&'static str> {
+    Some(match gl_type {
+        0x1406 => "float",
+        0x8B50 => "vec2",
+        0x8B51 => "vec3",
+        0x8B52 => "vec4",
+        0x1404 => "int",
+        0x8B53 => "ivec2",
+        0x8B54 => "ivec3",
+        0x8B55 => "ivec4",
+        0x1405 => "uint",
+        0x8DC6 => "uvec2",
+        0x8DC7 => "uvec3",
+        0x8DC8 => "uvec4",
+        _ => return None,
+    })
+}
+
+/// The fragment shader source `source` with output `expr` (of GLSL type
+/// `ty`) also written to `gls_stereo_copyN` for each N of
+/// [`COPY_LOCATIONS`]. The user's `main` becomes `gls_stereo_user_main`
+/// (a `#define` after the `#version` line, which must stay first); the new
+/// `main` calls it and copies the output, so early returns are covered and
+/// `discard` discards the copies too.
+pub fn duplicate_output(source: &str, expr: &str, ty: &str) -> String {
+    let mut insert_at = 0;
+    let mut offset = 0;
+    for line in source.split_inclusive('\n') {
+        offset += line.len();
+        if line.trim_start().starts_with("#version") {
+            insert_at = offset;
+            break;
+        }
+    }
+    let (head, tail) = source.split_at(insert_at);
+    let newline = if head.is_empty() || head.ends_with('\n') {
+        ""
+    } else {
+        "\n"
+    };
+    let mut out = String::with_capacity(source.len() + 400);
+    out.push_str(head);
+    out.push_str(newline);
+    out.push_str(&format!("#define main {USER_MAIN}\n"));
+    out.push_str(tail);
+    out.push_str("\n#undef main\n");
+    for loc in COPY_LOCATIONS {
+        out.push_str(&format!("out {ty} {COPY_PREFIX}{loc};\n"));
+    }
+    out.push_str(&format!("void main()\n{{\n    {USER_MAIN}();\n"));
+    for loc in COPY_LOCATIONS {
+        out.push_str(&format!("    {COPY_PREFIX}{loc} = {expr};\n"));
+    }
+    out.push_str("}\n");
+    out
+}
+
+macro_rules! link_fns {
+    ($( $field:ident = $sym:literal: fn($($ty:ty),*) $(-> $ret:ty)?; )*) => {
+        /// The GL functions relinking needs (GL 2.0, 3.0's
+        /// glBindFragDataLocation, 4.3's program interface queries), looked
+        /// up once through the backend's GetProcAddress.
+        #[allow(non_snake_case)]
+        pub struct LinkFns {
+            $( $field: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
+        }
+
+        impl LinkFns {
+            /// Looks every function up through `get`; None when one is
+            /// missing (a driver before GL 4.3 without
+            /// ARB_program_interface_query: programs are then linked once,
+            /// as the user linked them).
+            ///
+            /// # Safety
+            /// `get` must return the named GL function (its Khronos
+            /// signature) or NULL.
+            pub unsafe fn load(get: impl Fn(&CStr) -> *const c_void) -> Option<LinkFns> {
+                Some(LinkFns {
+                    $( $field: {
+                        let p = get($sym);
+                        if p.is_null() {
+                            return None;
+                        }
+                        // SAFETY: the named function, with its Khronos signature.
+                        unsafe { std::mem::transmute::<*const c_void, unsafe extern "system" fn($($ty),*) $(-> $ret)?>(p) }
+                    }, )*
+                })
+            }
+        }
+    };
+}
+
+link_fns! {
+    link_program = c"glLinkProgram": fn(u32);
+    create_program = c"glCreateProgram": fn() -> u32;
+    delete_program = c"glDeleteProgram": fn(u32);
+    get_programiv = c"glGetProgramiv": fn(u32, u32, *mut i32);
+    get_attached_shaders = c"glGetAttachedShaders": fn(u32, i32, *mut i32, *mut u32);
+    get_shaderiv = c"glGetShaderiv": fn(u32, u32, *mut i32);
+    get_shader_source = c"glGetShaderSource": fn(u32, i32, *mut i32, *mut c_char);
+    create_shader = c"glCreateShader": fn(u32) -> u32;
+    shader_source = c"glShaderSource": fn(u32, i32, *const *const c_char, *const i32);
+    compile_shader = c"glCompileShader": fn(u32);
+    delete_shader = c"glDeleteShader": fn(u32);
+    attach_shader = c"glAttachShader": fn(u32, u32);
+    detach_shader = c"glDetachShader": fn(u32, u32);
+    bind_frag_data_location = c"glBindFragDataLocation": fn(u32, u32, *const c_char);
+    get_frag_data_location = c"glGetFragDataLocation": fn(u32, *const c_char) -> i32;
+    get_program_interfaceiv = c"glGetProgramInterfaceiv": fn(u32, u32, u32, *mut i32);
+    get_program_resourceiv = c"glGetProgramResourceiv": fn(u32, u32, u32, i32, *const u32, i32, *mut i32, *mut i32);
+    get_program_resource_name = c"glGetProgramResourceName": fn(u32, u32, u32, i32, *mut i32, *mut c_char);
+}
+
+/// What [`LinkFns::duplicate_output_zero`] did.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Relinked: output 0 reaches every buffer a glDrawBuffer name selects.
+    Duplicated,
+    /// Nothing to do: the link failed, or no user-defined output is at
+    /// location 0 (fixed function, gl_FragColor, no fragment shader, or
+    /// already rewritten).
+    NotNeeded,
+    /// Linked as the user linked it, for this reason: output 0 reaches
+    /// only the first selected buffer.
+    Kept(String),
+}
+
+/// One fragment output of a linked program.
+struct Output {
+    name: String,
+    location: i32,
+    index: i32,
+    ty: u32,
+    size: i32,
+}
+
+impl LinkFns {
+    /// After a successful glLinkProgram (or glCreateShaderProgramv) of
+    /// `program`: relinks it with output 0 copied to the copy locations
+    /// when it has a user-defined output at location 0. `source` is the
+    /// fragment shader's source when the program has no attached fragment
+    /// shader (glCreateShaderProgramv), None to read it from the attached
+    /// one. May raise GL errors only through a misuse the link itself
+    /// would have reported; callers keep the program's error state apart.
+    ///
+    /// # Safety
+    /// A GL context must be current on this thread, `program` a program
+    /// object of it.
+    pub unsafe fn duplicate_output_zero(&self, program: u32, source: Option<&str>) -> Outcome {
+        // SAFETY: contract.
+        unsafe {
+            if self.program_int(program, GL_LINK_STATUS) == 0 {
+                return Outcome::NotNeeded;
+            }
+            let outputs = self.outputs(program);
+            if outputs.iter().any(|o| o.name.starts_with(COPY_PREFIX)) {
+                return Outcome::NotNeeded;
+            }
+            let Some(zero) = outputs
+                .iter()
+                .find(|o| o.location == 0 && o.index == 0 && !o.name.starts_with("gl_"))
+            else {
+                return Outcome::NotNeeded;
+            };
+            if outputs.iter().any(|o| o.index > 0) {
+                return Outcome::Kept(
+                    "the fragment shader has a dual-source output (index 1)".into(),
+                );
+            }
+            if let Some(o) = outputs.iter().find(|o| {
+                o.location >= 0
+                    && COPY_LOCATIONS
+                        .iter()
+                        .any(|&l| (o.location..o.location + o.size.max(1)).contains(&(l as i32)))
+            }) {
+                return Outcome::Kept(format!(
+                    "output {} uses location {}, one of 5…7 the copies need",
+                    o.name, o.location
+                ));
+            }
+            let Some(ty) = glsl_type(zero.ty) else {
+                return Outcome::Kept(format!("output {} has type {:#x}", zero.name, zero.ty));
+            };
+            let attached = match source {
+                Some(_) => None,
+                None => match self.fragment_shader(program) {
+                    Ok(s) => Some(s),
+                    Err(why) => return Outcome::Kept(why),
+                },
+            };
+            let original = match (source, attached) {
+                (Some(s), _) => s.to_owned(),
+                (None, Some(fs)) => match self.shader_source(fs) {
+                    Some(s) => s,
+                    None => {
+                        return Outcome::Kept(
+                            "the fragment shader has no GLSL source (SPIR-V)".into(),
+                        );
+                    }
+                },
+                (None, None) => return Outcome::NotNeeded,
+            };
+            let rewritten = duplicate_output(&original, &zero.name, ty);
+            let Some(copy) = self.compile(&rewritten) else {
+                return Outcome::Kept("the rewritten fragment shader does not compile".into());
+            };
+            // While the user's shader is detached, a scratch program holds
+            // it: a shader the user already deleted would otherwise go away
+            // (its name with it, which the user may still detach).
+            let holder = match attached {
+                Some(fs) => {
+                    let h = (self.create_program)();
+                    (self.attach_shader)(h, fs);
+                    (self.detach_shader)(program, fs);
+                    Some((h, fs))
+                }
+                None => None,
+            };
+            (self.attach_shader)(program, copy);
+            for loc in COPY_LOCATIONS {
+                let name = std::ffi::CString::new(format!("{COPY_PREFIX}{loc}")).unwrap();
+                (self.bind_frag_data_location)(program, loc, name.as_ptr());
+            }
+            (self.link_program)(program);
+            let zero_name = std::ffi::CString::new(zero.name.trim_end_matches("[0]")).unwrap();
+            let ok = self.program_int(program, GL_LINK_STATUS) != 0
+                && (self.get_frag_data_location)(program, zero_name.as_ptr()) == 0;
+            (self.detach_shader)(program, copy);
+            (self.delete_shader)(copy);
+            // The user's shader attached again, as after the user's link.
+            if let Some((h, fs)) = holder {
+                (self.attach_shader)(program, fs);
+                (self.delete_program)(h);
+            }
+            if ok {
+                return Outcome::Duplicated;
+            }
+            // Linked again as the user linked it.
+            match attached {
+                Some(_) => (self.link_program)(program),
+                None => {
+                    if let Some(fs) = self.compile(&original) {
+                        (self.attach_shader)(program, fs);
+                        (self.link_program)(program);
+                        (self.detach_shader)(program, fs);
+                        (self.delete_shader)(fs);
+                    }
+                }
+            }
+            Outcome::Kept("the rewritten program does not link".into())
+        }
+    }
+
+    unsafe fn program_int(&self, program: u32, pname: u32) -> i32 {
+        let mut v = 0;
+        // SAFETY: contract of the callers; one value.
+        unsafe { (self.get_programiv)(program, pname, &mut v) };
+        v
+    }
+
+    unsafe fn shader_int(&self, shader: u32, pname: u32) -> i32 {
+        let mut v = 0;
+        // SAFETY: contract of the callers; one value.
+        unsafe { (self.get_shaderiv)(shader, pname, &mut v) };
+        v
+    }
+
+    unsafe fn outputs(&self, program: u32) -> Vec<Output> {
+        let mut n = 0;
+        // SAFETY: contract of the callers; buffers sized as GL is told.
+        unsafe {
+            (self.get_program_interfaceiv)(program, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &mut n);
+            (0..n.max(0) as u32)
+                .map(|i| {
+                    let props = [GL_LOCATION, GL_LOCATION_INDEX, GL_TYPE, GL_ARRAY_SIZE];
+                    let mut v = [0i32; 4];
+                    (self.get_program_resourceiv)(
+                        program,
+                        GL_PROGRAM_OUTPUT,
+                        i,
+                        4,
+                        props.as_ptr(),
+                        4,
+                        std::ptr::null_mut(),
+                        v.as_mut_ptr(),
+                    );
+                    let mut buf = [0 as c_char; 256];
+                    let mut len = 0;
+                    (self.get_program_resource_name)(
+                        program,
+                        GL_PROGRAM_OUTPUT,
+                        i,
+                        buf.len() as i32,
+                        &mut len,
+                        buf.as_mut_ptr(),
+                    );
+                    Output {
+                        name: CStr::from_ptr(buf.as_ptr()).to_string_lossy().into_owned(),
+                        location: v[0],
+                        index: v[1],
+                        ty: v[2] as u32,
+                        size: v[3],
+                    }
+                })
+                .collect()
+        }
+    }
+
+    unsafe fn fragment_shader(&self, program: u32) -> Result<u32, String> {
+        // SAFETY: contract of the callers; the list is sized as GL is told.
+        unsafe {
+            let n = self.program_int(program, GL_ATTACHED_SHADERS).max(0);
+            let mut list = vec![0u32; n as usize];
+            let mut count = 0;
+            (self.get_attached_shaders)(program, n, &mut count, list.as_mut_ptr());
+            list.truncate(count.max(0) as usize);
+            let fragment: Vec<u32> = list
+                .into_iter()
+                .filter(|&s| self.shader_int(s, GL_SHADER_TYPE) == GL_FRAGMENT_SHADER as i32)
+                .collect();
+            match fragment[..] {
+                [fs] => Ok(fs),
+                [] => Err("the program has no attached fragment shader".into()),
+                _ => Err("the program links several fragment shaders".into()),
+            }
+        }
+    }
+
+    unsafe fn shader_source(&self, shader: u32) -> Option<String> {
+        // SAFETY: contract of the callers; the buffer is sized as GL is told.
+        unsafe {
+            let len = self.shader_int(shader, GL_SHADER_SOURCE_LENGTH);
+            if len <= 1 {
+                return None;
+            }
+            let mut buf = vec![0 as c_char; len as usize];
+            let mut got = 0;
+            (self.get_shader_source)(shader, len, &mut got, buf.as_mut_ptr());
+            Some(CStr::from_ptr(buf.as_ptr()).to_string_lossy().into_owned())
+        }
+    }
+
+    /// A compiled fragment shader of `source`, or None (deleted) when it
+    /// does not compile.
+    unsafe fn compile(&self, source: &str) -> Option<u32> {
+        // SAFETY: contract of the callers; one string of the given length.
+        unsafe {
+            let s = (self.create_shader)(GL_FRAGMENT_SHADER);
+            if s == 0 {
+                return None;
+            }
+            let ptr = source.as_ptr() as *const c_char;
+            let len = source.len() as i32;
+            (self.shader_source)(s, 1, &ptr, &len);
+            (self.compile_shader)(s);
+            if self.shader_int(s, GL_COMPILE_STATUS) == 0 {
+                (self.delete_shader)(s);
+                return None;
+            }
+            Some(s)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn main_is_renamed_after_the_version_line_and_the_copies_appended() {
+        let src = "// a comment\n#version 330 core\nlayout(location = 0) out vec4 color;\nvoid main() { color = vec4(1.0); }\n";
+        let out = duplicate_output(src, "color", "vec4");
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[1], "#version 330 core");
+        assert_eq!(lines[2], "#define main gls_stereo_user_main");
+        assert!(out.contains("out vec4 gls_stereo_copy7;"));
+        assert!(out.contains("out vec4 gls_stereo_copy5;"));
+        assert!(out.contains("gls_stereo_copy6 = color;"));
+        assert!(out.contains("#undef main\n"));
+        assert!(out.ends_with("}\n"));
+    }
+
+    #[test]
+    fn a_source_without_version_gets_the_define_first() {
+        let out = duplicate_output(
+            "out ivec4 c[2];\nvoid main(){c[0]=ivec4(1);}",
+            "c[0]",
+            "ivec4",
+        );
+        assert!(out.starts_with("#define main gls_stereo_user_main\nout ivec4 c[2];"));
+        assert!(out.contains("gls_stereo_copy7 = c[0];"));
+        assert!(out.contains("out ivec4 gls_stereo_copy7;"));
+    }
+
+    #[test]
+    fn a_version_line_without_newline_keeps_the_define_on_its_own_line() {
+        let out = duplicate_output("#version 130", "c", "vec4");
+        assert!(out.starts_with("#version 130\n#define main gls_stereo_user_main\n"));
+    }
+
+    #[test]
+    fn output_types_map_to_glsl() {
+        assert_eq!(glsl_type(0x8B52), Some("vec4"));
+        assert_eq!(glsl_type(0x8DC8), Some("uvec4"));
+        assert_eq!(glsl_type(0x1406), Some("float"));
+        assert_eq!(glsl_type(0x8B5C), None); // mat4
+    }
+}
