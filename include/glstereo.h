@@ -419,6 +419,21 @@
 #define GLS_CAPTURE_QUEUE_LENGTH 4
 
 /**
+ * Stereo photo format: MPO (CIPA DC-007 Multi-Picture Object), two
+ * baseline JPEGs in one file, the left eye first, with the MP Index that
+ * 3D televisions, phones, the Nintendo 3DS and stereo viewers read.
+ * Usual extension: .mpo.
+ */
+#define GLS_PHOTO_MPO 0
+
+/**
+ * Stereo photo format: JPS (JPEG stereo), one JPEG twice as wide as an
+ * eye, the RIGHT eye on the left half (the cross-eyed convention JPS
+ * viewers expect), with the JPS APP3 descriptor. Usual extension: .jps.
+ */
+#define GLS_PHOTO_JPS 1
+
+/**
  * A chosen framebuffer configuration (opaque).
  */
 typedef struct gls_config gls_config;
@@ -2496,8 +2511,8 @@ gls_result gls_surface_queue_png(struct gls_surface *surface,
                                  const char *path);
 
 /**
- * Waits until every capture queued with gls_surface_queue_png() is
- * written.
+ * Waits until every capture queued with gls_surface_queue_png() or
+ * gls_surface_queue_stereo_photo() is written.
  *
  * @param surface a live surface.
  * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
@@ -2505,6 +2520,62 @@ gls_result gls_surface_queue_png(struct gls_surface *surface,
  * reported (the message names its path and the reason). Any thread.
  */
 gls_result gls_surface_wait_captures(struct gls_surface *surface);
+
+/**
+ * Sets the JPEG quality of the surface's stereo photos
+ * (gls_surface_save_stereo_photo, gls_surface_queue_stereo_photo).
+ *
+ * Default: 90 (chroma at full resolution; below 90 it is halved both
+ * ways, which smears thin coloured lines).
+ *
+ * @param surface a live surface.
+ * @param quality 1 (smallest file) … 100 (best image).
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_VALUE (outside 1…100; nothing changes). Any thread.
+ */
+gls_result gls_surface_set_jpeg_quality(struct gls_surface *surface, uint32_t quality);
+
+/**
+ * Writes the two eyes a viewer sees now (the front buffers taken apart
+ * by the input framing, exchanged when the surface swaps eyes) as one
+ * stereo photo: GLS_PHOTO_MPO or GLS_PHOTO_JPS, at the surface's JPEG
+ * quality. The file appears complete or not at all (written to a
+ * temporary name, then renamed). Alpha is dropped.
+ *
+ * A mono surface is refused: its two eyes are one image, and a mono MPO
+ * or JPS is not a stereo photo (use gls_surface_save_png).
+ *
+ * @param surface a live surface. @param format GLS_PHOTO_MPO or GLS_PHOTO_JPS.
+ * @param path a file path (UTF-8); must not be NULL. The extension is not
+ * checked (.mpo and .jps are usual).
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM (format); GLS_ERROR_INVALID_OPERATION (a mono
+ * surface: the message says how to get two eyes); GLS_ERROR_INVALID_VALUE
+ * (a path that is not UTF-8 or names no file, e.g. ""); GLS_ERROR_OUT_OF_MEMORY;
+ * GLS_ERROR_IO (the message names the path and the reason; no file and
+ * no temporary file is left). Any thread.
+ */
+gls_result gls_surface_save_stereo_photo(struct gls_surface *surface,
+                                         uint32_t format,
+                                         const char *path);
+
+/**
+ * Like gls_surface_save_stereo_photo, but returns as soon as the eyes are
+ * read back: the photo is encoded and written by the surface's capture
+ * threads, in order with gls_surface_queue_png captures (see there for
+ * the queue length and gls_surface_wait_captures()).
+ *
+ * @param surface a live surface. @param format GLS_PHOTO_MPO or GLS_PHOTO_JPS.
+ * @param path a file path (UTF-8); must not be NULL.
+ * @return GLS_OK; GLS_ERROR_NULL_POINTER; GLS_ERROR_INVALID_HANDLE;
+ * GLS_ERROR_INVALID_ENUM (format); GLS_ERROR_INVALID_OPERATION (a mono
+ * surface; nothing is queued); GLS_ERROR_IO when an earlier queued capture
+ * failed to be written (reported once, by the next call; the message names
+ * its path and the reason; this capture is queued anyway). Any thread.
+ */
+gls_result gls_surface_queue_stereo_photo(struct gls_surface *surface,
+                                          uint32_t format,
+                                          const char *path);
 
 #ifdef __cplusplus
 }  // extern "C"

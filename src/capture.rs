@@ -1,8 +1,10 @@
-//! Writing images to PNG files: atomically (a temporary file in the same
-//! directory, renamed into place), so a failed or interrupted capture never
-//! leaves a half-written file under the requested name.
+//! Writing images to PNG files, and stereo pairs to MPO or JPS files
+//! ([`stereo_photo`]): atomically (a temporary file in the same directory,
+//! renamed into place), so a failed or interrupted capture never leaves a
+//! half-written file under the requested name.
 
 pub mod queue;
+pub mod stereo_photo;
 
 use std::io::{BufWriter, Write};
 use std::path::Path;

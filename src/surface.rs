@@ -25,7 +25,8 @@ use crate::shims::nv3dvision::StereoSettings;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code, resolve_read_buffer};
 use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
 
-// Captures without a stall: PNGs written by threads (src/surface/captures.rs).
+// Captures without a stall: PNGs and stereo photos written by threads, and
+// the stereo photos themselves (src/surface/captures.rs).
 mod captures;
 
 thread_local! {
@@ -152,6 +153,8 @@ struct SurfaceState {
     compositor: GlCompositor,
     /// NV_3dvision_settings state (src/shims/nv3dvision.rs).
     nv3dvision: StereoSettings,
+    /// JPEG quality of stereo photos (MPO, JPS), 1 … 100.
+    jpeg_quality: u8,
 }
 
 /// A stereo (or mono) surface: emulated default framebuffer, two contexts.
@@ -162,8 +165,8 @@ pub struct Surface {
     gl: Arc<Gl>,
     owner: Mutex<Option<ThreadId>>,
     state: Mutex<SurfaceState>,
-    /// The PNG encoder and writer threads, started by the first queued capture.
-    captures: Mutex<Option<crate::capture::queue::PngQueue>>,
+    /// The capture encoder and writer threads, started by the first queued capture.
+    captures: Mutex<Option<crate::capture::queue::CaptureQueue>>,
 }
 
 impl std::fmt::Debug for Surface {
@@ -264,6 +267,7 @@ impl Surface {
                 pending_gl_error: GL_NO_ERROR,
                 compositor: GlCompositor::new(),
                 nv3dvision: StereoSettings::new(false),
+                jpeg_quality: crate::capture::stereo_photo::DEFAULT_JPEG_QUALITY,
             }),
             captures: Mutex::new(None),
         }))

@@ -1,21 +1,22 @@
-//! PNG captures off the rendering thread: a writer thread with a bounded
-//! queue, and recycled image buffers.
+//! Captures off the rendering thread (PNG images, MPO/JPS stereo photos):
+//! writer threads with a bounded queue, and recycled image buffers.
 //!
 //! Encoding a 1280x1024 frame takes about 3.6 ms (fast compression) and
 //! writing it atomically with fsync 1–5 ms more; both eyes every frame on
 //! the rendering thread hold a frame loop under 30 frames/s (measured:
 //! 29 frames/s with a light scene). Through this queue the rendering
 //! thread only reads the pixels back into a recycled buffer and hands it
-//! over. Two threads follow: one encodes ([`super::encode_png`]), one
+//! over. Two threads follow: one encodes ([`super::encode_png`], or
+//! [`super::stereo_photo::encode`] for a stereo pair), one
 //! writes ([`super::write_atomically`]: temporary file, fsync, rename), so
 //! encoding goes on while a file is flushed to disk. The queue holds at
 //! most `capacity` images: a program that captures faster than the disk
-//! takes them waits in [`PngQueue::submit`] (memory stays bounded). Files
+//! takes them waits in [`CaptureQueue::submit`] (memory stays bounded). Files
 //! are written in submission order, so a path captured twice ends with the
 //! later image.
 //!
-//! A failed write is kept and returned by the next [`PngQueue::submit`] or
-//! [`PngQueue::flush`] (the first one since the last report); later
+//! A failed write is kept and returned by the next [`CaptureQueue::submit`] or
+//! [`CaptureQueue::flush`] (the first one since the last report); later
 //! captures still go ahead.
 
 use crate::sync::LockRecover;
@@ -24,11 +25,56 @@ use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 
+use super::stereo_photo::{self, StereoPhotoFormat};
 use crate::error::{Error, Result};
 use crate::image::Image;
 
-/// Images waiting or being written, at most, by default.
+/// Captures waiting or being written, at most, by default.
 pub const DEFAULT_CAPACITY: usize = 4;
+
+/// Pixel buffers kept for reuse, at most.
+const FREE_BUFFERS: usize = 8;
+
+/// What a queued capture writes.
+#[derive(Debug)]
+pub enum Capture {
+    /// One image as a PNG.
+    Png(Image),
+    /// Two eyes as a stereo photo.
+    StereoPhoto {
+        /// MPO or JPS.
+        format: StereoPhotoFormat,
+        /// JPEG quality, 1 … 100.
+        quality: u8,
+        /// The left eye.
+        left: Image,
+        /// The right eye (the same size).
+        right: Image,
+    },
+}
+
+impl Capture {
+    fn encode(&self, path: &std::path::Path, out: &mut Vec<u8>) -> Result<()> {
+        match self {
+            Capture::Png(image) => super::encode_png(image, path, out),
+            Capture::StereoPhoto {
+                format,
+                quality,
+                left,
+                right,
+            } => stereo_photo::encode(*format, left, right, *quality, path, out),
+        }
+    }
+
+    fn into_buffers(self) -> Vec<Vec<u8>> {
+        match self {
+            Capture::Png(image) => vec![image.into_pixels()],
+            Capture::StereoPhoto { left, right, .. } => {
+                vec![left.into_pixels(), right.into_pixels()]
+            }
+        }
+    }
+}
 
 /// What the writer thread shares with the queue's owner.
 #[derive(Default)]
@@ -44,38 +90,38 @@ struct State {
     pending: usize,
     /// The first failure since the last report.
     error: Option<Error>,
-    /// Pixel buffers of written images, for reuse.
+    /// Pixel buffers of written captures, for reuse.
     free: Vec<Vec<u8>>,
 }
 
-/// A PNG writer thread with a bounded queue (see the module documentation).
-pub struct PngQueue {
-    sender: Option<SyncSender<(Image, PathBuf)>>,
+/// Capture writer threads with a bounded queue (see the module documentation).
+pub struct CaptureQueue {
+    sender: Option<SyncSender<(Capture, PathBuf)>>,
     shared: Arc<Shared>,
     workers: Vec<JoinHandle<()>>,
     capacity: usize,
 }
 
-impl std::fmt::Debug for PngQueue {
+impl std::fmt::Debug for CaptureQueue {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "PngQueue(capacity {})", self.capacity)
+        write!(f, "CaptureQueue(capacity {})", self.capacity)
     }
 }
 
-impl PngQueue {
+impl CaptureQueue {
     /// Starts the writer thread; at most `capacity` (≥ 1) images wait.
     ///
     /// # Errors
     /// [`Error::InvalidValue`] for a capacity of 0; [`Error::Io`] when the
     /// thread cannot be started.
-    pub fn new(capacity: usize) -> Result<PngQueue> {
+    pub fn new(capacity: usize) -> Result<CaptureQueue> {
         if capacity == 0 {
             return Err(Error::invalid_value(
                 "a capture queue needs room for at least one image",
             ));
         }
         // The channel holds capacity − 1: the encoder holds one more.
-        let (sender, images) = sync_channel(capacity - 1);
+        let (sender, captures) = sync_channel(capacity - 1);
         // Encoded files waiting for the disk (their pixels are free again).
         let (encoded, files) = sync_channel(2);
         let shared = Arc::new(Shared::default());
@@ -88,18 +134,18 @@ impl PngQueue {
         let encoder = {
             let shared = shared.clone();
             spawn(
-                "glstereo-png-encode",
-                Box::new(move || encode_all(&images, &encoded, &shared)),
+                "glstereo-capture-encode",
+                Box::new(move || encode_all(&captures, &encoded, &shared)),
             )?
         };
         let writer = {
             let shared = shared.clone();
             spawn(
-                "glstereo-png-write",
+                "glstereo-capture-write",
                 Box::new(move || write_all(&files, &shared)),
             )?
         };
-        Ok(PngQueue {
+        Ok(CaptureQueue {
             sender: Some(sender),
             shared,
             workers: vec![encoder, writer],
@@ -128,16 +174,16 @@ impl PngQueue {
         }
     }
 
-    /// Queues `image` to be written to `path` as a PNG; returns at once,
-    /// unless the queue is full (then when an image is done).
+    /// Queues `capture` to be written to `path`; returns at once, unless
+    /// the queue is full (then when a capture is done).
     ///
     /// # Errors
-    /// The first write of an earlier image that failed since the last
-    /// report (this image is queued all the same; its own failure is
+    /// The first write of an earlier capture that failed since the last
+    /// report (this capture is queued all the same; its own failure is
     /// reported by the next call); [`Error::Io`] if the writer thread is gone.
-    pub fn submit(&self, image: Image, path: PathBuf) -> Result<()> {
-        // What failed before this image, taken before it is sent: this
-        // image's own failure is always the next call's to report, never
+    pub fn submit(&self, capture: Capture, path: PathBuf) -> Result<()> {
+        // What failed before this capture, taken before it is sent: this
+        // capture's own failure is always the next call's to report, never
         // this one's, however fast the writer fails it.
         let earlier = {
             let mut st = self.shared.state.recover();
@@ -148,7 +194,7 @@ impl PngQueue {
             .sender
             .as_ref()
             .expect("the sender lives until drop")
-            .send((image, path));
+            .send((capture, path));
         if sent.is_err() {
             self.shared.state.recover().pending -= 1;
             return Err(Error::Io("the capture thread has stopped".into()));
@@ -175,7 +221,7 @@ impl PngQueue {
     }
 }
 
-impl Drop for PngQueue {
+impl Drop for CaptureQueue {
     /// Writes what is queued, then stops the thread.
     fn drop(&mut self) {
         self.sender = None;
@@ -196,20 +242,22 @@ fn finish(shared: &Shared, result: Result<()>) {
     shared.done.notify_all();
 }
 
-/// The encoding thread: encodes each image, recycles its buffer (a few:
-/// enough for the images in flight) and passes the file on.
+/// The encoding thread: encodes each capture, recycles its buffers (a
+/// few: enough for the captures in flight) and passes the file on.
 fn encode_all(
-    images: &Receiver<(Image, PathBuf)>,
+    captures: &Receiver<(Capture, PathBuf)>,
     encoded: &SyncSender<(Vec<u8>, PathBuf)>,
     shared: &Shared,
 ) {
-    while let Ok((image, path)) = images.recv() {
+    while let Ok((capture, path)) = captures.recv() {
         let mut bytes = Vec::new();
-        let result = super::encode_png(&image, &path, &mut bytes);
+        let result = capture.encode(&path, &mut bytes);
         {
             let mut st = shared.state.recover();
-            if st.free.len() < 4 {
-                st.free.push(image.into_pixels());
+            for buf in capture.into_buffers() {
+                if st.free.len() < FREE_BUFFERS {
+                    st.free.push(buf);
+                }
             }
         }
         match result {
@@ -251,15 +299,16 @@ mod tests {
     #[test]
     fn queued_images_are_written_in_order_and_buffers_come_back() {
         let d = dir("order");
-        let q = PngQueue::new(2).unwrap();
+        let q = CaptureQueue::new(2).unwrap();
         for i in 0..6u8 {
             let mut img = q.image(5, 3).unwrap();
             img.pixels_mut().fill(i * 40);
             // The same path every time: the last image must win.
-            q.submit(img, d.join("same.png")).unwrap();
+            q.submit(Capture::Png(img), d.join("same.png")).unwrap();
             let mut other = q.image(5, 3).unwrap();
             other.pixels_mut().fill(i);
-            q.submit(other, d.join(format!("f{i}.png"))).unwrap();
+            q.submit(Capture::Png(other), d.join(format!("f{i}.png")))
+                .unwrap();
         }
         q.flush().unwrap();
         assert_eq!(read_png(&d.join("same.png")).unwrap().get(4, 2), [200; 4]);
@@ -278,15 +327,19 @@ mod tests {
     #[test]
     fn a_failed_write_is_reported_once_and_later_images_still_go() {
         let d = dir("errors");
-        let q = PngQueue::new(1).unwrap();
+        let q = CaptureQueue::new(1).unwrap();
         // Reported by whichever call comes after the failure.
         let e = q
-            .submit(Image::new(2, 2), PathBuf::from("/nonexistent-dir/a.png"))
+            .submit(
+                Capture::Png(Image::new(2, 2)),
+                PathBuf::from("/nonexistent-dir/a.png"),
+            )
             .err()
             .or_else(|| q.flush().err())
             .expect("the failed write is reported");
         assert!(e.to_string().contains("/nonexistent-dir/a.png"), "{e}");
-        q.submit(Image::new(2, 2), d.join("b.png")).unwrap();
+        q.submit(Capture::Png(Image::new(2, 2)), d.join("b.png"))
+            .unwrap();
         q.flush().unwrap();
         assert!(d.join("b.png").exists());
         std::fs::remove_dir_all(&d).unwrap();
@@ -294,6 +347,6 @@ mod tests {
 
     #[test]
     fn a_queue_needs_room() {
-        assert!(matches!(PngQueue::new(0), Err(Error::InvalidValue(_))));
+        assert!(matches!(CaptureQueue::new(0), Err(Error::InvalidValue(_))));
     }
 }
