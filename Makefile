@@ -41,7 +41,6 @@ deps:
 
 build: deps
 	$(CARGO) build $(CARGO_PROFILE_FLAG)
-	@ln -sf libglstereo.so $(LIBDIR)/libglstereo.so.0
 
 # Regenerates include/glstereo.h from the Rust sources (commit the result).
 header:

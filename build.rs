@@ -4,6 +4,13 @@
 //! `include/glstereo.h` only when `GLSTEREO_WRITE_HEADER=1` (what `make header`
 //! sets), so a build never silently rewrites the committed header; the test
 //! `header_has_no_drift` compares the two byte for byte.
+//!
+//! It also names the library's soname in the build tree: libglstereo.so is
+//! linked with the soname `libglstereo.so.0` (as `make install` installs
+//! it), so a C program linked against `target/<profile>/libglstereo.so`
+//! asks the loader for `libglstereo.so.0`. The link
+//! `target/<profile>/libglstereo.so.0 -> libglstereo.so` is made here, so a
+//! plain `cargo build` gives a library such a program can start with.
 
 use std::path::PathBuf;
 
@@ -19,6 +26,7 @@ fn main() {
     // depends on this crate (cargo issue #9562), which would give
     // libglstereo_preload.so this soname too.
     println!("cargo:rustc-link-arg=-Wl,-soname,libglstereo.so.0");
+    link_soname(&out_dir);
 
     let mut config = cbindgen::Config::from_file(crate_dir.join("cbindgen.toml"))
         .expect("cbindgen.toml is readable and valid");
@@ -53,5 +61,46 @@ fn main() {
         if std::fs::read(&target).ok().as_deref() != Some(&new[..]) {
             std::fs::write(&target, &new).expect("include/glstereo.h is writable");
         }
+    }
+}
+
+/// Makes `libglstereo.so.0 -> libglstereo.so` in the directory cargo puts
+/// the library in (`target/<profile>`, or `target/<triple>/<profile>`).
+///
+/// That directory is not given to build scripts; it is the one holding
+/// `build/<package>-<hash>/out` (`OUT_DIR`). When `OUT_DIR` is laid out
+/// otherwise (a `build.build-dir` of its own), a warning says what to do
+/// instead. The link is relative and may dangle until the library is
+/// linked, which cargo does after this script.
+fn link_soname(out_dir: &std::path::Path) {
+    let mut up = out_dir.ancestors();
+    let (out, pkg, build, profile) = (up.next(), up.next(), up.next(), up.next());
+    let name = |p: Option<&std::path::Path>| {
+        p.and_then(|p| p.file_name())
+            .and_then(|n| n.to_str())
+            .map(str::to_owned)
+    };
+    let classic = name(out).as_deref() == Some("out")
+        && name(pkg).is_some_and(|n| n.starts_with("glstereo-"))
+        && name(build).as_deref() == Some("build");
+    let Some(profile) = profile.filter(|_| classic) else {
+        println!(
+            "cargo:warning=cannot tell where libglstereo.so goes (OUT_DIR {}): \
+             link libglstereo.so.0 to it by hand, or run `make build`",
+            out_dir.display()
+        );
+        return;
+    };
+    let link = profile.join("libglstereo.so.0");
+    let target = std::path::Path::new("libglstereo.so");
+    if std::fs::read_link(&link).ok().as_deref() == Some(target) {
+        return;
+    }
+    let _ = std::fs::remove_file(&link);
+    if let Err(e) = std::os::unix::fs::symlink(target, &link) {
+        println!(
+            "cargo:warning=cannot make {} (a C program linked here would not start): {e}",
+            link.display()
+        );
     }
 }
