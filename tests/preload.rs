@@ -93,20 +93,21 @@ enum Window {
     Titled(&'static str),
 }
 
-/// Runs `exe args` under glstereo-run in `mode` with a capture directory;
-/// returns the window as the server shows it, the capture directory, and
-/// the program's first report line.
+/// Runs `exe args` under glstereo-run in `mode` (and with `flags`) with a
+/// capture directory; returns the window as the server shows it, the
+/// capture directory, and the program's first report line.
 fn run_under_layer(
     x: &Xvfb,
-    exe: &std::path::Path,
-    args: &[String],
+    (exe, args): (&std::path::Path, &[String]),
     window: Window,
-    mode: &str,
+    (mode, flags): (&str, &[&str]),
     capture: &str,
 ) -> (Image, PathBuf, String) {
     let dir = common::scratch(capture);
     let mut cmd = Command::new(&built().run);
-    cmd.args(["-m", mode, "--capture"])
+    cmd.args(["-m", mode])
+        .args(flags)
+        .arg("--capture")
         .arg(&dir)
         .arg(exe)
         .args(args)
@@ -133,12 +134,18 @@ fn run_under_layer(
 fn run_legacy(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
     let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
     let size = [W.to_string(), H.to_string()];
-    run_under_layer(x, &exe, &size, Window::Printed, mode, capture)
+    run_under_layer(x, (&exe, &size), Window::Printed, (mode, &[]), capture)
 }
 
 fn run_glut(x: &Xvfb, mode: &str, capture: &str) -> (Image, PathBuf, String) {
     let exe = program("glut_stereo", &["-lglut", "-lGL"]);
-    run_under_layer(x, &exe, &[], Window::Titled("glut_stereo"), mode, capture)
+    run_under_layer(
+        x,
+        (&exe, &[]),
+        Window::Titled("glut_stereo"),
+        (mode, &[]),
+        capture,
+    )
 }
 
 /// The capture's eyes are the RedBlue eyes, and the window is the CPU
@@ -432,10 +439,9 @@ fn a_single_buffered_stereo_program_is_shown_when_it_flushes() {
     let args = [W.to_string(), H.to_string(), "single".to_owned()];
     let (shot, _, report) = run_under_layer(
         &x,
-        &exe,
-        &args,
+        (&exe, &args),
         Window::Printed,
-        "anaglyph-red-cyan",
+        ("anaglyph-red-cyan", &[]),
         "legacy_single",
     );
     assert!(
@@ -443,6 +449,57 @@ fn a_single_buffered_stereo_program_is_shown_when_it_flushes() {
         "{report}"
     );
     check_by_hand(&shot, MODES[0].0, "single-buffered anaglyph");
+}
+
+#[test]
+fn capture_format_writes_stereo_photos_of_every_frame_beside_the_pngs() {
+    use common::photo::{mean_error, pillow};
+    let x = Xvfb::start(640, 480);
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let size = [W.to_string(), H.to_string()];
+    let (_, dir, _) = run_under_layer(
+        &x,
+        (&exe, &size),
+        Window::Printed,
+        ("rows", &["--capture-format", "png,mpo,jps", "-q", "95"]),
+        "capture_photos",
+    );
+    let mut frames: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| {
+            let name = e.unwrap().file_name().to_string_lossy().into_owned();
+            Some(name.strip_prefix("left-")?.strip_suffix(".png")?.to_owned())
+        })
+        .collect();
+    frames.sort();
+    assert!(!frames.is_empty(), "no frame captured in {}", dir.display());
+    for n in &frames {
+        let left = common::png(&dir.join(format!("left-{n}.png")));
+        let right = common::png(&dir.join(format!("right-{n}.png")));
+        let (format, count, images) = pillow(&dir.join(format!("stereo-{n}.mpo")));
+        assert_eq!((format.as_str(), count), ("MPO", 2), "stereo-{n}.mpo");
+        let errors = [
+            mean_error(&images[0].2, W, 0, &left),
+            mean_error(&images[1].2, W, 0, &right),
+        ];
+        assert!(
+            errors.iter().all(|e| *e < 3.0),
+            "stereo-{n}.mpo vs the PNG eyes: {errors:?}"
+        );
+        let (_, _, jps) = pillow(&dir.join(format!("stereo-{n}.jps")));
+        let (w, h, rgb) = &jps[0];
+        assert_eq!((*w, *h), (2 * W, H));
+        let errors = [
+            mean_error(rgb, 2 * W, 0, &right),
+            mean_error(rgb, 2 * W, W, &left),
+        ];
+        assert!(
+            errors.iter().all(|e| *e < 3.0),
+            "stereo-{n}.jps (right eye on the left) vs the PNG eyes: {errors:?}"
+        );
+        // The RedBlue eyes differ: swapped halves would not match.
+        assert!(mean_error(rgb, 2 * W, 0, &left) > 10.0, "stereo-{n}.jps");
+    }
 }
 
 #[test]
@@ -471,6 +528,28 @@ fn glstereo_run_checks_its_options_before_the_program_starts_and_sets_the_enviro
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("GLSTEREO_SWAP_EYES"));
     assert!(!marker.exists());
+    // A capture format that does not exist, a quality out of range, and
+    // capture settings without a capture directory.
+    for (args, want) in [
+        (&["-c", "x", "-f", "gif"][..], "png, jps or mpo"),
+        (
+            &["-c", "x", "--jpeg-quality=0"][..],
+            "1 (smallest file) to 100",
+        ),
+        (&["--capture-format", "mpo"][..], "give --capture DIR too"),
+    ] {
+        let out = Command::new(&built().run)
+            .args(args)
+            .args(["sh", "-c", &touch])
+            .current_dir(&dir)
+            .env_remove("GLSTEREO_CAPTURE_DIR")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(want), "{args:?}: {stderr}");
+        assert!(!marker.exists(), "{args:?}: the program must not run");
+    }
     // No program; a program that does not exist.
     let out = Command::new(&built().run)
         .args(["-m", "rows"])
@@ -505,16 +584,18 @@ fn glstereo_run_checks_its_options_before_the_program_starts_and_sets_the_enviro
         Command::new(&built().run)
             .args(["-st", "rc", "--swap-eyes", "--capture"])
             .arg(&capture)
+            .args(["-f", "mpo,png", "-q", "80"])
             .args([
                 "sh",
                 "-c",
-                "echo \"$LD_PRELOAD|$GLSTEREO_MODE|$GLSTEREO_SWAP_EYES|$GLSTEREO_CAPTURE_DIR\"",
+                "echo \"$LD_PRELOAD|$GLSTEREO_MODE|$GLSTEREO_SWAP_EYES|$GLSTEREO_CAPTURE_DIR\
+                 |$GLSTEREO_CAPTURE_FORMAT|$GLSTEREO_JPEG_QUALITY\"",
             ])
             .env("LD_PRELOAD", "libother.so"),
     );
     let line = String::from_utf8_lossy(&out.stdout).trim().to_owned();
     let want = format!(
-        "{}:libother.so|anaglyph-red-cyan|1|{}",
+        "{}:libother.so|anaglyph-red-cyan|1|{}|mpo,png|80",
         built().preload.canonicalize().unwrap().display(),
         capture.canonicalize().unwrap().display()
     );

@@ -1,7 +1,14 @@
 //! Capture of every presented stereo frame (GLSTEREO_CAPTURE_DIR, what
-//! `glstereo-run --capture DIR` sets): `left-NNNNNN.png`,
-//! `right-NNNNNN.png` and `composite-NNNNNN.png`, numbered from 000001 in
-//! presentation order over the whole process.
+//! `glstereo-run --capture DIR` sets), numbered from 000001 in
+//! presentation order over the whole process, in the formats
+//! GLSTEREO_CAPTURE_FORMAT lists (`glstereo-run --capture-format`; default
+//! `png`):
+//! - `png`: `left-NNNNNN.png`, `right-NNNNNN.png` and
+//!   `composite-NNNNNN.png`;
+//! - `mpo`, `jps`: the stereo photo `stereo-NNNNNN.mpo` / `.jps`
+//!   ([`crate::capture::stereo_photo`]) of the two eyes (exchanged with
+//!   GLSTEREO_SWAP_EYES, as a viewer sees them) at GLSTEREO_JPEG_QUALITY
+//!   (1…100, default 90).
 //!
 //! The frame loop only reads the two front buffers back (two glReadPixels
 //! in the layer's context); composing (on the CPU, [`crate::output::cpu`],
@@ -17,6 +24,8 @@ use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::thread::JoinHandle;
 
+use crate::capture::stereo_photo::{self, DEFAULT_JPEG_QUALITY, StereoPhotoFormat};
+use crate::error::{Error, Result};
 use crate::image::Image;
 use crate::output::OutputMode;
 use crate::output::cpu;
@@ -24,6 +33,79 @@ use crate::output::options::OutputOptions;
 
 /// The capture directory variable.
 pub const ENV_CAPTURE_DIR: &str = "GLSTEREO_CAPTURE_DIR";
+/// The capture formats variable: `png`, `jps`, `mpo`, or a comma-separated
+/// list of them.
+pub const ENV_CAPTURE_FORMAT: &str = "GLSTEREO_CAPTURE_FORMAT";
+/// The JPEG quality of captured stereo photos (1…100).
+pub const ENV_JPEG_QUALITY: &str = "GLSTEREO_JPEG_QUALITY";
+
+/// What each captured frame is written as.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CaptureSettings {
+    /// The left, right and composite PNGs.
+    pub png: bool,
+    /// Stereo photos, in the order named.
+    pub photos: Vec<StereoPhotoFormat>,
+    /// Their JPEG quality.
+    pub jpeg_quality: u8,
+}
+
+impl Default for CaptureSettings {
+    fn default() -> Self {
+        CaptureSettings {
+            png: true,
+            photos: Vec::new(),
+            jpeg_quality: DEFAULT_JPEG_QUALITY,
+        }
+    }
+}
+
+impl CaptureSettings {
+    /// The settings `get` (an environment lookup) gives: the formats of
+    /// GLSTEREO_CAPTURE_FORMAT and the quality of GLSTEREO_JPEG_QUALITY,
+    /// each defaulted when unset or empty.
+    ///
+    /// # Errors
+    /// [`Error::InvalidValue`] naming the variable, the value and what is
+    /// accepted.
+    pub fn from_env_with(get: impl Fn(&str) -> Option<String>) -> Result<CaptureSettings> {
+        let mut s = CaptureSettings::default();
+        if let Some(list) = get(ENV_CAPTURE_FORMAT).filter(|v| !v.trim().is_empty()) {
+            s.png = false;
+            for name in list.split(',').map(str::trim) {
+                let bad = || {
+                    Error::invalid_value(format!(
+                        "{ENV_CAPTURE_FORMAT}={list}: {name:?} is not a capture format; use \
+                         png, jps or mpo, or a comma-separated list of them (png,mpo)"
+                    ))
+                };
+                match name.to_ascii_lowercase().as_str() {
+                    "png" => s.png = true,
+                    n => {
+                        let f = StereoPhotoFormat::ALL
+                            .into_iter()
+                            .find(|f| f.extension() == n)
+                            .ok_or_else(bad)?;
+                        if !s.photos.contains(&f) {
+                            s.photos.push(f);
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(q) = get(ENV_JPEG_QUALITY).filter(|v| !v.trim().is_empty()) {
+            let n = q.trim().parse::<u32>().unwrap_or(0);
+            s.jpeg_quality = stereo_photo::check_quality(n)
+                .map_err(|e| Error::invalid_value(format!("{ENV_JPEG_QUALITY}={q}: {e}")))?;
+        }
+        Ok(s)
+    }
+
+    /// [`CaptureSettings::from_env_with`] of the process environment.
+    pub fn from_env() -> Result<CaptureSettings> {
+        Self::from_env_with(|k| std::env::var(k).ok())
+    }
+}
 
 /// Frames queued per worker before presenting waits.
 const QUEUE_PER_WORKER: usize = 2;
@@ -46,18 +128,28 @@ pub struct Frame {
 /// Where frames go.
 pub struct Sink {
     dir: PathBuf,
+    settings: CaptureSettings,
     next: AtomicU64,
     tx: Mutex<Option<SyncSender<(u64, Frame)>>>,
     workers: Mutex<Vec<JoinHandle<()>>>,
 }
 
 /// The capture sink, when GLSTEREO_CAPTURE_DIR names a directory (made if
-/// missing; if it cannot be, stderr says so once and nothing is captured).
+/// missing; if it cannot be, or GLSTEREO_CAPTURE_FORMAT or
+/// GLSTEREO_JPEG_QUALITY is invalid, stderr says so once and nothing is
+/// captured).
 pub fn sink() -> Option<&'static Sink> {
     static SINK: OnceLock<Option<Sink>> = OnceLock::new();
     SINK.get_or_init(|| {
         let dir = std::env::var_os(ENV_CAPTURE_DIR).filter(|d| !d.is_empty())?;
         let dir = PathBuf::from(dir);
+        let settings = match CaptureSettings::from_env() {
+            Ok(s) => s,
+            Err(e) => {
+                super::warn(&format!("{e}; frames are not captured"));
+                return None;
+            }
+        };
         if let Err(e) = std::fs::create_dir_all(&dir) {
             super::warn(&format!(
                 "{ENV_CAPTURE_DIR}={}: cannot create the directory ({e}); frames are not captured",
@@ -65,7 +157,7 @@ pub fn sink() -> Option<&'static Sink> {
             ));
             return None;
         }
-        Some(Sink::start(dir))
+        Some(Sink::start(dir, settings))
     })
     .as_ref()
 }
@@ -77,7 +169,7 @@ extern "C" fn flush_at_exit() {
 }
 
 impl Sink {
-    fn start(dir: PathBuf) -> Sink {
+    fn start(dir: PathBuf, settings: CaptureSettings) -> Sink {
         let workers = std::thread::available_parallelism()
             .map_or(1, |n| n.get())
             .clamp(1, 4);
@@ -87,9 +179,10 @@ impl Sink {
             .map(|i| {
                 let rx = rx.clone();
                 let dir = dir.clone();
+                let settings = settings.clone();
                 std::thread::Builder::new()
                     .name(format!("glstereo-capture-{i}"))
-                    .spawn(move || work(&dir, &rx))
+                    .spawn(move || work(&dir, &settings, &rx))
                     .expect("a capture thread starts")
             })
             .collect();
@@ -97,6 +190,7 @@ impl Sink {
         unsafe { libc::atexit(flush_at_exit) };
         Sink {
             dir,
+            settings,
             next: AtomicU64::new(1),
             tx: Mutex::new(Some(tx)),
             workers: Mutex::new(handles),
@@ -106,6 +200,11 @@ impl Sink {
     /// The directory frames are written to.
     pub fn dir(&self) -> &Path {
         &self.dir
+    }
+
+    /// What each frame is written as.
+    pub fn settings(&self) -> &CaptureSettings {
+        &self.settings
     }
 
     /// Queues a frame (waits while the queue is full).
@@ -127,13 +226,13 @@ impl Sink {
     }
 }
 
-fn work(dir: &Path, rx: &Mutex<Receiver<(u64, Frame)>>) {
+fn work(dir: &Path, settings: &CaptureSettings, rx: &Mutex<Receiver<(u64, Frame)>>) {
     loop {
         let next = rx.lock().unwrap_or_else(|e| e.into_inner()).recv();
         let Ok((n, frame)) = next else {
             return;
         };
-        if let Err(e) = write_frame(dir, n, frame) {
+        if let Err(e) = write_frame(dir, settings, n, frame) {
             super::warn(&format!("capture: {e}"));
         }
     }
@@ -144,22 +243,72 @@ fn opaque(mut img: Image) -> Image {
     img
 }
 
-fn write_frame(dir: &Path, n: u64, frame: Frame) -> crate::Result<()> {
+fn write_frame(dir: &Path, settings: &CaptureSettings, n: u64, frame: Frame) -> Result<()> {
     let left = opaque(frame.left);
     let right = opaque(frame.right);
-    let composite = opaque(cpu::compose(
-        frame.mode,
-        &frame.options,
-        &left,
-        &right,
-        frame.frame_index,
-    )?);
-    for (name, img) in [
-        ("left", &left),
-        ("right", &right),
-        ("composite", &composite),
-    ] {
-        crate::capture::write_png(img, &dir.join(format!("{name}-{n:06}.png")))?;
+    if settings.png {
+        let composite = opaque(cpu::compose(
+            frame.mode,
+            &frame.options,
+            &left,
+            &right,
+            frame.frame_index,
+        )?);
+        for (name, img) in [
+            ("left", &left),
+            ("right", &right),
+            ("composite", &composite),
+        ] {
+            crate::capture::write_png(img, &dir.join(format!("{name}-{n:06}.png")))?;
+        }
+    }
+    let (l, r) = if frame.options.swap_eyes {
+        (&right, &left)
+    } else {
+        (&left, &right)
+    };
+    for &format in &settings.photos {
+        let path = dir.join(format!("stereo-{n:06}.{}", format.extension()));
+        stereo_photo::write(format, l, r, settings.jpeg_quality, &path)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn settings(format: Option<&str>, quality: Option<&str>) -> Result<CaptureSettings> {
+        CaptureSettings::from_env_with(|k| match k {
+            ENV_CAPTURE_FORMAT => format.map(str::to_owned),
+            ENV_JPEG_QUALITY => quality.map(str::to_owned),
+            _ => None,
+        })
+    }
+
+    #[test]
+    fn capture_formats_are_a_list_of_png_jps_mpo() {
+        assert_eq!(settings(None, None).unwrap(), CaptureSettings::default());
+        let s = settings(Some("MPO, png,mpo"), Some("75")).unwrap();
+        assert!(s.png);
+        assert_eq!(s.photos, vec![StereoPhotoFormat::Mpo]);
+        assert_eq!(s.jpeg_quality, 75);
+        let s = settings(Some("jps"), None).unwrap();
+        assert!(!s.png, "only what is named");
+        assert_eq!(s.photos, vec![StereoPhotoFormat::Jps]);
+        for bad in ["gif", "png,", "png;mpo"] {
+            let e = settings(Some(bad), None).unwrap_err().to_string();
+            assert!(
+                e.contains(ENV_CAPTURE_FORMAT) && e.contains("png, jps or mpo"),
+                "{e}"
+            );
+        }
+        for bad in ["0", "101", "high"] {
+            let e = settings(None, Some(bad)).unwrap_err().to_string();
+            assert!(
+                e.contains(ENV_JPEG_QUALITY) && e.contains("1 (smallest"),
+                "{e}"
+            );
+        }
+    }
 }

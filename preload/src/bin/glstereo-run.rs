@@ -1,16 +1,20 @@
-//! `glstereo-run [-m MODE] [--swap-eyes] [--capture DIR] program args…`:
-//! runs an unmodified OpenGL program with glstereo's stereo layer
-//! (`libglstereo_preload.so`) preloaded, like VirtualGL's `vglrun`. It
-//! checks its options with the library first (a bad mode is refused before
-//! the program starts), sets LD_PRELOAD, GLSTEREO_MODE, GLSTEREO_SWAP_EYES
-//! and GLSTEREO_CAPTURE_DIR, and replaces itself with the program.
+//! `glstereo-run [-m MODE] [--swap-eyes] [--capture DIR] [--capture-format
+//! LIST] [--jpeg-quality N] program args…`: runs an unmodified OpenGL
+//! program with glstereo's stereo layer (`libglstereo_preload.so`)
+//! preloaded, like VirtualGL's `vglrun`. It checks its options with the
+//! library first (a bad mode is refused before the program starts), sets
+//! LD_PRELOAD, GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_CAPTURE_DIR,
+//! GLSTEREO_CAPTURE_FORMAT and GLSTEREO_JPEG_QUALITY, and replaces itself
+//! with the program.
 
 use std::ffi::{OsStr, OsString};
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-use glstereo::interpose::capture::ENV_CAPTURE_DIR;
+use glstereo::interpose::capture::{
+    CaptureSettings, ENV_CAPTURE_DIR, ENV_CAPTURE_FORMAT, ENV_JPEG_QUALITY,
+};
 use glstereo::output::mode::{ALIASES, AliasSource};
 use glstereo::output::options::{ENV_MODE, ENV_SWAP_EYES, OutputSettings};
 use glstereo::output::{AnaglyphColors, AnaglyphMethod, OutputMode};
@@ -72,7 +76,7 @@ fn describe(mode: OutputMode) -> String {
 
 fn help() -> String {
     let mut s = String::from(
-        "Usage: glstereo-run [-m MODE] [-s] [-c DIR] [--] PROGRAM [ARGS...]\n\
+        "Usage: glstereo-run [-m MODE] [-s] [-c DIR [-f FORMATS] [-q N]] [--] PROGRAM [ARGS...]\n\
          \n\
          Runs PROGRAM, an unmodified OpenGL (GLX) program, with glstereo's stereo\n\
          layer preloaded. A program that asks for a stereo visual (GLX_STEREO,\n\
@@ -89,6 +93,14 @@ fn help() -> String {
          \x20 -c, --capture DIR   write every presented frame to DIR as left-NNNNNN.png,\n\
          \x20                     right-NNNNNN.png and composite-NNNNNN.png (made if\n\
          \x20                     missing; sets GLSTEREO_CAPTURE_DIR)\n\
+         \x20 -f, --capture-format FORMATS\n\
+         \x20                     what --capture writes per frame: png (the three\n\
+         \x20                     PNGs, default), mpo (stereo-NNNNNN.mpo, CIPA\n\
+         \x20                     multi-picture), jps (stereo-NNNNNN.jps, right eye\n\
+         \x20                     on the left), or a list: png,mpo (sets\n\
+         \x20                     GLSTEREO_CAPTURE_FORMAT)\n\
+         \x20 -q, --jpeg-quality N  JPEG quality of mpo and jps captures, 1..100\n\
+         \x20                     (default 90; sets GLSTEREO_JPEG_QUALITY)\n\
          \x20 -h, --help          this text\n\
          \x20 -V, --version       the glstereo version\n\
          \n\
@@ -116,7 +128,8 @@ fn help() -> String {
     }
     s.push_str(
         "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK (0..1),\n\
-         GLSTEREO_SATURATION (0..1), GLSTEREO_CAPTURE_DIR; GLSTEREO_PRELOAD_LIB names\n\
+         GLSTEREO_SATURATION (0..1), GLSTEREO_CAPTURE_DIR, GLSTEREO_CAPTURE_FORMAT,\n\
+         GLSTEREO_JPEG_QUALITY (1..100); GLSTEREO_PRELOAD_LIB names\n\
          the preload library when it is not installed beside glstereo-run.\n\
          \n\
          Exit status: PROGRAM's; 2 for a usage error; 126/127 when PROGRAM cannot be run.\n",
@@ -129,6 +142,8 @@ struct Request {
     mode: Option<OutputMode>,
     swap_eyes: bool,
     capture: Option<PathBuf>,
+    capture_format: Option<String>,
+    jpeg_quality: Option<String>,
     program: Vec<OsString>,
 }
 
@@ -143,6 +158,8 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
         mode: None,
         swap_eyes: false,
         capture: None,
+        capture_format: None,
+        jpeg_quality: None,
         program: Vec::new(),
     };
     let mut i = 0;
@@ -173,6 +190,12 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
             }
             "-s" | "--swap-eyes" => req.swap_eyes = true,
             "-c" | "--capture" => req.capture = Some(PathBuf::from(value(&flag)?)),
+            "-f" | "--capture-format" => {
+                req.capture_format = Some(value(&flag)?.to_string_lossy().into_owned());
+            }
+            "-q" | "--jpeg-quality" => {
+                req.jpeg_quality = Some(value(&flag)?.to_string_lossy().into_owned());
+            }
             "--" => {
                 req.program = args[i + 1..].to_vec();
                 break;
@@ -252,6 +275,21 @@ fn run(req: Request) -> Result<std::io::Error, String> {
     if req.swap_eyes {
         cmd.env(ENV_SWAP_EYES, "1");
     }
+    if let Some(f) = &req.capture_format {
+        cmd.env(ENV_CAPTURE_FORMAT, f);
+    }
+    if let Some(q) = &req.jpeg_quality {
+        cmd.env(ENV_JPEG_QUALITY, q);
+    }
+    let capturing =
+        req.capture.is_some() || std::env::var_os(ENV_CAPTURE_DIR).is_some_and(|d| !d.is_empty());
+    if !capturing && (req.capture_format.is_some() || req.jpeg_quality.is_some()) {
+        return Err(
+            "--capture-format and --jpeg-quality say how --capture writes frames: \
+             give --capture DIR too"
+                .into(),
+        );
+    }
     if let Some(dir) = &req.capture {
         std::fs::create_dir_all(dir).map_err(|e| {
             format!(
@@ -272,6 +310,12 @@ fn run(req: Request) -> Result<std::io::Error, String> {
         }
     };
     OutputSettings::from_env_with(overrides).map_err(|e| e.to_string())?;
+    CaptureSettings::from_env_with(|name| match name {
+        n if n == ENV_CAPTURE_FORMAT && req.capture_format.is_some() => req.capture_format.clone(),
+        n if n == ENV_JPEG_QUALITY && req.jpeg_quality.is_some() => req.jpeg_quality.clone(),
+        n => std::env::var(n).ok(),
+    })
+    .map_err(|e| e.to_string())?;
     // Only returns on failure.
     Ok(cmd.exec())
 }
