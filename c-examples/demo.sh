@@ -26,7 +26,8 @@ echo "== irisgl (SGI IRIS GL STR_RECT, then square-pixel stereo) on $GLSTEREO_BA
 "$BUILD/irisgl$SUFFIX" --out "$OUT/irisgl/str-rect"
 "$BUILD/irisgl$SUFFIX" --square-pixel --out "$OUT/irisgl/square-pixel"
 
-echo "== oglplane on $GLSTEREO_BACKEND: one turn of the airplane, parallax measured each frame"
+echo "== oglplane on $GLSTEREO_BACKEND: one turn of the airplane, parallax measured each frame,"
+echo "   the last frame also as stereo photos (oglplane.mpo, oglplane.jps)"
 "$BUILD/oglplane$SUFFIX" --frames 60 --angle -54 --out "$OUT/oglplane"
 
 echo "== autostereo on $GLSTEREO_BACKEND (a mono program, automatic stereo)"

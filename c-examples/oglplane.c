@@ -13,7 +13,10 @@
  *   5. let the user change stereo strength and balance independently, by
  *      steps of x1.1 / /1.1 within 0...2;
  * and, beyond the original, measures the parallax it really rendered from
- * the depth buffer and checks it against the 3% comfort budget.
+ * the depth buffer and checks it against the 3% comfort budget. With --out
+ * it also writes the last frame as stereo photos a 3D TV, phone or stereo
+ * viewer opens: oglplane.mpo (both eyes, CIPA multi-picture) and
+ * oglplane.jps (side by side, right eye on the left).
  *
  * Options, besides --out, --size and --mode (example.h):
  *   --frames N         draw N frames (default 1); frame k (from 0) turns the
@@ -389,6 +392,16 @@ int main(int argc, char **argv) {
     }
 
     int status = example_save(surface, &opt);
+    /* The last frame as stereo photos (a mono picture has none). */
+    static const struct { uint32_t format; const char *name; } photos[] = {
+        {GLS_PHOTO_MPO, "oglplane.mpo"}, {GLS_PHOTO_JPS, "oglplane.jps"}};
+    for (size_t k = 0; status == 0 && stereo && opt.out_dir && k < sizeof photos / sizeof photos[0]; ++k) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", opt.out_dir, photos[k].name);
+        if ((r = gls_surface_save_stereo_photo(surface, photos[k].format, path)) != GLS_OK)
+            return example_fail("gls_surface_save_stereo_photo", r);
+        printf("wrote %s\n", path);
+    }
     gls_make_current(NULL);
     gls_surface_destroy(surface);
     gls_config_free(config);

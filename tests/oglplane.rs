@@ -48,6 +48,7 @@ struct Run {
     stdout: String,
     left: Image,
     right: Image,
+    dir: std::path::PathBuf,
 }
 
 fn command(backend: Backend, args: &[&str]) -> Command {
@@ -75,6 +76,7 @@ fn oglplane(backend: Backend, name: &str, args: &[&str]) -> Run {
         stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
         left: common::png(&out.join("left.png")),
         right: common::png(&out.join("right.png")),
+        dir: out,
     }
 }
 
@@ -271,6 +273,25 @@ fn check_nose_in_front_far_tip_behind(backend: Backend) {
     assert!(m.min_percent < 0.0 && m.max_percent > 0.0, "{m:?}");
     // And the background is the seed's grey, not black.
     assert_eq!(run.left.get(2, 2), GREY);
+
+    // The stereo photos of the frame, as Pillow decodes them: the MPO's two
+    // images are the eyes, the JPS has the right eye on its left half.
+    use common::photo::{mean_error, pillow};
+    let (format, n, frames) = pillow(&run.dir.join("oglplane.mpo"));
+    assert_eq!((format.as_str(), n), ("MPO", 2));
+    let errors = [
+        mean_error(&frames[0].2, W, 0, &run.left),
+        mean_error(&frames[1].2, W, 0, &run.right),
+    ];
+    assert!(errors.iter().all(|e| *e < 2.0), "oglplane.mpo: {errors:?}");
+    let (_, _, frames) = pillow(&run.dir.join("oglplane.jps"));
+    let (w, h, rgb) = &frames[0];
+    assert_eq!((*w, *h), (2 * W, H));
+    let errors = [
+        mean_error(rgb, 2 * W, 0, &run.right),
+        mean_error(rgb, 2 * W, W, &run.left),
+    ];
+    assert!(errors.iter().all(|e| *e < 2.0), "oglplane.jps: {errors:?}");
 }
 
 #[test]

@@ -927,6 +927,35 @@ static void surface_cases(void) {
     EXPECT(GLS_ERROR_IO, gls_surface_wait_captures, s);
     CHECK(has("/nonexistent-dir/queued.png"), "%s", gls_last_error_message());
     EXPECT(GLS_OK, gls_surface_wait_captures, s); /* reported once */
+    /* Stereo photos: the same argument rules, a format enum, a quality
+     * range, and a mono surface refused (one image is not a stereo pair). */
+    snprintf(path, sizeof path, "%s/photo.mpo", dir ? dir : "/tmp");
+    EXPECT(GLS_OK, gls_surface_set_jpeg_quality, s, 80);
+    EXPECT(GLS_ERROR_INVALID_VALUE, gls_surface_set_jpeg_quality, s, 0);
+    EXPECT(GLS_ERROR_INVALID_VALUE, gls_surface_set_jpeg_quality, s, 101);
+    CHECK(has("1 (smallest file) to 100"), "%s", gls_last_error_message());
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_set_jpeg_quality, NULL, 90);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_set_jpeg_quality, BOGUS(gls_surface), 90);
+    EXPECT(GLS_OK, gls_surface_save_stereo_photo, s, GLS_PHOTO_MPO, path);
+    CHECK(access(path, F_OK) == 0, "no stereo photo: %s", path);
+    unlink(path);
+    EXPECT(GLS_OK, gls_surface_queue_stereo_photo, s, GLS_PHOTO_JPS, path);
+    EXPECT(GLS_OK, gls_surface_wait_captures, s);
+    CHECK(access(path, F_OK) == 0, "no queued stereo photo: %s", path);
+    unlink(path);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_save_stereo_photo, s, GLS_PHOTO_MPO, NULL);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_save_stereo_photo, NULL, GLS_PHOTO_MPO, path);
+    EXPECT(GLS_ERROR_INVALID_HANDLE, gls_surface_save_stereo_photo, BOGUS(gls_surface), GLS_PHOTO_MPO, path);
+    EXPECT(GLS_ERROR_INVALID_ENUM, gls_surface_save_stereo_photo, s, 2u, path);
+    EXPECT(GLS_ERROR_INVALID_ENUM, gls_surface_queue_stereo_photo, s, 2u, path);
+    EXPECT(GLS_ERROR_NULL_POINTER, gls_surface_queue_stereo_photo, s, GLS_PHOTO_JPS, NULL);
+    EXPECT(GLS_ERROR_INVALID_OPERATION, gls_surface_save_stereo_photo, nodepth, GLS_PHOTO_MPO, path);
+    CHECK(has("mono"), "%s", gls_last_error_message());
+    EXPECT(GLS_ERROR_INVALID_OPERATION, gls_surface_queue_stereo_photo, nodepth, GLS_PHOTO_JPS, path);
+    EXPECT(GLS_ERROR_IO, gls_surface_save_stereo_photo, s, GLS_PHOTO_JPS, "/nonexistent-dir/x.jps");
+    CHECK(has("/nonexistent-dir/x.jps"), "%s", gls_last_error_message());
+    EXPECT(GLS_ERROR_IO, gls_surface_save_stereo_photo, s, GLS_PHOTO_MPO, dir ? dir : "/tmp"); /* a directory */
+    CHECK(access(path, F_OK) != 0, "a refused stereo photo left %s", path);
     if (dir) rmdir(dir);
     CHECK(access(path, F_OK) != 0, "a failed save left %s", path);
 
