@@ -472,7 +472,7 @@ mod tests {
             u16::from_be_bytes([second[ifd2 + 14], second[ifd2 + 15]]),
             0xB101
         );
-        assert_eq!(be32(&second, ifd2 + 14 + 8), 2);
+        assert_eq!(be32(second, ifd2 + 14 + 8), 2);
     }
 
     #[test]

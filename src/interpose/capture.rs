@@ -135,21 +135,19 @@ pub struct Sink {
 }
 
 /// The capture sink, when GLSTEREO_CAPTURE_DIR names a directory (made if
-/// missing; if it cannot be, or GLSTEREO_CAPTURE_FORMAT or
-/// GLSTEREO_JPEG_QUALITY is invalid, stderr says so once and nothing is
-/// captured).
+/// missing; if it cannot be, stderr says so once and nothing is captured).
+/// An invalid GLSTEREO_CAPTURE_FORMAT or GLSTEREO_JPEG_QUALITY is reported
+/// on stderr and the defaults (PNGs) are used.
 pub fn sink() -> Option<&'static Sink> {
     static SINK: OnceLock<Option<Sink>> = OnceLock::new();
     SINK.get_or_init(|| {
         let dir = std::env::var_os(ENV_CAPTURE_DIR).filter(|d| !d.is_empty())?;
         let dir = PathBuf::from(dir);
-        let settings = match CaptureSettings::from_env() {
-            Ok(s) => s,
-            Err(e) => {
-                super::warn(&format!("{e}; frames are not captured"));
-                return None;
-            }
-        };
+        // A bad value gets the defaults, as the layer's other settings do.
+        let settings = CaptureSettings::from_env().unwrap_or_else(|e| {
+            super::warn(&format!("{e}; capturing PNGs (the default)"));
+            CaptureSettings::default()
+        });
         if let Err(e) = std::fs::create_dir_all(&dir) {
             super::warn(&format!(
                 "{ENV_CAPTURE_DIR}={}: cannot create the directory ({e}); frames are not captured",

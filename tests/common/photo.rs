@@ -25,9 +25,12 @@ pub fn mean_error(got: &[u8], width: u32, x0: u32, want: &Image) -> f64 {
     sum as f64 / f64::from(want.width() * want.height() * 3)
 }
 
+/// One decoded frame: width, height, RGB bytes.
+pub type Frame = (u32, u32, Vec<u8>);
+
 /// Pillow's view of a file: format, frame count, and each frame's size and
 /// RGB pixels (written to `<file>.frameN.rgb`).
-pub fn pillow(file: &Path) -> (String, usize, Vec<(u32, u32, Vec<u8>)>) {
+pub fn pillow(file: &Path) -> (String, usize, Vec<Frame>) {
     let script = r#"
 import sys
 from PIL import Image
