@@ -182,6 +182,35 @@ fn swapped_eyes_and_quality_reach_the_photo() {
 }
 
 #[test]
+fn a_mono_surface_whose_framing_holds_two_eyes_makes_a_stereo_photo() {
+    // Xinerama passive stereo: one double-width mono frame, an eye per half.
+    let dir = common::scratch("stereo-photos-framing");
+    let s = mono_surface(BackendKind::Egl, 2 * W, H);
+    s.set_framing(glstereo::framing::InputFraming::SideBySide)
+        .unwrap();
+    let (left, right) = eyes();
+    let frame = Image::from_fn(2 * W, H, |x, y| {
+        if x < W {
+            left.get(x, y)
+        } else {
+            right.get(x - W, y)
+        }
+    });
+    show_mono(&s, &frame);
+    s.save_stereo_photo(StereoPhotoFormat::Mpo, &dir.join("xinerama.mpo"))
+        .unwrap();
+    let (format, n, frames) = pillow(&dir.join("xinerama.mpo"));
+    assert_eq!((format.as_str(), n), ("MPO", 2));
+    assert_eq!((frames[0].0, frames[0].1), (W, H), "each image is one eye");
+    let errors = [
+        mean_error(&frames[0].2, W, 0, &left),
+        mean_error(&frames[1].2, W, 0, &right),
+    ];
+    assert!(errors.iter().all(|e| *e < 2.5), "{errors:?}");
+    surface::make_current(None).unwrap();
+}
+
+#[test]
 fn bad_input_gets_its_documented_error_and_leaves_no_file() {
     let dir = common::scratch("stereo-photos-errors");
     // A mono surface: one image is not a stereo photo.

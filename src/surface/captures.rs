@@ -143,8 +143,15 @@ impl Surface {
                  (gls_surface_set_input), or save a PNG instead",
             ));
         }
-        self.capture_into(CaptureImage::Left, left)?;
-        self.capture_into(CaptureImage::Right, right)?;
+        let whole = |s: &crate::framing::EyeSource| (s.x, s.y, s.width, s.height) == (0, 0, w, h);
+        if whole(&ls) && whole(&rs) {
+            // One read-back per eye, into the recycled buffers.
+            self.capture_into(CaptureImage::Left, left)?;
+            self.capture_into(CaptureImage::Right, right)?;
+        } else {
+            // Eyes taken apart from one frame: read it once for both.
+            (*left, *right) = self.eye_images()?;
+        }
         if swap {
             std::mem::swap(left, right);
         }
