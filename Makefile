@@ -124,11 +124,13 @@ uninstall:
 # Benchmarks (release build; see BENCHMARKS.md): the frame loop, mono vs
 # stereo on EGL, OSMesa and GLX (a private Xvfb), light and heavy scenes;
 # the same with both eyes captured to PNG every frame; then every output
-# mode's CPU and GL composition against a memcpy (criterion).
+# mode's CPU and GL composition against a memcpy (criterion); stereo photo
+# encoding against PNG.
 bench:
 	$(CARGO) bench --bench frame_loop
 	$(CARGO) bench --bench frame_loop -- --scene light --capture --no-control
 	$(CARGO) bench --bench compose
+	$(CARGO) bench --bench stereo_photo
 	$(CARGO) build --release -p glstereo-preload
 	sh benches/glx_frame_loop.sh
 	sh benches/glx_shader_outputs.sh

@@ -70,7 +70,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use jpeg_encoder::{ColorType, Encoder, ImageBuffer, JpegColorType, rgb_to_ycbcr};
+use jpeg_encoder::{ColorType, Encoder};
 
 use crate::error::{Error, Result};
 use crate::image::Image;
@@ -170,21 +170,37 @@ fn side(v: u32, what: &str) -> Result<u16> {
     })
 }
 
-/// One eye as a baseline JPEG with `app` segments after APP0.
-fn jpeg(image: &Image, quality: u8, app: &[(u8, &[u8])]) -> Result<Vec<u8>> {
+/// RGBA pixels (`width` × `height`, rows top first) as a baseline JPEG
+/// with `app` segments after APP0.
+fn jpeg(
+    pixels: &[u8],
+    (width, height): (u32, u32),
+    quality: u8,
+    app: &[(u8, &[u8])],
+) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
     let mut enc = Encoder::new(&mut bytes, quality);
     for (n, data) in app {
         enc.add_app_segment(*n, data).map_err(jpeg_error)?;
     }
     enc.encode(
-        image.pixels(),
-        side(image.width(), "width")?,
-        side(image.height(), "height")?,
+        pixels,
+        side(width, "width")?,
+        side(height, "height")?,
         ColorType::Rgba,
     )
     .map_err(jpeg_error)?;
     Ok(bytes)
+}
+
+/// One eye as a baseline JPEG.
+fn eye_jpeg(image: &Image, quality: u8) -> Result<Vec<u8>> {
+    jpeg(
+        image.pixels(),
+        (image.width(), image.height()),
+        quality,
+        &[],
+    )
 }
 
 /// TIFF field types used by the MP Extension.
@@ -340,8 +356,8 @@ fn app2_position(jpeg: &[u8]) -> usize {
 }
 
 fn mpo(left: &Image, right: &Image, quality: u8) -> Result<Vec<u8>> {
-    let first = jpeg(left, quality, &[])?;
-    let second = jpeg(right, quality, &[])?;
+    let first = eye_jpeg(left, quality)?;
+    let second = eye_jpeg(right, quality)?;
     // The segments' lengths do not depend on the sizes and offsets they
     // hold, so one trial build gives them.
     let first_seg_len = mpf_segment(&first_extension([0, 0], 0)).len();
@@ -371,54 +387,17 @@ const JPS_DESCRIPTOR: [u8; 14] = [
     b'_', b'J', b'P', b'S', b'J', b'P', b'S', b'_', 0x00, 0x04, 0x00, 0x00, 0x02, 0x01,
 ];
 
-/// Two images side by side as one, for the encoder: `first` on the left.
-struct Beside<'a> {
-    first: &'a Image,
-    second: &'a Image,
-    width: u16,
-    height: u16,
-}
-
-impl ImageBuffer for Beside<'_> {
-    fn get_jpeg_color_type(&self) -> JpegColorType {
-        JpegColorType::Ycbcr
-    }
-
-    fn width(&self) -> u16 {
-        self.width
-    }
-
-    fn height(&self) -> u16 {
-        self.height
-    }
-
-    fn fill_buffers(&self, y: u16, buffers: &mut [Vec<u8>; 4]) {
-        let y = u32::from(y);
-        for img in [self.first, self.second] {
-            for p in img.row(y).chunks_exact(4) {
-                let (l, cb, cr) = rgb_to_ycbcr(p[0], p[1], p[2]);
-                buffers[0].push(l);
-                buffers[1].push(cb);
-                buffers[2].push(cr);
-            }
-        }
-    }
-}
-
 fn jps(left: &Image, right: &Image, quality: u8) -> Result<Vec<u8>> {
-    let pair = Beside {
-        // Cross-eyed order: the right eye on the left half.
-        first: right,
-        second: left,
-        width: side(left.width() * 2, "width")?,
-        height: side(left.height(), "height")?,
-    };
-    let mut bytes = Vec::new();
-    let mut enc = Encoder::new(&mut bytes, quality);
-    enc.add_app_segment(3, &JPS_DESCRIPTOR)
-        .map_err(jpeg_error)?;
-    enc.encode_image(pair).map_err(jpeg_error)?;
-    Ok(bytes)
+    let (w, h) = (left.width(), left.height());
+    // Cross-eyed order: the right eye on the left half, copied row by row
+    // into one 2W×H buffer for the encoder's RGBA path.
+    let row = w as usize * 4;
+    let mut pair = crate::image::try_vec(row * 2 * h as usize, 0u8, "a JPS frame")?;
+    for (y, out) in pair.chunks_exact_mut(row * 2).enumerate() {
+        out[..row].copy_from_slice(right.row(y as u32));
+        out[row..].copy_from_slice(left.row(y as u32));
+    }
+    jpeg(&pair, (w * 2, h), quality, &[(3, &JPS_DESCRIPTOR)])
 }
 
 #[cfg(test)]
