@@ -457,48 +457,63 @@ fn capture_format_writes_stereo_photos_of_every_frame_beside_the_pngs() {
     let x = Xvfb::start(640, 480);
     let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
     let size = [W.to_string(), H.to_string()];
-    let (_, dir, _) = run_under_layer(
-        &x,
-        (&exe, &size),
-        Window::Printed,
-        ("rows", &["--capture-format", "png,mpo,jps", "-q", "95"]),
-        "capture_photos",
-    );
-    let mut frames: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| {
-            let name = e.unwrap().file_name().to_string_lossy().into_owned();
-            Some(name.strip_prefix("left-")?.strip_suffix(".png")?.to_owned())
-        })
-        .collect();
-    frames.sort();
-    assert!(!frames.is_empty(), "no frame captured in {}", dir.display());
-    for n in &frames {
-        let left = common::png(&dir.join(format!("left-{n}.png")));
-        let right = common::png(&dir.join(format!("right-{n}.png")));
-        let (format, count, images) = pillow(&dir.join(format!("stereo-{n}.mpo")));
-        assert_eq!((format.as_str(), count), ("MPO", 2), "stereo-{n}.mpo");
-        let errors = [
-            mean_error(&images[0].2, W, 0, &left),
-            mean_error(&images[1].2, W, 0, &right),
-        ];
-        assert!(
-            errors.iter().all(|e| *e < 3.0),
-            "stereo-{n}.mpo vs the PNG eyes: {errors:?}"
+    // Without and with --swap-eyes: the PNG eyes are the buffers as drawn,
+    // the stereo photos hold the eyes as a viewer sees them.
+    for swap in [false, true] {
+        let mut flags = vec!["--capture-format", "png,mpo,jps", "-q", "95"];
+        if swap {
+            flags.push("--swap-eyes");
+        }
+        let (_, dir, _) = run_under_layer(
+            &x,
+            (&exe, &size),
+            Window::Printed,
+            ("rows", &flags),
+            &format!("capture_photos_swap_{swap}"),
         );
-        let (_, _, jps) = pillow(&dir.join(format!("stereo-{n}.jps")));
-        let (w, h, rgb) = &jps[0];
-        assert_eq!((*w, *h), (2 * W, H));
-        let errors = [
-            mean_error(rgb, 2 * W, 0, &right),
-            mean_error(rgb, 2 * W, W, &left),
-        ];
-        assert!(
-            errors.iter().all(|e| *e < 3.0),
-            "stereo-{n}.jps (right eye on the left) vs the PNG eyes: {errors:?}"
-        );
-        // The RedBlue eyes differ: swapped halves would not match.
-        assert!(mean_error(rgb, 2 * W, 0, &left) > 10.0, "stereo-{n}.jps");
+        let mut frames: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| {
+                let name = e.unwrap().file_name().to_string_lossy().into_owned();
+                Some(name.strip_prefix("left-")?.strip_suffix(".png")?.to_owned())
+            })
+            .collect();
+        frames.sort();
+        assert!(!frames.is_empty(), "no frame captured in {}", dir.display());
+        for n in &frames {
+            let drawn_left = common::png(&dir.join(format!("left-{n}.png")));
+            let drawn_right = common::png(&dir.join(format!("right-{n}.png")));
+            let (left, right) = if swap {
+                (drawn_right, drawn_left)
+            } else {
+                (drawn_left, drawn_right)
+            };
+            let what = format!("stereo-{n}, swap {swap}");
+            let (format, count, images) = pillow(&dir.join(format!("stereo-{n}.mpo")));
+            assert_eq!((format.as_str(), count), ("MPO", 2), "{what}.mpo");
+            let errors = [
+                mean_error(&images[0].2, W, 0, &left),
+                mean_error(&images[1].2, W, 0, &right),
+            ];
+            assert!(
+                errors.iter().all(|e| *e < 3.0),
+                "{what}.mpo vs the eyes: {errors:?}"
+            );
+            let (_, _, jps) = pillow(&dir.join(format!("stereo-{n}.jps")));
+            let (w, h, rgb) = &jps[0];
+            assert_eq!((*w, *h), (2 * W, H));
+            let errors = [
+                mean_error(rgb, 2 * W, 0, &right),
+                mean_error(rgb, 2 * W, W, &left),
+            ];
+            assert!(
+                errors.iter().all(|e| *e < 3.0),
+                "{what}.jps (right eye on the left) vs the eyes: {errors:?}"
+            );
+            // The RedBlue eyes differ: swapped halves would not match.
+            assert!(mean_error(rgb, 2 * W, 0, &left) > 10.0, "{what}.jps");
+            assert!(mean_error(&images[0].2, W, 0, &right) > 10.0, "{what}.mpo");
+        }
     }
 }
 
