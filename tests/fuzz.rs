@@ -11,7 +11,8 @@
 //!   and aliases accepted exactly, case and spaces ignored, name → mode →
 //!   name round-trips.
 //! - `env`: GLSTEREO_MODE / _SWAP_EYES / _CROSSTALK / _SATURATION
-//!   (`options.rs`), GLSTEREO_BACKEND and GLSTEREO_EMULATION — accepted
+//!   (`options.rs`), GLSTEREO_BACKEND, GLSTEREO_EMULATION,
+//!   GLSTEREO_CAPTURE_FORMAT and GLSTEREO_JPEG_QUALITY — accepted
 //!   exactly when each value is valid, every bad variable named, settings
 //!   round-trip.
 //! - `math`: every projection entry point (`src/math` through `src/ffi/math.rs`)
@@ -35,6 +36,7 @@ use std::ffi::{CStr, CString, c_char};
 use std::time::{Duration, Instant};
 
 use glstereo::backend::{BackendChoice, BackendKind};
+use glstereo::capture::stereo_photo::StereoPhotoFormat;
 use glstereo::config::{ConfigRequest, EmulationPolicy, glx::*};
 use glstereo::ffi::analysis::{gls_parallax_report, gls_parallax_report_describe};
 use glstereo::ffi::core::gls_last_error_message;
@@ -42,6 +44,7 @@ use glstereo::ffi::display::*;
 use glstereo::ffi::math::*;
 use glstereo::ffi::output::{GLS_OUTPUT_COUNT, gls_output_from_name, gls_output_name};
 use glstereo::ffi::types::*;
+use glstereo::interpose::capture::{CaptureSettings, ENV_CAPTURE_FORMAT, ENV_JPEG_QUALITY};
 use glstereo::output::mode::{ALIASES, OutputMode};
 use glstereo::output::options::{
     ENV_CROSSTALK, ENV_MODE, ENV_SATURATION, ENV_SWAP_EYES, OutputSettings,
@@ -573,6 +576,8 @@ const ENV_KEYS: &[&str] = &[
     "SATURATION",
     "BACKEND",
     "EMULATION",
+    "FORMAT",
+    "QUALITY",
 ];
 
 fn gen_env(rng: &mut Rng, corpus: &[String]) -> String {
@@ -583,8 +588,39 @@ fn gen_env(rng: &mut Rng, corpus: &[String]) -> String {
     };
     let mut words = mode_words();
     words.extend([
-        "0", "1", "true", "false", "yes", "no", "on", "off", "force", "auto", "glx", "egl",
-        "osmesa", "0.25", "1.0", "0.0001", "1e-3", "-0", "1.5", "NaN", "inf", "",
+        "0",
+        "1",
+        "true",
+        "false",
+        "yes",
+        "no",
+        "on",
+        "off",
+        "force",
+        "auto",
+        "glx",
+        "egl",
+        "osmesa",
+        "0.25",
+        "1.0",
+        "0.0001",
+        "1e-3",
+        "-0",
+        "1.5",
+        "NaN",
+        "inf",
+        "",
+        "png",
+        "jps",
+        "mpo",
+        "png,mpo",
+        " MPO , jps",
+        "jpg",
+        "png,",
+        "90",
+        "100",
+        "101",
+        "+7",
     ]);
     for _ in 0..rng.below(4) + 1 {
         let key = rng.pick(ENV_KEYS).to_string();
@@ -712,6 +748,47 @@ fn check_env(line: &str) -> Result<(), String> {
             (Ok(got), Some(w)) if got == w => {}
             (Err(e), None) if e.to_string().contains("GLSTEREO_EMULATION") => {}
             (got, w) => return Err(format!("GLSTEREO_EMULATION={v:?}: {got:?}, wanted {w:?}")),
+        }
+    }
+    // GLSTEREO_CAPTURE_FORMAT / GLSTEREO_JPEG_QUALITY (glstereo-run's
+    // --capture-format, --jpeg-quality): a list of png/jps/mpo; 1…100.
+    let capture_env = |name: &str| match name {
+        n if n == ENV_CAPTURE_FORMAT => var("FORMAT"),
+        n if n == ENV_JPEG_QUALITY => var("QUALITY"),
+        _ => None,
+    };
+    let format_ok = set("FORMAT").is_none_or(|v| {
+        v.split(',')
+            .all(|f| ["png", "jps", "mpo"].contains(&f.trim().to_ascii_lowercase().as_str()))
+    });
+    let quality_ok =
+        set("QUALITY").is_none_or(|v| v.parse::<u32>().is_ok_and(|q| (1..=100).contains(&q)));
+    match CaptureSettings::from_env_with(capture_env) {
+        Ok(c) => {
+            if !(format_ok && quality_ok) {
+                return Err(format!("capture settings {c:?} accepted from bad values"));
+            }
+            let named = |f: &str| {
+                set("FORMAT")
+                    .is_some_and(|v| v.split(',').any(|x| x.trim().eq_ignore_ascii_case(f)))
+            };
+            let png = set("FORMAT").is_none() || named("png");
+            let mpo = c.photos.contains(&StereoPhotoFormat::Mpo);
+            let jps = c.photos.contains(&StereoPhotoFormat::Jps);
+            if (c.png, mpo, jps) != (png, named("mpo"), named("jps")) {
+                return Err(format!("capture settings {c:?} for {line}"));
+            }
+            if !(1..=100).contains(&c.jpeg_quality) {
+                return Err(format!("JPEG quality {}", c.jpeg_quality));
+            }
+        }
+        Err(e) => {
+            let msg = e.to_string();
+            let names_it = (!format_ok && msg.contains(ENV_CAPTURE_FORMAT))
+                || (!quality_ok && msg.contains(ENV_JPEG_QUALITY));
+            if e.code() != GLS_ERROR_INVALID_VALUE || !names_it {
+                return Err(format!("capture settings refused with {msg:?}"));
+            }
         }
     }
     Ok(())
