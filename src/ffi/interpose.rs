@@ -741,7 +741,7 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
 pub unsafe extern "C" fn gls_gl_clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32) {
     ffi_boundary!("gls_gl_clear_bufferfv" for "glClearBufferfv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { idsa::clear_bufferfv(buffer, drawbuffer, value) }
+        unsafe { idsa::clear_buffer(buffer, drawbuffer, value) }
     })
 }
 
@@ -750,7 +750,7 @@ pub unsafe extern "C" fn gls_gl_clear_bufferfv(buffer: u32, drawbuffer: i32, val
 pub unsafe extern "C" fn gls_gl_clear_bufferiv(buffer: u32, drawbuffer: i32, value: *const i32) {
     ffi_boundary!("gls_gl_clear_bufferiv" for "glClearBufferiv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { idsa::clear_bufferiv(buffer, drawbuffer, value) }
+        unsafe { idsa::clear_buffer(buffer, drawbuffer, value) }
     })
 }
 
@@ -759,7 +759,7 @@ pub unsafe extern "C" fn gls_gl_clear_bufferiv(buffer: u32, drawbuffer: i32, val
 pub unsafe extern "C" fn gls_gl_clear_bufferuiv(buffer: u32, drawbuffer: i32, value: *const u32) {
     ffi_boundary!("gls_gl_clear_bufferuiv" for "glClearBufferuiv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { idsa::clear_bufferuiv(buffer, drawbuffer, value) }
+        unsafe { idsa::clear_buffer(buffer, drawbuffer, value) }
     })
 }
 
@@ -775,7 +775,7 @@ pub unsafe extern "C" fn gls_gl_clear_named_framebufferfv(
 ) {
     ffi_boundary!("gls_gl_clear_named_framebufferfv" for "glClearNamedFramebufferfv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { idsa::clear_named_framebufferfv(framebuffer, buffer, drawbuffer, value) }
+        unsafe { idsa::clear_named_framebuffer(framebuffer, buffer, drawbuffer, value) }
     })
 }
 
@@ -789,7 +789,7 @@ pub unsafe extern "C" fn gls_gl_clear_named_framebufferiv(
 ) {
     ffi_boundary!("gls_gl_clear_named_framebufferiv" for "glClearNamedFramebufferiv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { idsa::clear_named_framebufferiv(framebuffer, buffer, drawbuffer, value) }
+        unsafe { idsa::clear_named_framebuffer(framebuffer, buffer, drawbuffer, value) }
     })
 }
 
@@ -803,7 +803,7 @@ pub unsafe extern "C" fn gls_gl_clear_named_framebufferuiv(
 ) {
     ffi_boundary!("gls_gl_clear_named_framebufferuiv" for "glClearNamedFramebufferuiv", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { idsa::clear_named_framebufferuiv(framebuffer, buffer, drawbuffer, value) }
+        unsafe { idsa::clear_named_framebuffer(framebuffer, buffer, drawbuffer, value) }
     })
 }
 

@@ -143,38 +143,76 @@ fn with_fb0<T>(
     Some(v)
 }
 
-/// Runs a selection change on framebuffer 0's emulated buffers, queueing
-/// its GL error; false when framebuffer 0 is not emulated.
-fn select_fb0(
-    r: &Real,
+/// glNamedFramebuffer{DrawBuffer,DrawBuffers,ReadBuffer} on `framebuffer`:
+/// on 0, when it is emulated, `select` changes the emulated selection (the
+/// read drawable's when `read`), its GL error queued; otherwise `forward`
+/// calls the driver.
+fn select_named(
+    framebuffer: u32,
     read: bool,
-    f: impl FnOnce(&mut EmulatedFramebuffer) -> crate::Result<()>,
-) -> bool {
-    let _ = r;
-    let Some(cur) = current() else {
-        return false;
-    };
-    with_fb0(&cur, read, |fb, errors| {
-        if let Err(e) = f(fb) {
-            errors.push(gl_error_code(&e));
+    select: impl FnOnce(&mut EmulatedFramebuffer) -> crate::Result<()>,
+    forward: impl FnOnce(),
+) {
+    let emulated = framebuffer == 0
+        && current().is_some_and(|cur| {
+            with_fb0(&cur, read, |fb, errors| {
+                if let Err(e) = select(fb) {
+                    errors.push(gl_error_code(&e));
+                }
+            })
+            .is_some()
+        });
+    if !emulated {
+        forward();
+    }
+}
+
+/// The value types of glClearBuffer{fv,iv,uiv} and
+/// glClearNamedFramebuffer{fv,iv,uiv} (f32, i32, u32): each names its
+/// real functions.
+pub trait ClearValue: Sized {
+    /// glClearBuffer's name for this type ("glClearBufferfv" …).
+    const CLEAR: &'static str;
+    /// glClearNamedFramebuffer's name for this type.
+    const CLEAR_NAMED: &'static str;
+    /// The real glClearBuffer for this type.
+    fn clear(f: &Fns) -> Option<ClearFn<Self>>;
+    /// The real glClearNamedFramebuffer for this type.
+    fn clear_named(f: &Fns) -> Option<ClearNamedFn<Self>>;
+}
+
+macro_rules! clear_value {
+    ($( $t:ty: $clear:ident, $named:ident, $suffix:literal; )*) => {$(
+        impl ClearValue for $t {
+            const CLEAR: &'static str = concat!("glClearBuffer", $suffix);
+            const CLEAR_NAMED: &'static str = concat!("glClearNamedFramebuffer", $suffix);
+            fn clear(f: &Fns) -> Option<ClearFn<Self>> {
+                f.$clear
+            }
+            fn clear_named(f: &Fns) -> Option<ClearNamedFn<Self>> {
+                f.$named
+            }
         }
-    })
-    .is_some()
+    )*};
+}
+
+clear_value! {
+    f32: clear_fv, clear_named_fv, "fv";
+    i32: clear_iv, clear_named_iv, "iv";
+    u32: clear_uiv, clear_named_uiv, "uiv";
 }
 
 /// glClearBuffer{fv,iv,uiv}. Refused: `value` NULL (`refuse_null`).
 ///
 /// # Safety
 /// `value` must hold the values GL reads for `buffer` (GL's contract).
-unsafe fn clear_buffer<T>(
-    real: Option<ClearFn<T>>,
-    name: &str,
+pub unsafe fn clear_buffer<T: ClearValue>(
     buffer: u32,
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
     let r = loaded()?;
-    let real = need(real, name)?;
+    let real = need(T::clear(fns()), T::CLEAR)?;
     if value.is_null() {
         return Err(refuse_null(r, "value"));
     }
@@ -199,41 +237,6 @@ unsafe fn clear_buffer<T>(
     Ok(())
 }
 
-/// glClearBufferfv.
-///
-/// # Safety
-/// `value` must hold the values GL reads for `buffer` (GL's contract).
-pub unsafe fn clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe { clear_buffer(fns().clear_fv, "glClearBufferfv", buffer, drawbuffer, value) }
-}
-
-/// glClearBufferiv.
-///
-/// # Safety
-/// `value` must hold the values GL reads for `buffer` (GL's contract).
-pub unsafe fn clear_bufferiv(buffer: u32, drawbuffer: i32, value: *const i32) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe { clear_buffer(fns().clear_iv, "glClearBufferiv", buffer, drawbuffer, value) }
-}
-
-/// glClearBufferuiv.
-///
-/// # Safety
-/// `value` must hold the values GL reads for `buffer` (GL's contract).
-pub unsafe fn clear_bufferuiv(buffer: u32, drawbuffer: i32, value: *const u32) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe {
-        clear_buffer(
-            fns().clear_uiv,
-            "glClearBufferuiv",
-            buffer,
-            drawbuffer,
-            value,
-        )
-    }
-}
-
 /// Framebuffer 0's object and the slots of `drawbuffer` (for GL_COLOR),
 /// when framebuffer 0 is emulated.
 fn fb0_slots(buffer: u32, drawbuffer: i32) -> Option<(u32, DrawSlots)> {
@@ -252,16 +255,14 @@ fn fb0_slots(buffer: u32, drawbuffer: i32) -> Option<(u32, DrawSlots)> {
 ///
 /// # Safety
 /// `value` must hold the values GL reads for `buffer` (GL's contract).
-unsafe fn clear_named<T>(
-    real: Option<ClearNamedFn<T>>,
-    name: &str,
+pub unsafe fn clear_named_framebuffer<T: ClearValue>(
     framebuffer: u32,
     buffer: u32,
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
     let r = loaded()?;
-    let real = need(real, name)?;
+    let real = need(T::clear_named(fns()), T::CLEAR_NAMED)?;
     if value.is_null() {
         return Err(refuse_null(r, "value"));
     }
@@ -277,75 +278,6 @@ unsafe fn clear_named<T>(
     // SAFETY: forwarded call.
     unsafe { real(framebuffer, buffer, drawbuffer, value) };
     Ok(())
-}
-
-/// glClearNamedFramebufferfv.
-///
-/// # Safety
-/// `value` must hold the values GL reads for `buffer` (GL's contract).
-pub unsafe fn clear_named_framebufferfv(
-    framebuffer: u32,
-    buffer: u32,
-    drawbuffer: i32,
-    value: *const f32,
-) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe {
-        clear_named(
-            fns().clear_named_fv,
-            "glClearNamedFramebufferfv",
-            framebuffer,
-            buffer,
-            drawbuffer,
-            value,
-        )
-    }
-}
-
-/// glClearNamedFramebufferiv.
-///
-/// # Safety
-/// `value` must hold the values GL reads for `buffer` (GL's contract).
-pub unsafe fn clear_named_framebufferiv(
-    framebuffer: u32,
-    buffer: u32,
-    drawbuffer: i32,
-    value: *const i32,
-) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe {
-        clear_named(
-            fns().clear_named_iv,
-            "glClearNamedFramebufferiv",
-            framebuffer,
-            buffer,
-            drawbuffer,
-            value,
-        )
-    }
-}
-
-/// glClearNamedFramebufferuiv.
-///
-/// # Safety
-/// `value` must hold the values GL reads for `buffer` (GL's contract).
-pub unsafe fn clear_named_framebufferuiv(
-    framebuffer: u32,
-    buffer: u32,
-    drawbuffer: i32,
-    value: *const u32,
-) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe {
-        clear_named(
-            fns().clear_named_uiv,
-            "glClearNamedFramebufferuiv",
-            framebuffer,
-            buffer,
-            drawbuffer,
-            value,
-        )
-    }
 }
 
 /// glClearNamedFramebufferfi: framebuffer 0's depth/stencil buffer is the
@@ -375,16 +307,14 @@ pub fn clear_named_framebufferfi(
 pub fn named_framebuffer_draw_buffer(framebuffer: u32, buf: u32) -> Result<()> {
     let r = loaded()?;
     let real = need(fns().named_draw_buffer, "glNamedFramebufferDrawBuffer")?;
-    if framebuffer == 0
-        && select_fb0(r, false, |fb| {
-            // SAFETY: the program's context is current.
-            unsafe { fb.set_draw_buffer(&r.gl, buf) }
-        })
-    {
-        return Ok(());
-    }
-    // SAFETY: forwarded call.
-    unsafe { real(framebuffer, buf) };
+    select_named(
+        framebuffer,
+        false,
+        // SAFETY: the program's context is current.
+        |fb| unsafe { fb.set_draw_buffer(&r.gl, buf) },
+        // SAFETY: forwarded call.
+        || unsafe { real(framebuffer, buf) },
+    );
     Ok(())
 }
 
@@ -402,8 +332,10 @@ pub unsafe fn named_framebuffer_draw_buffers(
     if missing(n, bufs) {
         return Err(refuse_null(r, "bufs"));
     }
-    if framebuffer == 0
-        && select_fb0(r, false, |fb| {
+    select_named(
+        framebuffer,
+        false,
+        |fb| {
             if n < 0 {
                 return Err(Error::invalid_value(
                     "glNamedFramebufferDrawBuffers: n is negative (GL_INVALID_VALUE)",
@@ -417,12 +349,10 @@ pub unsafe fn named_framebuffer_draw_buffers(
             };
             // SAFETY: the program's context is current.
             unsafe { fb.set_draw_buffers(&r.gl, names) }
-        })
-    {
-        return Ok(());
-    }
-    // SAFETY: forwarded call.
-    unsafe { real(framebuffer, n, bufs) };
+        },
+        // SAFETY: forwarded call.
+        || unsafe { real(framebuffer, n, bufs) },
+    );
     Ok(())
 }
 
@@ -430,16 +360,14 @@ pub unsafe fn named_framebuffer_draw_buffers(
 pub fn named_framebuffer_read_buffer(framebuffer: u32, src: u32) -> Result<()> {
     let r = loaded()?;
     let real = need(fns().named_read_buffer, "glNamedFramebufferReadBuffer")?;
-    if framebuffer == 0
-        && select_fb0(r, true, |fb| {
-            // SAFETY: the program's context is current.
-            unsafe { fb.set_read_buffer(&r.gl, src) }
-        })
-    {
-        return Ok(());
-    }
-    // SAFETY: forwarded call.
-    unsafe { real(framebuffer, src) };
+    select_named(
+        framebuffer,
+        true,
+        // SAFETY: the program's context is current.
+        |fb| unsafe { fb.set_read_buffer(&r.gl, src) },
+        // SAFETY: forwarded call.
+        || unsafe { real(framebuffer, src) },
+    );
     Ok(())
 }
 
@@ -487,6 +415,22 @@ fn emulated_at(r: &Real, cur: &Current, target: u32) -> bool {
     bound(&r.gl, &mut st.fbs, drawable, binding).is_some()
 }
 
+/// Runs `call`, a forwarded call on `target`, on the window's framebuffer
+/// when the emulated one is bound at `target` (then returning the current
+/// context), else as it is.
+fn on_window_at(r: &Real, target: u32, call: impl FnOnce()) -> Option<Current> {
+    match current() {
+        Some(cur) if emulated_at(r, &cur, target) => {
+            with_window_framebuffer(&r.gl, call);
+            Some(cur)
+        }
+        _ => {
+            call();
+            None
+        }
+    }
+}
+
 /// glInvalidateFramebuffer: with framebuffer 0 bound at `target`, validated
 /// by the window's framebuffer (the driver's errors for a default
 /// framebuffer); the emulated buffers keep their contents (a hint GL lets
@@ -500,14 +444,8 @@ pub unsafe fn invalidate_framebuffer(target: u32, n: i32, attachments: *const u3
     if missing(n, attachments) {
         return Err(refuse_null(r, "attachments"));
     }
-    match current() {
-        Some(cur) if emulated_at(r, &cur, target) => {
-            // SAFETY: forwarded call, on the window's framebuffer.
-            with_window_framebuffer(&r.gl, || unsafe { real(target, n, attachments) })
-        }
-        // SAFETY: forwarded call.
-        _ => unsafe { real(target, n, attachments) },
-    }
+    // SAFETY: forwarded call.
+    on_window_at(r, target, || unsafe { real(target, n, attachments) });
     Ok(())
 }
 
@@ -527,16 +465,10 @@ pub unsafe fn invalidate_sub_framebuffer(
         return Err(refuse_null(r, "attachments"));
     }
     let [x, y, w, h] = rect;
-    match current() {
-        Some(cur) if emulated_at(r, &cur, target) => {
-            // SAFETY: forwarded call, on the window's framebuffer.
-            with_window_framebuffer(&r.gl, || unsafe {
-                real(target, n, attachments, x, y, w, h)
-            })
-        }
-        // SAFETY: forwarded call.
-        _ => unsafe { real(target, n, attachments, x, y, w, h) },
-    }
+    // SAFETY: forwarded call.
+    on_window_at(r, target, || unsafe {
+        real(target, n, attachments, x, y, w, h)
+    });
     Ok(())
 }
 
@@ -633,14 +565,9 @@ pub unsafe fn get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut 
     if params.is_null() {
         return Err(refuse_null(r, "params"));
     }
-    match current() {
-        Some(cur) if emulated_at(r, &cur, target) => {
-            // SAFETY: forwarded call, on the window's framebuffer.
-            with_window_framebuffer(&r.gl, || unsafe { real(target, pname, params) });
-            stereo_parameter(&cur, pname, params);
-        }
-        // SAFETY: forwarded call.
-        _ => unsafe { real(target, pname, params) },
+    // SAFETY: forwarded call.
+    if let Some(cur) = on_window_at(r, target, || unsafe { real(target, pname, params) }) {
+        stereo_parameter(&cur, pname, params);
     }
     Ok(())
 }
