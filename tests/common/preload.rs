@@ -229,10 +229,10 @@ impl Screen {
         }
     }
 
-    /// The top-level window whose WM_NAME is `name`.
-    pub fn find_window(&self, name: &str) -> Option<u64> {
+    /// The top-level windows (the root window's children, bottom to top).
+    fn top_level(&self) -> Vec<u64> {
         let x = &self.xlib;
-        // SAFETY: valid display; the lists are freed with XFree.
+        // SAFETY: valid display; the list is freed with XFree.
         unsafe {
             let root = (x.XDefaultRootWindow)(self.display);
             let (mut r, mut parent) = (0, 0);
@@ -246,64 +246,51 @@ impl Screen {
                 &mut children,
                 &mut n,
             );
-            let mut found = None;
-            for i in 0..n as usize {
-                let w = *children.add(i);
-                let mut title: *mut std::ffi::c_char = std::ptr::null_mut();
-                if (x.XFetchName)(self.display, w, &mut title) != 0 && !title.is_null() {
-                    if std::ffi::CStr::from_ptr(title).to_string_lossy() == name {
-                        found = Some(w);
-                    }
-                    (x.XFree)(title.cast());
-                }
-            }
+            let windows = (0..n as usize).map(|i| *children.add(i)).collect();
             if !children.is_null() {
                 (x.XFree)(children.cast());
             }
-            found
+            windows
         }
     }
-}
 
-impl Screen {
+    /// The top-level window whose WM_NAME is `name`.
+    pub fn find_window(&self, name: &str) -> Option<u64> {
+        let x = &self.xlib;
+        self.top_level().into_iter().rfind(|&w| {
+            // SAFETY: valid display and window; the name is freed with XFree.
+            unsafe {
+                let mut title: *mut std::ffi::c_char = std::ptr::null_mut();
+                let mut named = false;
+                if (x.XFetchName)(self.display, w, &mut title) != 0 && !title.is_null() {
+                    named = std::ffi::CStr::from_ptr(title).to_string_lossy() == name;
+                    (x.XFree)(title.cast());
+                }
+                named
+            }
+        })
+    }
+
     /// The top-level windows whose WM_CLASS class is `class` (e.g.
     /// OpenSceneGraph's unnamed "osgViewer" windows).
     pub fn find_class(&self, class: &str) -> Option<u64> {
         let x = &self.xlib;
-        // SAFETY: valid display; the lists and strings are freed with XFree.
-        unsafe {
-            let root = (x.XDefaultRootWindow)(self.display);
-            let (mut r, mut parent) = (0, 0);
-            let mut children: *mut xlib::Window = std::ptr::null_mut();
-            let mut n = 0u32;
-            (x.XQueryTree)(
-                self.display,
-                root,
-                &mut r,
-                &mut parent,
-                &mut children,
-                &mut n,
-            );
-            let mut found = None;
-            for i in 0..n as usize {
-                let w = *children.add(i);
+        self.top_level().into_iter().rfind(|&w| {
+            // SAFETY: valid display and window; the strings are freed with XFree.
+            unsafe {
                 let mut hint: xlib::XClassHint = std::mem::zeroed();
+                let mut classed = false;
                 if (x.XGetClassHint)(self.display, w, &mut hint) != 0 {
                     for s in [hint.res_name, hint.res_class] {
                         if !s.is_null() {
-                            if std::ffi::CStr::from_ptr(s).to_string_lossy() == class {
-                                found = Some(w);
-                            }
+                            classed |= std::ffi::CStr::from_ptr(s).to_string_lossy() == class;
                             (x.XFree)(s.cast());
                         }
                     }
                 }
+                classed
             }
-            if !children.is_null() {
-                (x.XFree)(children.cast());
-            }
-            found
-        }
+        })
     }
 
     /// Sends `window` a key press and release of `keysym` (e.g.
