@@ -306,16 +306,16 @@ fn check_client(x: &Xvfb, cmd: Command, title: &str, what: &str) {
     check_side_by_side(&out.shot, what);
 }
 
+/// [`check_client`] on `program args` under the layer, in an Xvfb of its own.
+fn check_layered(program: &Path, args: &[&str], title: &str, what: &str) {
+    let x = Xvfb::start(320, 240);
+    check_client(&x, under_layer(&x, program, args), title, what);
+}
+
 #[test]
 fn glfw_core_profile_stereo_window_shows_both_eyes() {
-    let x = Xvfb::start(320, 240);
     let exe = c_client("glfw_stereo", &["-lglfw"]);
-    check_client(
-        &x,
-        under_layer(&x, &exe, &[]),
-        "glfw_stereo",
-        "GLFW 3.3 core",
-    );
+    check_layered(&exe, &[], "glfw_stereo", "GLFW 3.3 core");
 }
 
 #[test]
@@ -363,35 +363,22 @@ fn a_mono_glfw_program_runs_as_without_the_layer() {
 
 #[test]
 fn sdl2_default_context_stereo_window_shows_both_eyes() {
-    let x = Xvfb::start(320, 240);
     let exe = c_client("sdl_stereo", &["-lSDL2"]);
-    check_client(
-        &x,
-        under_layer(&x, &exe, &["default"]),
-        "sdl_stereo",
-        "SDL2 default context",
-    );
+    check_layered(&exe, &["default"], "sdl_stereo", "SDL2 default context");
 }
 
 #[test]
 fn sdl2_core_3_2_context_stereo_window_shows_both_eyes() {
-    let x = Xvfb::start(320, 240);
     let exe = c_client("sdl_stereo", &["-lSDL2"]);
-    check_client(
-        &x,
-        under_layer(&x, &exe, &["core"]),
-        "sdl_stereo",
-        "SDL2 3.2 core",
-    );
+    check_layered(&exe, &["core"], "sdl_stereo", "SDL2 3.2 core");
 }
 
 #[test]
 fn pyopengl_freeglut_stereo_window_shows_both_eyes() {
-    let x = Xvfb::start(320, 240);
     let script = clients().join("pyopengl_stereo.py");
-    check_client(
-        &x,
-        under_layer(&x, Path::new(PYTHON), &[script.to_str().unwrap()]),
+    check_layered(
+        Path::new(PYTHON),
+        &[script.to_str().unwrap()],
         "pyopengl_stereo",
         "PyOpenGL + freeglut",
     );
@@ -400,16 +387,13 @@ fn pyopengl_freeglut_stereo_window_shows_both_eyes() {
 #[test]
 fn libepoxy_glx_stereo_window_shows_both_eyes() {
     // GTK's GL loader: every GLX and GL call through epoxy's dispatch.
-    let x = Xvfb::start(320, 240);
     let exe = c_client("epoxy_stereo", &["-lepoxy", "-lX11"]);
-    check_client(&x, under_layer(&x, &exe, &[]), "epoxy_stereo", "libepoxy");
+    check_layered(&exe, &[], "epoxy_stereo", "libepoxy");
 }
 
 #[test]
 fn qt5_stereo_surface_format_shows_both_eyes() {
-    let x = Xvfb::start(320, 240);
-    let exe = qt_client();
-    check_client(&x, under_layer(&x, &exe, &[]), "qt_stereo", "Qt 5 QWindow");
+    check_layered(&qt_client(), &[], "qt_stereo", "Qt 5 QWindow");
 }
 
 /// A continuously rendering program of someone else's, started here.
