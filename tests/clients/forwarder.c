@@ -168,32 +168,33 @@ static __GLXextFuncPtr own(const char *name)
     return NULL;
 }
 
-__GLXextFuncPtr glXGetProcAddressARB(const GLubyte *name)
+typedef __GLXextFuncPtr (*GetProcFn)(const GLubyte *);
+
+/* glXGetProcAddress(ARB) `id`: counted, then this library's own function, else the next one's
+   (`next` caches that layer's entry point). */
+static __GLXextFuncPtr get_proc(int id, GetProcFn *next, const GLubyte *name)
 {
-    static __GLXextFuncPtr (*next)(const GLubyte *);
     __GLXextFuncPtr f;
-    count(ID_glXGetProcAddressARB);
+    count(id);
     if (name != NULL && (f = own((const char *)name)) != NULL) {
         return f;
     }
-    if (next == NULL) {
-        next_in_chain("glXGetProcAddressARB", &next, sizeof next);
+    if (*next == NULL) {
+        next_in_chain(names[id], next, sizeof *next);
     }
-    return next(name);
+    return (*next)(name);
+}
+
+__GLXextFuncPtr glXGetProcAddressARB(const GLubyte *name)
+{
+    static GetProcFn next;
+    return get_proc(ID_glXGetProcAddressARB, &next, name);
 }
 
 __GLXextFuncPtr glXGetProcAddress(const GLubyte *name)
 {
-    static __GLXextFuncPtr (*next)(const GLubyte *);
-    __GLXextFuncPtr f;
-    count(ID_glXGetProcAddress);
-    if (name != NULL && (f = own((const char *)name)) != NULL) {
-        return f;
-    }
-    if (next == NULL) {
-        next_in_chain("glXGetProcAddress", &next, sizeof next);
-    }
-    return next(name);
+    static GetProcFn next;
+    return get_proc(ID_glXGetProcAddress, &next, name);
 }
 
 /* dlopen of libGL / libGLX opens this library instead (VirtualGL's dlfaker). */
