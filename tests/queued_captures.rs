@@ -6,12 +6,11 @@ mod common;
 #[path = "common/gl_surface.rs"]
 mod gl_surface;
 
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 
 use glstereo::backend::BackendKind;
 use glstereo::capture::read_png;
 use glstereo::ffi::capture::{gls_surface_queue_png, gls_surface_wait_captures};
-use glstereo::ffi::core::gls_last_error_message;
 use glstereo::ffi::display::{
     GLS_BACKEND_EGL, gls_config_choose, gls_config_free, gls_display_close, gls_display_open,
 };
@@ -22,6 +21,7 @@ use glstereo::ffi::types::*;
 use glstereo::output::pattern::{gradient, noise};
 use glstereo::surface::{self, CaptureImage};
 
+use common::last_error;
 use gl_surface::{show, stereo_surface};
 
 #[test]
@@ -70,13 +70,6 @@ fn queued_and_saved_captures_hold_the_eyes_and_composite_in_order() {
         );
     }
     surface::make_current(None).unwrap();
-}
-
-fn last_error() -> String {
-    // SAFETY: never NULL.
-    unsafe { CStr::from_ptr(gls_last_error_message()) }
-        .to_string_lossy()
-        .into_owned()
 }
 
 #[test]

@@ -8,7 +8,7 @@ mod common;
 #[path = "common/gl_surface.rs"]
 mod gl_surface;
 
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::path::Path;
 
 use glstereo::backend::BackendKind;
@@ -19,7 +19,6 @@ use glstereo::ffi::capture::{
     GLS_PHOTO_JPS, GLS_PHOTO_MPO, gls_surface_queue_stereo_photo, gls_surface_save_stereo_photo,
     gls_surface_set_jpeg_quality, gls_surface_wait_captures,
 };
-use glstereo::ffi::core::gls_last_error_message;
 use glstereo::ffi::display::{
     GLS_BACKEND_EGL, gls_config_choose, gls_config_free, gls_display_close, gls_display_open,
 };
@@ -28,6 +27,7 @@ use glstereo::ffi::types::*;
 use glstereo::image::Image;
 use glstereo::surface::{self, CaptureImage};
 
+use common::last_error;
 use common::photo::{exiftool, mean_error, pillow, tag};
 use gl_surface::{mono_surface, show, show_mono, stereo_surface};
 
@@ -266,13 +266,6 @@ fn bad_input_gets_its_documented_error_and_leaves_no_file() {
         "no temporary file"
     );
     surface::make_current(None).unwrap();
-}
-
-fn last_error() -> String {
-    // SAFETY: never NULL.
-    unsafe { CStr::from_ptr(gls_last_error_message()) }
-        .to_string_lossy()
-        .into_owned()
 }
 
 #[test]

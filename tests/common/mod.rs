@@ -30,6 +30,15 @@ pub fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// The message of this thread's last failed gls_* call
+/// (gls_last_error_message()).
+pub fn last_error() -> String {
+    // SAFETY: never NULL.
+    unsafe { std::ffi::CStr::from_ptr(glstereo::ffi::core::gls_last_error_message()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
 /// The strict C flags every C program in this project builds with.
 pub const C_FLAGS: &[&str] = &[
     "-std=c99",
