@@ -46,12 +46,7 @@ fn passes(what: &str, cmd: &mut Command, at_least: u32) -> String {
     let out = common::run_ok(cmd);
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    let summary = stdout.lines().last().unwrap_or("");
-    let passed: u32 = summary
-        .split_whitespace()
-        .next()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(0);
+    let (summary, passed) = common::summary(&stdout);
     assert!(
         summary.ends_with(" passed, 0 failed") && passed >= at_least,
         "{what}: {summary}\n{stderr}"

@@ -299,12 +299,7 @@ fn draw_buffer_rules_hold_through_the_layer_on_stereo_visuals() {
                 .env("DISPLAY", &x.display),
         );
         let stdout = String::from_utf8_lossy(&out.stdout);
-        let summary = stdout.lines().last().unwrap_or("");
-        let passed: u32 = summary
-            .split_whitespace()
-            .next()
-            .and_then(|n| n.parse().ok())
-            .unwrap_or(0);
+        let (summary, passed) = common::summary(&stdout);
         assert!(
             summary.ends_with(" passed, 0 failed") && passed > at_least,
             "{what}: {summary}\n{}",

@@ -39,6 +39,18 @@ pub fn last_error() -> String {
         .into_owned()
 }
 
+/// The last line of a C test program's stdout, its "N passed, M failed"
+/// summary, and N (0 when the line does not start with a number).
+pub fn summary(stdout: &str) -> (&str, u32) {
+    let summary = stdout.lines().last().unwrap_or("");
+    let passed = summary
+        .split_whitespace()
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(0);
+    (summary, passed)
+}
+
 /// The strict C flags every C program in this project builds with.
 pub const C_FLAGS: &[&str] = &[
     "-std=c99",
