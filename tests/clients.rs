@@ -22,7 +22,7 @@ use std::process::{Child, Command, Stdio};
 use std::sync::{Mutex, MutexGuard, OnceLock};
 use std::time::{Duration, Instant};
 
-use common::preload::{Running, Screen, built};
+use common::preload::{Running, Screen, built, grab_ready};
 use common::xvfb::Xvfb;
 use glstereo::image::Image;
 
@@ -822,12 +822,7 @@ fn legacy_over_forwarder(forwarder: &Path, below: Below) -> (HashMap<String, u64
     if matches!(below, Below::DlopenedLibGl) {
         cmd.env("FORWARDER_NEXT", "dlopen");
     }
-    let mut p = Running::start(cmd);
-    let id = p.ready();
-    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id");
-    let shot = Screen::open(&x.display).grab(window);
-    let report = p.stdout.first().cloned().unwrap_or_default();
-    let stderr = p.finish();
+    let (shot, report, stderr) = grab_ready(cmd, &x.display);
     assert!(
         report.contains("glx_stereo 1 gl_stereo 1"),
         "stereo granted over the forwarder: {report}"

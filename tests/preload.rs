@@ -9,7 +9,7 @@ mod common;
 use std::path::PathBuf;
 use std::process::Command;
 
-use common::preload::{Running, Screen, built, compile_plain};
+use common::preload::{Running, Screen, built, compile_plain, grab_ready};
 use common::xvfb::Xvfb;
 use glstereo::image::Image;
 use glstereo::output::OutputMode;
@@ -321,12 +321,7 @@ fn run_mono(x: &Xvfb, layer: Option<&std::path::Path>) -> (Image, String) {
         None => Command::new(&exe),
     };
     cmd.env("DISPLAY", &x.display);
-    let mut p = Running::start(cmd);
-    let id = p.ready();
-    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id");
-    let shot = Screen::open(&x.display).grab(window);
-    let report = p.stdout.first().cloned().unwrap_or_default();
-    let stderr = p.finish();
+    let (shot, report, stderr) = grab_ready(cmd, &x.display);
     assert!(stderr.is_empty(), "stderr: {stderr}");
     (shot, report)
 }

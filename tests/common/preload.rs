@@ -189,6 +189,19 @@ impl StderrNow for Child {
     }
 }
 
+/// Runs `cmd`, a program that prints "ready 0x<its window>", grabs that
+/// window on `display` once it is ready and lets the program exit: its
+/// window, its first stdout line (its report) and its stderr.
+pub fn grab_ready(cmd: Command, display: &str) -> (Image, String, String) {
+    let mut p = Running::start(cmd);
+    let id = p.ready();
+    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).expect("window id");
+    let shot = Screen::open(display).grab(window);
+    let report = p.stdout.first().cloned().unwrap_or_default();
+    let stderr = p.finish();
+    (shot, report, stderr)
+}
+
 /// An X connection of the test's own, for screenshots.
 pub struct Screen {
     xlib: xlib::Xlib,
