@@ -617,12 +617,11 @@ fn gears_in(img: &Image) -> bool {
     red > 50 && green > 50 && blue > 50
 }
 
-#[test]
-fn glxgears_stereo_shows_two_different_eyes() {
-    let _one = one_renderer_at_a_time();
-    let x = Xvfb::start(640, 480);
-    let cmd = under_layer(&x, Path::new("glxgears"), &["-stereo"]);
-    let mut gears = Renderer::start(cmd, "glxgears -stereo");
+/// Starts `cmd` (`what`: glxgears -stereo, under the layer) on `x` and
+/// quits it once both halves of its window show gears: that window and
+/// the program's stderr.
+fn gears_shown(x: &Xvfb, cmd: Command, what: &str) -> (Image, String) {
+    let mut gears = Renderer::start(cmd, what);
     let screen = Screen::open(&x.display);
     let (window, shot) = gears.picture(
         &screen,
@@ -633,6 +632,15 @@ fn glxgears_stereo_shows_two_different_eyes() {
         },
     );
     let stderr = gears.quit(&screen, window);
+    (shot, stderr)
+}
+
+#[test]
+fn glxgears_stereo_shows_two_different_eyes() {
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(640, 480);
+    let cmd = under_layer(&x, Path::new("glxgears"), &["-stereo"]);
+    let (shot, stderr) = gears_shown(&x, cmd, "glxgears -stereo");
     let _ = glstereo::capture::write_png(&shot, &common::scratch("glxgears").join("window.png"));
     let (left, right) = halves(&shot);
     assert!(gears_in(&left), "no gears in the left half");
@@ -673,17 +681,7 @@ fn apitrace_records_a_glstereo_run_that_replays() {
         .arg(&built().run)
         .args(["-m", "side-by-side", "glxgears", "-stereo"])
         .env("DISPLAY", &x.display);
-    let mut gears = Renderer::start(cmd, "apitrace trace glstereo-run glxgears -stereo");
-    let screen = Screen::open(&x.display);
-    let (window, shot) = gears.picture(
-        &screen,
-        |s| s.find_window("glxgears"),
-        |shot| {
-            let (l, r) = halves(shot);
-            gears_in(&l) && gears_in(&r)
-        },
-    );
-    let stderr = gears.quit(&screen, window);
+    let (shot, stderr) = gears_shown(&x, cmd, "apitrace trace glstereo-run glxgears -stereo");
     let (left, right) = halves(&shot);
     assert!(
         gears_in(&left) && gears_in(&right) && differing(&left, &right) > 100,
