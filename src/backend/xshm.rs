@@ -67,6 +67,11 @@ impl ShmSlot {
         matches!(self, ShmSlot::Unsupported)
     }
 
+    /// Whether an image is attached (frames go out through MIT-SHM).
+    pub(crate) fn ready(&self) -> bool {
+        matches!(self, ShmSlot::Ready(_))
+    }
+
     /// Lets `fill` write a frame of `size` into the window's image and
     /// sends it; the image is made with `make` first when there is none of
     /// that size (None from `make`: unsupported from now on). Ok(false):
@@ -264,7 +269,9 @@ impl ShmImage {
                 .put_serial
                 .is_some_and(|put| (xl.XLastKnownRequestProcessed)(display) < put)
             {
-                (xl.XSync)(display, xlib::False);
+                crate::profile::span(crate::profile::Stage::XSync, || {
+                    (xl.XSync)(display, xlib::False)
+                });
             }
             let stride = (*self.image).bytes_per_line as usize;
             let data = std::slice::from_raw_parts_mut(
@@ -278,20 +285,22 @@ impl ShmImage {
                 layout: self.layout,
             })?;
             self.put_serial = Some((xl.XNextRequest)(display));
-            (self.xext.XShmPutImage)(
-                display,
-                window,
-                self.gc,
-                self.image,
-                0,
-                0,
-                0,
-                0,
-                self.width,
-                self.height,
-                xlib::False,
-            );
-            (xl.XFlush)(display);
+            crate::profile::span(crate::profile::Stage::Put, || {
+                (self.xext.XShmPutImage)(
+                    display,
+                    window,
+                    self.gc,
+                    self.image,
+                    0,
+                    0,
+                    0,
+                    0,
+                    self.width,
+                    self.height,
+                    xlib::False,
+                );
+                (xl.XFlush)(display);
+            });
         }
         Ok(())
     }
