@@ -44,11 +44,18 @@ median() { sed 's/.*median \([0-9.]*\) ms.*/\1/'; }
 rounds() {
     i=1
     while [ "$i" -le "$ROUNDS" ]; do
+        # The base build runs first in even rounds, so that neither build
+        # always follows the mono program.
+        if [ -n "$BASE" ] && [ $((i % 2)) -eq 0 ]; then
+            b=$("$BASE" "$TMP/loop" stereo "$2" "$3" "$4" "$1" | median)
+        fi
         m=$("$TMP/loop" mono "$2" "$3" "$4" "$1" | median)
         s=$("$RUN" "$TMP/loop" stereo "$2" "$3" "$4" "$1" | median)
+        if [ -n "$BASE" ] && [ $((i % 2)) -eq 1 ]; then
+            b=$("$BASE" "$TMP/loop" stereo "$2" "$3" "$4" "$1" | median)
+        fi
         line="$1 $2x$3 round $i: mono $m ms, stereo $s ms, stereo/mono $(echo "$s $m" | awk '{printf "%.2f", $1 / $2}')"
         if [ -n "$BASE" ]; then
-            b=$("$BASE" "$TMP/loop" stereo "$2" "$3" "$4" "$1" | median)
             line="$line; base stereo $b ms, $(echo "$b $m" | awk '{printf "%.2f", $1 / $2}')"
         fi
         echo "$line"

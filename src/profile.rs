@@ -174,16 +174,17 @@ pub(crate) fn span<T>(_stage: Stage, f: impl FnOnce() -> T) -> T {
     f()
 }
 
-/// A present of a `size` frame starts (with `profile-stages`).
+/// A present of a frame of `size()` starts (with `profile-stages`).
 #[cfg(feature = "profile-stages")]
-pub(crate) fn frame_start(size: (u32, u32)) {
-    on::frame_start(size);
+pub(crate) fn frame_start(size: impl FnOnce() -> (u32, u32)) {
+    on::frame_start(size());
 }
 
-/// A present starts (a no-op without `profile-stages`).
+/// A present starts (a no-op without `profile-stages`; `size` is not
+/// called).
 #[cfg(not(feature = "profile-stages"))]
 #[inline(always)]
-pub(crate) fn frame_start(_size: (u32, u32)) {}
+pub(crate) fn frame_start(_size: impl FnOnce() -> (u32, u32)) {}
 
 /// A present ended (with `profile-stages`: prints the means every
 /// `GLSTEREO_PROFILE` frames).

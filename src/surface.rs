@@ -451,7 +451,7 @@ impl Surface {
     /// written into the window directly
     /// ([`PlatformSurface::present_pixels`]; no GL pass, no `present()`).
     pub fn swap_buffers(self: &Arc<Self>) -> Result<()> {
-        profile::frame_start(self.size());
+        profile::frame_start(|| self.size());
         let shown = self.swap_and_show();
         profile::frame_end();
         shown

@@ -669,7 +669,7 @@ impl StereoContext {
                 drawable_size(r, self.display, drawable)
             })?,
         };
-        profile::frame_start(window);
+        profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
         let drawn = st
