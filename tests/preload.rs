@@ -481,6 +481,27 @@ fn the_stereo_buffers_follow_a_window_resized_behind_the_programs_back() {
     );
 }
 
+/// Swapping a window the program destroyed: the layer warns, and no X
+/// error of its requests reaches the program's default (fatal) handler.
+#[test]
+fn swapping_a_destroyed_window_is_a_warning_not_an_x_error() {
+    let x = Xvfb::start(320, 240);
+    let exe = program("swap_after_destroy", &["-lGL", "-lX11"]);
+    let out = common::run_ok(
+        Command::new(&built().run)
+            .arg(&exe)
+            .env("DISPLAY", &x.display),
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stdout.trim(), "survived", "{stderr}");
+    assert!(!stderr.contains("X Error"), "{stderr}");
+    assert!(
+        stderr.contains("glstereo: presenting the stereo frame") && stderr.contains("destroyed"),
+        "the layer says why nothing was shown: {stderr}"
+    );
+}
+
 #[test]
 fn a_single_buffered_stereo_program_is_shown_when_it_flushes() {
     let x = Xvfb::start(640, 480);

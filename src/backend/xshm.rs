@@ -67,11 +67,6 @@ impl ShmSlot {
         matches!(self, ShmSlot::Unsupported)
     }
 
-    /// Whether an image is attached (frames go out through MIT-SHM).
-    pub(crate) fn ready(&self) -> bool {
-        matches!(self, ShmSlot::Ready(_))
-    }
-
     /// Lets `fill` write a frame of `size` into the window's image and
     /// sends it; the image is made with `make` first when there is none of
     /// that size (None from `make`: unsupported from now on). Ok(false):

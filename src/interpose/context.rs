@@ -65,11 +65,6 @@ pub(super) struct Drawn {
     /// A glViewport of another size already checked the drawable's size
     /// this frame.
     viewport_checked: bool,
-    /// The window's size as the server told it at the end of the last
-    /// present (the request that tells it also waits for the frame to be
-    /// shown), None when unknown: the next present of a frame of that size
-    /// needs no request of its own to learn it.
-    size_seen: Option<(u32, u32)>,
 }
 
 /// The mutable part of a stereo context. Lock order: the registry's lock
@@ -575,7 +570,6 @@ impl StereoContext {
                             frames: 0,
                             last_bound: 0,
                             viewport_checked: false,
-                            size_seen: None,
                         },
                     );
                 }
@@ -651,24 +645,11 @@ impl StereoContext {
     /// leaves current, the caller puts back what was current before.
     fn flip_and_show(&self, r: &Real, drawable: u64, flip: bool) -> Result<()> {
         let gl = &r.gl;
-        // The size the last present saw, while frames of that size go out
-        // through MIT-SHM; else (a first frame, a resize the program made
-        // known through glViewport, the GL path) the server is asked. A
-        // window resized behind the program's back shows one frame of the
-        // old size, and the buffers follow for the next one (see
-        // compose_and_swap).
-        let seen = {
-            let st = self.lock();
-            st.fbs
-                .get(&drawable)
-                .and_then(|d| d.size_seen.filter(|&s| s == d.fb.size() && d.image.ready()))
-        };
-        let window = match seen {
-            Some(size) => size,
-            None => profile::span(Stage::RoundTrip, || {
-                drawable_size(r, self.display, drawable)
-            })?,
-        };
+        // Asked every frame: a window destroyed since the last one is
+        // found here, before anything is sent to it (one round trip).
+        let window = profile::span(Stage::RoundTrip, || {
+            drawable_size(r, self.display, drawable)
+        })?;
         profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
@@ -791,11 +772,11 @@ impl StereoContext {
         // The frame is on the server when presenting returns: Mesa's
         // software swap sends the image in several requests without
         // waiting, and another client (a screenshot, a compositor) could
-        // otherwise see it half drawn or not yet. One round trip, which
-        // also brings the window's size for the next present.
-        let dpy = self.display as *mut xlib::Display;
-        drawn.size_seen = profile::span(Stage::XSync, || x_drawable_size(r, dpy, x_window));
-        let (width, height) = drawn.size_seen.unwrap_or((width, height));
+        // otherwise see it half drawn or not yet. One round trip.
+        // SAFETY: a valid display.
+        profile::span(Stage::XSync, || unsafe {
+            (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False)
+        });
         if drawn.fb.size() != (width, height) {
             // SAFETY: the layer's context is current.
             unsafe {
