@@ -711,6 +711,7 @@ impl PlatformSurface for GlxSurface {
                     )
                 },
                 fill,
+                &mut |put| put(),
             )?
         };
         sh.check_alive()?;

@@ -65,6 +65,11 @@ pub(super) struct Drawn {
     /// A glViewport of another size already checked the drawable's size
     /// this frame.
     viewport_checked: bool,
+    /// The window's size as the server told it right after the last frame
+    /// was put through MIT-SHM (the request that tells it also waits for
+    /// the frame to be shown), None when unknown: the next present of a
+    /// frame of that size needs no request of its own to learn it.
+    size_seen: Option<(u32, u32)>,
 }
 
 /// The mutable part of a stereo context. Lock order: the registry's lock
@@ -252,32 +257,29 @@ impl Saved {
     }
 }
 
-/// The size of X drawable `x` (XGetGeometry; None when it fails or is
-/// empty). One round trip, whose reply also tells that the server has
-/// processed every earlier request; its X error, if any, is trapped.
-/// Takes no lock.
-fn x_drawable_size(r: &Real, dpy: *mut xlib::Display, x: u64) -> Option<(u32, u32)> {
-    let (geometry, err) = trap_replied_x_errors(&r.xlib, dpy, || {
-        let (mut root, mut px, mut py) = (0, 0, 0);
-        let (mut w, mut h, mut border, mut depth) = (0u32, 0u32, 0u32, 0u32);
-        // SAFETY: valid display and out-pointers; a bad drawable is an X
-        // error, trapped.
-        let ok = unsafe {
-            (r.xlib.XGetGeometry)(
-                dpy,
-                x,
-                &mut root,
-                &mut px,
-                &mut py,
-                &mut w,
-                &mut h,
-                &mut border,
-                &mut depth,
-            )
-        };
-        (ok != 0).then_some((w, h))
-    });
-    geometry.filter(|&(w, h)| err == 0 && w > 0 && h > 0)
+/// XGetGeometry of X drawable `x`: its size, None when the request
+/// fails or the size is empty. One round trip, whose reply also tells that
+/// the server has processed every earlier request. Its X error is not
+/// trapped here: callers trap it.
+fn geometry(r: &Real, dpy: *mut xlib::Display, x: u64) -> Option<(u32, u32)> {
+    let (mut root, mut px, mut py) = (0, 0, 0);
+    let (mut w, mut h, mut border, mut depth) = (0u32, 0u32, 0u32, 0u32);
+    // SAFETY: valid display and out-pointers; a bad drawable is an X
+    // error, which the caller traps.
+    let ok = unsafe {
+        (r.xlib.XGetGeometry)(
+            dpy,
+            x,
+            &mut root,
+            &mut px,
+            &mut py,
+            &mut w,
+            &mut h,
+            &mut border,
+            &mut depth,
+        )
+    };
+    (ok != 0 && w > 0 && h > 0).then_some((w, h))
 }
 
 /// The size of a drawable: XGetGeometry of its X drawable (the window
@@ -287,7 +289,8 @@ fn x_drawable_size(r: &Real, dpy: *mut xlib::Display, x: u64) -> Option<(u32, u3
 pub(super) fn drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(u32, u32)> {
     let dpy = display as *mut xlib::Display;
     let x = registry::with(|reg| reg.x_drawable(display, drawable));
-    if let Some(size) = x_drawable_size(r, dpy, x) {
+    // One round trip: XGetGeometry's reply brings its error, if any.
+    if let (Some(size), 0) = trap_replied_x_errors(&r.xlib, dpy, || geometry(r, dpy, x)) {
         return Ok(size);
     }
     let ((w, h), err) = trap_x_errors(&r.xlib, dpy, || {
@@ -570,6 +573,7 @@ impl StereoContext {
                             frames: 0,
                             last_bound: 0,
                             viewport_checked: false,
+                            size_seen: None,
                         },
                     );
                 }
@@ -645,11 +649,25 @@ impl StereoContext {
     /// leaves current, the caller puts back what was current before.
     fn flip_and_show(&self, r: &Real, drawable: u64, flip: bool) -> Result<()> {
         let gl = &r.gl;
-        // Asked every frame: a window destroyed since the last one is
-        // found here, before anything is sent to it (one round trip).
-        let window = profile::span(Stage::RoundTrip, || {
-            drawable_size(r, self.display, drawable)
-        })?;
+        // The size seen after the last frame's put, while frames of that
+        // size go out through MIT-SHM; else (a first frame, a resize the
+        // program made known through glViewport, the GL path, a window
+        // that was gone) the server is asked. A window resized behind the
+        // program's back shows one frame at the old size, and the buffers
+        // follow for the next one; the put to a window destroyed since is
+        // an X error trapped in put_pixels, and the next present reports it.
+        let seen = {
+            let st = self.lock();
+            st.fbs
+                .get(&drawable)
+                .and_then(|d| d.size_seen.filter(|&s| s == d.fb.size()))
+        };
+        let window = match seen {
+            Some(size) => size,
+            None => profile::span(Stage::RoundTrip, || {
+                drawable_size(r, self.display, drawable)
+            })?,
+        };
         profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
@@ -703,6 +721,8 @@ impl StereoContext {
         // single-buffered windows: Mesa's software driver copies the
         // program's real front buffer into the window when the program
         // flushes, over the frame put there.
+        // Some(size after the put) when the frame went out through MIT-SHM.
+        let mut seen = None;
         let shown = if self.shape.double_buffered {
             // SAFETY: the layer's context is current on the drawable, whose
             // X drawable is `x_window`; the job's textures are shared with it.
@@ -714,6 +734,7 @@ impl StereoContext {
                     (self.display, x_window),
                     (width, height),
                     &job,
+                    &mut seen,
                 )
             }
         } else {
@@ -772,11 +793,16 @@ impl StereoContext {
         // The frame is on the server when presenting returns: Mesa's
         // software swap sends the image in several requests without
         // waiting, and another client (a screenshot, a compositor) could
-        // otherwise see it half drawn or not yet. One round trip.
-        // SAFETY: a valid display.
-        profile::span(Stage::XSync, || unsafe {
-            (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False)
-        });
+        // otherwise see it half drawn or not yet. One round trip: after a
+        // MIT-SHM put, put_pixels's size query was it.
+        drawn.size_seen = seen.flatten();
+        if seen.is_none() {
+            // SAFETY: a valid display.
+            profile::span(Stage::XSync, || unsafe {
+                (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False)
+            });
+        }
+        let (width, height) = drawn.size_seen.unwrap_or((width, height));
         if drawn.fb.size() != (width, height) {
             // SAFETY: the layer's context is current.
             unsafe {
@@ -792,7 +818,11 @@ impl StereoContext {
 /// MIT-SHM, when the renderer is software and the window can take it.
 /// Ok(false): nothing shown, take the GL path (a hardware renderer, a
 /// composite of another size than the window, `quad`, no MIT-SHM, a pixmap
-/// or pbuffer drawable, an unsupported visual).
+/// or pbuffer drawable, an unsupported visual). The put and a size query
+/// behind it run with X errors trapped (a window destroyed since the last
+/// frame must not end the program); when the put was sent, `seen` becomes
+/// Some(the window's size, None if it is gone), and the query's reply
+/// means the server has shown the frame.
 ///
 /// # Safety
 /// The layer's context is current on the drawable; `display` is open and
@@ -805,6 +835,7 @@ unsafe fn put_pixels(
     (display, x_window): (usize, u64),
     size: (u32, u32),
     job: &Job,
+    seen: &mut Option<Option<(u32, u32)>>,
 ) -> Result<bool> {
     if drawn.image.unsupported() {
         return Ok(false);
@@ -825,6 +856,13 @@ unsafe fn put_pixels(
             size,
             || shm_image(r, dpy, x_window, size),
             &mut |t| compositor.fill_pixels(gl, job, plan, t),
+            &mut |put| {
+                let (size, err) = trap_replied_x_errors(&r.xlib, dpy, || {
+                    put();
+                    profile::span(Stage::XSync, || geometry(r, dpy, x_window))
+                });
+                *seen = Some(size.filter(|_| err == 0));
+            },
         )
     }
 }
