@@ -696,8 +696,7 @@ impl PlatformSurface for GlxSurface {
         let shown = unsafe {
             self.shm.recover().put(
                 &sh.xlib,
-                sh.display,
-                self.window,
+                (sh.display, self.window),
                 size,
                 || {
                     ShmImage::create(

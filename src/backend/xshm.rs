@@ -80,8 +80,7 @@ impl ShmSlot {
     pub(crate) unsafe fn put(
         &mut self,
         xl: &Xlib,
-        display: *mut xlib::Display,
-        window: xlib::Window,
+        (display, window): (*mut xlib::Display, xlib::Window),
         size: (u32, u32),
         make: impl FnOnce() -> Option<ShmImage>,
         fill: &mut dyn FnMut(PixelTarget<'_>) -> Result<()>,

@@ -851,8 +851,7 @@ unsafe fn put_pixels(
     unsafe {
         drawn.image.put(
             &r.xlib,
-            dpy,
-            x_window,
+            (dpy, x_window),
             size,
             || shm_image(r, dpy, x_window, size),
             &mut |t| compositor.fill_pixels(gl, job, plan, t),
