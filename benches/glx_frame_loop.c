@@ -7,9 +7,14 @@
  *
  *   glx_frame_loop mono|stereo [WIDTH HEIGHT [FRAMES]]
  *
- * Light scene: per eye a clear and three rectangles. Prints
- * "<mode> WxH frames N: mean M ms, median D ms, p90 P ms".
+ *   glx_frame_loop mono|stereo [WIDTH HEIGHT [FRAMES [light|heavy]]]
+ *
+ * Light scene: per eye a clear and three rectangles. Heavy scene: per eye
+ * a clear and a depth-tested grid of 512 x 512 quads (524 288 triangles)
+ * drawn from a vertex buffer. Prints
+ * "<mode> <scene> WxH frames N: mean M ms, median D ms, p90 P ms".
  */
+#define GL_GLEXT_PROTOTYPES
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,7 +38,54 @@ static int cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static void scene(float shift)
+/* The heavy scene's vertex buffer: GRID x GRID quads, two triangles each,
+ * x, y, z and an RGB colour per vertex. */
+#define GRID 512
+static GLuint heavy_vbo;
+static GLsizei heavy_vertices;
+
+static void make_heavy(void)
+{
+    size_t n = (size_t)GRID * GRID * 6;
+    float *v = malloc(n * 6 * sizeof(float));
+    if (v == NULL) exit(1);
+    float *p = v;
+    for (int j = 0; j < GRID; j++) {
+        for (int i = 0; i < GRID; i++) {
+            static const int corner[6][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
+            for (int k = 0; k < 6; k++) {
+                float x = (float)(i + corner[k][0]) / GRID, y = (float)(j + corner[k][1]) / GRID;
+                *p++ = x * 1.8f - 0.9f;
+                *p++ = y * 1.8f - 0.9f;
+                *p++ = 0.5f * (x - 0.5f) * (y - 0.5f);
+                *p++ = x;
+                *p++ = y;
+                *p++ = (float)((i ^ j) & 1);
+            }
+        }
+    }
+    glGenBuffers(1, &heavy_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, heavy_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * 6 * sizeof(float)), v, GL_STATIC_DRAW);
+    free(v);
+    heavy_vertices = (GLsizei)n;
+    glVertexPointer(3, GL_FLOAT, 6 * sizeof(float), (const void *)0);
+    glColorPointer(3, GL_FLOAT, 6 * sizeof(float), (const void *)(3 * sizeof(float)));
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glEnable(GL_DEPTH_TEST);
+}
+
+static void heavy(float shift)
+{
+    glClearColor(0.2f, 0.2f, 0.2f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glLoadIdentity();
+    glTranslatef(shift, 0.0f, 0.0f);
+    glDrawArrays(GL_TRIANGLES, 0, heavy_vertices);
+}
+
+static void light(float shift)
 {
     glClearColor(0.2f, 0.2f, 0.2f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -51,6 +103,8 @@ int main(int argc, char **argv)
     int width = argc > 3 ? atoi(argv[2]) : 1280;
     int height = argc > 3 ? atoi(argv[3]) : 1024;
     int frames = argc > 4 ? atoi(argv[4]) : 200;
+    int is_heavy = argc > 5 && strcmp(argv[5], "heavy") == 0;
+    void (*scene)(float) = is_heavy ? heavy : light;
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_DEPTH_SIZE, 16, None, None};
     if (stereo) attributes[4] = GLX_STEREO;
     Display *display = XOpenDisplay(NULL);
@@ -70,6 +124,7 @@ int main(int argc, char **argv)
     GLXContext ctx = glXCreateContext(display, vi, NULL, True);
     if (ctx == NULL || !glXMakeCurrent(display, win, ctx)) return 1;
 
+    if (is_heavy) make_heavy();
     double *t = malloc(sizeof(double) * (size_t)frames);
     for (int warm = 0; warm < 10; warm++) {
         scene(0.0f);
@@ -94,8 +149,8 @@ int main(int argc, char **argv)
     double sum = 0;
     for (int i = 0; i < frames; i++) sum += t[i];
     qsort(t, (size_t)frames, sizeof t[0], cmp);
-    printf("%s %dx%d frames %d: mean %.2f ms, median %.2f ms, p90 %.2f ms\n",
-           stereo ? "stereo" : "mono", width, height, frames, sum / frames, t[frames / 2],
+    printf("%s %s %dx%d frames %d: mean %.2f ms, median %.2f ms, p90 %.2f ms\n",
+           stereo ? "stereo" : "mono", is_heavy ? "heavy" : "light", width, height, frames, sum / frames, t[frames / 2],
            t[frames * 9 / 10]);
     free(t);
     glXMakeCurrent(display, None, NULL);

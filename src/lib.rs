@@ -40,6 +40,7 @@ pub mod image;
 pub mod interpose;
 pub mod math;
 pub mod output;
+mod profile;
 pub mod shims;
 pub mod stereo;
 pub mod surface;

@@ -21,6 +21,7 @@ use crate::output::gl::{ComposePath, GlCompositor, Job, preferred_path};
 use crate::output::layout::{composite_size, eye_size_for_window};
 use crate::output::options::{OutputOptions, OutputSettings};
 use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
+use crate::profile::{self, Stage};
 use crate::shims::nv3dvision::StereoSettings;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code, resolve_read_buffer};
 use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
@@ -197,14 +198,16 @@ fn with_compositor_of<T>(
     if let (true, Some((p, _))) = (foreign, &saved) {
         p.platform.release_current()?;
     }
-    if let Err(e) = platform.make_current(ContextRole::Compositor) {
+    if let Err(e) = profile::span(Stage::SwitchIn, || {
+        platform.make_current(ContextRole::Compositor)
+    }) {
         if let Some((p, role)) = &saved {
             let _ = p.platform.make_current(*role);
         }
         return Err(e);
     }
     let result = f();
-    let restored = match &saved {
+    let restored = profile::span(Stage::SwitchOut, || match &saved {
         Some((p, role)) => {
             if foreign {
                 let _ = platform.release_current();
@@ -212,7 +215,7 @@ fn with_compositor_of<T>(
             p.platform.make_current(*role)
         }
         None => platform.release_current(),
-    };
+    });
     let value = result?;
     restored?;
     Ok(value)
@@ -340,7 +343,7 @@ impl Surface {
         if self.is_current_here() {
             // SAFETY: the application context is current; objects it renders
             // to are only guaranteed visible to another context after Finish.
-            unsafe { self.gl.Finish() };
+            profile::span(Stage::Finish, || unsafe { self.gl.Finish() });
         }
         with_compositor_of(&self.display, &*self.platform, || {
             f(&self.gl, &mut self.state.recover())
@@ -500,14 +503,24 @@ impl Surface {
     /// written into the window directly
     /// ([`PlatformSurface::present_pixels`]; no GL pass, no `present()`).
     pub fn swap_buffers(self: &Arc<Self>) -> Result<()> {
-        self.with_app(|st| {
-            // SAFETY: with_app made the application context current.
-            unsafe {
-                st.fb.swap(&self.gl);
-                self.gl.Flush();
-            }
-            st.frames += 1;
-            Ok(())
+        profile::frame_start(|| self.size());
+        let shown = self.swap_and_show();
+        profile::frame_end();
+        shown
+    }
+
+    /// [`Surface::swap_buffers`], between the profile's frame marks.
+    fn swap_and_show(self: &Arc<Self>) -> Result<()> {
+        profile::span(Stage::Flip, || {
+            self.with_app(|st| {
+                // SAFETY: with_app made the application context current.
+                unsafe {
+                    st.fb.swap(&self.gl);
+                    self.gl.Flush();
+                }
+                st.frames += 1;
+                Ok(())
+            })
         })?;
         if let Some((width, height)) = self.platform.drawable_size() {
             let mode = self.effective_output();
@@ -535,8 +548,10 @@ impl Surface {
                 }
                 // SAFETY: with_compositor made the compositor context current;
                 // the job's textures are this surface's.
-                unsafe { st.compositor.compose_window(gl, &job, 0, width, height)? };
-                self.platform.present()?;
+                profile::span(Stage::GlCompose, || unsafe {
+                    st.compositor.compose_window(gl, &job, 0, width, height)?;
+                    self.platform.present()
+                })?;
                 if resized {
                     // Mesa's software GLX learns a drawable's new size only
                     // when the drawable is bound again after a swap: the

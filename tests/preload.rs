@@ -422,6 +422,83 @@ fn the_stereo_buffers_follow_a_resized_window() {
     assert_close(&shot, &reference, "the resized window");
 }
 
+/// A window resized behind the program's back (no reshape handler, no
+/// glViewport): the frame presented then may still be of the old size, but
+/// the stereo buffers follow by the next one, which the window shows
+/// composed at the new size.
+#[test]
+fn the_stereo_buffers_follow_a_window_resized_behind_the_programs_back() {
+    let x = Xvfb::start(640, 480);
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    let dir = common::scratch("legacy_wm_resize");
+    let mut cmd = Command::new(&built().run);
+    cmd.args(["-m", "rows", "--capture"])
+        .arg(&dir)
+        .arg(&exe)
+        .args(["160", "120"])
+        .env("DISPLAY", &x.display);
+    let mut p = Running::start(cmd);
+    let id = p.ready();
+    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).unwrap();
+    p.send("wmresize 200 90");
+    p.ready();
+    // Same size again: no change, one more frame.
+    p.send("wmresize 200 90");
+    p.ready();
+    let shot = Screen::open(&x.display).grab(window);
+    let stderr = p.finish();
+    glstereo::capture::write_png(&shot, &dir.join("window.png")).unwrap();
+    assert!(!stderr.contains("glstereo:"), "{stderr}");
+    assert_eq!((shot.width(), shot.height()), (200, 90));
+    let left = common::png(&dir.join("left-000003.png"));
+    let right = common::png(&dir.join("right-000003.png"));
+    assert_eq!(
+        (left.width(), left.height()),
+        (200, 90),
+        "the eyes of the frame after the resize are the window's new size"
+    );
+    // The viewport stayed 160x120 at the bottom left: the left eye's blue
+    // rectangle spans x 16..96 and y 12..72 of it (GL coordinates), so
+    // image row 90 - 1 - 40 = 49 at x 50 is blue; the right eye's red one
+    // spans x 64..144, y 48..108: row 90 - 1 - 80 = 9 at x 120 is red.
+    assert_eq!(left.get(50, 49), [0, 0, 255, 255], "left eye");
+    assert_eq!(right.get(120, 9), [255, 0, 0, 255], "right eye");
+    let reference = glstereo::output::compose(
+        OutputMode::Rows,
+        &OutputOptions::default(),
+        &left,
+        &right,
+        2,
+    )
+    .unwrap();
+    assert_close(
+        &shot,
+        &reference,
+        "the window resized behind the program's back",
+    );
+}
+
+/// Swapping a window the program destroyed: the layer warns, and no X
+/// error of its requests reaches the program's default (fatal) handler.
+#[test]
+fn swapping_a_destroyed_window_is_a_warning_not_an_x_error() {
+    let x = Xvfb::start(320, 240);
+    let exe = program("swap_after_destroy", &["-lGL", "-lX11"]);
+    let out = common::run_ok(
+        Command::new(&built().run)
+            .arg(&exe)
+            .env("DISPLAY", &x.display),
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stdout.trim(), "survived", "{stderr}");
+    assert!(!stderr.contains("X Error"), "{stderr}");
+    assert!(
+        stderr.contains("glstereo: presenting the stereo frame") && stderr.contains("destroyed"),
+        "the layer says why nothing was shown: {stderr}"
+    );
+}
+
 #[test]
 fn a_single_buffered_stereo_program_is_shown_when_it_flushes() {
     let x = Xvfb::start(640, 480);

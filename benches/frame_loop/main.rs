@@ -34,6 +34,10 @@
 //! stereo column. `--capture-sync` captures with `Surface::save_png` instead
 //! (encoded and written on the rendering thread), for comparison.
 //!
+//! `--stereo-only` runs the stereo program alone, frame after frame: built
+//! with `--features profile-stages`, it prints where its frames' time goes
+//! (`GLSTEREO_PROFILE=N`: every N frames; BENCHMARKS.md, breakdown).
+//!
 //! The parent process runs one child per backend (`--backend NAME`), and
 //! starts Xvfb for GLX itself.
 
@@ -73,6 +77,7 @@ struct Args {
     capture: bool,
     capture_sync: bool,
     control: bool,
+    stereo_only: bool,
 }
 
 fn parse_args() -> Args {
@@ -87,6 +92,7 @@ fn parse_args() -> Args {
         capture: false,
         capture_sync: false,
         control: true,
+        stereo_only: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -110,6 +116,9 @@ fn parse_args() -> Args {
             "--capture" => a.capture = true,
             "--capture-sync" => (a.capture, a.capture_sync) = (true, true),
             "--no-control" => a.control = false,
+            // Only stereo frames, back to back: what a profile-stages build
+            // (BENCHMARKS.md, breakdown) times without mono frames between.
+            "--stereo-only" => (a.stereo_only, a.control) = (true, false),
             // cargo bench passes --bench; criterion-style filters are ignored.
             _ => {}
         }
@@ -288,7 +297,7 @@ fn measure(args: &Args, kind: BackendKind, weight: Weight) -> Timings {
         // Round 0 warms up (shader compilation, first allocations).
         let keep = round > 0;
         plain.make_current();
-        for _ in 0..batch {
+        for _ in 0..if args.stereo_only { 0 } else { batch } {
             let start = Instant::now();
             // SAFETY: the plain context is current.
             unsafe {

@@ -166,6 +166,27 @@ pub(crate) fn trap_x_errors<T>(
     display: *mut xlib::Display,
     f: impl FnOnce() -> T,
 ) -> (T, i32) {
+    trap_errors(xlib, display, true, f)
+}
+
+/// [`trap_x_errors`] for an `f` whose last request waits for its reply
+/// (XGetGeometry, XGetWindowAttributes): Xlib has handled the errors of
+/// every earlier request, and of that one, when the reply (or its error)
+/// arrives, so no XSync follows — one round trip instead of two.
+pub(crate) fn trap_replied_x_errors<T>(
+    xlib: &Xlib,
+    display: *mut xlib::Display,
+    f: impl FnOnce() -> T,
+) -> (T, i32) {
+    trap_errors(xlib, display, false, f)
+}
+
+fn trap_errors<T>(
+    xlib: &Xlib,
+    display: *mut xlib::Display,
+    sync: bool,
+    f: impl FnOnce() -> T,
+) -> (T, i32) {
     let _guard = TRAP_LOCK.lock().unwrap_or_else(|e| e.into_inner());
     TRAPPED.store(0, Ordering::SeqCst);
     TRAP_DISPLAY.store(display as usize, Ordering::SeqCst);
@@ -177,7 +198,9 @@ pub(crate) fn trap_x_errors<T>(
     let v = f();
     // SAFETY: valid display; XSync delivers pending errors to the handler.
     unsafe {
-        (xlib.XSync)(display, xlib::False);
+        if sync {
+            (xlib.XSync)(display, xlib::False);
+        }
         (xlib.XSetErrorHandler)(old);
     }
     TRAP_DISPLAY.store(0, Ordering::SeqCst);
@@ -673,8 +696,7 @@ impl PlatformSurface for GlxSurface {
         let shown = unsafe {
             self.shm.recover().put(
                 &sh.xlib,
-                sh.display,
-                self.window,
+                (sh.display, self.window),
                 size,
                 || {
                     ShmImage::create(
@@ -688,6 +710,7 @@ impl PlatformSurface for GlxSurface {
                     )
                 },
                 fill,
+                &mut |put| put(),
             )?
         };
         sh.check_alive()?;

@@ -68,9 +68,11 @@ impl ShmSlot {
     }
 
     /// Lets `fill` write a frame of `size` into the window's image and
-    /// sends it; the image is made with `make` first when there is none of
-    /// that size (None from `make`: unsupported from now on). Ok(false):
-    /// nothing shown, MIT-SHM cannot serve the window.
+    /// sends it through `send` (which must call the function it is given
+    /// once: the put; it may wrap it, e.g. in an X error trap); the image is
+    /// made with `make` first when there is none of that size (None from
+    /// `make`: unsupported from now on). Ok(false): nothing shown, MIT-SHM
+    /// cannot serve the window.
     ///
     /// # Safety
     /// `display` is the open connection the image is (or `make` makes it)
@@ -78,11 +80,11 @@ impl ShmSlot {
     pub(crate) unsafe fn put(
         &mut self,
         xl: &Xlib,
-        display: *mut xlib::Display,
-        window: xlib::Window,
+        (display, window): (*mut xlib::Display, xlib::Window),
         size: (u32, u32),
         make: impl FnOnce() -> Option<ShmImage>,
         fill: &mut dyn FnMut(PixelTarget<'_>) -> Result<()>,
+        send: &mut dyn FnMut(&mut dyn FnMut()),
     ) -> Result<bool> {
         if matches!(self, ShmSlot::Ready(img) if img.size() != size) {
             // SAFETY: made on this open connection (contract).
@@ -95,7 +97,7 @@ impl ShmSlot {
             return Ok(false);
         };
         // SAFETY: made on this open connection for this window (contract).
-        unsafe { img.put_with(xl, display, window, fill)? };
+        unsafe { img.put_with(xl, display, window, fill, send)? };
         Ok(true)
     }
 
@@ -245,7 +247,7 @@ impl ShmImage {
     }
 
     /// Lets `fill` write a frame into the segment and sends it to `window`
-    /// (unless `fill` fails).
+    /// (unless `fill` fails) through `send`, as [`ShmSlot::put`] says.
     ///
     /// # Safety
     /// `display` is the live connection the image was made on.
@@ -255,6 +257,7 @@ impl ShmImage {
         display: *mut xlib::Display,
         window: xlib::Window,
         fill: &mut dyn FnMut(PixelTarget<'_>) -> Result<()>,
+        send: &mut dyn FnMut(&mut dyn FnMut()),
     ) -> Result<()> {
         // SAFETY: live display (contract); the segment holds
         // bytes_per_line × height bytes, mapped until drop; the server only
@@ -264,7 +267,9 @@ impl ShmImage {
                 .put_serial
                 .is_some_and(|put| (xl.XLastKnownRequestProcessed)(display) < put)
             {
-                (xl.XSync)(display, xlib::False);
+                crate::profile::span(crate::profile::Stage::XSync, || {
+                    (xl.XSync)(display, xlib::False)
+                });
             }
             let stride = (*self.image).bytes_per_line as usize;
             let data = std::slice::from_raw_parts_mut(
@@ -278,20 +283,24 @@ impl ShmImage {
                 layout: self.layout,
             })?;
             self.put_serial = Some((xl.XNextRequest)(display));
-            (self.xext.XShmPutImage)(
-                display,
-                window,
-                self.gc,
-                self.image,
-                0,
-                0,
-                0,
-                0,
-                self.width,
-                self.height,
-                xlib::False,
-            );
-            (xl.XFlush)(display);
+            send(&mut || {
+                crate::profile::span(crate::profile::Stage::Put, || {
+                    (self.xext.XShmPutImage)(
+                        display,
+                        window,
+                        self.gc,
+                        self.image,
+                        0,
+                        0,
+                        0,
+                        0,
+                        self.width,
+                        self.height,
+                        xlib::False,
+                    );
+                    (xl.XFlush)(display);
+                })
+            });
         }
         Ok(())
     }

@@ -32,7 +32,7 @@ use super::capture;
 use super::real::{Real, loaded, real};
 use super::registry;
 use super::settings;
-use crate::backend::glx::trap_x_errors;
+use crate::backend::glx::{trap_replied_x_errors, trap_x_errors};
 use crate::backend::xshm::{Connection, ShmImage, ShmSlot};
 use crate::error::{Error, Result};
 use crate::framing::InputFraming;
@@ -40,6 +40,7 @@ use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::Image;
 use crate::output::gl::{GlCompositor, Job};
+use crate::profile::{self, Stage};
 use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
 use crate::stereo::emulated::{BufferFormats, DrawSelection, EmulatedFramebuffer, ReadSelection};
 
@@ -64,6 +65,11 @@ pub(super) struct Drawn {
     /// A glViewport of another size already checked the drawable's size
     /// this frame.
     viewport_checked: bool,
+    /// The window's size as the server told it right after the last frame
+    /// was put through MIT-SHM (the request that tells it also waits for
+    /// the frame to be shown), None when unknown: the next present of a
+    /// frame of that size needs no request of its own to learn it.
+    size_seen: Option<(u32, u32)>,
 }
 
 /// The mutable part of a stereo context. Lock order: the registry's lock
@@ -251,6 +257,31 @@ impl Saved {
     }
 }
 
+/// XGetGeometry of X drawable `x`: its size, None when the request
+/// fails or the size is empty. One round trip, whose reply also tells that
+/// the server has processed every earlier request. Its X error is not
+/// trapped here: callers trap it.
+fn geometry(r: &Real, dpy: *mut xlib::Display, x: u64) -> Option<(u32, u32)> {
+    let (mut root, mut px, mut py) = (0, 0, 0);
+    let (mut w, mut h, mut border, mut depth) = (0u32, 0u32, 0u32, 0u32);
+    // SAFETY: valid display and out-pointers; a bad drawable is an X
+    // error, which the caller traps.
+    let ok = unsafe {
+        (r.xlib.XGetGeometry)(
+            dpy,
+            x,
+            &mut root,
+            &mut px,
+            &mut py,
+            &mut w,
+            &mut h,
+            &mut border,
+            &mut depth,
+        )
+    };
+    (ok != 0 && w > 0 && h > 0).then_some((w, h))
+}
+
 /// The size of a drawable: XGetGeometry of its X drawable (the window
 /// behind a GLX window), else glXQueryDrawable (pbuffers). X errors of
 /// these requests are trapped, never reach the program. Takes the
@@ -258,30 +289,9 @@ impl Saved {
 pub(super) fn drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(u32, u32)> {
     let dpy = display as *mut xlib::Display;
     let x = registry::with(|reg| reg.x_drawable(display, drawable));
-    let (geometry, err) = trap_x_errors(&r.xlib, dpy, || {
-        let (mut root, mut px, mut py) = (0, 0, 0);
-        let (mut w, mut h, mut border, mut depth) = (0u32, 0u32, 0u32, 0u32);
-        // SAFETY: valid display and out-pointers; a bad drawable is an X
-        // error, trapped.
-        let ok = unsafe {
-            (r.xlib.XGetGeometry)(
-                dpy,
-                x,
-                &mut root,
-                &mut px,
-                &mut py,
-                &mut w,
-                &mut h,
-                &mut border,
-                &mut depth,
-            )
-        };
-        (ok != 0).then_some((w, h))
-    });
-    if let (Some((w, h)), 0) = (geometry, err) {
-        if w > 0 && h > 0 {
-            return Ok((w, h));
-        }
+    // One round trip: XGetGeometry's reply brings its error, if any.
+    if let (Some(size), 0) = trap_replied_x_errors(&r.xlib, dpy, || geometry(r, dpy, x)) {
+        return Ok(size);
     }
     let ((w, h), err) = trap_x_errors(&r.xlib, dpy, || {
         let (mut w, mut h) = (0u32, 0u32);
@@ -563,6 +573,7 @@ impl StereoContext {
                             frames: 0,
                             last_bound: 0,
                             viewport_checked: false,
+                            size_seen: None,
                         },
                     );
                 }
@@ -628,7 +639,8 @@ impl StereoContext {
             }
         }
         let result = self.flip_and_show(r, drawable, flip);
-        saved.restore(r, self.display);
+        profile::span(Stage::SwitchOut, || saved.restore(r, self.display));
+        profile::frame_end();
         result
     }
 
@@ -637,7 +649,26 @@ impl StereoContext {
     /// leaves current, the caller puts back what was current before.
     fn flip_and_show(&self, r: &Real, drawable: u64, flip: bool) -> Result<()> {
         let gl = &r.gl;
-        let window = drawable_size(r, self.display, drawable)?;
+        // The size seen after the last frame's put, while frames of that
+        // size go out through MIT-SHM; else (a first frame, a resize the
+        // program made known through glViewport, the GL path, a window
+        // that was gone) the server is asked. A window resized behind the
+        // program's back shows one frame at the old size, and the buffers
+        // follow for the next one; the put to a window destroyed since is
+        // an X error trapped in put_pixels, and the next present reports it.
+        let seen = {
+            let st = self.lock();
+            st.fbs
+                .get(&drawable)
+                .and_then(|d| d.size_seen.filter(|&s| s == d.fb.size()))
+        };
+        let window = match seen {
+            Some(size) => size,
+            None => profile::span(Stage::RoundTrip, || {
+                drawable_size(r, self.display, drawable)
+            })?,
+        };
+        profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
         let drawn = st
@@ -647,15 +678,15 @@ impl StereoContext {
         // SAFETY: the program's context is current on this thread.
         unsafe {
             if flip {
-                drawn.fb.swap(gl);
+                profile::span(Stage::Flip, || drawn.fb.swap(gl));
             }
             // The layer's context reads what the program drew: finish it.
-            gl.Finish();
+            profile::span(Stage::Finish, || gl.Finish());
         }
         drawn.frames += 1;
         drawn.viewport_checked = false;
         let frame_index = drawn.frames - 1;
-        self.make_ours_current(r, drawable)?;
+        profile::span(Stage::SwitchIn, || self.make_ours_current(r, drawable))?;
         self.compose_and_swap(r, &mut st, (drawable, x_window), window, frame_index)
     }
 
@@ -690,6 +721,8 @@ impl StereoContext {
         // single-buffered windows: Mesa's software driver copies the
         // program's real front buffer into the window when the program
         // flushes, over the frame put there.
+        // Some(size after the put) when the frame went out through MIT-SHM.
+        let mut seen = None;
         let shown = if self.shape.double_buffered {
             // SAFETY: the layer's context is current on the drawable, whose
             // X drawable is `x_window`; the job's textures are shared with it.
@@ -701,6 +734,7 @@ impl StereoContext {
                     (self.display, x_window),
                     (width, height),
                     &job,
+                    &mut seen,
                 )
             }
         } else {
@@ -713,7 +747,9 @@ impl StereoContext {
             Ok(true) => (Ok(()), false),
             // SAFETY: as above.
             Ok(false) => (
-                unsafe { compositor.compose_window(gl, &job, 0, width, height) },
+                profile::span(Stage::GlCompose, || unsafe {
+                    compositor.compose_window(gl, &job, 0, width, height)
+                }),
                 true,
             ),
             Err(e) => (Err(e), false),
@@ -746,17 +782,27 @@ impl StereoContext {
         // SAFETY: valid display and drawable, current in our context.
         unsafe {
             if in_gl && self.shape.double_buffered {
-                (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable);
+                profile::span(Stage::GlCompose, || {
+                    (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable)
+                });
             } else if in_gl {
                 // A single-buffered window was drawn in its front buffer.
                 gl.Finish();
             }
-            // The frame is on the server when presenting returns: Mesa's
-            // software swap sends the image in several requests without
-            // waiting, and another client (a screenshot, a compositor)
-            // could otherwise see it half drawn or not yet. One round trip.
-            (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False);
         }
+        // The frame is on the server when presenting returns: Mesa's
+        // software swap sends the image in several requests without
+        // waiting, and another client (a screenshot, a compositor) could
+        // otherwise see it half drawn or not yet. One round trip: after a
+        // MIT-SHM put, put_pixels's size query was it.
+        drawn.size_seen = seen.flatten();
+        if seen.is_none() {
+            // SAFETY: a valid display.
+            profile::span(Stage::XSync, || unsafe {
+                (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False)
+            });
+        }
+        let (width, height) = drawn.size_seen.unwrap_or((width, height));
         if drawn.fb.size() != (width, height) {
             // SAFETY: the layer's context is current.
             unsafe {
@@ -772,7 +818,11 @@ impl StereoContext {
 /// MIT-SHM, when the renderer is software and the window can take it.
 /// Ok(false): nothing shown, take the GL path (a hardware renderer, a
 /// composite of another size than the window, `quad`, no MIT-SHM, a pixmap
-/// or pbuffer drawable, an unsupported visual).
+/// or pbuffer drawable, an unsupported visual). The put and a size query
+/// behind it run with X errors trapped (a window destroyed since the last
+/// frame must not end the program); when the put was sent, `seen` becomes
+/// Some(the window's size, None if it is gone), and the query's reply
+/// means the server has shown the frame.
 ///
 /// # Safety
 /// The layer's context is current on the drawable; `display` is open and
@@ -785,6 +835,7 @@ unsafe fn put_pixels(
     (display, x_window): (usize, u64),
     size: (u32, u32),
     job: &Job,
+    seen: &mut Option<Option<(u32, u32)>>,
 ) -> Result<bool> {
     if drawn.image.unsupported() {
         return Ok(false);
@@ -800,11 +851,17 @@ unsafe fn put_pixels(
     unsafe {
         drawn.image.put(
             &r.xlib,
-            dpy,
-            x_window,
+            (dpy, x_window),
             size,
             || shm_image(r, dpy, x_window, size),
             &mut |t| compositor.fill_pixels(gl, job, plan, t),
+            &mut |put| {
+                let (size, err) = trap_replied_x_errors(&r.xlib, dpy, || {
+                    put();
+                    profile::span(Stage::XSync, || geometry(r, dpy, x_window))
+                });
+                *seen = Some(size.filter(|_| err == 0));
+            },
         )
     }
 }

@@ -50,6 +50,7 @@ use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, flip_rows};
 use crate::math::Eye;
+use crate::profile::{self, Stage};
 
 use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices};
 use super::cpu::check_composite;
@@ -827,10 +828,11 @@ impl GlCompositor {
             gl.take_error();
             match plan.0 {
                 Plan::Gl => {
-                    self.compose_capture(gl, job)?;
+                    profile::span(Stage::GlCompose, || self.compose_capture(gl, job))?;
                     let canvas = self.capture;
-                    let img = self.window.read_canvas(gl, &canvas)?;
-                    target.write_image(img, true);
+                    let img =
+                        profile::span(Stage::ReadBack, || self.window.read_canvas(gl, &canvas))?;
+                    profile::span(Stage::Compose, || target.write_image(img, true));
                 }
                 plan => self.window.fill(gl, plan, job, &options, &mut target)?,
             }

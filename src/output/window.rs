@@ -34,6 +34,7 @@ use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::{Image, as_words, as_words_mut, flip_rows};
 use crate::math::Eye;
+use crate::profile::{self, Stage};
 
 use super::cpu;
 use super::gl::{Canvas, ComposePath, Job, TexRect, preferred_path};
@@ -337,7 +338,7 @@ impl WindowPaths {
             img.resize(w, h, "read-back eye")?;
             // SAFETY: the compositor context is current (contract); the
             // image holds w×h×4 bytes.
-            unsafe {
+            profile::span(Stage::ReadBack, || unsafe {
                 read_from(gl, fbo, rect.texture);
                 gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
                 gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
@@ -350,7 +351,7 @@ impl WindowPaths {
                     GL_UNSIGNED_BYTE,
                     img.pixels_mut().as_mut_ptr().cast(),
                 );
-            }
+            });
             if order.is_none() {
                 flip_rows(img.pixels_mut(), w as usize * 4);
             }
@@ -361,7 +362,9 @@ impl WindowPaths {
         }
         let [l, r] = &self.eyes;
         let r = if same { l } else { r };
-        cpu::compose_into(job.mode, &opts, l, r, job.frame_index, &mut self.out)?;
+        profile::span(Stage::Compose, || {
+            cpu::compose_into(job.mode, &opts, l, r, job.frame_index, &mut self.out)
+        })?;
         Ok((&self.out, order.is_some()))
     }
 
@@ -427,7 +430,7 @@ impl WindowPaths {
                     continue;
                 }
                 // SAFETY: contract; the band holds w × rows × 4 bytes ≥ n rows.
-                unsafe {
+                profile::span(Stage::ReadBack, || unsafe {
                     read_from(gl, fbo, rect.texture);
                     gl.ReadPixels(
                         rect.x as i32,
@@ -438,10 +441,10 @@ impl WindowPaths {
                         GL_UNSIGNED_BYTE,
                         self.eyes[i].pixels_mut().as_mut_ptr().cast(),
                     );
-                }
+                });
             }
             let band = |i: usize| rects[i].map(|_| &self.eyes[if same { 0 } else { i }]);
-            each(y0, [band(0), band(1)]);
+            profile::span(Stage::Compose, || each(y0, [band(0), band(1)]));
             y0 += n;
         }
         Ok(())
@@ -517,7 +520,7 @@ impl WindowPaths {
             Plan::Cpu => {
                 // SAFETY: contract.
                 let (img, bottom_first) = unsafe { self.cpu_image(gl, job, options)? };
-                target.write_image(img, bottom_first);
+                profile::span(Stage::Compose, || target.write_image(img, bottom_first));
             }
             Plan::Gl => unreachable!("the compositor composes GL plans"),
         }

@@ -11,7 +11,9 @@
  * swaps, prints what GL reported and "ready 0x<window>", then reads a line
  * on stdin (the test grabs the window meanwhile): "resize W H" resizes the
  * window, sets the viewport as a reshape handler would, draws and presents
- * again; anything else (or EOF) exits 0. With "single" the visual is
+ * again; "wmresize W H" resizes it as a window manager would for a program
+ * without a reshape handler (the viewport stays), draws and presents again;
+ * anything else (or EOF) exits 0. With "single" the visual is
  * single-buffered: it draws GL_FRONT_LEFT / GL_FRONT_RIGHT and calls
  * glFlush instead of swapping. Without a stereo visual it says so on stderr
  * and exits 2, as the guide advises.
@@ -99,13 +101,18 @@ int main(int argc, char **argv)
 
         char line[64];
         int w, h;
-        if (fgets(line, sizeof line, stdin) == NULL ||
-            sscanf(line, "resize %d %d", &w, &h) != 2) {
+        if (fgets(line, sizeof line, stdin) == NULL) {
+            break;
+        }
+        int reshape = sscanf(line, "resize %d %d", &w, &h) == 2;
+        if (!reshape && sscanf(line, "wmresize %d %d", &w, &h) != 2) {
             break;
         }
         XResizeWindow(display, win, (unsigned)w, (unsigned)h);
         XSync(display, False);
-        glViewport(0, 0, w, h);
+        if (reshape) {
+            glViewport(0, 0, w, h);
+        }
     }
     glXMakeCurrent(display, None, NULL);
     glXDestroyContext(display, ctx);
