@@ -99,9 +99,14 @@ pub fn compile_c(sources: &[PathBuf], out: &Path, extra: &[&str]) {
 pub fn ensure_soname_link(lib: &Path) {
     let link = lib.join("libglstereo.so.0");
     if std::fs::read_link(&link).ok().as_deref() != Some(Path::new("libglstereo.so")) {
-        let _ = std::fs::remove_file(&link);
-        // Another test may create it at the same moment; either result is fine.
-        let _ = std::os::unix::fs::symlink("libglstereo.so", &link);
+        // Made under a name of this process, then renamed over the link:
+        // a program another test starts meanwhile finds the old link or the
+        // new one, never none.
+        let fresh = lib.join(format!("libglstereo.so.0.{}", std::process::id()));
+        let _ = std::fs::remove_file(&fresh);
+        if std::os::unix::fs::symlink("libglstereo.so", &fresh).is_ok() {
+            let _ = std::fs::rename(&fresh, &link);
+        }
     }
 }
 
