@@ -96,8 +96,13 @@ fn link_soname(out_dir: &std::path::Path) {
     if std::fs::read_link(&link).ok().as_deref() == Some(target) {
         return;
     }
-    let _ = std::fs::remove_file(&link);
-    if let Err(e) = std::os::unix::fs::symlink(target, &link) {
+    // Made under another name and renamed over the link, so a program
+    // starting meanwhile finds the old link or the new one, never none.
+    let fresh = profile.join(format!("libglstereo.so.0.{}", std::process::id()));
+    let _ = std::fs::remove_file(&fresh);
+    if let Err(e) =
+        std::os::unix::fs::symlink(target, &fresh).and_then(|()| std::fs::rename(&fresh, &link))
+    {
         println!(
             "cargo:warning=cannot make {} (a C program linked here would not start): {e}",
             link.display()
