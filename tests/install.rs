@@ -62,6 +62,10 @@ fn make_install_gives_a_c_library_pkg_config_and_glstereo_run() {
         format!("lib/libglstereo.so.{version}"),
         "lib/libglstereo.a".into(),
         "lib/libglstereo_preload.so".into(),
+        // The stubs a program that dlopens GL gets (src/interpose/next.rs).
+        "lib/libglstereo_stub_GL.so".into(),
+        "lib/libglstereo_stub_GLX.so".into(),
+        "lib/libglstereo_stub_OpenGL.so".into(),
         "lib/pkgconfig/glstereo.pc".into(),
         "include/glstereo.h".into(),
         "include/glstereo/compat.h".into(),
