@@ -2303,6 +2303,18 @@ void gls_gl_push_attrib(uint32_t mask);
 void gls_gl_pop_attrib(void);
 
 /**
+ * `glClearColor`: also kept by the layer (see gls_gl_clear()).
+ */
+void gls_gl_clear_color(float red, float green, float blue, float alpha);
+
+/**
+ * `glClear`: on the emulated framebuffer of a visual without alpha, the
+ * colour is cleared with alpha 1.0 (which that buffer always holds), so
+ * that the driver's fast full clear serves it.
+ */
+void gls_gl_clear(uint32_t mask);
+
+/**
  * `glColorMask`: the program's masks, as GL_COLOR_WRITEMASK answers them;
  * while the emulated framebuffer of a visual without alpha is bound, the
  * driver's masks never write alpha (its alpha stays 1.0).

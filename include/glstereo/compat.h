@@ -214,6 +214,15 @@ static inline void gls_compat_glViewport(GLint x, GLint y, GLsizei width, GLsize
 {
     gls_gl_viewport(x, y, width, height);
 }
+static inline void gls_compat_glClear(GLbitfield mask)
+{
+    gls_gl_clear(mask);
+}
+static inline void gls_compat_glClearColor(GLfloat red, GLfloat green, GLfloat blue,
+                                           GLfloat alpha)
+{
+    gls_gl_clear_color(red, green, blue, alpha);
+}
 static inline void gls_compat_glColorMask(GLboolean red, GLboolean green, GLboolean blue,
                                           GLboolean alpha)
 {
@@ -375,6 +384,8 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glPopAttrib gls_compat_glPopAttrib
 #define glViewport gls_compat_glViewport
 #define glColorMask gls_compat_glColorMask
+#define glClear gls_compat_glClear
+#define glClearColor gls_compat_glClearColor
 #define glColorMaski gls_compat_glColorMaski
 #define glGetBooleani_v gls_compat_glGetBooleani_v
 #define glBlitFramebuffer gls_compat_glBlitFramebuffer

@@ -603,6 +603,24 @@ pub extern "C" fn gls_gl_pop_attrib() {
     })
 }
 
+/// `glClearColor`: also kept by the layer (see gls_gl_clear()).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear_color(red: f32, green: f32, blue: f32, alpha: f32) {
+    ffi_boundary!("gls_gl_clear_color" for "glClearColor", () => {
+        igl::clear_color(red, green, blue, alpha)
+    })
+}
+
+/// `glClear`: on the emulated framebuffer of a visual without alpha, the
+/// colour is cleared with alpha 1.0 (which that buffer always holds), so
+/// that the driver's fast full clear serves it.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear(mask: u32) {
+    ffi_boundary!("gls_gl_clear" for "glClear", () => {
+        igl::clear(mask)
+    })
+}
+
 /// `glColorMask`: the program's masks, as GL_COLOR_WRITEMASK answers them;
 /// while the emulated framebuffer of a visual without alpha is bound, the
 /// driver's masks never write alpha (its alpha stays 1.0).
@@ -761,6 +779,8 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glPopAttrib" => gls_gl_pop_attrib as *mut c_void,
         b"glViewport" => gls_gl_viewport as *mut c_void,
         b"glColorMask" => gls_gl_color_mask as *mut c_void,
+        b"glClear" => gls_gl_clear as *mut c_void,
+        b"glClearColor" => gls_gl_clear_color as *mut c_void,
         b"glColorMaski" => gls_gl_color_maski as *mut c_void,
         b"glGetBooleani_v" => gls_gl_get_booleani_v as *mut c_void,
         b"glBlitFramebuffer" => gls_gl_blit_framebuffer as *mut c_void,

@@ -33,7 +33,10 @@
 //!   driver's masks never write alpha while that framebuffer is bound for
 //!   drawing; glBlitFramebuffer, glBlitNamedFramebuffer and
 //!   glClearNamedFramebuffer into it, which the bound masks do not stop,
-//!   are followed by a clear of its alpha to 1.0.
+//!   are followed by a clear of its alpha to 1.0. glClear of its colour
+//!   clears alpha to 1.0 with alpha written (glClearColor is kept as the
+//!   program's), so that llvmpipe's fast full clear serves it rather than
+//!   a masked quad.
 //! - glViewport notices a resized window before the program draws into it;
 //!   glFlush / glFinish show the front buffers when the program draws to
 //!   them (single-buffered visuals, or glDrawBuffer(GL_FRONT…)).
@@ -656,7 +659,8 @@ fn push_selections(gl: &Gl, push: unsafe extern "system" fn(u32), mask: u32) {
         read: (mask & GL_PIXEL_MODE_BIT != 0)
             .then(|| st.fbs.get(&read_d).map(|d| (read_d, d.fb.read_selection())))
             .flatten(),
-        color_mask: (mask & GL_COLOR_BUFFER_BIT_ATTRIB != 0).then_some(st.color_mask),
+        color_mask: (mask & GL_COLOR_BUFFER_BIT_ATTRIB != 0)
+            .then_some((st.color_mask, st.clear_color)),
     };
     st.attribs.push(saved);
 }
@@ -701,11 +705,12 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
             unsafe { fb.restore_read_selection(gl, sel) };
         }
     }
-    if let Some(mask) = saved.color_mask {
+    if let Some((mask, clear_color)) = saved.color_mask {
         // GL restored the driver's masks as they were at the push (alpha
         // off if the emulated framebuffer was bound then): put the
         // program's back and apply them to what is bound now.
         st.color_mask = mask;
+        st.clear_color = clear_color;
         apply_color_mask(gl, cur.sc.formats(), &st);
     }
 }
@@ -740,6 +745,57 @@ fn set_driver_masks(gl: &Gl, masks: &[[bool; 4]; MASKED_BUFFERS], keep_alpha: bo
             unsafe { gl.ColorMask(r, g, bl, a) };
         }
     }
+}
+
+/// glClearColor: kept as the program's clear colour (see [`clear`]).
+pub fn clear_color(red: f32, green: f32, blue: f32, alpha: f32) -> Result<()> {
+    let r = loaded()?;
+    if let Some(cur) = current() {
+        cur.sc.lock().clear_color = [red, green, blue, alpha];
+    }
+    // SAFETY: forwarded call.
+    unsafe { r.gl.ClearColor(red, green, blue, alpha) };
+    Ok(())
+}
+
+/// glClear. On an opaque emulated framebuffer the colour is cleared with
+/// alpha 1.0 and alpha written (what the buffer holds anyway), so that a
+/// clear the program masks nothing of stays the driver's fast full clear
+/// rather than a masked one (llvmpipe draws a quad for that).
+pub fn clear(mask: u32) -> Result<()> {
+    let r = loaded()?;
+    let gl = &r.gl;
+    let cur = match current() {
+        Some(cur) if mask & GL_COLOR_BUFFER_BIT != 0 && cur.sc.formats().opaque => cur,
+        _ => {
+            // SAFETY: forwarded call.
+            unsafe { gl.Clear(mask) };
+            return Ok(());
+        }
+    };
+    let st = cur.sc.lock();
+    // SAFETY: the program's context is current.
+    let draw = unsafe { gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) } as u32;
+    if !st.is_ours(draw) {
+        drop(st);
+        // SAFETY: forwarded call.
+        unsafe { gl.Clear(mask) };
+        return Ok(());
+    }
+    let [cr, cg, cb, ca] = st.clear_color;
+    let mut masks = st.color_mask;
+    for m in &mut masks {
+        m[3] = true;
+    }
+    set_driver_masks(gl, &masks, false);
+    // SAFETY: the program's context is current.
+    unsafe {
+        gl.ClearColor(cr, cg, cb, 1.0);
+        gl.Clear(mask);
+        gl.ClearColor(cr, cg, cb, ca);
+    }
+    set_driver_masks(gl, &st.color_mask, true);
+    Ok(())
 }
 
 /// glColorMask: kept as the program's masks (what GL_COLOR_WRITEMASK

@@ -219,6 +219,16 @@ int main(int argc, char **argv)
     clear(0.25f);
     pixel("fbo clear after pop");
 
+    /* A clear of framebuffer 0 keeps the program's clear colour. */
+    bind(FRAMEBUFFER, 0);
+    clear(0.25f);
+    GLfloat cc[4] = {0};
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, cc);
+    printf("clear value %.3f %.3f %.3f %.3f\n", cc[0], cc[1], cc[2], cc[3]);
+    bind(FRAMEBUFFER, fbo);
+    glClear(GL_COLOR_BUFFER_BIT);
+    pixel("fbo clear with the same colour");
+
     glXMakeCurrent(display, None, NULL);
     glXDestroyContext(display, ctx);
     XDestroyWindow(display, win);

@@ -234,6 +234,8 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_pop_attrib() glPopAttrib()
 #define gls_gl_viewport(x, y, w, h) glViewport((x), (y), (w), (h))
 #define gls_gl_color_mask(r, g, b, a) glColorMask((r), (g), (b), (a))
+#define gls_gl_clear(m) glClear(m)
+#define gls_gl_clear_color(r, g, b, a) glClearColor((r), (g), (b), (a))
 #define gls_gl_color_maski(i, r, g, b, a) p_color_maski((i), (r), (g), (b), (a))
 #define gls_gl_get_booleani_v(p, i, d) p_get_booleani((p), (i), (d))
 #define gls_gl_blit_framebuffer(a, b, c, d, e, f, g, h, m, fl) \
@@ -700,6 +702,8 @@ static void no_context_cases(void) {
     EXPECT_VOID0(0, gls_gl_pop_attrib);
     EXPECT_VOID(0, gls_gl_viewport, 0, 0, -1, -1);
     EXPECT_VOID(0, gls_gl_color_mask, 1, 1, 1, 1);
+    EXPECT_VOID(0, gls_gl_clear_color, 0.0f, 0.0f, 0.0f, 0.0f);
+    EXPECT_VOID(0, gls_gl_clear, GL_COLOR_BUFFER_BIT);
     EXPECT_VOID(0, gls_gl_color_maski, 0, 1, 1, 1, 1);
     EXPECT_VOID(0, gls_gl_get_booleani_v, GL_COLOR_WRITEMASK, 0, &bv);
     EXPECT_VOID(0, gls_gl_blit_framebuffer, 0, 0, 1, 1, 0, 0, 1, 1, GL_COLOR_BUFFER_BIT,
@@ -862,6 +866,10 @@ static void stereo_gl_cases(void *ctx) {
     CHECK(mask4[0] == 1 && mask4[1] == 0 && mask4[2] == 1 && mask4[3] == 0,
           "GL_COLOR_WRITEMASK %d%d%d%d", mask4[0], mask4[1], mask4[2], mask4[3]);
     EXPECT_VOID(0, gls_gl_color_mask, 1, 1, 1, 1);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
+    EXPECT_VOID(0, gls_gl_clear, 0x7777 << 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_clear_color, 0.0f, 0.0f, 0.0f, 0.0f);
     EXPECT_GL_ERROR(GL_NO_ERROR);
     const GLenum bad_attachment[1] = {0x7777};
     EXPECT_VOID(0, gls_gl_invalidate_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment);
