@@ -2303,6 +2303,54 @@ void gls_gl_push_attrib(uint32_t mask);
 void gls_gl_pop_attrib(void);
 
 /**
+ * `glClearColor`: also kept by the layer (see gls_gl_clear()).
+ */
+void gls_gl_clear_color(float red, float green, float blue, float alpha);
+
+/**
+ * `glClear`: on the emulated framebuffer of a visual without alpha, the
+ * colour is cleared with alpha 1.0 (which that buffer always holds), so
+ * that the driver's fast full clear serves it.
+ */
+void gls_gl_clear(uint32_t mask);
+
+/**
+ * `glColorMask`: the program's masks, as GL_COLOR_WRITEMASK answers them;
+ * while the emulated framebuffer of a visual without alpha is bound, the
+ * driver's masks never write alpha (its alpha stays 1.0).
+ */
+void gls_gl_color_mask(uint8_t red, uint8_t green, uint8_t blue, uint8_t alpha);
+
+/**
+ * `glColorMaski`: as gls_gl_color_mask() for one draw buffer.
+ */
+void gls_gl_color_maski(uint32_t index, uint8_t red, uint8_t green, uint8_t blue, uint8_t alpha);
+
+/**
+ * `glGetBooleani_v`: GL_COLOR_WRITEMASK answers the program's masks.
+ * Refused: `data` NULL.
+ *
+ * # Safety
+ * `data` must be valid for the values `pname` returns (GL's contract).
+ */
+void gls_gl_get_booleani_v(uint32_t target, uint32_t index, uint8_t *data);
+
+/**
+ * `glBlitFramebuffer`: a blit into the emulated framebuffer of a visual
+ * without alpha leaves its alpha 1.0, as on that visual.
+ */
+void gls_gl_blit_framebuffer(int32_t src_x0,
+                             int32_t src_y0,
+                             int32_t src_x1,
+                             int32_t src_y1,
+                             int32_t dst_x0,
+                             int32_t dst_y0,
+                             int32_t dst_x1,
+                             int32_t dst_y1,
+                             uint32_t mask,
+                             uint32_t filter);
+
+/**
  * `glViewport`: also notices a resized window (the emulated buffers follow
  * it before the program draws).
  */

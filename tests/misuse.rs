@@ -270,6 +270,7 @@ fn legacy_name(gls: &str) -> &'static str {
             "glGetFramebufferParameteriv",
         ),
         ("gls_gl_create_shader_programv", "glCreateShaderProgramv"),
+        ("gls_gl_get_booleani_v", "glGetBooleani_v"),
     ];
     NAMES
         .iter()

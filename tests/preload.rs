@@ -370,6 +370,64 @@ fn a_mono_program_runs_as_it_would_without_the_layer() {
     assert_eq!(layered, plain);
 }
 
+/// A stereo visual without alpha under the layer answers alpha exactly as
+/// Mesa's mono visual without alpha does: reads of 1.0 after clears,
+/// draws, blits and glClearBuffer/glClearNamedFramebuffer, blending with a
+/// destination alpha of 1.0, and GL_COLOR_WRITEMASK as the program set it
+/// (the layer keeps its eyes in RGBA8 and never lets alpha be written).
+#[test]
+fn a_visual_without_alpha_reads_alpha_one_as_mesa_does() {
+    let x = Xvfb::start(320, 240);
+    let exe = program("glx_opaque_alpha", &["-lGL", "-lX11"]);
+    let plain = common::run_ok(Command::new(&exe).arg("mono").env("DISPLAY", &x.display));
+    let layered = common::run_ok(
+        Command::new(&built().run)
+            .arg(&exe)
+            .arg("stereo")
+            .env("DISPLAY", &x.display),
+    );
+    let (plain, layered) = (
+        String::from_utf8_lossy(&plain.stdout),
+        String::from_utf8_lossy(&layered.stdout),
+    );
+    // Mesa's reference is a visual without alpha, whose alpha reads 1.0.
+    assert!(plain.starts_with("alpha_bits 0\n"), "{plain}");
+    let line = |out: &str, what: &str| -> String {
+        out.lines()
+            .find(|l| l.starts_with(&format!("{what} ")))
+            .unwrap_or_else(|| panic!("no line {what:?} in\n{out}"))
+            .to_string()
+    };
+    for what in [
+        "clear 0.25",
+        "draw alpha 0.3",
+        "blit into fb0",
+        "named blit into fb0",
+    ] {
+        assert!(
+            line(&layered, what).contains(" 255 alpha 1.000 error 0x0"),
+            "{layered}"
+        );
+    }
+    assert!(
+        line(&layered, "fbo clear 0.5").contains(" 128 alpha 0.502"),
+        "{layered}"
+    );
+    assert!(
+        line(&layered, "fb0 1110").contains("writemask 1110 int 1110"),
+        "{layered}"
+    );
+    assert!(
+        line(&layered, "blend dst_alpha").contains("rgba 255 255 255 255"),
+        "{layered}"
+    );
+    assert!(
+        line(&layered, "blend one_minus_dst_alpha").contains("rgba 51 102 153 255"),
+        "{layered}"
+    );
+    assert_eq!(layered, plain);
+}
+
 #[test]
 fn the_stereo_buffers_follow_a_resized_window() {
     let x = Xvfb::start(640, 480);

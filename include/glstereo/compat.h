@@ -214,6 +214,35 @@ static inline void gls_compat_glViewport(GLint x, GLint y, GLsizei width, GLsize
 {
     gls_gl_viewport(x, y, width, height);
 }
+static inline void gls_compat_glClear(GLbitfield mask)
+{
+    gls_gl_clear(mask);
+}
+static inline void gls_compat_glClearColor(GLfloat red, GLfloat green, GLfloat blue,
+                                           GLfloat alpha)
+{
+    gls_gl_clear_color(red, green, blue, alpha);
+}
+static inline void gls_compat_glColorMask(GLboolean red, GLboolean green, GLboolean blue,
+                                          GLboolean alpha)
+{
+    gls_gl_color_mask(red, green, blue, alpha);
+}
+static inline void gls_compat_glColorMaski(GLuint index, GLboolean red, GLboolean green,
+                                           GLboolean blue, GLboolean alpha)
+{
+    gls_gl_color_maski(index, red, green, blue, alpha);
+}
+static inline void gls_compat_glGetBooleani_v(GLenum target, GLuint index, GLboolean *data)
+{
+    gls_gl_get_booleani_v(target, index, data);
+}
+static inline void gls_compat_glBlitFramebuffer(GLint sx0, GLint sy0, GLint sx1, GLint sy1,
+                                                GLint dx0, GLint dy0, GLint dx1, GLint dy1,
+                                                GLbitfield mask, GLenum filter)
+{
+    gls_gl_blit_framebuffer(sx0, sy0, sx1, sy1, dx0, dy0, dx1, dy1, mask, filter);
+}
 static inline void gls_compat_glFlush(void)
 {
     gls_gl_flush();
@@ -354,6 +383,12 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glPushAttrib gls_compat_glPushAttrib
 #define glPopAttrib gls_compat_glPopAttrib
 #define glViewport gls_compat_glViewport
+#define glColorMask gls_compat_glColorMask
+#define glClear gls_compat_glClear
+#define glClearColor gls_compat_glClearColor
+#define glColorMaski gls_compat_glColorMaski
+#define glGetBooleani_v gls_compat_glGetBooleani_v
+#define glBlitFramebuffer gls_compat_glBlitFramebuffer
 #define glFlush gls_compat_glFlush
 #define glFinish gls_compat_glFinish
 #define glClearBufferfv gls_compat_glClearBufferfv

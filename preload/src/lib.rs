@@ -142,6 +142,12 @@ export! {
     glPushAttrib => gls_gl_push_attrib(mask: u32);
     glPopAttrib => gls_gl_pop_attrib();
     glViewport => gls_gl_viewport(x: i32, y: i32, width: i32, height: i32);
+    glColorMask => gls_gl_color_mask(red: u8, green: u8, blue: u8, alpha: u8);
+    glClear => gls_gl_clear(mask: u32);
+    glClearColor => gls_gl_clear_color(red: f32, green: f32, blue: f32, alpha: f32);
+    glColorMaski => gls_gl_color_maski(index: u32, red: u8, green: u8, blue: u8, alpha: u8);
+    glGetBooleani_v => gls_gl_get_booleani_v(target: u32, index: u32, data: *mut u8);
+    glBlitFramebuffer => gls_gl_blit_framebuffer(sx0: i32, sy0: i32, sx1: i32, sy1: i32, dx0: i32, dy0: i32, dx1: i32, dy1: i32, mask: u32, filter: u32);
     glFlush => gls_gl_flush();
     glFinish => gls_gl_finish();
     glClearBufferfv => gls_gl_clear_bufferfv(buffer: u32, drawbuffer: i32, value: *const f32);

@@ -603,6 +603,81 @@ pub extern "C" fn gls_gl_pop_attrib() {
     })
 }
 
+/// `glClearColor`: also kept by the layer (see gls_gl_clear()).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear_color(red: f32, green: f32, blue: f32, alpha: f32) {
+    ffi_boundary!("gls_gl_clear_color" for "glClearColor", () => {
+        igl::clear_color(red, green, blue, alpha)
+    })
+}
+
+/// `glClear`: on the emulated framebuffer of a visual without alpha, the
+/// colour is cleared with alpha 1.0 (which that buffer always holds), so
+/// that the driver's fast full clear serves it.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear(mask: u32) {
+    ffi_boundary!("gls_gl_clear" for "glClear", () => {
+        igl::clear(mask)
+    })
+}
+
+/// `glColorMask`: the program's masks, as GL_COLOR_WRITEMASK answers them;
+/// while the emulated framebuffer of a visual without alpha is bound, the
+/// driver's masks never write alpha (its alpha stays 1.0).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_color_mask(red: u8, green: u8, blue: u8, alpha: u8) {
+    ffi_boundary!("gls_gl_color_mask" for "glColorMask", () => {
+        igl::color_mask(red, green, blue, alpha)
+    })
+}
+
+/// `glColorMaski`: as gls_gl_color_mask() for one draw buffer.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_color_maski(index: u32, red: u8, green: u8, blue: u8, alpha: u8) {
+    ffi_boundary!("gls_gl_color_maski" for "glColorMaski", () => {
+        igl::color_maski(index, red, green, blue, alpha)
+    })
+}
+
+/// `glGetBooleani_v`: GL_COLOR_WRITEMASK answers the program's masks.
+/// Refused: `data` NULL.
+///
+/// # Safety
+/// `data` must be valid for the values `pname` returns (GL's contract).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_booleani_v(target: u32, index: u32, data: *mut u8) {
+    ffi_boundary!("gls_gl_get_booleani_v" for "glGetBooleani_v", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_booleani_v(target, index, data) }
+    })
+}
+
+/// `glBlitFramebuffer`: a blit into the emulated framebuffer of a visual
+/// without alpha leaves its alpha 1.0, as on that visual.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn gls_gl_blit_framebuffer(
+    src_x0: i32,
+    src_y0: i32,
+    src_x1: i32,
+    src_y1: i32,
+    dst_x0: i32,
+    dst_y0: i32,
+    dst_x1: i32,
+    dst_y1: i32,
+    mask: u32,
+    filter: u32,
+) {
+    ffi_boundary!("gls_gl_blit_framebuffer" for "glBlitFramebuffer", () => {
+        igl::blit_framebuffer(
+            [src_x0, src_y0, src_x1, src_y1],
+            [dst_x0, dst_y0, dst_x1, dst_y1],
+            mask,
+            filter,
+        )
+    })
+}
+
 /// `glViewport`: also notices a resized window (the emulated buffers follow
 /// it before the program draws).
 #[unsafe(no_mangle)]
@@ -703,6 +778,12 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glPushAttrib" => gls_gl_push_attrib as *mut c_void,
         b"glPopAttrib" => gls_gl_pop_attrib as *mut c_void,
         b"glViewport" => gls_gl_viewport as *mut c_void,
+        b"glColorMask" => gls_gl_color_mask as *mut c_void,
+        b"glClear" => gls_gl_clear as *mut c_void,
+        b"glClearColor" => gls_gl_clear_color as *mut c_void,
+        b"glColorMaski" => gls_gl_color_maski as *mut c_void,
+        b"glGetBooleani_v" => gls_gl_get_booleani_v as *mut c_void,
+        b"glBlitFramebuffer" => gls_gl_blit_framebuffer as *mut c_void,
         b"glFlush" => gls_gl_flush as *mut c_void,
         b"glFinish" => gls_gl_finish as *mut c_void,
         b"glClearBufferfv" => gls_gl_clear_bufferfv as *mut c_void,

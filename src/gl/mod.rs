@@ -101,6 +101,7 @@ gl_table! {
     Scissor = "glScissor"(x: GLint, y: GLint, w: GLsizei, h: GLsizei);
     ClearColor = "glClearColor"(r: GLfloat, g: GLfloat, b: GLfloat, a: GLfloat);
     Clear = "glClear"(mask: GLbitfield);
+    ClearBufferfv = "glClearBufferfv"(buffer: GLenum, drawbuffer: GLint, value: *const GLfloat);
     ClearDepth = "glClearDepth"(depth: GLdouble);
     ColorMask = "glColorMask"(r: GLboolean, g: GLboolean, b: GLboolean, a: GLboolean);
     PixelStorei = "glPixelStorei"(pname: GLenum, param: GLint);

@@ -92,13 +92,27 @@ pub(super) struct CtxState {
     /// One entry per level of the context's attribute stack (glPushAttrib):
     /// the emulated draw/read selections the pushed bits cover.
     pub(super) attribs: Vec<SavedSelections>,
+    /// The colour write masks the program set (glColorMask, glColorMaski),
+    /// by draw buffer index: what GL_COLOR_WRITEMASK answers. While an
+    /// opaque emulated framebuffer ([`BufferFormats::opaque`]) is bound
+    /// for drawing, the driver's masks never write alpha.
+    pub(super) color_mask: [[bool; 4]; MASKED_BUFFERS],
+    /// The program's clear colour (glClearColor), which the layer's fast
+    /// clear of an opaque emulated framebuffer changes for a moment.
+    pub(super) clear_color: [f32; 4],
 }
+
+/// The draw buffer indices whose colour masks the layer shadows
+/// (GL_MAX_DRAW_BUFFERS of llvmpipe and of most drivers).
+pub(super) const MASKED_BUFFERS: usize = 8;
 
 /// The emulated buffer selections saved by one glPushAttrib: the draw
 /// selection with GL_COLOR_BUFFER_BIT, the read one with GL_PIXEL_MODE_BIT.
 pub(super) struct SavedSelections {
     pub(super) draw: Option<(u64, DrawSelection)>,
     pub(super) read: Option<(u64, ReadSelection)>,
+    /// The program's colour masks, with GL_COLOR_BUFFER_BIT.
+    pub(super) color_mask: Option<([[bool; 4]; MASKED_BUFFERS], [f32; 4])>,
 }
 
 impl CtxState {
@@ -337,6 +351,8 @@ impl StereoContext {
                 owner: None,
                 destroyed: false,
                 attribs: Vec::new(),
+                color_mask: [[true; 4]; MASKED_BUFFERS],
+                clear_color: [0.0; 4],
             }),
         })
     }
@@ -351,7 +367,12 @@ impl StereoContext {
         self.ctx
     }
 
-    /// The emulated framebuffer's shape.
+    /// The storage formats of its emulated framebuffers.
+    pub fn formats(&self) -> BufferFormats {
+        self.formats
+    }
+
+    /// The framebuffer shape of its visual.
     pub fn shape(&self) -> FramebufferShape {
         self.shape
     }
@@ -549,6 +570,7 @@ impl StereoContext {
             if bound_read == 0 || st.is_ours(bound_read) {
                 gl.BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo);
             }
+            super::gl::apply_color_mask(gl, self.formats, &st);
             gl.check("binding the emulated stereo framebuffer")
         }
     }

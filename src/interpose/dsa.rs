@@ -47,7 +47,7 @@ use crate::stereo::buffers::gl_error_code;
 use crate::stereo::emulated::{DrawSlots, EmulatedFramebuffer};
 use crate::stereo::outputs::{LinkFns, Outcome};
 
-const GL_COLOR: u32 = 0x1800;
+pub(super) const GL_COLOR: u32 = 0x1800;
 const GL_FRAGMENT_SHADER: u32 = 0x8B30;
 
 type ClearFn<T> = unsafe extern "system" fn(u32, i32, *const T);
@@ -272,6 +272,13 @@ pub unsafe fn clear_named_framebuffer<T: ClearValue>(
                 // SAFETY: forwarded call on the emulated framebuffer object.
                 unsafe { real(fbo, buffer, slot, value) };
             }
+            if buffer == GL_COLOR {
+                // The masks in force are those of the framebuffer bound,
+                // which may write alpha.
+                if let Some(cur) = current() {
+                    super::gl::restore_alpha(&r.gl, &cur, fbo);
+                }
+            }
             return Ok(());
         }
     }
@@ -382,7 +389,7 @@ pub fn blit_named_framebuffer(
     mask: u32,
     filter: u32,
 ) -> Result<()> {
-    loaded()?;
+    let r = loaded()?;
     let real = need(fns().blit_named, "glBlitNamedFramebuffer")?;
     let (mut read, mut draw) = (read, draw);
     if let Some(cur) = current() {
@@ -400,6 +407,13 @@ pub fn blit_named_framebuffer(
             filter,
         )
     };
+    if mask & GL_COLOR_BUFFER_BIT != 0 {
+        // A blit ignores the colour masks: an opaque emulated framebuffer
+        // gets its alpha of 1.0 back.
+        if let Some(cur) = current() {
+            super::gl::restore_alpha(&r.gl, &cur, draw);
+        }
+    }
     Ok(())
 }
 

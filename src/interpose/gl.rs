@@ -25,17 +25,30 @@
 //! - glPushAttrib / glPopAttrib save and restore the emulated draw buffer
 //!   (GL_COLOR_BUFFER_BIT) and read buffer (GL_PIXEL_MODE_BIT), as they do
 //!   a real default framebuffer's;
+//! - A visual without alpha gets GL_RGBA8 eyes (llvmpipe reads them back
+//!   about six times faster than GL_RGB8) whose alpha stays 1.0, as a
+//!   default framebuffer without alpha bits reads and blends: glColorMask /
+//!   glColorMaski are kept as the program set them (GL_COLOR_WRITEMASK,
+//!   glGetBooleani_v and glPopAttrib answer and restore those), and the
+//!   driver's masks never write alpha while that framebuffer is bound for
+//!   drawing; glBlitFramebuffer, glBlitNamedFramebuffer and
+//!   glClearNamedFramebuffer into it, which the bound masks do not stop,
+//!   are followed by a clear of its alpha to 1.0. glClear of its colour
+//!   clears alpha to 1.0 with alpha written (glClearColor is kept as the
+//!   program's), so that llvmpipe's fast full clear serves it rather than
+//!   a masked quad.
 //! - glViewport notices a resized window before the program draws into it;
 //!   glFlush / glFinish show the front buffers when the program draws to
 //!   them (single-buffered visuals, or glDrawBuffer(GL_FRONT…)).
 
-use super::context::{Current, current, stereo_current};
+use super::context::{CtxState, Current, MASKED_BUFFERS, current, stereo_current};
+use super::dsa::GL_COLOR;
 use super::real::{Real, loaded};
 use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code};
-use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
+use crate::stereo::emulated::{BufferFormats, EmulatedFramebuffer, default_framebuffer_query};
 
 /// GL_DEPTH and GL_STENCIL, the default framebuffer's attachment names.
 const GL_DEPTH: u32 = 0x1801;
@@ -48,6 +61,7 @@ const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME: u32 = 0x8CD1;
 const GL_COLOR_BUFFER_BIT_ATTRIB: u32 = 0x4000;
 const GL_PIXEL_MODE_BIT: u32 = 0x0020;
 const GL_ATTRIB_STACK_DEPTH: u32 = 0x0BB0;
+const GL_COLOR_WRITEMASK: u32 = 0x0C23;
 
 /// Refuses a NULL pointer that GL would read or write through (libGL
 /// dereferences it and crashes): nothing is forwarded, and GL_INVALID_VALUE
@@ -291,6 +305,16 @@ unsafe fn get_v<T>(
     }
     // SAFETY: forwarded call.
     unsafe { forward(&r.gl, pname, data) };
+    if pname == GL_COLOR_WRITEMASK {
+        if let Some(cur) = current() {
+            let mask = cur.sc.lock().color_mask[0];
+            for (i, &m) in mask.iter().enumerate() {
+                // SAFETY: GL_COLOR_WRITEMASK returns four values.
+                unsafe { *data.add(i) = convert(m as i32) };
+            }
+        }
+        return Ok(());
+    }
     if !answered(pname) || !stereo_current() {
         return Ok(());
     }
@@ -367,18 +391,23 @@ fn bind_emulated(cur: &Current, gl: &Gl, target: u32) -> bool {
 /// glBindFramebuffer (glBindFramebufferEXT when `ext`).
 pub fn bind_framebuffer(target: u32, framebuffer: u32, ext: bool) -> Result<()> {
     let r = loaded()?;
-    if framebuffer == 0 {
-        if let Some(cur) = current() {
-            if bind_emulated(&cur, &r.gl, target) {
-                return Ok(());
-            }
+    let cur = current();
+    let emulated = framebuffer == 0
+        && cur
+            .as_ref()
+            .is_some_and(|cur| bind_emulated(cur, &r.gl, target));
+    if !emulated {
+        match (ext, r.extra.bind_framebuffer_ext) {
+            // SAFETY: forwarded call.
+            (true, Some(f)) => unsafe { f(target, framebuffer) },
+            // SAFETY: forwarded call.
+            _ => unsafe { r.gl.BindFramebuffer(target, framebuffer) },
         }
     }
-    match (ext, r.extra.bind_framebuffer_ext) {
-        // SAFETY: forwarded call.
-        (true, Some(f)) => unsafe { f(target, framebuffer) },
-        // SAFETY: forwarded call.
-        _ => unsafe { r.gl.BindFramebuffer(target, framebuffer) },
+    if let Some(cur) = cur {
+        if target != GL_READ_FRAMEBUFFER && cur.sc.formats().opaque {
+            apply_color_mask(&r.gl, cur.sc.formats(), &cur.sc.lock());
+        }
     }
     Ok(())
 }
@@ -433,6 +462,9 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
     }
     if read == 0 {
         bind_emulated(&cur, gl, GL_READ_FRAMEBUFFER);
+    }
+    if cur.sc.formats().opaque {
+        apply_color_mask(gl, cur.sc.formats(), &cur.sc.lock());
     }
     Ok(())
 }
@@ -627,6 +659,8 @@ fn push_selections(gl: &Gl, push: unsafe extern "system" fn(u32), mask: u32) {
         read: (mask & GL_PIXEL_MODE_BIT != 0)
             .then(|| st.fbs.get(&read_d).map(|d| (read_d, d.fb.read_selection())))
             .flatten(),
+        color_mask: (mask & GL_COLOR_BUFFER_BIT_ATTRIB != 0)
+            .then_some((st.color_mask, st.clear_color)),
     };
     st.attribs.push(saved);
 }
@@ -671,4 +705,211 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
             unsafe { fb.restore_read_selection(gl, sel) };
         }
     }
+    if let Some((mask, clear_color)) = saved.color_mask {
+        // GL restored the driver's masks as they were at the push (alpha
+        // off if the emulated framebuffer was bound then): put the
+        // program's back and apply them to what is bound now.
+        st.color_mask = mask;
+        st.clear_color = clear_color;
+        apply_color_mask(gl, cur.sc.formats(), &st);
+    }
+}
+
+/// Sets the driver's colour masks to the program's (`st.color_mask`),
+/// with alpha never written while an opaque emulated framebuffer is bound
+/// for drawing, so that its alpha stays 1.0.
+pub(super) fn apply_color_mask(gl: &Gl, formats: BufferFormats, st: &CtxState) {
+    // SAFETY: the program's context is current (callers).
+    let draw = unsafe { gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) } as u32;
+    let keep_alpha = formats.opaque && st.is_ours(draw);
+    set_driver_masks(gl, &st.color_mask, keep_alpha);
+}
+
+fn set_driver_masks(gl: &Gl, masks: &[[bool; 4]; MASKED_BUFFERS], keep_alpha: bool) {
+    let b = |m: [bool; 4]| {
+        let [r, g, b, a] = m.map(u8::from);
+        (r, g, b, if keep_alpha { 0 } else { a })
+    };
+    let maski = loaded().ok().and_then(|r| r.extra.color_maski);
+    match maski {
+        Some(f) if masks.iter().any(|m| *m != masks[0]) => {
+            for (i, &m) in masks.iter().enumerate() {
+                let (r, g, bl, a) = b(m);
+                // SAFETY: the program's context is current; i < 8.
+                unsafe { f(i as u32, r, g, bl, a) };
+            }
+        }
+        _ => {
+            let (r, g, bl, a) = b(masks[0]);
+            // SAFETY: the program's context is current.
+            unsafe { gl.ColorMask(r, g, bl, a) };
+        }
+    }
+}
+
+/// glClearColor: kept as the program's clear colour (see [`clear`]).
+pub fn clear_color(red: f32, green: f32, blue: f32, alpha: f32) -> Result<()> {
+    let r = loaded()?;
+    if let Some(cur) = current() {
+        cur.sc.lock().clear_color = [red, green, blue, alpha];
+    }
+    // SAFETY: forwarded call.
+    unsafe { r.gl.ClearColor(red, green, blue, alpha) };
+    Ok(())
+}
+
+/// glClear. On an opaque emulated framebuffer the colour is cleared with
+/// alpha 1.0 and alpha written (what the buffer holds anyway), so that a
+/// clear the program masks nothing of stays the driver's fast full clear
+/// rather than a masked one (llvmpipe draws a quad for that).
+pub fn clear(mask: u32) -> Result<()> {
+    let r = loaded()?;
+    let gl = &r.gl;
+    let cur = match current() {
+        Some(cur) if mask & GL_COLOR_BUFFER_BIT != 0 && cur.sc.formats().opaque => cur,
+        _ => {
+            // SAFETY: forwarded call.
+            unsafe { gl.Clear(mask) };
+            return Ok(());
+        }
+    };
+    let st = cur.sc.lock();
+    // SAFETY: the program's context is current.
+    let draw = unsafe { gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) } as u32;
+    if !st.is_ours(draw) {
+        drop(st);
+        // SAFETY: forwarded call.
+        unsafe { gl.Clear(mask) };
+        return Ok(());
+    }
+    let [cr, cg, cb, ca] = st.clear_color;
+    let mut masks = st.color_mask;
+    for m in &mut masks {
+        m[3] = true;
+    }
+    set_driver_masks(gl, &masks, false);
+    // SAFETY: the program's context is current.
+    unsafe {
+        gl.ClearColor(cr, cg, cb, 1.0);
+        gl.Clear(mask);
+        gl.ClearColor(cr, cg, cb, ca);
+    }
+    set_driver_masks(gl, &st.color_mask, true);
+    Ok(())
+}
+
+/// glColorMask: kept as the program's masks (what GL_COLOR_WRITEMASK
+/// answers); the driver's never write alpha while an opaque emulated
+/// framebuffer is bound.
+pub fn color_mask(red: u8, green: u8, blue: u8, alpha: u8) -> Result<()> {
+    let r = loaded()?;
+    if let Some(cur) = current() {
+        let mut st = cur.sc.lock();
+        st.color_mask = [[red != 0, green != 0, blue != 0, alpha != 0]; MASKED_BUFFERS];
+        apply_color_mask(&r.gl, cur.sc.formats(), &st);
+        return Ok(());
+    }
+    // SAFETY: forwarded call.
+    unsafe { r.gl.ColorMask(red, green, blue, alpha) };
+    Ok(())
+}
+
+/// glColorMaski: as [`color_mask`] for draw buffer `index`. An index GL
+/// refuses goes to the driver, which raises GL_INVALID_VALUE.
+pub fn color_maski(index: u32, red: u8, green: u8, blue: u8, alpha: u8) -> Result<()> {
+    let r = loaded()?;
+    let Some(f) = r.extra.color_maski else {
+        return Err(Error::BackendUnavailable(
+            "the GL library lacks glColorMaski: it needs a GL 3.0 driver".into(),
+        ));
+    };
+    if let Some(cur) = current() {
+        if (index as usize) < MASKED_BUFFERS {
+            let mut st = cur.sc.lock();
+            st.color_mask[index as usize] = [red != 0, green != 0, blue != 0, alpha != 0];
+            apply_color_mask(&r.gl, cur.sc.formats(), &st);
+            return Ok(());
+        }
+    }
+    // SAFETY: forwarded call.
+    unsafe { f(index, red, green, blue, alpha) };
+    Ok(())
+}
+
+/// glGetBooleani_v: GL_COLOR_WRITEMASK answers the program's masks.
+/// Refused: `data` NULL (`refuse_null`).
+///
+/// # Safety
+/// `data` must be valid for the values `pname` returns (GL's contract).
+pub unsafe fn get_booleani_v(pname: u32, index: u32, data: *mut u8) -> Result<()> {
+    let r = loaded()?;
+    let Some(f) = r.extra.get_booleani_v else {
+        return Err(Error::BackendUnavailable(
+            "the GL library lacks glGetBooleani_v: it needs a GL 3.0 driver".into(),
+        ));
+    };
+    if data.is_null() {
+        return Err(refuse_null(r, "data"));
+    }
+    // SAFETY: forwarded call.
+    unsafe { f(pname, index, data) };
+    if pname == GL_COLOR_WRITEMASK && (index as usize) < MASKED_BUFFERS {
+        if let Some(cur) = current() {
+            let mask = cur.sc.lock().color_mask[index as usize];
+            for (i, &m) in mask.iter().enumerate() {
+                // SAFETY: GL_COLOR_WRITEMASK returns four values.
+                unsafe { *data.add(i) = m as u8 };
+            }
+        }
+    }
+    Ok(())
+}
+
+/// glBlitFramebuffer: a blit ignores the colour masks, so one into an
+/// opaque emulated framebuffer has its alpha put back to 1.0.
+#[allow(clippy::too_many_arguments)]
+pub fn blit_framebuffer(src: [i32; 4], dst: [i32; 4], mask: u32, filter: u32) -> Result<()> {
+    let r = loaded()?;
+    // SAFETY: forwarded call.
+    unsafe {
+        r.gl.BlitFramebuffer(
+            src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter,
+        )
+    };
+    if mask & GL_COLOR_BUFFER_BIT != 0 {
+        if let Some(cur) = current() {
+            // SAFETY: the program's context is current.
+            let draw = unsafe { r.gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) } as u32;
+            restore_alpha(&r.gl, &cur, draw);
+        }
+    }
+    Ok(())
+}
+
+/// Puts alpha back to 1.0 in the draw buffers of `fbo` when it is an
+/// opaque emulated framebuffer of the current context (after a blit or a
+/// clear that the colour masks did not stop), restoring the program's
+/// bindings and masks.
+pub(super) fn restore_alpha(gl: &Gl, cur: &Current, fbo: u32) {
+    if !cur.sc.formats().opaque {
+        return;
+    }
+    let st = cur.sc.lock();
+    if !st.is_ours(fbo) {
+        return;
+    }
+    // SAFETY: the program's context is current.
+    unsafe {
+        let draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        gl.ColorMask(0, 0, 0, 1);
+        let one = [0.0f32, 0.0, 0.0, 1.0];
+        for i in 0..MASKED_BUFFERS as u32 {
+            if gl.integer(GL_DRAW_BUFFER0 + i) as u32 != GL_NONE {
+                gl.ClearBufferfv(GL_COLOR, i as i32, one.as_ptr());
+            }
+        }
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, draw);
+    }
+    apply_color_mask(gl, cur.sc.formats(), &st);
 }

@@ -41,6 +41,10 @@ pub struct Extra {
     pub push_attrib: Option<unsafe extern "system" fn(u32)>,
     /// `glPopAttrib` (compatibility profile).
     pub pop_attrib: Option<unsafe extern "system" fn()>,
+    /// `glColorMaski` (GL 3.0).
+    pub color_maski: Option<unsafe extern "system" fn(u32, u8, u8, u8, u8)>,
+    /// `glGetBooleani_v` (GL 3.0).
+    pub get_booleani_v: Option<unsafe extern "system" fn(u32, u32, *mut u8)>,
     /// The SGIX FBConfig functions (GLX_SGIX_fbconfig), which take configs too.
     pub sgix: Sgix,
 }
@@ -201,6 +205,8 @@ fn load() -> Result<Real, String> {
         get_attachment_ext: lookup!(c"glGetFramebufferAttachmentParameterivEXT"),
         push_attrib: lookup!(c"glPushAttrib"),
         pop_attrib: lookup!(c"glPopAttrib"),
+        color_maski: lookup!(c"glColorMaski"),
+        get_booleani_v: lookup!(c"glGetBooleani_v"),
         sgix: Sgix {
             choose: lookup!(c"glXChooseFBConfigSGIX"),
             get_attrib: lookup!(c"glXGetFBConfigAttribSGIX"),

@@ -112,11 +112,16 @@ enum DrawState {
 /// The storage formats of an emulated framebuffer's buffers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BufferFormats {
-    /// Internal format of each colour texture: GL_RGBA8, or GL_RGB8 for a
-    /// visual without alpha (which reads alpha as 1.0 and blends with a
-    /// destination alpha of 1.0, as a default framebuffer without alpha
-    /// bits does).
+    /// Internal format of each colour texture: GL_RGBA8 (GL_RGB8 where a
+    /// caller asks for it; llvmpipe reads GL_RGB8 back about six times
+    /// more slowly).
     pub color: u32,
+    /// The buffers stand for a visual without alpha in GL_RGBA8 storage:
+    /// their alpha is cleared to 1.0 and the user of the buffers (the
+    /// preload layer) keeps it 1.0, so that they read alpha as 1.0 and
+    /// blend with a destination alpha of 1.0 as a default framebuffer
+    /// without alpha bits does.
+    pub opaque: bool,
     /// Internal format of the one depth/stencil renderbuffer:
     /// GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT24, or 0 for none.
     pub depth: u32,
@@ -128,6 +133,7 @@ impl BufferFormats {
     pub fn surface(depth_bits: u32, stencil_bits: u32) -> BufferFormats {
         BufferFormats {
             color: GL_RGBA8,
+            opaque: false,
             depth: if depth_bits > 0 || stencil_bits > 0 {
                 GL_DEPTH24_STENCIL8
             } else {
@@ -136,12 +142,14 @@ impl BufferFormats {
         }
     }
 
-    /// Formats that behave as a visual with these bits: RGB8 colour when it
-    /// has no alpha, a depth-only buffer when it has depth but no stencil
-    /// (the stencil test then passes, as GL says without a stencil buffer).
+    /// Formats that behave as a visual with these bits: RGBA8 colour,
+    /// [`BufferFormats::opaque`] when it has no alpha, a depth-only buffer
+    /// when it has depth but no stencil (the stencil test then passes, as
+    /// GL says without a stencil buffer).
     pub fn matching(alpha_bits: u32, depth_bits: u32, stencil_bits: u32) -> BufferFormats {
         BufferFormats {
-            color: if alpha_bits > 0 { GL_RGBA8 } else { GL_RGB8 },
+            color: GL_RGBA8,
+            opaque: alpha_bits == 0,
             depth: match (depth_bits > 0, stencil_bits > 0) {
                 (true, false) => GL_DEPTH_COMPONENT24,
                 (false, false) => 0,
@@ -322,7 +330,8 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_FRAMEBUFFER, self.read_fbo);
             gl.Disable(GL_SCISSOR_TEST);
             gl.ColorMask(1, 1, 1, 1);
-            gl.ClearColor(0.0, 0.0, 0.0, 0.0);
+            let alpha = if self.formats.opaque { 1.0 } else { 0.0 };
+            gl.ClearColor(0.0, 0.0, 0.0, alpha);
             for &tex in self.textures.iter().filter(|&&t| t != 0) {
                 gl.FramebufferTexture2D(
                     GL_FRAMEBUFFER,

@@ -86,6 +86,10 @@ typedef void (*named_buffer_fn)(GLuint, GLenum);
 typedef void (*named_buffers_fn)(GLuint, GLsizei, const GLenum *);
 typedef void (*blit_named_fn)(GLuint, GLuint, GLint, GLint, GLint, GLint, GLint, GLint, GLint,
                               GLint, GLbitfield, GLenum);
+typedef void (*color_maski_fn)(GLuint, GLboolean, GLboolean, GLboolean, GLboolean);
+typedef void (*get_booleani_fn)(GLenum, GLuint, GLboolean *);
+typedef void (*blit_fn)(GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLbitfield,
+                        GLenum);
 typedef void (*invalidate_fn)(GLenum, GLsizei, const GLenum *);
 typedef void (*invalidate_sub_fn)(GLenum, GLsizei, const GLenum *, GLint, GLint, GLsizei,
                                   GLsizei);
@@ -115,6 +119,9 @@ static clear_named_fi_fn p_clear_named_fi;
 static named_buffer_fn p_named_draw_buffer, p_named_read_buffer;
 static named_buffers_fn p_named_draw_buffers;
 static blit_named_fn p_blit_named;
+static color_maski_fn p_color_maski;
+static get_booleani_fn p_get_booleani;
+static blit_fn p_blit;
 static invalidate_fn p_invalidate;
 static invalidate_sub_fn p_invalidate_sub;
 static named_attachment_fn p_named_attachment;
@@ -157,6 +164,9 @@ static void load_procs(void) {
     LOOKUP(p_named_read_buffer, "glNamedFramebufferReadBuffer");
     LOOKUP(p_named_draw_buffers, "glNamedFramebufferDrawBuffers");
     LOOKUP(p_blit_named, "glBlitNamedFramebuffer");
+    LOOKUP(p_color_maski, "glColorMaski");
+    LOOKUP(p_get_booleani, "glGetBooleani_v");
+    LOOKUP(p_blit, "glBlitFramebuffer");
     LOOKUP(p_invalidate, "glInvalidateFramebuffer");
     LOOKUP(p_invalidate_sub, "glInvalidateSubFramebuffer");
     LOOKUP(p_named_attachment, "glGetNamedFramebufferAttachmentParameteriv");
@@ -223,6 +233,13 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_push_attrib(m) glPushAttrib(m)
 #define gls_gl_pop_attrib() glPopAttrib()
 #define gls_gl_viewport(x, y, w, h) glViewport((x), (y), (w), (h))
+#define gls_gl_color_mask(r, g, b, a) glColorMask((r), (g), (b), (a))
+#define gls_gl_clear(m) glClear(m)
+#define gls_gl_clear_color(r, g, b, a) glClearColor((r), (g), (b), (a))
+#define gls_gl_color_maski(i, r, g, b, a) p_color_maski((i), (r), (g), (b), (a))
+#define gls_gl_get_booleani_v(p, i, d) p_get_booleani((p), (i), (d))
+#define gls_gl_blit_framebuffer(a, b, c, d, e, f, g, h, m, fl) \
+    p_blit((a), (b), (c), (d), (e), (f), (g), (h), (m), (fl))
 #define gls_gl_flush() glFlush()
 #define gls_gl_finish() glFinish()
 #define gls_gl_clear_bufferfv(b, i, v) p_clear_fv((b), (i), (v))
@@ -684,6 +701,13 @@ static void no_context_cases(void) {
     EXPECT_VOID(0, gls_gl_push_attrib, GL_COLOR_BUFFER_BIT);
     EXPECT_VOID0(0, gls_gl_pop_attrib);
     EXPECT_VOID(0, gls_gl_viewport, 0, 0, -1, -1);
+    EXPECT_VOID(0, gls_gl_color_mask, 1, 1, 1, 1);
+    EXPECT_VOID(0, gls_gl_clear_color, 0.0f, 0.0f, 0.0f, 0.0f);
+    EXPECT_VOID(0, gls_gl_clear, GL_COLOR_BUFFER_BIT);
+    EXPECT_VOID(0, gls_gl_color_maski, 0, 1, 1, 1, 1);
+    EXPECT_VOID(0, gls_gl_get_booleani_v, GL_COLOR_WRITEMASK, 0, &bv);
+    EXPECT_VOID(0, gls_gl_blit_framebuffer, 0, 0, 1, 1, 0, 0, 1, 1, GL_COLOR_BUFFER_BIT,
+                GL_NEAREST);
     EXPECT_VOID0(0, gls_gl_flush);
     EXPECT_VOID0(0, gls_gl_finish);
     /* NULL pointers: refused; no context, so no GL error either. */
@@ -705,6 +729,8 @@ static void null_gl_pointers(const char *where) {
     EXPECT_VOID(1, gls_gl_get_floatv, GL_STEREO, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_get_doublev, GL_STEREO, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_booleani_v, GL_COLOR_WRITEMASK, 0, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_draw_buffers, 1, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
@@ -828,6 +854,23 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_VOID(0, gls_gl_blit_named_framebuffer, 0, 0, 0, 0, 1, 1, 0, 0, 1, 1,
                 GL_COLOR_BUFFER_BIT, 0x7777);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_blit_framebuffer, 0, 0, 1, 1, 0, 0, 1, 1, GL_COLOR_BUFFER_BIT, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_color_maski, 0x7777, 1, 1, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    GLboolean mask4[4] = {7, 7, 7, 7};
+    EXPECT_VOID(0, gls_gl_get_booleani_v, 0x7777, 0, mask4);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_color_mask, 1, 0, 1, 0);
+    EXPECT_VOID(0, gls_gl_get_booleani_v, GL_COLOR_WRITEMASK, 0, mask4);
+    CHECK(mask4[0] == 1 && mask4[1] == 0 && mask4[2] == 1 && mask4[3] == 0,
+          "GL_COLOR_WRITEMASK %d%d%d%d", mask4[0], mask4[1], mask4[2], mask4[3]);
+    EXPECT_VOID(0, gls_gl_color_mask, 1, 1, 1, 1);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
+    EXPECT_VOID(0, gls_gl_clear, 0x7777 << 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_clear_color, 0.0f, 0.0f, 0.0f, 0.0f);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
     const GLenum bad_attachment[1] = {0x7777};
     EXPECT_VOID(0, gls_gl_invalidate_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
