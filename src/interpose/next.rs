@@ -210,6 +210,11 @@ fn bottom_libgl() -> *mut c_void {
     }) as *mut c_void
 }
 
+/// Whether libGL.so.1 can be opened at all (under every layer).
+pub fn libgl_loadable() -> bool {
+    !bottom_libgl().is_null()
+}
+
 /// dlsym of `name` in `handle`, refusing an answer inside the layer.
 fn lookup_in(handle: *mut c_void, name: &CStr) -> *mut c_void {
     if handle.is_null() {

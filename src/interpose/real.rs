@@ -104,10 +104,14 @@ macro_rules! glx_table {
                             CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated"),
                         );
                         if p.is_null() {
+                            let why = if super::next::libgl_loadable() {
+                                format!("has no {}", stringify!($name))
+                            } else {
+                                "could not be loaded".to_owned()
+                            };
                             return Err(format!(
-                                "the real libGL.so.1 could not be loaded or lacks {}: install \
-                                 libgl1 and libglx-mesa0 (Debian) or your GL driver's libGL",
-                                stringify!($name)
+                                "the real libGL.so.1 {why}: install libgl1 and libglx-mesa0 \
+                                 (Debian) or your GL driver's libGL"
                             ));
                         }
                         // SAFETY: the named GLX function's address, transmuted

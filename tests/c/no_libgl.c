@@ -65,7 +65,7 @@ int main(void) {
     printf("glXMakeCurrent -> %d\n", make_current(d, DefaultRootWindow(d), NULL));
     swap_buffers(d, DefaultRootWindow(d));
     printf("glXSwapBuffers -> returned\n");
-    printf("glXGetProcAddressARB -> %s\n", get_proc((const unsigned char *)"glClear") ? "a function" : "NULL");
+    printf("glXGetProcAddressARB -> %s\n", get_proc((const unsigned char *)"glEnable") ? "a function" : "NULL");
     draw_buffer(0x0402);
     get_integerv(0x0C33, &v);
     printf("glDrawBuffer, glGetIntegerv -> %d\n", v);
