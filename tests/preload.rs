@@ -428,11 +428,14 @@ fn a_visual_without_alpha_reads_alpha_one_as_mesa_does() {
     assert_eq!(layered, plain);
 }
 
-#[test]
-fn the_stereo_buffers_follow_a_resized_window() {
+/// Runs `legacy_stereo` at 160x120 under the layer (rows, captured), sends
+/// it `commands` (each answered by a redrawn frame), and checks that the
+/// window then shows frame `frame` (counted from 0) of the capture, whose
+/// eyes are the window's new 200x90, composed. Returns those eyes.
+fn resized_legacy(name: &str, commands: &[&str], frame: u64, what: &str) -> (Image, Image) {
     let x = Xvfb::start(640, 480);
     let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
-    let dir = common::scratch("legacy_resize");
+    let dir = common::scratch(name);
     let mut cmd = Command::new(&built().run);
     cmd.args(["-m", "rows", "--capture"])
         .arg(&dir)
@@ -442,21 +445,39 @@ fn the_stereo_buffers_follow_a_resized_window() {
     let mut p = Running::start(cmd);
     let id = p.ready();
     let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).unwrap();
-    // The program resizes its window and redraws (its reshape sets the viewport).
-    p.send("resize 200 90");
-    p.ready();
+    for command in commands {
+        p.send(command);
+        p.ready();
+    }
     let shot = Screen::open(&x.display).grab(window);
     let stderr = p.finish();
     glstereo::capture::write_png(&shot, &dir.join("window.png")).unwrap();
     assert!(!stderr.contains("glstereo:"), "{stderr}");
     assert_eq!((shot.width(), shot.height()), (200, 90));
-    let left = common::png(&dir.join("left-000002.png"));
-    let right = common::png(&dir.join("right-000002.png"));
+    let left = common::png(&dir.join(format!("left-{:06}.png", frame + 1)));
+    let right = common::png(&dir.join(format!("right-{:06}.png", frame + 1)));
     assert_eq!(
         (left.width(), left.height()),
         (200, 90),
-        "the eyes are the window's new size"
+        "{what}: the eyes are the window's new size"
     );
+    let reference = glstereo::output::compose(
+        OutputMode::Rows,
+        &OutputOptions::default(),
+        &left,
+        &right,
+        frame,
+    )
+    .unwrap();
+    assert_close(&shot, &reference, what);
+    (left, right)
+}
+
+#[test]
+fn the_stereo_buffers_follow_a_resized_window() {
+    // The program resizes its window and redraws (its reshape sets the viewport).
+    let (left, right) =
+        resized_legacy("legacy_resize", &["resize 200 90"], 1, "the resized window");
     // The second frame fills the new window: the left eye's blue square
     // spans x 10%..60% and y 40%..90% of it.
     assert_eq!(
@@ -469,15 +490,6 @@ fn the_stereo_buffers_follow_a_resized_window() {
         [255, 0, 0, 255],
         "right eye at the new size"
     );
-    let reference = glstereo::output::compose(
-        OutputMode::Rows,
-        &OutputOptions::default(),
-        &left,
-        &right,
-        1,
-    )
-    .unwrap();
-    assert_close(&shot, &reference, "the resized window");
 }
 
 /// A window resized behind the program's back (no reshape handler, no
@@ -486,34 +498,12 @@ fn the_stereo_buffers_follow_a_resized_window() {
 /// composed at the new size.
 #[test]
 fn the_stereo_buffers_follow_a_window_resized_behind_the_programs_back() {
-    let x = Xvfb::start(640, 480);
-    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
-    let dir = common::scratch("legacy_wm_resize");
-    let mut cmd = Command::new(&built().run);
-    cmd.args(["-m", "rows", "--capture"])
-        .arg(&dir)
-        .arg(&exe)
-        .args(["160", "120"])
-        .env("DISPLAY", &x.display);
-    let mut p = Running::start(cmd);
-    let id = p.ready();
-    let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).unwrap();
-    p.send("wmresize 200 90");
-    p.ready();
-    // Same size again: no change, one more frame.
-    p.send("wmresize 200 90");
-    p.ready();
-    let shot = Screen::open(&x.display).grab(window);
-    let stderr = p.finish();
-    glstereo::capture::write_png(&shot, &dir.join("window.png")).unwrap();
-    assert!(!stderr.contains("glstereo:"), "{stderr}");
-    assert_eq!((shot.width(), shot.height()), (200, 90));
-    let left = common::png(&dir.join("left-000003.png"));
-    let right = common::png(&dir.join("right-000003.png"));
-    assert_eq!(
-        (left.width(), left.height()),
-        (200, 90),
-        "the eyes of the frame after the resize are the window's new size"
+    // Same size again the second time: no change, one more frame.
+    let (left, right) = resized_legacy(
+        "legacy_wm_resize",
+        &["wmresize 200 90", "wmresize 200 90"],
+        2,
+        "the window resized behind the program's back",
     );
     // The viewport stayed 160x120 at the bottom left: the left eye's blue
     // rectangle spans x 16..96 and y 12..72 of it (GL coordinates), so
@@ -521,19 +511,6 @@ fn the_stereo_buffers_follow_a_window_resized_behind_the_programs_back() {
     // spans x 64..144, y 48..108: row 90 - 1 - 80 = 9 at x 120 is red.
     assert_eq!(left.get(50, 49), [0, 0, 255, 255], "left eye");
     assert_eq!(right.get(120, 9), [255, 0, 0, 255], "right eye");
-    let reference = glstereo::output::compose(
-        OutputMode::Rows,
-        &OutputOptions::default(),
-        &left,
-        &right,
-        2,
-    )
-    .unwrap();
-    assert_close(
-        &shot,
-        &reference,
-        "the window resized behind the program's back",
-    );
 }
 
 /// Swapping a window the program destroyed: the layer warns, and no X

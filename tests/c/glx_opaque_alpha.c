@@ -20,6 +20,8 @@
 #include <GL/glx.h>
 #include <X11/Xlib.h>
 
+#include "x_window.h"
+
 #define FRAMEBUFFER 0x8D40
 #define READ_FRAMEBUFFER 0x8CA8
 #define DRAW_FRAMEBUFFER 0x8CA9
@@ -79,28 +81,7 @@ int main(int argc, char **argv)
     int stereo = argc > 1 && strcmp(argv[1], "stereo") == 0;
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, stereo ? GLX_STEREO : None,
                         None};
-    Display *display = XOpenDisplay(NULL);
-    if (display == NULL) {
-        fprintf(stderr, "cannot open the X display\n");
-        return 1;
-    }
-    XVisualInfo *vi = glXChooseVisual(display, DefaultScreen(display), attributes);
-    if (vi == NULL) {
-        fprintf(stderr, "no visual\n");
-        return 1;
-    }
-    Window root = RootWindow(display, vi->screen);
-    XSetWindowAttributes wa = {0};
-    wa.colormap = XCreateColormap(display, root, vi->visual, AllocNone);
-    Window win = XCreateWindow(display, root, 0, 0, 64, 64, 0, vi->depth, InputOutput,
-                               vi->visual, CWColormap, &wa);
-    XMapWindow(display, win);
-    XSync(display, False);
-    GLXContext ctx = glXCreateContext(display, vi, NULL, True);
-    if (ctx == NULL || !glXMakeCurrent(display, win, ctx)) {
-        fprintf(stderr, "cannot make a GL context current\n");
-        return 1;
-    }
+    struct x_window x = open_x_window(attributes, 64, 64);
     GenFramebuffers gen = (GenFramebuffers)proc("glGenFramebuffers");
     BindFramebuffer bind = (BindFramebuffer)proc("glBindFramebuffer");
     FramebufferTexture2D attach = (FramebufferTexture2D)proc("glFramebufferTexture2D");
@@ -229,9 +210,6 @@ int main(int argc, char **argv)
     glClear(GL_COLOR_BUFFER_BIT);
     pixel("fbo clear with the same colour");
 
-    glXMakeCurrent(display, None, NULL);
-    glXDestroyContext(display, ctx);
-    XDestroyWindow(display, win);
-    XCloseDisplay(display);
+    close_x_window(&x);
     return 0;
 }

@@ -13,6 +13,8 @@
 #include <GL/glx.h>
 #include <X11/Xlib.h>
 
+#include "x_window.h"
+
 #define DRAW_FRAMEBUFFER_BINDING 0x8CA6
 
 static GLint get_int(GLenum pname)
@@ -25,28 +27,9 @@ static GLint get_int(GLenum pname)
 int main(void)
 {
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_DEPTH_SIZE, 16, None};
-    Display *display = XOpenDisplay(NULL);
-    if (display == NULL) {
-        fprintf(stderr, "cannot open the X display\n");
-        return 1;
-    }
-    XVisualInfo *vi = glXChooseVisual(display, DefaultScreen(display), attributes);
-    if (vi == NULL) {
-        fprintf(stderr, "no visual\n");
-        return 1;
-    }
-    Window root = RootWindow(display, vi->screen);
-    XSetWindowAttributes wa = {0};
-    wa.colormap = XCreateColormap(display, root, vi->visual, AllocNone);
-    Window win = XCreateWindow(display, root, 0, 0, 160, 120, 0, vi->depth, InputOutput,
-                               vi->visual, CWColormap, &wa);
-    XMapWindow(display, win);
-    XSync(display, False);
-    GLXContext ctx = glXCreateContext(display, vi, NULL, True);
-    if (ctx == NULL || !glXMakeCurrent(display, win, ctx)) {
-        fprintf(stderr, "cannot make a GL context current\n");
-        return 1;
-    }
+    struct x_window x = open_x_window(attributes, 160, 120);
+    Display *display = x.display;
+    Window win = x.window;
 
     glClearColor(0.1f, 0.3f, 0.5f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -75,10 +58,6 @@ int main(void)
     if (fgets(line, sizeof line, stdin) == NULL) {
         /* EOF: exit as well. */
     }
-    glXMakeCurrent(display, None, NULL);
-    glXDestroyContext(display, ctx);
-    XDestroyWindow(display, win);
-    XFree(vi);
-    XCloseDisplay(display);
+    close_x_window(&x);
     return 0;
 }
