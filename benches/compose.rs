@@ -182,6 +182,7 @@ fn gl_benches(c: &mut Criterion) {
                 frame_index: 0,
                 eyes: [rect(lt), rect(rt)],
                 eye_size: (w, h),
+                in_place: [None; 2],
             };
             // SAFETY: the context is current and owns the textures.
             unsafe {

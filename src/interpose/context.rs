@@ -556,6 +556,9 @@ impl StereoContext {
                 // SAFETY: the program's context is current; it shares the
                 // textures made in ours.
                 unsafe { drawn.fb.create_app_fbo(gl)? };
+            } else if drawn.fb.attachments_stale() {
+                // SAFETY: as above; its framebuffer object is the drawn one's.
+                unsafe { drawn.fb.reattach_app(gl)? };
             }
         }
         let draw_fbo = st.fbs[&draw].fb.app_fbo();
@@ -662,6 +665,19 @@ impl StereoContext {
         }
         let result = self.flip_and_show(r, drawable, flip);
         profile::span(Stage::SwitchOut, || saved.restore(r, self.display));
+        if here {
+            // A resize after the frame replaced textures the program draws
+            // the next one into: attach the new ones now (otherwise when
+            // the context is next made current).
+            let mut st = self.lock();
+            if let Some(drawn) = st.fbs.get_mut(&drawable) {
+                // SAFETY: the program's context is current again, on `drawable`.
+                let reattached = unsafe { drawn.fb.reattach_app(&r.gl) };
+                if result.is_ok() {
+                    reattached?;
+                }
+            }
+        }
         profile::frame_end();
         result
     }
@@ -699,11 +715,16 @@ impl StereoContext {
             .ok_or_else(|| Error::invalid_operation("no stereo buffers for this drawable"))?;
         // SAFETY: the program's context is current on this thread.
         unsafe {
+            // Textures replaced since it was last current (a resize of
+            // storage from memory) go into its framebuffer object.
+            drawn.fb.reattach_app(gl)?;
             if flip {
                 profile::span(Stage::Flip, || drawn.fb.swap(gl));
             }
             // The layer's context reads what the program drew: finish it.
             profile::span(Stage::Finish, || gl.Finish());
+            // Nothing renders into replaced textures now: free their memory.
+            drawn.fb.release_retired(gl);
         }
         drawn.frames += 1;
         drawn.viewport_checked = false;

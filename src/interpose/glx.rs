@@ -398,11 +398,14 @@ fn adopt(
         double_buffered: attrib(GLX_DOUBLEBUFFER) != 0,
     };
     let bits = |a| attrib(a).max(0) as u32;
-    let formats = BufferFormats::matching(
-        bits(GLX_ALPHA_SIZE),
-        bits(GLX_DEPTH_SIZE),
-        bits(GLX_STENCIL_SIZE),
-    );
+    let formats = BufferFormats {
+        in_place: r.extra.memory_objects,
+        ..BufferFormats::matching(
+            bits(GLX_ALPHA_SIZE),
+            bits(GLX_DEPTH_SIZE),
+            bits(GLX_STENCIL_SIZE),
+        )
+    };
     let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
     watch(r, dpy);
     registry::with(|reg| reg.add_context(ctx as usize, sc));

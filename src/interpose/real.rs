@@ -45,6 +45,9 @@ pub struct Extra {
     pub color_maski: Option<unsafe extern "system" fn(u32, u8, u8, u8, u8)>,
     /// `glGetBooleani_v` (GL 3.0).
     pub get_booleani_v: Option<unsafe extern "system" fn(u32, u32, *mut u8)>,
+    /// GL_EXT_memory_object(_fd): eye textures read in place
+    /// ([`crate::stereo::eye_memory`]).
+    pub memory_objects: Option<crate::stereo::eye_memory::MemoryObjectApi>,
     /// The SGIX FBConfig functions (GLX_SGIX_fbconfig), which take configs too.
     pub sgix: Sgix,
 }
@@ -211,6 +214,8 @@ fn load() -> Result<Real, String> {
         pop_attrib: lookup!(c"glPopAttrib"),
         color_maski: lookup!(c"glColorMaski"),
         get_booleani_v: lookup!(c"glGetBooleani_v"),
+        // SAFETY: `get` returns the named GL function or NULL.
+        memory_objects: unsafe { crate::stereo::eye_memory::MemoryObjectApi::load(get) },
         sgix: Sgix {
             choose: lookup!(c"glXChooseFBConfigSGIX"),
             get_attrib: lookup!(c"glXGetFBConfigAttribSGIX"),

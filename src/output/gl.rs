@@ -51,6 +51,7 @@ use crate::gl::enums::*;
 use crate::image::{Image, flip_rows};
 use crate::math::Eye;
 use crate::profile::{self, Stage};
+use crate::stereo::eye_memory::{EyePixels, Rows};
 
 use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices};
 use super::cpu::check_composite;
@@ -107,9 +108,24 @@ pub struct Job {
     /// The size of each eye once taken apart (the composite is made from
     /// eyes of this size; rectangles of another size are resampled to it).
     pub eye_size: (u32, u32),
+    /// Where the CPU reads eye textures in place (by texture; None where
+    /// they are read back): see [`crate::stereo::eye_memory`].
+    pub in_place: [Option<EyePixels>; 2],
 }
 
 impl Job {
+    /// The rows of `rect` (of `w` × `h` texels) read in place, when its
+    /// texture is one of [`Job::in_place`].
+    ///
+    /// # Safety
+    /// The rendering into the texture has finished, and the rows are used
+    /// before its framebuffer is resized or released.
+    pub unsafe fn rows_in_place(&self, rect: &TexRect, w: u32, h: u32) -> Option<Rows<'_>> {
+        let m = self.in_place.iter().flatten().find(|m| m.texture == rect.texture)?;
+        // SAFETY: contract.
+        unsafe { m.rect(rect.x, rect.y, w, h) }
+    }
+
     /// The job for an emulated framebuffer's front buffers as they are
     /// now, taken apart by `framing` (the eyes as displayed).
     pub fn front_buffers(
@@ -127,6 +143,7 @@ impl Job {
             frame_index,
             eyes: [ls, rs].map(|s| TexRect::from_source(fb.texture(s.buffer), &s, h)),
             eye_size: framing.eye_size(w, h),
+            in_place: [ls, rs].map(|s| fb.pixels(s.buffer)),
         }
     }
 }
@@ -1327,6 +1344,7 @@ mod tests {
             frame_index: 0,
             eyes: [l, r],
             eye_size: (l.width, l.height),
+            in_place: [None; 2],
         }
     }
 

@@ -35,6 +35,7 @@ use crate::gl::enums::*;
 use crate::image::{Image, as_words, as_words_mut, flip_rows};
 use crate::math::Eye;
 use crate::profile::{self, Stage};
+use crate::stereo::eye_memory::Rows;
 
 use super::cpu;
 use super::gl::{Canvas, ComposePath, Job, TexRect, preferred_path};
@@ -398,18 +399,29 @@ impl WindowPaths {
     /// Reads the eye rectangles `rects` (each of `w` × `h`; None: not
     /// needed) back in bands of rows, bottom first, and calls `each` with
     /// the first GL row of the band and the bands (the same buffer for two
-    /// equal rectangles). A band's image may hold more rows than remain.
+    /// equal rectangles). A band may hold more rows than remain. When
+    /// every rectangle needed is one of the job's eyes in place
+    /// ([`Job::in_place`]), nothing is read back: `each` is called once
+    /// with the whole rectangles.
     ///
     /// # Safety
     /// As [`WindowPaths::compose`].
     unsafe fn bands(
         &mut self,
         gl: &Gl,
+        job: &Job,
         rects: [Option<TexRect>; 2],
         w: u32,
         h: u32,
-        mut each: impl FnMut(u32, [Option<&Image>; 2]),
+        mut each: impl FnMut(u32, [Option<Rows<'_>>; 2]),
     ) -> Result<()> {
+        // SAFETY: the present finished the rendering into the eyes, and the
+        // rows are used here, before any resize (contract).
+        let placed = rects.map(|r| r.and_then(|r| unsafe { job.rows_in_place(&r, w, h) }));
+        if rects.iter().zip(&placed).all(|(r, p)| r.is_none() || p.is_some()) {
+            profile::span(Stage::Compose, || each(0, placed));
+            return Ok(());
+        }
         let rows = ((BAND_BYTES / (w as usize * 4)).max(1) as u32).min(h);
         let same = rects[0].is_some() && rects[0] == rects[1];
         // SAFETY: contract.
@@ -443,7 +455,8 @@ impl WindowPaths {
                     );
                 });
             }
-            let band = |i: usize| rects[i].map(|_| &self.eyes[if same { 0 } else { i }]);
+            let band =
+                |i: usize| rects[i].map(|_| Rows::of_image(&self.eyes[if same { 0 } else { i }]));
             profile::span(Stage::Compose, || each(y0, [band(0), band(1)]));
             y0 += n;
         }
@@ -479,7 +492,7 @@ impl WindowPaths {
                 let layout = target.layout;
                 // SAFETY: contract.
                 unsafe {
-                    self.bands(gl, [Some(l), Some(r)], w, h, |y0, [lb, rb]| {
+                    self.bands(gl, job, [Some(l), Some(r)], w, h, |y0, [lb, rb]| {
                         let (lb, rb) = (lb.expect("left band"), rb.expect("right band"));
                         for k in 0..lb.height().min(h - y0) {
                             // GL rows count from the bottom, the window's from the top.
@@ -502,7 +515,7 @@ impl WindowPaths {
                 let layout = target.layout;
                 // SAFETY: contract.
                 unsafe {
-                    self.bands(gl, sources, w, h, |y0, bands| {
+                    self.bands(gl, job, sources, w, h, |y0, bands| {
                         for (p, band) in places.iter().zip(bands) {
                             let (Some(p), Some(band)) = (p, band) else {
                                 continue;

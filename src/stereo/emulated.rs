@@ -13,6 +13,7 @@ use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::flip_rows;
+use crate::stereo::eye_memory::{self, EyePixels, MemoryObjectApi, TextureMemory};
 use crate::stereo::buffers::{
     BufferSet, ColorBuffer, FramebufferShape, resolve_draw_buffer, resolve_draw_buffers,
     resolve_read_buffer,
@@ -125,6 +126,12 @@ pub struct BufferFormats {
     /// Internal format of the one depth/stencil renderbuffer:
     /// GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT24, or 0 for none.
     pub depth: u32,
+    /// Make RGBA8 colour textures from memory the CPU reads in place,
+    /// where the driver allows ([`crate::stereo::eye_memory`]; llvmpipe),
+    /// through this API. Their storage is then immutable: a resize
+    /// replaces the textures, and the program's framebuffer object needs
+    /// [`EmulatedFramebuffer::reattach_app`].
+    pub in_place: Option<MemoryObjectApi>,
 }
 
 impl BufferFormats {
@@ -139,6 +146,7 @@ impl BufferFormats {
             } else {
                 0
             },
+            in_place: None,
         }
     }
 
@@ -155,6 +163,7 @@ impl BufferFormats {
                 (false, false) => 0,
                 _ => GL_DEPTH24_STENCIL8,
             },
+            in_place: None,
         }
     }
 
@@ -185,6 +194,14 @@ pub struct EmulatedFramebuffer {
     app_fbo: u32,
     /// A framebuffer object in the compositor context, for reading textures.
     read_fbo: u32,
+    /// Storage of each slot's texture when it is memory the CPU reads in
+    /// place ([`crate::stereo::eye_memory`]).
+    memory: [Option<TextureMemory>; 4],
+    /// Memory of replaced textures, freed by
+    /// [`EmulatedFramebuffer::release_retired`].
+    retired: Vec<TextureMemory>,
+    /// The program's framebuffer object holds replaced textures.
+    attachments_stale: bool,
     draw: DrawState,
     read_name: u32,
     read: Option<ColorBuffer>,
@@ -233,6 +250,9 @@ impl EmulatedFramebuffer {
             slot_of: [0, 1, 2, 3],
             app_fbo: 0,
             read_fbo: 0,
+            memory: Default::default(),
+            retired: Vec::new(),
+            attachments_stale: false,
             draw: DrawState::Single {
                 name: initial,
                 set: resolve_draw_buffer(shape, initial).expect("the initial buffer exists"),
@@ -300,6 +320,25 @@ impl EmulatedFramebuffer {
         let (w, h) = (self.width as i32, self.height as i32);
         // SAFETY: a context is current (contract of the callers).
         unsafe {
+            // Storage from memory is immutable: such textures are replaced
+            // (the old ones go once nothing renders into them).
+            self.retire_memory(gl);
+            if !self.allocate_in_place(gl) {
+                for &tex in self.textures.iter().filter(|&&t| t != 0) {
+                    gl.BindTexture(GL_TEXTURE_2D, tex);
+                    gl.TexImage2D(
+                        GL_TEXTURE_2D,
+                        0,
+                        self.formats.color as i32,
+                        w,
+                        h,
+                        0,
+                        GL_RGBA,
+                        GL_UNSIGNED_BYTE,
+                        std::ptr::null(),
+                    );
+                }
+            }
             for &tex in self.textures.iter().filter(|&&t| t != 0) {
                 gl.BindTexture(GL_TEXTURE_2D, tex);
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST as i32);
@@ -307,17 +346,6 @@ impl EmulatedFramebuffer {
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE as i32);
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE as i32);
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-                gl.TexImage2D(
-                    GL_TEXTURE_2D,
-                    0,
-                    self.formats.color as i32,
-                    w,
-                    h,
-                    0,
-                    GL_RGBA,
-                    GL_UNSIGNED_BYTE,
-                    std::ptr::null(),
-                );
             }
             gl.BindTexture(GL_TEXTURE_2D, 0);
             if self.depth_stencil != 0 {
@@ -349,6 +377,137 @@ impl EmulatedFramebuffer {
         }
     }
 
+    /// Gives every colour texture storage the CPU reads in place
+    /// ([`crate::stereo::eye_memory`]) when the formats ask for it and the
+    /// driver allows; true when all have it, false (and no texture has it)
+    /// otherwise. The textures must have no storage yet.
+    unsafe fn allocate_in_place(&mut self, gl: &Gl) -> bool {
+        let Some(api) = self.formats.in_place else {
+            return false;
+        };
+        if self.formats.color != GL_RGBA8 || !eye_memory::wanted() {
+            return false;
+        }
+        // SAFETY: a context is current (contract of the callers).
+        let Some(uuid) = (unsafe { eye_memory::llvmpipe_identity(gl) }) else {
+            return false;
+        };
+        let mut all = true;
+        for slot in 0..4 {
+            let tex = self.textures[slot];
+            if tex == 0 {
+                continue;
+            }
+            // SAFETY: as above; `tex` has no storage.
+            let made = unsafe { TextureMemory::create(gl, &api, &uuid, tex, self.width, self.height) };
+            // SAFETY: as above.
+            match made.filter(|m| unsafe { m.verify(gl, tex, self.read_fbo) }) {
+                Some(m) => self.memory[slot] = Some(m),
+                None => {
+                    all = false;
+                    break;
+                }
+            }
+        }
+        if all {
+            return true;
+        }
+        eye_memory::give_up("the driver did not take memory for them, or laid it out otherwise");
+        // SAFETY: as above. The textures were only ever used here: every
+        // one that may have been given storage gets a new name.
+        unsafe {
+            gl.Finish();
+            self.retire_memory(gl);
+            self.release_retired(gl);
+            for slot in 0..4 {
+                if self.textures[slot] != 0 {
+                    gl.DeleteTextures(1, &self.textures[slot]);
+                    self.textures[slot] = gl.gen_texture();
+                }
+            }
+        }
+        self.attachments_stale = self.app_fbo != 0;
+        false
+    }
+
+    /// Replaces the colour textures whose storage is memory by new names
+    /// without storage; their memory waits in `retired` until
+    /// [`EmulatedFramebuffer::release_retired`] (the program's
+    /// framebuffer object may still hold the old textures).
+    unsafe fn retire_memory(&mut self, gl: &Gl) {
+        for slot in 0..4 {
+            if let Some(m) = self.memory[slot].take() {
+                // SAFETY: a context is current (contract of the callers).
+                unsafe {
+                    gl.DeleteTextures(1, &self.textures[slot]);
+                    self.textures[slot] = gl.gen_texture();
+                }
+                self.retired.push(m);
+                self.attachments_stale = self.app_fbo != 0;
+            }
+        }
+    }
+
+    /// Frees the memory of textures replaced since the last call. Call
+    /// when no context renders into them any more: after the program's
+    /// context finished its work with the new attachments in place.
+    ///
+    /// # Safety
+    /// A context sharing the framebuffer's objects must be current.
+    pub unsafe fn release_retired(&mut self, _gl: &Gl) {
+        if self.retired.is_empty() {
+            return;
+        }
+        let api = self.formats.in_place.expect("memory came from this API");
+        for m in self.retired.drain(..) {
+            // SAFETY: contract; the textures were deleted when retired.
+            unsafe { m.release(&api) };
+        }
+    }
+
+    /// Whether the program's framebuffer object still holds textures that
+    /// were replaced ([`EmulatedFramebuffer::reattach_app`] puts the new ones
+    /// in).
+    pub fn attachments_stale(&self) -> bool {
+        self.attachments_stale
+    }
+
+    /// Attaches the current textures to the program's framebuffer object
+    /// after they were replaced (a resize of storage from memory), keeping
+    /// its draw and read buffers and the context's bindings.
+    ///
+    /// # Safety
+    /// The context owning the program's framebuffer object must be current.
+    pub unsafe fn reattach_app(&mut self, gl: &Gl) -> Result<()> {
+        if !self.attachments_stale || self.app_fbo == 0 {
+            self.attachments_stale = false;
+            return Ok(());
+        }
+        // SAFETY: contract.
+        unsafe {
+            let prev_draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+            let prev_read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
+            let attached = self.attach_storage(gl);
+            gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, prev_draw);
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, prev_read);
+            self.attachments_stale = false;
+            attached
+        }
+    }
+
+    /// Where the CPU reads `buffer` in place, when its storage is memory
+    /// ([`crate::stereo::eye_memory`]).
+    pub fn pixels(&self, buffer: ColorBuffer) -> Option<EyePixels> {
+        if !self.shape.allocated().contains(buffer) {
+            return None;
+        }
+        let slot = self.slot_of[buffer.index()];
+        self.memory[slot]
+            .as_ref()
+            .map(|m| m.pixels(self.textures[slot]))
+    }
+
     /// Deletes the textures, the renderbuffer and the read framebuffer
     /// (the application's framebuffer object goes with its context). The
     /// context the framebuffer was allocated in must be current.
@@ -366,6 +525,15 @@ impl EmulatedFramebuffer {
         // SAFETY: a context is current (contract of the callers).
         unsafe {
             gl.DeleteTextures(4, self.textures.as_ptr());
+            if self.memory.iter().any(Option::is_some) || !self.retired.is_empty() {
+                // Memory goes with its memory object: nothing may render
+                // into it any more.
+                gl.Finish();
+                for m in self.memory.iter_mut().filter_map(Option::take) {
+                    self.retired.push(m);
+                }
+                self.release_retired(gl);
+            }
             if self.depth_stencil != 0 {
                 gl.DeleteRenderbuffers(1, &self.depth_stencil);
             }

@@ -6,4 +6,5 @@
 
 pub mod buffers;
 pub mod emulated;
+pub mod eye_memory;
 pub mod outputs;
