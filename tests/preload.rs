@@ -718,3 +718,65 @@ fn glstereo_run_checks_its_options_before_the_program_starts_and_sets_the_enviro
     );
     assert_eq!(line, want);
 }
+
+/// The distinct memfd files named "glstereo eye" that process `pid` maps:
+/// eye textures whose storage the layer reads in place.
+fn eye_memory_files(pid: u32) -> usize {
+    let maps = std::fs::read_to_string(format!("/proc/{pid}/maps")).expect("maps");
+    let inodes: std::collections::HashSet<&str> = maps
+        .lines()
+        .filter(|l| l.contains("/memfd:glstereo eye"))
+        .filter_map(|l| l.split_whitespace().nth(4))
+        .collect();
+    inodes.len()
+}
+
+/// On llvmpipe (every machine this project runs on has no GPU) the four
+/// colour buffers of a double-buffered stereo window are memory the layer
+/// maps and composes from in place; with GLSTEREO_EYE_MEMORY=0 they are
+/// ordinary textures read back. The window shows the same pixels either
+/// way, in a channel-mask mode (anaglyph) and a copy mode (left), and a
+/// resize (which replaces storage from memory) keeps both eyes right.
+#[test]
+fn the_eyes_are_composed_where_llvmpipe_drew_them() {
+    let x = Xvfb::start(320, 240);
+    let exe = program("legacy_stereo", &["-lGL", "-lX11"]);
+    for (mode, name) in [
+        (MODES[0].0, "anaglyph-red-cyan"),
+        (OutputMode::Left, "left"),
+    ] {
+        let mut shots = Vec::new();
+        for in_place in [true, false] {
+            let dir = common::scratch(&format!("in-place-{name}-{in_place}"));
+            let mut cmd = Command::new(&built().run);
+            cmd.args(["-m", name, "--capture"])
+                .arg(&dir)
+                .arg(&exe)
+                .args([W.to_string(), H.to_string()])
+                .env("DISPLAY", &x.display);
+            if !in_place {
+                cmd.env("GLSTEREO_EYE_MEMORY", "0");
+            }
+            let mut p = Running::start(cmd);
+            let id = p.ready();
+            let files = eye_memory_files(p.pid());
+            let window = u64::from_str_radix(id.trim_start_matches("0x"), 16).unwrap();
+            let shot = Screen::open(&x.display).grab(window);
+            let stderr = p.finish();
+            assert!(!stderr.contains("glstereo:"), "{name}: {stderr}");
+            let what = format!("{name}, in place {in_place}");
+            assert_eq!(
+                files,
+                if in_place { 4 } else { 0 },
+                "{what}: eye buffers in memory files"
+            );
+            check_mode(&shot, &dir, mode, &what);
+            shots.push(shot);
+        }
+        assert_close(
+            &shots[0],
+            &shots[1],
+            &format!("{name}: in place vs read back"),
+        );
+    }
+}

@@ -121,7 +121,11 @@ impl Job {
     /// The rendering into the texture has finished, and the rows are used
     /// before its framebuffer is resized or released.
     pub unsafe fn rows_in_place(&self, rect: &TexRect, w: u32, h: u32) -> Option<Rows<'_>> {
-        let m = self.in_place.iter().flatten().find(|m| m.texture == rect.texture)?;
+        let m = self
+            .in_place
+            .iter()
+            .flatten()
+            .find(|m| m.texture == rect.texture)?;
         // SAFETY: contract.
         unsafe { m.rect(rect.x, rect.y, w, h) }
     }

@@ -418,7 +418,11 @@ impl WindowPaths {
         // SAFETY: the present finished the rendering into the eyes, and the
         // rows are used here, before any resize (contract).
         let placed = rects.map(|r| r.and_then(|r| unsafe { job.rows_in_place(&r, w, h) }));
-        if rects.iter().zip(&placed).all(|(r, p)| r.is_none() || p.is_some()) {
+        if rects
+            .iter()
+            .zip(&placed)
+            .all(|(r, p)| r.is_none() || p.is_some())
+        {
             profile::span(Stage::Compose, || each(0, placed));
             return Ok(());
         }

@@ -13,11 +13,11 @@ use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::flip_rows;
-use crate::stereo::eye_memory::{self, EyePixels, MemoryObjectApi, TextureMemory};
 use crate::stereo::buffers::{
     BufferSet, ColorBuffer, FramebufferShape, resolve_draw_buffer, resolve_draw_buffers,
     resolve_read_buffer,
 };
+use crate::stereo::eye_memory::{self, EyePixels, MemoryObjectApi, TextureMemory};
 
 /// Largest number of fragment outputs the draw state tracks (GL 3.0's
 /// minimum GL_MAX_DRAW_BUFFERS, which every host of the emulation has).
@@ -399,7 +399,8 @@ impl EmulatedFramebuffer {
                 continue;
             }
             // SAFETY: as above; `tex` has no storage.
-            let made = unsafe { TextureMemory::create(gl, &api, &uuid, tex, self.width, self.height) };
+            let made =
+                unsafe { TextureMemory::create(gl, &api, &uuid, tex, self.width, self.height) };
             // SAFETY: as above.
             match made.filter(|m| unsafe { m.verify(gl, tex, self.read_fbo) }) {
                 Some(m) => self.memory[slot] = Some(m),

@@ -71,9 +71,10 @@ impl MemoryObjectApi {
         // signature the field's type spells.
         unsafe {
             Some(MemoryObjectApi {
-                create: std::mem::transmute::<*const c_void, unsafe extern "system" fn(i32, *mut u32)>(
-                    create,
-                ),
+                create: std::mem::transmute::<
+                    *const c_void,
+                    unsafe extern "system" fn(i32, *mut u32),
+                >(create),
                 delete: std::mem::transmute::<
                     *const c_void,
                     unsafe extern "system" fn(i32, *const u32),
@@ -110,14 +111,21 @@ pub fn give_up(why: &str) {
     }
 }
 
-/// The header llvmpipe's import reads from the start of the file (Mesa's
-/// `struct memory_header`, native `size_t`s): the file's size, where the
-/// data starts, and the identity's hash.
+/// The first `offset` bytes of a file llvmpipe imports, as Mesa's own
+/// allocator (`os_malloc_aligned_fd`) lays them out: at the start its
+/// `struct memory_header` (native `size_t`s: the file's size, where the
+/// data starts, the identity's hash), which the import reads; and the
+/// offset again in the `size_t` just before the data, where the driver
+/// finds the header to unmap its view when the memory object goes
+/// (without it, it would unmap a length read from the pixels).
 fn header(total: usize, offset: usize, uuid: &[u8; 16]) -> Vec<u8> {
-    let mut h = Vec::with_capacity(2 * size_of::<usize>() + 16);
-    h.extend_from_slice(&total.to_ne_bytes());
-    h.extend_from_slice(&offset.to_ne_bytes());
-    h.extend_from_slice(uuid);
+    let word = size_of::<usize>();
+    assert!(offset >= 2 * word + 16 + word, "room for the header");
+    let mut h = vec![0; offset];
+    h[..word].copy_from_slice(&total.to_ne_bytes());
+    h[word..2 * word].copy_from_slice(&offset.to_ne_bytes());
+    h[2 * word..2 * word + 16].copy_from_slice(uuid);
+    h[offset - word..].copy_from_slice(&offset.to_ne_bytes());
     h
 }
 
@@ -164,7 +172,13 @@ fn driver_id(gl_version: &str) -> Option<String> {
 
 /// SHA-1 (FIPS 180-4) of `data`.
 fn sha1(data: &[u8]) -> [u8; 20] {
-    let mut h: [u32; 5] = [0x6745_2301, 0xEFCD_AB89, 0x98BA_DCFE, 0x1032_5476, 0xC3D2_E1F0];
+    let mut h: [u32; 5] = [
+        0x6745_2301,
+        0xEFCD_AB89,
+        0x98BA_DCFE,
+        0x1032_5476,
+        0xC3D2_E1F0,
+    ];
     let mut msg = data.to_vec();
     msg.push(0x80);
     while msg.len() % 64 != 56 {
@@ -280,7 +294,11 @@ impl TextureMemory {
                 libc::MAP_FAILED
             };
             // The driver closes the descriptor it is given.
-            let given = if map == libc::MAP_FAILED { -1 } else { libc::dup(fd) };
+            let given = if map == libc::MAP_FAILED {
+                -1
+            } else {
+                libc::dup(fd)
+            };
             libc::close(fd);
             if given < 0 {
                 if map != libc::MAP_FAILED {
@@ -522,10 +540,7 @@ mod tests {
             hex(&sha1(b"abc")),
             "a9993e364706816aba3e25717850c26c9cd0d89d"
         );
-        assert_eq!(
-            hex(&sha1(b"")),
-            "da39a3ee5e6b4b0d3255bfef95601890afd80709"
-        );
+        assert_eq!(hex(&sha1(b"")), "da39a3ee5e6b4b0d3255bfef95601890afd80709");
         assert_eq!(
             hex(&sha1(
                 b"abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"
@@ -550,6 +565,18 @@ mod tests {
             Some("llvmpipe (git-1a2b3c4d5e)")
         );
         assert_eq!(driver_id("4.6.0 NVIDIA 535.54.03"), None);
+    }
+
+    #[test]
+    fn the_header_is_laid_out_as_mesas_allocator_lays_it_out() {
+        let uuid: [u8; 16] = std::array::from_fn(|i| i as u8 + 1);
+        let h = header(3 * 4096, 4096, &uuid);
+        assert_eq!(h.len(), 4096);
+        let word = |at: usize| usize::from_ne_bytes(h[at..at + 8].try_into().unwrap());
+        assert_eq!((word(0), word(8)), (3 * 4096, 4096));
+        assert_eq!(&h[16..32], &uuid);
+        assert_eq!(word(4096 - 8), 4096, "the offset just before the data");
+        assert!(h[32..4096 - 8].iter().all(|&b| b == 0));
     }
 
     #[test]
