@@ -81,7 +81,7 @@ pub fn duplicate_output(source: &str, expr: &str, ty: &str) -> String {
     let mut offset = 0;
     for line in source.split_inclusive('\n') {
         offset += line.len();
-        if line.trim_start().starts_with("#version") {
+        if is_version_directive(line) {
             insert_at = offset;
             break;
         }
@@ -107,6 +107,17 @@ pub fn duplicate_output(source: &str, expr: &str, ty: &str) -> String {
     }
     out.push_str("}\n");
     out
+}
+
+/// Whether `line` is a `#version` directive: GLSL lets blanks (spaces,
+/// tabs) stand before the `#` and between it and the directive's name.
+fn is_version_directive(line: &str) -> bool {
+    let blanks: &[char] = &[' ', '\t'];
+    line.trim_start_matches(blanks)
+        .strip_prefix('#')
+        .map(|rest| rest.trim_start_matches(blanks))
+        .and_then(|rest| rest.strip_prefix("version"))
+        .is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_whitespace()))
 }
 
 macro_rules! link_fns {
@@ -450,6 +461,19 @@ mod tests {
     fn a_version_line_without_newline_keeps_the_define_on_its_own_line() {
         let out = duplicate_output("#version 130", "c", "vec4");
         assert!(out.starts_with("#version 130\n#define main gls_stereo_user_main\n"));
+    }
+
+    #[test]
+    fn a_version_directive_may_have_blanks_around_the_hash() {
+        let src = "// c\n  #  version 330 core\nout vec4 c;\nvoid main(){c=vec4(1.0);}\n";
+        let out = duplicate_output(src, "c", "vec4");
+        assert!(
+            out.starts_with("// c\n  #  version 330 core\n#define main gls_stereo_user_main\n"),
+            "{out}"
+        );
+        assert!(is_version_directive("#\tversion 450\r\n"));
+        assert!(!is_version_directive("#versions 450\n"));
+        assert!(!is_version_directive("// #version 450\n"));
     }
 
     #[test]

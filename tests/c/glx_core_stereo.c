@@ -167,6 +167,11 @@ static const char *FS_AUTO = "#version 150\n"
                              "    if (gl_FragCoord.x > 0.0) return;\n"
                              "    frag = vec4(1.0);\n"
                              "}\n";
+/* GLSL allows blanks between '#' and the directive's name. */
+static const char *FS_SPACED = "// spaced directive\n"
+                               "  #  version 330 core\n"
+                               "layout(location = 0) out vec4 color;\n"
+                               "void main() { color = vec4(1.0, 0.0, 1.0, 1.0); }\n";
 static const char *FS_MRT = "#version 330 core\n"
                             "layout(location = 0) out vec4 c0;\n"
                             "layout(location = 1) out vec4 c1;\n"
@@ -286,6 +291,13 @@ static void user_outputs(int entries)
     glDrawBuffer(GL_BACK);
     draw_with(0);
     expect_buffers("auto location, early return", M_BACK, 0, 255, 0);
+    glDeleteProgram(p);
+    p = program(VS33, FS_SPACED);
+    glUseProgram(p);
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    draw_with(0);
+    expect_buffers("'#  version' with blanks", M_BACK, 255, 0, 255);
     glDeleteProgram(p);
     glUseProgram(0);
     drain_errors("user outputs");
