@@ -23,6 +23,9 @@
 //! How: the user's `main` is renamed by a `#define` after `#version`, and
 //! a new `main` calling it then copying output 0 is appended; the copies'
 //! locations are set with glBindFragDataLocation (GLSL 1.30 and newer).
+//! Output 0 is the variable at location 0, or, when GL 4.4 `component`
+//! qualifiers share the location among several, all of them, each copied
+//! into its own components ([`copy_of`]).
 //! The program keeps the user's shader objects attached, and a failure at
 //! any step (no source: SPIR-V or program binaries; several fragment
 //! shaders; locations 5…7 or dual-source outputs in use; the rewritten
@@ -45,29 +48,111 @@ const GL_TYPE: u32 = 0x92FA;
 const GL_ARRAY_SIZE: u32 = 0x92FB;
 const GL_LOCATION: u32 = 0x930E;
 const GL_LOCATION_INDEX: u32 = 0x930F;
+const GL_LOCATION_COMPONENT: u32 = 0x934A;
 
 /// Prefix of the copies' names (`gls_stereo_copy7` is location 7).
 pub const COPY_PREFIX: &str = "gls_stereo_copy";
 const USER_MAIN: &str = "gls_stereo_user_main";
 
+/// The fragment output types, by GL type enum: the float, int and uint
+/// scalars and vectors of 2, 3 and 4 components, in that order.
+const OUTPUT_TYPES: [[(u32, &str); 4]; 3] = [
+    [
+        (0x1406, "float"),
+        (0x8B50, "vec2"),
+        (0x8B51, "vec3"),
+        (0x8B52, "vec4"),
+    ],
+    [
+        (0x1404, "int"),
+        (0x8B53, "ivec2"),
+        (0x8B54, "ivec3"),
+        (0x8B55, "ivec4"),
+    ],
+    [
+        (0x1405, "uint"),
+        (0x8DC6, "uvec2"),
+        (0x8DC7, "uvec3"),
+        (0x8DC8, "uvec4"),
+    ],
+];
+
+/// A fragment output type's row of [`OUTPUT_TYPES`] (its scalar type)
+/// and its number of components.
+fn output_type(gl_type: u32) -> Option<(usize, usize)> {
+    OUTPUT_TYPES.iter().enumerate().find_map(|(base, row)| {
+        let n = row.iter().position(|&(t, _)| t == gl_type)?;
+        Some((base, n + 1))
+    })
+}
+
 /// The GLSL type name of a fragment output type, or None for a type a
 /// fragment output cannot have.
 pub fn glsl_type(gl_type: u32) -> Option<&'static str> {
-    Some(match gl_type {
-        0x1406 => "float",
-        0x8B50 => "vec2",
-        0x8B51 => "vec3",
-        0x8B52 => "vec4",
-        0x1404 => "int",
-        0x8B53 => "ivec2",
-        0x8B54 => "ivec3",
-        0x8B55 => "ivec4",
-        0x1405 => "uint",
-        0x8DC6 => "uvec2",
-        0x8DC7 => "uvec3",
-        0x8DC8 => "uvec4",
-        _ => return None,
-    })
+    output_type(gl_type).map(|(base, n)| OUTPUT_TYPES[base][n - 1].1)
+}
+
+/// One variable writing location 0: its name (`c[0]` for an array), GL
+/// type and first component (GL 4.4 lets several variables share a
+/// location, each in its own components).
+#[derive(Clone, Copy, Debug)]
+pub struct Part<'a> {
+    /// The name program introspection gives.
+    pub name: &'a str,
+    /// Its GL type (GL_FLOAT_VEC2, …).
+    pub gl_type: u32,
+    /// Its first component (`layout(component = …)`; 0 without).
+    pub component: u32,
+}
+
+/// The GLSL type and expression of the copies of location 0 written by
+/// `parts`: the one variable itself when it starts at component 0, else
+/// a vector with each variable in its components and 0 in the components
+/// none writes (GL leaves those undefined).
+///
+/// # Errors
+/// A message saying why no copy can be made: a type a fragment output
+/// cannot have, variables of different scalar types, or components
+/// overlapping or past the fourth.
+pub fn copy_of(parts: &[Part]) -> Result<(&'static str, String), String> {
+    let mut typed = Vec::with_capacity(parts.len());
+    for p in parts {
+        let Some((base, n)) = output_type(p.gl_type) else {
+            return Err(format!("output {} has type {:#x}", p.name, p.gl_type));
+        };
+        typed.push((p.component as usize, n, base, p.name));
+    }
+    typed.sort_unstable();
+    match typed[..] {
+        [] => return Err("no output is at location 0".into()),
+        [(0, n, base, name)] => return Ok((OUTPUT_TYPES[base][n - 1].1, name.to_owned())),
+        _ => {}
+    }
+    let base = typed[0].2;
+    let mut args = Vec::new();
+    let mut at = 0;
+    for &(component, n, b, name) in &typed {
+        if b != base {
+            return Err(format!(
+                "the outputs at location 0 mix {} and {} components",
+                OUTPUT_TYPES[base][0].1, OUTPUT_TYPES[b][0].1
+            ));
+        }
+        if component < at {
+            return Err(format!("output {name} overlaps another one's components"));
+        }
+        if component + n > 4 {
+            return Err(format!("output {name} runs past the fourth component"));
+        }
+        while at < component {
+            args.push(format!("{}(0)", OUTPUT_TYPES[base][0].1));
+            at += 1;
+        }
+        args.push(name.to_owned());
+        at += n;
+    }
+    let ty = OUTPUT_TYPES[base][at - 1].1;
+    Ok((ty, format!("{ty}({})", args.join(", "))))
 }
 
 /// The fragment shader source `source` with output `expr` (of GLSL type
@@ -195,6 +280,7 @@ struct Output {
     name: String,
     location: i32,
     index: i32,
+    component: i32,
     ty: u32,
     size: i32,
 }
@@ -221,10 +307,11 @@ impl LinkFns {
             if outputs.iter().any(|o| o.name.starts_with(COPY_PREFIX)) {
                 return Outcome::NotNeeded;
             }
-            let Some(zero) = outputs
+            let zero: Vec<&Output> = outputs
                 .iter()
-                .find(|o| o.location == 0 && o.index == 0 && !o.name.starts_with("gl_"))
-            else {
+                .filter(|o| o.location == 0 && o.index == 0 && !o.name.starts_with("gl_"))
+                .collect();
+            let Some(first) = zero.first() else {
                 return Outcome::NotNeeded;
             };
             if outputs.iter().any(|o| o.index > 0) {
@@ -243,8 +330,17 @@ impl LinkFns {
                     o.name, o.location
                 ));
             }
-            let Some(ty) = glsl_type(zero.ty) else {
-                return Outcome::Kept(format!("output {} has type {:#x}", zero.name, zero.ty));
+            let parts: Vec<Part> = zero
+                .iter()
+                .map(|o| Part {
+                    name: &o.name,
+                    gl_type: o.ty,
+                    component: o.component.max(0) as u32,
+                })
+                .collect();
+            let (ty, expr) = match copy_of(&parts) {
+                Ok(copy) => copy,
+                Err(why) => return Outcome::Kept(why),
             };
             let attached = match source {
                 Some(_) => None,
@@ -265,7 +361,7 @@ impl LinkFns {
                 },
                 (None, None) => return Outcome::NotNeeded,
             };
-            let rewritten = duplicate_output(&original, &zero.name, ty);
+            let rewritten = duplicate_output(&original, &expr, ty);
             let Some(copy) = self.compile(&rewritten) else {
                 return Outcome::Kept("the rewritten fragment shader does not compile".into());
             };
@@ -287,7 +383,7 @@ impl LinkFns {
                 (self.bind_frag_data_location)(program, loc, name.as_ptr());
             }
             (self.link_program)(program);
-            let zero_name = std::ffi::CString::new(zero.name.trim_end_matches("[0]")).unwrap();
+            let zero_name = std::ffi::CString::new(first.name.trim_end_matches("[0]")).unwrap();
             let ok = self.program_int(program, GL_LINK_STATUS) != 0
                 && (self.get_frag_data_location)(program, zero_name.as_ptr()) == 0;
             (self.detach_shader)(program, copy);
@@ -349,6 +445,20 @@ impl LinkFns {
                         std::ptr::null_mut(),
                         v.as_mut_ptr(),
                     );
+                    // GL 4.4 (ARB_enhanced_layouts); an older driver
+                    // raises GL_INVALID_ENUM, which the callers drop, and
+                    // every output is in its location's first component.
+                    let mut component = 0;
+                    (self.get_program_resourceiv)(
+                        program,
+                        GL_PROGRAM_OUTPUT,
+                        i,
+                        1,
+                        &GL_LOCATION_COMPONENT,
+                        1,
+                        std::ptr::null_mut(),
+                        &mut component,
+                    );
                     let mut buf = [0 as c_char; 256];
                     let mut len = 0;
                     (self.get_program_resource_name)(
@@ -363,6 +473,7 @@ impl LinkFns {
                         name: CStr::from_ptr(buf.as_ptr()).to_string_lossy().into_owned(),
                         location: v[0],
                         index: v[1],
+                        component,
                         ty: v[2] as u32,
                         size: v[3],
                     }
@@ -474,6 +585,41 @@ mod tests {
         assert!(is_version_directive("#\tversion 450\r\n"));
         assert!(!is_version_directive("#versions 450\n"));
         assert!(!is_version_directive("// #version 450\n"));
+    }
+
+    #[test]
+    fn outputs_sharing_location_0_are_copied_in_their_components() {
+        let part = |name, gl_type, component| Part {
+            name,
+            gl_type,
+            component,
+        };
+        // One variable from component 0: itself, as before.
+        assert_eq!(
+            copy_of(&[part("c[0]", 0x8B52, 0)]),
+            Ok(("vec4", "c[0]".to_owned()))
+        );
+        // Two halves, listed in either order.
+        let halves = [part("ba", 0x8B50, 2), part("rg", 0x8B50, 0)];
+        assert_eq!(copy_of(&halves), Ok(("vec4", "vec4(rg, ba)".to_owned())));
+        // A gap before (and after) a variable in component 1.
+        assert_eq!(
+            copy_of(&[part("g", 0x1405, 1)]),
+            Ok(("uvec2", "uvec2(uint(0), g)".to_owned()))
+        );
+        assert_eq!(
+            copy_of(&[part("r", 0x1404, 0), part("b", 0x1404, 2)]),
+            Ok(("ivec3", "ivec3(r, int(0), b)".to_owned()))
+        );
+        // What GLSL would not link anyway is refused with a reason.
+        let mixed = copy_of(&[part("r", 0x1406, 0), part("g", 0x1404, 1)]);
+        assert!(mixed.unwrap_err().contains("mix float and int"));
+        let past = copy_of(&[part("v", 0x8B51, 2)]);
+        assert!(past.unwrap_err().contains("past the fourth"));
+        let overlap = copy_of(&[part("a", 0x8B50, 0), part("b", 0x1406, 1)]);
+        assert!(overlap.unwrap_err().contains("b overlaps"));
+        let mat = copy_of(&[part("m", 0x8B5C, 0)]);
+        assert!(mat.unwrap_err().contains("type 0x8b5c"));
     }
 
     #[test]

@@ -11,6 +11,7 @@
  *                            shader runs once per fragment (queries);
  *                            glClearBuffer; glDrawBuffers routing
  *   glx_core_stereo core45   GL 4.5 core: the same plus atomic counters,
+ *                            output 0 split by component qualifiers,
  *                            indirect and transform-feedback draws,
  *                            separable programs, and DSA on framebuffer 0;
  *                            then prints the probes (lines "probe ...")
@@ -417,6 +418,24 @@ static void atomic_counter_once(void)
     glDeleteProgram(p);
     glUseProgram(0);
     drain_errors("atomic counter");
+}
+
+/* GL 4.4: output 0 split into components by two variables. */
+static void component_outputs(void)
+{
+    static const char *fs = "#version 450 core\n"
+                            "layout(location = 0, component = 0) out vec2 rg;\n"
+                            "layout(location = 0, component = 2) out vec2 ba;\n"
+                            "void main() { rg = vec2(1.0, 0.5); ba = vec2(1.0, 1.0); }\n";
+    GLuint p = program(VS33, fs);
+    glUseProgram(p);
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    draw_with(0);
+    expect_buffers("output 0 in two components", M_BACK, 255, 128, 255);
+    glDeleteProgram(p);
+    glUseProgram(0);
+    drain_errors("component outputs");
 }
 
 /* GL 4.0: a transform-feedback draw, and GL 4.1 separable programs. */
@@ -912,6 +931,7 @@ int main(int argc, char **argv)
     }
     if (core45) {
         atomic_counter_once();
+        component_outputs();
         feedback_and_separable();
         dsa();
     }
