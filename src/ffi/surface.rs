@@ -222,7 +222,8 @@ pub extern "C" fn gls_read_buffer(gl_buffer: u32) -> gls_result {
 /// emulated default framebuffer: links `program`, then, when its fragment
 /// shader writes a user-defined output at location 0, links it again with
 /// that output also written to outputs `gls_stereo_copy5`…`7` (locations
-/// 5…7), so that output 0 reaches every buffer gls_draw_buffer() selects
+/// 5…7; for a shader writing gl_FragData[0], to gl_FragData[5…7]), so that
+/// output 0 reaches every buffer gls_draw_buffer() selects
 /// (GL_BACK: both eyes) in one pass: the shader runs once per fragment, so
 /// atomic counters, image stores and queries count as on a real stereo
 /// framebuffer. The program keeps its shaders attached; its introspection
@@ -237,7 +238,8 @@ pub extern "C" fn gls_read_buffer(gl_buffer: u32) -> gls_result {
 /// reports it); GLS_ERROR_INVALID_OPERATION, with the reason in
 /// gls_last_error_message(), when the copies cannot be added (no GLSL
 /// source, as with SPIR-V; several fragment shaders; outputs at locations
-/// 5…7 or dual-source outputs; a driver before GL 4.3): the program is then
+/// 5…7 or dual-source outputs; gl_FragData elements other than 0 written;
+/// a driver before GL 4.3): the program is then
 /// linked as glLinkProgram links it, and output 0 reaches only the first
 /// selected buffer. Thread: the surface's.
 #[unsafe(no_mangle)]

@@ -4,12 +4,13 @@
 //! fragment colour zero is written to back-left *and* back-right. The
 //! emulated framebuffer is a framebuffer object, where output i goes to
 //! draw buffer i only; fixed-function colour and gl_FragColor are
-//! broadcast to every draw buffer, but a user-defined `out` variable is
-//! not. So when a program with a user-defined output at location 0 is
-//! linked, it is linked a second time with a fragment shader that also
-//! writes that output to the locations of
-//! [`crate::stereo::emulated::COPY_LOCATIONS`], the draw-buffer slots the
-//! emulated framebuffer gives the other selected buffers.
+//! broadcast to every draw buffer, but a user-defined `out` variable and
+//! `gl_FragData[0]` are not. So when a program with a user-defined output
+//! at location 0, or writing `gl_FragData[0]`, is linked, it is linked a
+//! second time with a fragment shader that also writes that output to the
+//! locations of [`crate::stereo::emulated::COPY_LOCATIONS`], the
+//! draw-buffer slots the emulated framebuffer gives the other selected
+//! buffers.
 //!
 //! Why at link time and not a pass per eye: the shader runs once per
 //! fragment as on a real stereo framebuffer, so atomic counters, image and
@@ -18,19 +19,21 @@
 //! without being interposed, and a draw costs what it did. The price is
 //! paid once per link (the fragment shader is compiled and the program
 //! linked again) and a program's introspection shows three more outputs
-//! (`gls_stereo_copy5`…`7`, locations 5…7; see the README).
+//! (`gls_stereo_copy5`…`7`, locations 5…7; see the README; none for
+//! `gl_FragData`, whose elements 5…7 are the copies).
 //!
 //! How: the user's `main` is renamed by a `#define` after `#version`, and
 //! a new `main` calling it then copying output 0 is appended; the copies'
 //! locations are set with glBindFragDataLocation (GLSL 1.30 and newer).
 //! Output 0 is the variable at location 0, or, when GL 4.4 `component`
 //! qualifiers share the location among several, all of them, each copied
-//! into its own components ([`copy_of`]).
-//! The program keeps the user's shader objects attached, and a failure at
-//! any step (no source: SPIR-V or program binaries; several fragment
-//! shaders; locations 5…7 or dual-source outputs in use; the rewritten
-//! shader not compiling) relinks the program as the user linked it and
-//! says why ([`Outcome::Kept`]).
+//! into its own components ([`copy_of`]); or `gl_FragData[0]`, copied to
+//! `gl_FragData[5…7]` ([`Copies`]). The program keeps the user's shader
+//! objects attached, and a failure at any step (no source: SPIR-V or
+//! program binaries; several fragment shaders; locations 5…7 or
+//! dual-source outputs in use; `gl_FragData` elements other than 0
+//! written; the rewritten shader not compiling) relinks the program as the
+//! user linked it and says why ([`Outcome::Kept`]).
 
 use std::ffi::{CStr, c_char, c_void};
 
@@ -155,13 +158,29 @@ pub fn copy_of(parts: &[Part]) -> Result<(&'static str, String), String> {
     Ok((ty, format!("{ty}({})", args.join(", "))))
 }
 
-/// The fragment shader source `source` with output `expr` (of GLSL type
-/// `ty`) also written to `gls_stereo_copyN` for each N of
-/// [`COPY_LOCATIONS`]. The user's `main` becomes `gls_stereo_user_main`
-/// (a `#define` after the `#version` line, which must stay first); the new
-/// `main` calls it and copies the output, so early returns are covered and
-/// `discard` discards the copies too.
-pub fn duplicate_output(source: &str, expr: &str, ty: &str) -> String {
+/// What the copies of output 0 are.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Copies {
+    /// New outputs `gls_stereo_copyN` of GLSL type `ty`, bound to location
+    /// N with glBindFragDataLocation, given `expr` ([`copy_of`]).
+    Declared {
+        /// Their GLSL type.
+        ty: &'static str,
+        /// What they are given.
+        expr: String,
+    },
+    /// `gl_FragData[N] = gl_FragData[0]`: a shader writing the built-in
+    /// array cannot declare outputs, and its element N is location N.
+    FragData,
+}
+
+/// The fragment shader source `source` with output 0 also written to
+/// location N for each N of [`COPY_LOCATIONS`], as `copies` says. The
+/// user's `main` becomes `gls_stereo_user_main` (a `#define` after the
+/// `#version` line, which must stay first); the new `main` calls it and
+/// copies the output, so early returns are covered and `discard` discards
+/// the copies too.
+pub fn duplicate_output(source: &str, copies: &Copies) -> String {
     let mut insert_at = 0;
     let mut offset = 0;
     for line in source.split_inclusive('\n') {
@@ -183,15 +202,34 @@ pub fn duplicate_output(source: &str, expr: &str, ty: &str) -> String {
     out.push_str(&format!("#define main {USER_MAIN}\n"));
     out.push_str(tail);
     out.push_str("\n#undef main\n");
-    for loc in COPY_LOCATIONS {
-        out.push_str(&format!("out {ty} {COPY_PREFIX}{loc};\n"));
+    if let Copies::Declared { ty, .. } = copies {
+        for loc in COPY_LOCATIONS {
+            out.push_str(&format!("out {ty} {COPY_PREFIX}{loc};\n"));
+        }
     }
     out.push_str(&format!("void main()\n{{\n    {USER_MAIN}();\n"));
     for loc in COPY_LOCATIONS {
-        out.push_str(&format!("    {COPY_PREFIX}{loc} = {expr};\n"));
+        out.push_str(&match copies {
+            Copies::Declared { expr, .. } => format!("    {COPY_PREFIX}{loc} = {expr};\n"),
+            Copies::FragData => format!("    gl_FragData[{loc}] = gl_FragData[0];\n"),
+        });
     }
     out.push_str("}\n");
     out
+}
+
+/// Whether every `gl_FragData` in `source` is `gl_FragData[0]` (blanks
+/// allowed): then the copies to elements 5…7 overwrite nothing the shader
+/// writes itself. An element by another number or by an expression, or the
+/// name in a macro, is a no.
+fn frag_data_only_element_zero(source: &str) -> bool {
+    source.match_indices("gl_FragData").all(|(at, name)| {
+        source[at + name.len()..]
+            .trim_start()
+            .strip_prefix('[')
+            .and_then(|r| r.trim_start().strip_prefix('0'))
+            .is_some_and(|r| r.trim_start().starts_with(']'))
+    })
 }
 
 /// Whether `line` is a `#version` directive: GLSL lets blanks (spaces,
@@ -266,9 +304,9 @@ link_fns! {
 pub enum Outcome {
     /// Relinked: output 0 reaches every buffer a glDrawBuffer name selects.
     Duplicated,
-    /// Nothing to do: the link failed, or no user-defined output is at
-    /// location 0 (fixed function, gl_FragColor, no fragment shader, or
-    /// already rewritten).
+    /// Nothing to do: the link failed, or neither a user-defined output at
+    /// location 0 nor `gl_FragData` is written (fixed function,
+    /// gl_FragColor, no fragment shader, or already rewritten).
     NotNeeded,
     /// Linked as the user linked it, for this reason: output 0 reaches
     /// only the first selected buffer.
@@ -288,11 +326,13 @@ struct Output {
 impl LinkFns {
     /// After a successful glLinkProgram (or glCreateShaderProgramv) of
     /// `program`: relinks it with output 0 copied to the copy locations
-    /// when it has a user-defined output at location 0. `source` is the
-    /// fragment shader's source when the program has no attached fragment
-    /// shader (glCreateShaderProgramv), None to read it from the attached
-    /// one. May raise GL errors only through a misuse the link itself
-    /// would have reported; callers keep the program's error state apart.
+    /// when it has a user-defined output at location 0 or writes
+    /// `gl_FragData`. `source` is the fragment shader's source when the
+    /// program has no attached fragment shader (glCreateShaderProgramv),
+    /// None to read it from the attached one. May raise GL errors: through
+    /// a misuse the link itself would have reported, and GL_INVALID_ENUM
+    /// from the GL_LOCATION_COMPONENT query on a driver before GL 4.4;
+    /// callers keep the program's error state apart.
     ///
     /// # Safety
     /// A GL context must be current on this thread, `program` a program
@@ -311,9 +351,10 @@ impl LinkFns {
                 .iter()
                 .filter(|o| o.location == 0 && o.index == 0 && !o.name.starts_with("gl_"))
                 .collect();
-            let Some(first) = zero.first() else {
+            let frag_data = outputs.iter().find(|o| o.name.starts_with("gl_FragData"));
+            if zero.is_empty() && frag_data.is_none() {
                 return Outcome::NotNeeded;
-            };
+            }
             if outputs.iter().any(|o| o.index > 0) {
                 return Outcome::Kept(
                     "the fragment shader has a dual-source output (index 1)".into(),
@@ -330,17 +371,29 @@ impl LinkFns {
                     o.name, o.location
                 ));
             }
-            let parts: Vec<Part> = zero
-                .iter()
-                .map(|o| Part {
-                    name: &o.name,
-                    gl_type: o.ty,
-                    component: o.component.max(0) as u32,
-                })
-                .collect();
-            let (ty, expr) = match copy_of(&parts) {
-                Ok(copy) => copy,
-                Err(why) => return Outcome::Kept(why),
+            let copies = match (zero.first(), frag_data) {
+                (Some(_), _) => {
+                    let parts: Vec<Part> = zero
+                        .iter()
+                        .map(|o| Part {
+                            name: &o.name,
+                            gl_type: o.ty,
+                            component: o.component.max(0) as u32,
+                        })
+                        .collect();
+                    match copy_of(&parts) {
+                        Ok((ty, expr)) => Copies::Declared { ty, expr },
+                        Err(why) => return Outcome::Kept(why),
+                    }
+                }
+                (None, Some(fd)) if COPY_LOCATIONS.iter().any(|&l| l as i32 >= fd.size) => {
+                    return Outcome::Kept(format!(
+                        "gl_FragData has {} elements, and the copies need 8",
+                        fd.size
+                    ));
+                }
+                (None, Some(_)) => Copies::FragData,
+                (None, None) => return Outcome::NotNeeded,
             };
             let attached = match source {
                 Some(_) => None,
@@ -361,7 +414,12 @@ impl LinkFns {
                 },
                 (None, None) => return Outcome::NotNeeded,
             };
-            let rewritten = duplicate_output(&original, &expr, ty);
+            if copies == Copies::FragData && !frag_data_only_element_zero(&original) {
+                return Outcome::Kept(
+                    "the fragment shader writes gl_FragData elements other than [0]".into(),
+                );
+            }
+            let rewritten = duplicate_output(&original, &copies);
             let Some(copy) = self.compile(&rewritten) else {
                 return Outcome::Kept("the rewritten fragment shader does not compile".into());
             };
@@ -378,14 +436,18 @@ impl LinkFns {
                 None => None,
             };
             (self.attach_shader)(program, copy);
-            for loc in COPY_LOCATIONS {
-                let name = std::ffi::CString::new(format!("{COPY_PREFIX}{loc}")).unwrap();
-                (self.bind_frag_data_location)(program, loc, name.as_ptr());
+            if let Copies::Declared { .. } = copies {
+                for loc in COPY_LOCATIONS {
+                    let name = std::ffi::CString::new(format!("{COPY_PREFIX}{loc}")).unwrap();
+                    (self.bind_frag_data_location)(program, loc, name.as_ptr());
+                }
             }
             (self.link_program)(program);
-            let zero_name = std::ffi::CString::new(first.name.trim_end_matches("[0]")).unwrap();
             let ok = self.program_int(program, GL_LINK_STATUS) != 0
-                && (self.get_frag_data_location)(program, zero_name.as_ptr()) == 0;
+                && zero.first().is_none_or(|first| {
+                    let name = std::ffi::CString::new(first.name.trim_end_matches("[0]")).unwrap();
+                    (self.get_frag_data_location)(program, name.as_ptr()) == 0
+                });
             (self.detach_shader)(program, copy);
             (self.delete_shader)(copy);
             // The user's shader attached again, as after the user's link.
@@ -542,10 +604,31 @@ impl LinkFns {
 mod tests {
     use super::*;
 
+    fn declared(expr: &str, ty: &'static str) -> Copies {
+        Copies::Declared {
+            ty,
+            expr: expr.to_owned(),
+        }
+    }
+
+    #[test]
+    fn gl_frag_data_0_is_copied_to_its_elements_5_to_7() {
+        let src = "#version 130\nvoid main() { gl_FragData[0] = vec4(1.0); }\n";
+        let out = duplicate_output(src, &Copies::FragData);
+        assert!(out.contains("    gl_FragData[7] = gl_FragData[0];\n"), "{out}");
+        assert!(out.contains("    gl_FragData[5] = gl_FragData[0];\n"), "{out}");
+        assert!(!out.contains(COPY_PREFIX), "{out}");
+        assert!(frag_data_only_element_zero(src));
+        assert!(frag_data_only_element_zero("gl_FragData [ 0 ] = c;"));
+        assert!(!frag_data_only_element_zero("gl_FragData[0] = c; gl_FragData[1] = d;"));
+        assert!(!frag_data_only_element_zero("gl_FragData[i] = c;"));
+        assert!(!frag_data_only_element_zero("#define OUT gl_FragData\nOUT[6] = c;"));
+    }
+
     #[test]
     fn main_is_renamed_after_the_version_line_and_the_copies_appended() {
         let src = "// a comment\n#version 330 core\nlayout(location = 0) out vec4 color;\nvoid main() { color = vec4(1.0); }\n";
-        let out = duplicate_output(src, "color", "vec4");
+        let out = duplicate_output(src, &declared("color", "vec4"));
         let lines: Vec<&str> = out.lines().collect();
         assert_eq!(lines[1], "#version 330 core");
         assert_eq!(lines[2], "#define main gls_stereo_user_main");
@@ -560,8 +643,7 @@ mod tests {
     fn a_source_without_version_gets_the_define_first() {
         let out = duplicate_output(
             "out ivec4 c[2];\nvoid main(){c[0]=ivec4(1);}",
-            "c[0]",
-            "ivec4",
+            &declared("c[0]", "ivec4"),
         );
         assert!(out.starts_with("#define main gls_stereo_user_main\nout ivec4 c[2];"));
         assert!(out.contains("gls_stereo_copy7 = c[0];"));
@@ -570,14 +652,14 @@ mod tests {
 
     #[test]
     fn a_version_line_without_newline_keeps_the_define_on_its_own_line() {
-        let out = duplicate_output("#version 130", "c", "vec4");
+        let out = duplicate_output("#version 130", &declared("c", "vec4"));
         assert!(out.starts_with("#version 130\n#define main gls_stereo_user_main\n"));
     }
 
     #[test]
     fn a_version_directive_may_have_blanks_around_the_hash() {
         let src = "// c\n  #  version 330 core\nout vec4 c;\nvoid main(){c=vec4(1.0);}\n";
-        let out = duplicate_output(src, "c", "vec4");
+        let out = duplicate_output(src, &declared("c", "vec4"));
         assert!(
             out.starts_with("// c\n  #  version 330 core\n#define main gls_stereo_user_main\n"),
             "{out}"

@@ -11,7 +11,6 @@
  *                            shader runs once per fragment (queries);
  *                            glClearBuffer; glDrawBuffers routing
  *   glx_core_stereo core45   GL 4.5 core: the same plus atomic counters,
- *                            output 0 split by component qualifiers,
  *                            indirect and transform-feedback draws,
  *                            separable programs, and DSA on framebuffer 0;
  *                            then prints the probes (lines "probe ...")
@@ -885,6 +884,19 @@ static void immediate_mode(void)
     glVertex2f(-1, 1);
     glEnd();
     expect_buffers("glBegin/glEnd with an `out` shader under GL_BACK", M_BACK, 0, 255, 255);
+    glUseProgram(0);
+    glDeleteProgram(p);
+    /* gl_FragData[0]: unlike gl_FragColor, GL writes it to draw buffer 0
+     * only, which under GL_BACK on a stereo framebuffer is both back
+     * buffers. */
+    static const char *fs_data =
+        "#version 130\nvoid main() { gl_FragData[0] = vec4(1.0, 0.0, 1.0, 1.0); }\n";
+    p = program(vs, fs_data);
+    glUseProgram(p);
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    glRectf(-1, -1, 1, 1);
+    expect_buffers("gl_FragData[0] under GL_BACK", M_BACK, 255, 0, 255);
     glUseProgram(0);
     glDeleteProgram(p);
     /* Fixed function too. */
