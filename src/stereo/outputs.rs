@@ -47,6 +47,7 @@ const GL_ATTACHED_SHADERS: u32 = 0x8B85;
 const GL_SHADER_SOURCE_LENGTH: u32 = 0x8B88;
 const GL_PROGRAM_OUTPUT: u32 = 0x92E4;
 const GL_ACTIVE_RESOURCES: u32 = 0x92F5;
+const GL_NAME_LENGTH: u32 = 0x92F9;
 const GL_TYPE: u32 = 0x92FA;
 const GL_ARRAY_SIZE: u32 = 0x92FB;
 const GL_LOCATION: u32 = 0x930E;
@@ -495,15 +496,21 @@ impl LinkFns {
             (self.get_program_interfaceiv)(program, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &mut n);
             (0..n.max(0) as u32)
                 .map(|i| {
-                    let props = [GL_LOCATION, GL_LOCATION_INDEX, GL_TYPE, GL_ARRAY_SIZE];
-                    let mut v = [0i32; 4];
+                    let props = [
+                        GL_LOCATION,
+                        GL_LOCATION_INDEX,
+                        GL_TYPE,
+                        GL_ARRAY_SIZE,
+                        GL_NAME_LENGTH,
+                    ];
+                    let mut v = [0i32; 5];
                     (self.get_program_resourceiv)(
                         program,
                         GL_PROGRAM_OUTPUT,
                         i,
-                        4,
+                        props.len() as i32,
                         props.as_ptr(),
-                        4,
+                        v.len() as i32,
                         std::ptr::null_mut(),
                         v.as_mut_ptr(),
                     );
@@ -521,7 +528,8 @@ impl LinkFns {
                         std::ptr::null_mut(),
                         &mut component,
                     );
-                    let mut buf = [0 as c_char; 256];
+                    // GL_NAME_LENGTH counts the terminating NUL.
+                    let mut buf = vec![0 as c_char; v[4].max(1) as usize];
                     let mut len = 0;
                     (self.get_program_resource_name)(
                         program,

@@ -292,6 +292,24 @@ static void user_outputs(int entries)
     draw_with(0);
     expect_buffers("auto location, early return", M_BACK, 0, 255, 0);
     glDeleteProgram(p);
+    /* An output name longer than 255 characters (GLSL allows 1024). */
+    {
+        static char fs[800];
+        char name[301];
+        memset(name, 'x', 300);
+        name[300] = '\0';
+        snprintf(fs, sizeof fs,
+                 "#version 330 core\nlayout(location = 0) out vec4 %s;\n"
+                 "void main() { %s = vec4(0.0, 1.0, 1.0, 1.0); }\n",
+                 name, name);
+        p = program(VS33, fs);
+        glUseProgram(p);
+        clear_all();
+        glDrawBuffer(GL_BACK);
+        draw_with(0);
+        expect_buffers("a 300-character output name", M_BACK, 0, 255, 255);
+        glDeleteProgram(p);
+    }
     p = program(VS33, FS_SPACED);
     glUseProgram(p);
     clear_all();
