@@ -246,6 +246,20 @@ static const char *ENTRY_NAME[] = {"glDrawArrays",
                                    "glDrawArraysInstancedBaseInstance",
                                    "glDrawArraysIndirect + glMultiDrawArraysIndirect"};
 
+/* One draw of the quad under GL_BACK with a program of VS33 and `fs`:
+ * both back buffers are (r, g, b), the fronts untouched. */
+static void back_shows(const char *what, const char *fs, int r, int g, int b)
+{
+    GLuint p = program(VS33, fs);
+    glUseProgram(p);
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    draw_with(0);
+    expect_buffers(what, M_BACK, r, g, b);
+    glUseProgram(0);
+    glDeleteProgram(p);
+}
+
 /* 1: a shader's user-defined output 0 reaches every buffer the draw
  * buffer selects, through every draw entry point. */
 static void user_outputs(int entries)
@@ -285,38 +299,18 @@ static void user_outputs(int entries)
     }
     glDeleteProgram(p);
     /* Output 0 without a layout qualifier, and an early return. */
-    p = program(VS33, FS_AUTO);
-    glUseProgram(p);
-    clear_all();
-    glDrawBuffer(GL_BACK);
-    draw_with(0);
-    expect_buffers("auto location, early return", M_BACK, 0, 255, 0);
-    glDeleteProgram(p);
+    back_shows("auto location, early return", FS_AUTO, 0, 255, 0);
     /* An output name longer than 255 characters (GLSL allows 1024). */
-    {
-        static char fs[800];
-        char name[301];
-        memset(name, 'x', 300);
-        name[300] = '\0';
-        snprintf(fs, sizeof fs,
-                 "#version 330 core\nlayout(location = 0) out vec4 %s;\n"
-                 "void main() { %s = vec4(0.0, 1.0, 1.0, 1.0); }\n",
-                 name, name);
-        p = program(VS33, fs);
-        glUseProgram(p);
-        clear_all();
-        glDrawBuffer(GL_BACK);
-        draw_with(0);
-        expect_buffers("a 300-character output name", M_BACK, 0, 255, 255);
-        glDeleteProgram(p);
-    }
-    p = program(VS33, FS_SPACED);
-    glUseProgram(p);
-    clear_all();
-    glDrawBuffer(GL_BACK);
-    draw_with(0);
-    expect_buffers("'#  version' with blanks", M_BACK, 255, 0, 255);
-    glDeleteProgram(p);
+    static char fs_long[800];
+    char name[301];
+    memset(name, 'x', 300);
+    name[300] = '\0';
+    snprintf(fs_long, sizeof fs_long,
+             "#version 330 core\nlayout(location = 0) out vec4 %s;\n"
+             "void main() { %s = vec4(0.0, 1.0, 1.0, 1.0); }\n",
+             name, name);
+    back_shows("a 300-character output name", fs_long, 0, 255, 255);
+    back_shows("'#  version' with blanks", FS_SPACED, 255, 0, 255);
     glUseProgram(0);
     drain_errors("user outputs");
 }
@@ -444,14 +438,7 @@ static void component_outputs(void)
                             "layout(location = 0, component = 0) out vec2 rg;\n"
                             "layout(location = 0, component = 2) out vec2 ba;\n"
                             "void main() { rg = vec2(1.0, 0.5); ba = vec2(1.0, 1.0); }\n";
-    GLuint p = program(VS33, fs);
-    glUseProgram(p);
-    clear_all();
-    glDrawBuffer(GL_BACK);
-    draw_with(0);
-    expect_buffers("output 0 in two components", M_BACK, 255, 128, 255);
-    glDeleteProgram(p);
-    glUseProgram(0);
+    back_shows("output 0 in two components", fs, 255, 128, 255);
     drain_errors("component outputs");
 }
 
