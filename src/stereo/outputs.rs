@@ -623,14 +623,24 @@ mod tests {
     fn gl_frag_data_0_is_copied_to_its_elements_5_to_7() {
         let src = "#version 130\nvoid main() { gl_FragData[0] = vec4(1.0); }\n";
         let out = duplicate_output(src, &Copies::FragData);
-        assert!(out.contains("    gl_FragData[7] = gl_FragData[0];\n"), "{out}");
-        assert!(out.contains("    gl_FragData[5] = gl_FragData[0];\n"), "{out}");
+        assert!(
+            out.contains("    gl_FragData[7] = gl_FragData[0];\n"),
+            "{out}"
+        );
+        assert!(
+            out.contains("    gl_FragData[5] = gl_FragData[0];\n"),
+            "{out}"
+        );
         assert!(!out.contains(COPY_PREFIX), "{out}");
         assert!(frag_data_only_element_zero(src));
         assert!(frag_data_only_element_zero("gl_FragData [ 0 ] = c;"));
-        assert!(!frag_data_only_element_zero("gl_FragData[0] = c; gl_FragData[1] = d;"));
+        assert!(!frag_data_only_element_zero(
+            "gl_FragData[0] = c; gl_FragData[1] = d;"
+        ));
         assert!(!frag_data_only_element_zero("gl_FragData[i] = c;"));
-        assert!(!frag_data_only_element_zero("#define OUT gl_FragData\nOUT[6] = c;"));
+        assert!(!frag_data_only_element_zero(
+            "#define OUT gl_FragData\nOUT[6] = c;"
+        ));
     }
 
     #[test]
