@@ -15,7 +15,8 @@
  *                            separable programs, and DSA on framebuffer 0;
  *                            then prints the probes (lines "probe ...")
  *   glx_core_stereo compat   immediate mode (glBegin/glEnd) with a GLSL
- *                            1.30 `out` shader in a compatibility context
+ *                            1.30 `out` shader in a compatibility context,
+ *                            and a shader writing gl_FragData[0]
  *   glx_core_stereo kept     GL 3.3 core: a program using location 6 itself
  *                            keeps output 0 in the first selected buffer
  *                            (the layer says why on stderr)
