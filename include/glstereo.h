@@ -1664,9 +1664,10 @@ gls_result gls_read_buffer(uint32_t gl_buffer);
  * emulated default framebuffer: links `program`, then, when its fragment
  * shader writes a user-defined output at location 0, links it again with
  * that output also written to outputs `gls_stereo_copy5`…`7` (locations
- * 5…7), so that output 0 reaches every buffer gls_draw_buffer() selects
- * (GL_BACK: both eyes) in one pass: the shader runs once per fragment, so
- * atomic counters, image stores and queries count as on a real stereo
+ * 5…7; for a shader writing `gl_FragData[0]`, to `gl_FragData[5…7]`), so
+ * that output 0 reaches every buffer gls_draw_buffer() selects (GL_BACK:
+ * both eyes) in one pass: the shader runs once per fragment, so atomic
+ * counters, image stores and queries count as on a real stereo
  * framebuffer. The program keeps its shaders attached; its introspection
  * shows the three extra outputs. Use it in place of glLinkProgram; check
  * GL_LINK_STATUS as usual.
@@ -1675,13 +1676,14 @@ gls_result gls_read_buffer(uint32_t gl_buffer);
  * @return GLS_OK (also when the link failed or the program needs no
  * copies: no fragment shader, gl_FragColor); GLS_ERROR_NO_CURRENT_SURFACE;
  * GLS_ERROR_INVALID_VALUE / GLS_ERROR_INVALID_OPERATION when glLinkProgram
- * itself raises that GL error (not a program name; gls_get_error()
- * reports it); GLS_ERROR_INVALID_OPERATION, with the reason in
+ * itself raises that GL error (not a program name; gls_get_error() reports
+ * it); GLS_ERROR_INVALID_OPERATION, with the reason in
  * gls_last_error_message(), when the copies cannot be added (no GLSL
  * source, as with SPIR-V; several fragment shaders; outputs at locations
- * 5…7 or dual-source outputs; a driver before GL 4.3): the program is then
- * linked as glLinkProgram links it, and output 0 reaches only the first
- * selected buffer. Thread: the surface's.
+ * 5…7 or dual-source outputs; `gl_FragData` elements other than 0 written;
+ * a driver before GL 4.3): the program is then linked as glLinkProgram
+ * links it, and output 0 reaches only the first selected buffer. Thread:
+ * the surface's.
  */
 gls_result gls_link_program(uint32_t program);
 
@@ -2517,16 +2519,17 @@ void gls_gl_get_framebuffer_parameteriv(uint32_t target, uint32_t pname, int32_t
 
 /**
  * `glLinkProgram`: in a stereo context, a program whose fragment shader
- * writes a user-defined output at location 0 is linked a second time
- * with that output also written to locations 5, 6 and 7 (outputs
- * `gls_stereo_copy5`…`7`), which the emulated framebuffer maps to the
- * other buffers a name such as GL_BACK selects: output 0 then reaches
- * every selected buffer, as on a real stereo framebuffer, with the shader
- * run once per fragment. Where that cannot be done (no GLSL source,
- * several fragment shaders, locations 5…7 or dual-source outputs in use)
- * the program is linked as asked and stderr says why, once. It also
- * stands for `glLinkProgramARB` (whose handles are program names in Mesa
- * and the libglvnd drivers).
+ * writes a user-defined output at location 0 (or `gl_FragData[0]`) is
+ * linked a second time with that output also written to locations 5, 6 and
+ * 7 (outputs `gls_stereo_copy5`…`7`, or `gl_FragData[5…7]`), which the
+ * emulated framebuffer maps to the other buffers a name such as GL_BACK
+ * selects: output 0 then reaches every selected buffer, as on a real
+ * stereo framebuffer, with the shader run once per fragment. Where that
+ * cannot be done (no GLSL source, several fragment shaders, locations 5…7
+ * or dual-source outputs in use, `gl_FragData` elements other than 0
+ * written) the program is linked as asked and stderr says why, once. It
+ * also stands for `glLinkProgramARB` (whose handles are program names in
+ * Mesa and the libglvnd drivers).
  */
 void gls_gl_link_program(uint32_t program);
 

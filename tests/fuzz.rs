@@ -39,7 +39,6 @@ use glstereo::backend::{BackendChoice, BackendKind};
 use glstereo::capture::stereo_photo::StereoPhotoFormat;
 use glstereo::config::{ConfigRequest, EmulationPolicy, glx::*};
 use glstereo::ffi::analysis::{gls_parallax_report, gls_parallax_report_describe};
-use glstereo::ffi::core::gls_last_error_message;
 use glstereo::ffi::display::*;
 use glstereo::ffi::math::*;
 use glstereo::ffi::output::{GLS_OUTPUT_COUNT, gls_output_from_name, gls_output_name};
@@ -49,6 +48,8 @@ use glstereo::output::mode::{ALIASES, OutputMode};
 use glstereo::output::options::{
     ENV_CROSSTALK, ENV_MODE, ENV_SATURATION, ENV_SWAP_EYES, OutputSettings,
 };
+
+use common::last_error;
 
 const TARGETS: u32 = 4;
 
@@ -137,13 +138,6 @@ fn fuzz(
         "{target}: {} corpus lines, {n} generated inputs",
         lines.len()
     );
-}
-
-fn last_error() -> String {
-    // SAFETY: never NULL; valid until the next failing call on this thread.
-    unsafe { CStr::from_ptr(gls_last_error_message()) }
-        .to_string_lossy()
-        .into_owned()
 }
 
 /// Checks a result code is allowed and, when it is an error, that the

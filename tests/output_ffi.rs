@@ -6,17 +6,11 @@ mod common;
 
 use std::ffi::{CStr, CString, c_char};
 
-use glstereo::ffi::core::gls_last_error_message;
 use glstereo::ffi::output::{GLS_OUTPUT_COUNT, gls_output_from_name, gls_output_name};
 use glstereo::ffi::types::*;
 use glstereo::output::{ALIASES, OutputMode};
 
-fn last_error() -> String {
-    // SAFETY: gls_last_error_message never returns NULL.
-    unsafe { CStr::from_ptr(gls_last_error_message()) }
-        .to_string_lossy()
-        .into_owned()
-}
+use common::last_error;
 
 fn from_name(name: &str) -> (gls_result, u32) {
     let c = CString::new(name).unwrap();

@@ -1050,16 +1050,17 @@ pub unsafe extern "C" fn gls_gl_get_framebuffer_parameteriv(
 }
 
 /// `glLinkProgram`: in a stereo context, a program whose fragment shader
-/// writes a user-defined output at location 0 is linked a second time
-/// with that output also written to locations 5, 6 and 7 (outputs
-/// `gls_stereo_copy5`…`7`), which the emulated framebuffer maps to the
-/// other buffers a name such as GL_BACK selects: output 0 then reaches
-/// every selected buffer, as on a real stereo framebuffer, with the shader
-/// run once per fragment. Where that cannot be done (no GLSL source,
-/// several fragment shaders, locations 5…7 or dual-source outputs in use)
-/// the program is linked as asked and stderr says why, once. It also
-/// stands for `glLinkProgramARB` (whose handles are program names in Mesa
-/// and the libglvnd drivers).
+/// writes a user-defined output at location 0 (or `gl_FragData[0]`) is
+/// linked a second time with that output also written to locations 5, 6 and
+/// 7 (outputs `gls_stereo_copy5`…`7`, or `gl_FragData[5…7]`), which the
+/// emulated framebuffer maps to the other buffers a name such as GL_BACK
+/// selects: output 0 then reaches every selected buffer, as on a real
+/// stereo framebuffer, with the shader run once per fragment. Where that
+/// cannot be done (no GLSL source, several fragment shaders, locations 5…7
+/// or dual-source outputs in use, `gl_FragData` elements other than 0
+/// written) the program is linked as asked and stderr says why, once. It
+/// also stands for `glLinkProgramARB` (whose handles are program names in
+/// Mesa and the libglvnd drivers).
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_link_program(program: u32) {
     ffi_boundary!("gls_gl_link_program" for "glLinkProgram", () => {

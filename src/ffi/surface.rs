@@ -222,9 +222,10 @@ pub extern "C" fn gls_read_buffer(gl_buffer: u32) -> gls_result {
 /// emulated default framebuffer: links `program`, then, when its fragment
 /// shader writes a user-defined output at location 0, links it again with
 /// that output also written to outputs `gls_stereo_copy5`…`7` (locations
-/// 5…7), so that output 0 reaches every buffer gls_draw_buffer() selects
-/// (GL_BACK: both eyes) in one pass: the shader runs once per fragment, so
-/// atomic counters, image stores and queries count as on a real stereo
+/// 5…7; for a shader writing `gl_FragData[0]`, to `gl_FragData[5…7]`), so
+/// that output 0 reaches every buffer gls_draw_buffer() selects (GL_BACK:
+/// both eyes) in one pass: the shader runs once per fragment, so atomic
+/// counters, image stores and queries count as on a real stereo
 /// framebuffer. The program keeps its shaders attached; its introspection
 /// shows the three extra outputs. Use it in place of glLinkProgram; check
 /// GL_LINK_STATUS as usual.
@@ -233,13 +234,14 @@ pub extern "C" fn gls_read_buffer(gl_buffer: u32) -> gls_result {
 /// @return GLS_OK (also when the link failed or the program needs no
 /// copies: no fragment shader, gl_FragColor); GLS_ERROR_NO_CURRENT_SURFACE;
 /// GLS_ERROR_INVALID_VALUE / GLS_ERROR_INVALID_OPERATION when glLinkProgram
-/// itself raises that GL error (not a program name; gls_get_error()
-/// reports it); GLS_ERROR_INVALID_OPERATION, with the reason in
+/// itself raises that GL error (not a program name; gls_get_error() reports
+/// it); GLS_ERROR_INVALID_OPERATION, with the reason in
 /// gls_last_error_message(), when the copies cannot be added (no GLSL
 /// source, as with SPIR-V; several fragment shaders; outputs at locations
-/// 5…7 or dual-source outputs; a driver before GL 4.3): the program is then
-/// linked as glLinkProgram links it, and output 0 reaches only the first
-/// selected buffer. Thread: the surface's.
+/// 5…7 or dual-source outputs; `gl_FragData` elements other than 0 written;
+/// a driver before GL 4.3): the program is then linked as glLinkProgram
+/// links it, and output 0 reaches only the first selected buffer. Thread:
+/// the surface's.
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_link_program(program: u32) -> gls_result {
     ffi_boundary!("gls_link_program", {

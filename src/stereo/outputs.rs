@@ -4,12 +4,13 @@
 //! fragment colour zero is written to back-left *and* back-right. The
 //! emulated framebuffer is a framebuffer object, where output i goes to
 //! draw buffer i only; fixed-function colour and gl_FragColor are
-//! broadcast to every draw buffer, but a user-defined `out` variable is
-//! not. So when a program with a user-defined output at location 0 is
-//! linked, it is linked a second time with a fragment shader that also
-//! writes that output to the locations of
-//! [`crate::stereo::emulated::COPY_LOCATIONS`], the draw-buffer slots the
-//! emulated framebuffer gives the other selected buffers.
+//! broadcast to every draw buffer, but a user-defined `out` variable and
+//! `gl_FragData[0]` are not. So when a program with a user-defined output
+//! at location 0, or writing `gl_FragData[0]`, is linked, it is linked a
+//! second time with a fragment shader that also writes that output to the
+//! locations of [`crate::stereo::emulated::COPY_LOCATIONS`], the
+//! draw-buffer slots the emulated framebuffer gives the other selected
+//! buffers.
 //!
 //! Why at link time and not a pass per eye: the shader runs once per
 //! fragment as on a real stereo framebuffer, so atomic counters, image and
@@ -18,16 +19,21 @@
 //! without being interposed, and a draw costs what it did. The price is
 //! paid once per link (the fragment shader is compiled and the program
 //! linked again) and a program's introspection shows three more outputs
-//! (`gls_stereo_copy5`…`7`, locations 5…7; see the README).
+//! (`gls_stereo_copy5`…`7`, locations 5…7; see the README; none for
+//! `gl_FragData`, whose elements 5…7 are the copies).
 //!
 //! How: the user's `main` is renamed by a `#define` after `#version`, and
 //! a new `main` calling it then copying output 0 is appended; the copies'
 //! locations are set with glBindFragDataLocation (GLSL 1.30 and newer).
-//! The program keeps the user's shader objects attached, and a failure at
-//! any step (no source: SPIR-V or program binaries; several fragment
-//! shaders; locations 5…7 or dual-source outputs in use; the rewritten
-//! shader not compiling) relinks the program as the user linked it and
-//! says why ([`Outcome::Kept`]).
+//! Output 0 is the variable at location 0, or, when GL 4.4 `component`
+//! qualifiers share the location among several, all of them, each copied
+//! into its own components ([`copy_of`]); or `gl_FragData[0]`, copied to
+//! `gl_FragData[5…7]` ([`Copies`]). The program keeps the user's shader
+//! objects attached, and a failure at any step (no source: SPIR-V or
+//! program binaries; several fragment shaders; locations 5…7 or
+//! dual-source outputs in use; `gl_FragData` elements other than 0
+//! written; the rewritten shader not compiling) relinks the program as the
+//! user linked it and says why ([`Outcome::Kept`]).
 
 use std::ffi::{CStr, c_char, c_void};
 
@@ -41,47 +47,146 @@ const GL_ATTACHED_SHADERS: u32 = 0x8B85;
 const GL_SHADER_SOURCE_LENGTH: u32 = 0x8B88;
 const GL_PROGRAM_OUTPUT: u32 = 0x92E4;
 const GL_ACTIVE_RESOURCES: u32 = 0x92F5;
+const GL_NAME_LENGTH: u32 = 0x92F9;
 const GL_TYPE: u32 = 0x92FA;
 const GL_ARRAY_SIZE: u32 = 0x92FB;
 const GL_LOCATION: u32 = 0x930E;
 const GL_LOCATION_INDEX: u32 = 0x930F;
+const GL_LOCATION_COMPONENT: u32 = 0x934A;
 
 /// Prefix of the copies' names (`gls_stereo_copy7` is location 7).
 pub const COPY_PREFIX: &str = "gls_stereo_copy";
 const USER_MAIN: &str = "gls_stereo_user_main";
 
-/// The GLSL type name of a fragment output type, or None for a type a
-/// fragment output cannot have.
-pub fn glsl_type(gl_type: u32) -> Option<&'static str> {
-    Some(match gl_type {
-        0x1406 => "float",
-        0x8B50 => "vec2",
-        0x8B51 => "vec3",
-        0x8B52 => "vec4",
-        0x1404 => "int",
-        0x8B53 => "ivec2",
-        0x8B54 => "ivec3",
-        0x8B55 => "ivec4",
-        0x1405 => "uint",
-        0x8DC6 => "uvec2",
-        0x8DC7 => "uvec3",
-        0x8DC8 => "uvec4",
-        _ => return None,
+/// The fragment output types, by GL type enum: the float, int and uint
+/// scalars and vectors of 2, 3 and 4 components, in that order.
+const OUTPUT_TYPES: [[(u32, &str); 4]; 3] = [
+    [
+        (0x1406, "float"),
+        (0x8B50, "vec2"),
+        (0x8B51, "vec3"),
+        (0x8B52, "vec4"),
+    ],
+    [
+        (0x1404, "int"),
+        (0x8B53, "ivec2"),
+        (0x8B54, "ivec3"),
+        (0x8B55, "ivec4"),
+    ],
+    [
+        (0x1405, "uint"),
+        (0x8DC6, "uvec2"),
+        (0x8DC7, "uvec3"),
+        (0x8DC8, "uvec4"),
+    ],
+];
+
+/// A fragment output type's row of [`OUTPUT_TYPES`] (its scalar type)
+/// and its number of components.
+fn output_type(gl_type: u32) -> Option<(usize, usize)> {
+    OUTPUT_TYPES.iter().enumerate().find_map(|(base, row)| {
+        let n = row.iter().position(|&(t, _)| t == gl_type)?;
+        Some((base, n + 1))
     })
 }
 
-/// The fragment shader source `source` with output `expr` (of GLSL type
-/// `ty`) also written to `gls_stereo_copyN` for each N of
-/// [`COPY_LOCATIONS`]. The user's `main` becomes `gls_stereo_user_main`
-/// (a `#define` after the `#version` line, which must stay first); the new
-/// `main` calls it and copies the output, so early returns are covered and
-/// `discard` discards the copies too.
-pub fn duplicate_output(source: &str, expr: &str, ty: &str) -> String {
+/// The GLSL type name of a fragment output type, or None for a type a
+/// fragment output cannot have.
+pub fn glsl_type(gl_type: u32) -> Option<&'static str> {
+    output_type(gl_type).map(|(base, n)| OUTPUT_TYPES[base][n - 1].1)
+}
+
+/// One variable writing location 0: its name (`c[0]` for an array), GL
+/// type and first component (GL 4.4 lets several variables share a
+/// location, each in its own components).
+#[derive(Clone, Copy, Debug)]
+pub struct Part<'a> {
+    /// The name program introspection gives.
+    pub name: &'a str,
+    /// Its GL type (GL_FLOAT_VEC2, …).
+    pub gl_type: u32,
+    /// Its first component (`layout(component = …)`; 0 without).
+    pub component: u32,
+}
+
+/// The GLSL type and expression of the copies of location 0 written by
+/// `parts`: the one variable itself when it starts at component 0, else
+/// a vector with each variable in its components and 0 in the components
+/// none writes (GL leaves those undefined).
+///
+/// # Errors
+/// A message saying why no copy can be made: a type a fragment output
+/// cannot have, variables of different scalar types, or components
+/// overlapping or past the fourth.
+pub fn copy_of(parts: &[Part]) -> Result<(&'static str, String), String> {
+    let mut typed = Vec::with_capacity(parts.len());
+    for p in parts {
+        let Some((base, n)) = output_type(p.gl_type) else {
+            return Err(format!("output {} has type {:#x}", p.name, p.gl_type));
+        };
+        typed.push((p.component as usize, n, base, p.name));
+    }
+    typed.sort_unstable();
+    match typed[..] {
+        [] => return Err("no output is at location 0".into()),
+        [(0, n, base, name)] => return Ok((OUTPUT_TYPES[base][n - 1].1, name.to_owned())),
+        _ => {}
+    }
+    let base = typed[0].2;
+    let mut args = Vec::new();
+    let mut at = 0;
+    for &(component, n, b, name) in &typed {
+        if b != base {
+            return Err(format!(
+                "the outputs at location 0 mix {} and {} components",
+                OUTPUT_TYPES[base][0].1, OUTPUT_TYPES[b][0].1
+            ));
+        }
+        if component < at {
+            return Err(format!("output {name} overlaps another one's components"));
+        }
+        if component + n > 4 {
+            return Err(format!("output {name} runs past the fourth component"));
+        }
+        while at < component {
+            args.push(format!("{}(0)", OUTPUT_TYPES[base][0].1));
+            at += 1;
+        }
+        args.push(name.to_owned());
+        at += n;
+    }
+    let ty = OUTPUT_TYPES[base][at - 1].1;
+    Ok((ty, format!("{ty}({})", args.join(", "))))
+}
+
+/// What the copies of output 0 are.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Copies {
+    /// New outputs `gls_stereo_copyN` of GLSL type `ty`, bound to location
+    /// N with glBindFragDataLocation, given `expr` ([`copy_of`]).
+    Declared {
+        /// Their GLSL type.
+        ty: &'static str,
+        /// What they are given.
+        expr: String,
+    },
+    /// `gl_FragData[N] = gl_FragData[0]`: a shader writing the built-in
+    /// array cannot declare outputs, and its element N is location N.
+    FragData,
+}
+
+/// The fragment shader source `source` with output 0 also written to
+/// location N for each N of [`COPY_LOCATIONS`], as `copies` says. The
+/// user's `main` becomes `gls_stereo_user_main` (a `#define` after the
+/// `#version` line, which must stay first); the new `main` calls it and
+/// copies the output, so early returns are covered and `discard` discards
+/// the copies too.
+pub fn duplicate_output(source: &str, copies: &Copies) -> String {
     let mut insert_at = 0;
     let mut offset = 0;
     for line in source.split_inclusive('\n') {
         offset += line.len();
-        if line.trim_start().starts_with("#version") {
+        if is_version_directive(line) {
             insert_at = offset;
             break;
         }
@@ -98,15 +203,45 @@ pub fn duplicate_output(source: &str, expr: &str, ty: &str) -> String {
     out.push_str(&format!("#define main {USER_MAIN}\n"));
     out.push_str(tail);
     out.push_str("\n#undef main\n");
-    for loc in COPY_LOCATIONS {
-        out.push_str(&format!("out {ty} {COPY_PREFIX}{loc};\n"));
+    if let Copies::Declared { ty, .. } = copies {
+        for loc in COPY_LOCATIONS {
+            out.push_str(&format!("out {ty} {COPY_PREFIX}{loc};\n"));
+        }
     }
     out.push_str(&format!("void main()\n{{\n    {USER_MAIN}();\n"));
     for loc in COPY_LOCATIONS {
-        out.push_str(&format!("    {COPY_PREFIX}{loc} = {expr};\n"));
+        out.push_str(&match copies {
+            Copies::Declared { expr, .. } => format!("    {COPY_PREFIX}{loc} = {expr};\n"),
+            Copies::FragData => format!("    gl_FragData[{loc}] = gl_FragData[0];\n"),
+        });
     }
     out.push_str("}\n");
     out
+}
+
+/// Whether every `gl_FragData` in `source` is `gl_FragData[0]` (blanks
+/// allowed): then the copies to elements 5…7 overwrite nothing the shader
+/// writes itself. An element by another number or by an expression, or the
+/// name in a macro, is a no.
+fn frag_data_only_element_zero(source: &str) -> bool {
+    source.match_indices("gl_FragData").all(|(at, name)| {
+        source[at + name.len()..]
+            .trim_start()
+            .strip_prefix('[')
+            .and_then(|r| r.trim_start().strip_prefix('0'))
+            .is_some_and(|r| r.trim_start().starts_with(']'))
+    })
+}
+
+/// Whether `line` is a `#version` directive: GLSL lets blanks (spaces,
+/// tabs) stand before the `#` and between it and the directive's name.
+fn is_version_directive(line: &str) -> bool {
+    let blanks: &[char] = &[' ', '\t'];
+    line.trim_start_matches(blanks)
+        .strip_prefix('#')
+        .map(|rest| rest.trim_start_matches(blanks))
+        .and_then(|rest| rest.strip_prefix("version"))
+        .is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_whitespace()))
 }
 
 macro_rules! link_fns {
@@ -170,9 +305,9 @@ link_fns! {
 pub enum Outcome {
     /// Relinked: output 0 reaches every buffer a glDrawBuffer name selects.
     Duplicated,
-    /// Nothing to do: the link failed, or no user-defined output is at
-    /// location 0 (fixed function, gl_FragColor, no fragment shader, or
-    /// already rewritten).
+    /// Nothing to do: the link failed, or neither a user-defined output at
+    /// location 0 nor `gl_FragData` is written (fixed function,
+    /// gl_FragColor, no fragment shader, or already rewritten).
     NotNeeded,
     /// Linked as the user linked it, for this reason: output 0 reaches
     /// only the first selected buffer.
@@ -184,6 +319,7 @@ struct Output {
     name: String,
     location: i32,
     index: i32,
+    component: i32,
     ty: u32,
     size: i32,
 }
@@ -191,11 +327,13 @@ struct Output {
 impl LinkFns {
     /// After a successful glLinkProgram (or glCreateShaderProgramv) of
     /// `program`: relinks it with output 0 copied to the copy locations
-    /// when it has a user-defined output at location 0. `source` is the
-    /// fragment shader's source when the program has no attached fragment
-    /// shader (glCreateShaderProgramv), None to read it from the attached
-    /// one. May raise GL errors only through a misuse the link itself
-    /// would have reported; callers keep the program's error state apart.
+    /// when it has a user-defined output at location 0 or writes
+    /// `gl_FragData`. `source` is the fragment shader's source when the
+    /// program has no attached fragment shader (glCreateShaderProgramv),
+    /// None to read it from the attached one. May raise GL errors: through
+    /// a misuse the link itself would have reported, and GL_INVALID_ENUM
+    /// from the GL_LOCATION_COMPONENT query on a driver before GL 4.4;
+    /// callers keep the program's error state apart.
     ///
     /// # Safety
     /// A GL context must be current on this thread, `program` a program
@@ -210,12 +348,14 @@ impl LinkFns {
             if outputs.iter().any(|o| o.name.starts_with(COPY_PREFIX)) {
                 return Outcome::NotNeeded;
             }
-            let Some(zero) = outputs
+            let zero: Vec<&Output> = outputs
                 .iter()
-                .find(|o| o.location == 0 && o.index == 0 && !o.name.starts_with("gl_"))
-            else {
+                .filter(|o| o.location == 0 && o.index == 0 && !o.name.starts_with("gl_"))
+                .collect();
+            let frag_data = outputs.iter().find(|o| o.name.starts_with("gl_FragData"));
+            if zero.is_empty() && frag_data.is_none() {
                 return Outcome::NotNeeded;
-            };
+            }
             if outputs.iter().any(|o| o.index > 0) {
                 return Outcome::Kept(
                     "the fragment shader has a dual-source output (index 1)".into(),
@@ -232,8 +372,29 @@ impl LinkFns {
                     o.name, o.location
                 ));
             }
-            let Some(ty) = glsl_type(zero.ty) else {
-                return Outcome::Kept(format!("output {} has type {:#x}", zero.name, zero.ty));
+            let copies = match (zero.first(), frag_data) {
+                (Some(_), _) => {
+                    let parts: Vec<Part> = zero
+                        .iter()
+                        .map(|o| Part {
+                            name: &o.name,
+                            gl_type: o.ty,
+                            component: o.component.max(0) as u32,
+                        })
+                        .collect();
+                    match copy_of(&parts) {
+                        Ok((ty, expr)) => Copies::Declared { ty, expr },
+                        Err(why) => return Outcome::Kept(why),
+                    }
+                }
+                (None, Some(fd)) if COPY_LOCATIONS.iter().any(|&l| l as i32 >= fd.size) => {
+                    return Outcome::Kept(format!(
+                        "gl_FragData has {} elements, and the copies need 8",
+                        fd.size
+                    ));
+                }
+                (None, Some(_)) => Copies::FragData,
+                (None, None) => return Outcome::NotNeeded,
             };
             let attached = match source {
                 Some(_) => None,
@@ -254,7 +415,12 @@ impl LinkFns {
                 },
                 (None, None) => return Outcome::NotNeeded,
             };
-            let rewritten = duplicate_output(&original, &zero.name, ty);
+            if copies == Copies::FragData && !frag_data_only_element_zero(&original) {
+                return Outcome::Kept(
+                    "the fragment shader writes gl_FragData elements other than [0]".into(),
+                );
+            }
+            let rewritten = duplicate_output(&original, &copies);
             let Some(copy) = self.compile(&rewritten) else {
                 return Outcome::Kept("the rewritten fragment shader does not compile".into());
             };
@@ -271,14 +437,18 @@ impl LinkFns {
                 None => None,
             };
             (self.attach_shader)(program, copy);
-            for loc in COPY_LOCATIONS {
-                let name = std::ffi::CString::new(format!("{COPY_PREFIX}{loc}")).unwrap();
-                (self.bind_frag_data_location)(program, loc, name.as_ptr());
+            if let Copies::Declared { .. } = copies {
+                for loc in COPY_LOCATIONS {
+                    let name = std::ffi::CString::new(format!("{COPY_PREFIX}{loc}")).unwrap();
+                    (self.bind_frag_data_location)(program, loc, name.as_ptr());
+                }
             }
             (self.link_program)(program);
-            let zero_name = std::ffi::CString::new(zero.name.trim_end_matches("[0]")).unwrap();
             let ok = self.program_int(program, GL_LINK_STATUS) != 0
-                && (self.get_frag_data_location)(program, zero_name.as_ptr()) == 0;
+                && zero.first().is_none_or(|first| {
+                    let name = std::ffi::CString::new(first.name.trim_end_matches("[0]")).unwrap();
+                    (self.get_frag_data_location)(program, name.as_ptr()) == 0
+                });
             (self.detach_shader)(program, copy);
             (self.delete_shader)(copy);
             // The user's shader attached again, as after the user's link.
@@ -326,19 +496,40 @@ impl LinkFns {
             (self.get_program_interfaceiv)(program, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &mut n);
             (0..n.max(0) as u32)
                 .map(|i| {
-                    let props = [GL_LOCATION, GL_LOCATION_INDEX, GL_TYPE, GL_ARRAY_SIZE];
-                    let mut v = [0i32; 4];
+                    let props = [
+                        GL_LOCATION,
+                        GL_LOCATION_INDEX,
+                        GL_TYPE,
+                        GL_ARRAY_SIZE,
+                        GL_NAME_LENGTH,
+                    ];
+                    let mut v = [0i32; 5];
                     (self.get_program_resourceiv)(
                         program,
                         GL_PROGRAM_OUTPUT,
                         i,
-                        4,
+                        props.len() as i32,
                         props.as_ptr(),
-                        4,
+                        v.len() as i32,
                         std::ptr::null_mut(),
                         v.as_mut_ptr(),
                     );
-                    let mut buf = [0 as c_char; 256];
+                    // GL 4.4 (ARB_enhanced_layouts); an older driver
+                    // raises GL_INVALID_ENUM, which the callers drop, and
+                    // every output is in its location's first component.
+                    let mut component = 0;
+                    (self.get_program_resourceiv)(
+                        program,
+                        GL_PROGRAM_OUTPUT,
+                        i,
+                        1,
+                        &GL_LOCATION_COMPONENT,
+                        1,
+                        std::ptr::null_mut(),
+                        &mut component,
+                    );
+                    // GL_NAME_LENGTH counts the terminating NUL.
+                    let mut buf = vec![0 as c_char; v[4].max(1) as usize];
                     let mut len = 0;
                     (self.get_program_resource_name)(
                         program,
@@ -352,6 +543,7 @@ impl LinkFns {
                         name: CStr::from_ptr(buf.as_ptr()).to_string_lossy().into_owned(),
                         location: v[0],
                         index: v[1],
+                        component,
                         ty: v[2] as u32,
                         size: v[3],
                     }
@@ -420,10 +612,41 @@ impl LinkFns {
 mod tests {
     use super::*;
 
+    fn declared(expr: &str, ty: &'static str) -> Copies {
+        Copies::Declared {
+            ty,
+            expr: expr.to_owned(),
+        }
+    }
+
+    #[test]
+    fn gl_frag_data_0_is_copied_to_its_elements_5_to_7() {
+        let src = "#version 130\nvoid main() { gl_FragData[0] = vec4(1.0); }\n";
+        let out = duplicate_output(src, &Copies::FragData);
+        assert!(
+            out.contains("    gl_FragData[7] = gl_FragData[0];\n"),
+            "{out}"
+        );
+        assert!(
+            out.contains("    gl_FragData[5] = gl_FragData[0];\n"),
+            "{out}"
+        );
+        assert!(!out.contains(COPY_PREFIX), "{out}");
+        assert!(frag_data_only_element_zero(src));
+        assert!(frag_data_only_element_zero("gl_FragData [ 0 ] = c;"));
+        assert!(!frag_data_only_element_zero(
+            "gl_FragData[0] = c; gl_FragData[1] = d;"
+        ));
+        assert!(!frag_data_only_element_zero("gl_FragData[i] = c;"));
+        assert!(!frag_data_only_element_zero(
+            "#define OUT gl_FragData\nOUT[6] = c;"
+        ));
+    }
+
     #[test]
     fn main_is_renamed_after_the_version_line_and_the_copies_appended() {
         let src = "// a comment\n#version 330 core\nlayout(location = 0) out vec4 color;\nvoid main() { color = vec4(1.0); }\n";
-        let out = duplicate_output(src, "color", "vec4");
+        let out = duplicate_output(src, &declared("color", "vec4"));
         let lines: Vec<&str> = out.lines().collect();
         assert_eq!(lines[1], "#version 330 core");
         assert_eq!(lines[2], "#define main gls_stereo_user_main");
@@ -438,8 +661,7 @@ mod tests {
     fn a_source_without_version_gets_the_define_first() {
         let out = duplicate_output(
             "out ivec4 c[2];\nvoid main(){c[0]=ivec4(1);}",
-            "c[0]",
-            "ivec4",
+            &declared("c[0]", "ivec4"),
         );
         assert!(out.starts_with("#define main gls_stereo_user_main\nout ivec4 c[2];"));
         assert!(out.contains("gls_stereo_copy7 = c[0];"));
@@ -448,8 +670,56 @@ mod tests {
 
     #[test]
     fn a_version_line_without_newline_keeps_the_define_on_its_own_line() {
-        let out = duplicate_output("#version 130", "c", "vec4");
+        let out = duplicate_output("#version 130", &declared("c", "vec4"));
         assert!(out.starts_with("#version 130\n#define main gls_stereo_user_main\n"));
+    }
+
+    #[test]
+    fn a_version_directive_may_have_blanks_around_the_hash() {
+        let src = "// c\n  #  version 330 core\nout vec4 c;\nvoid main(){c=vec4(1.0);}\n";
+        let out = duplicate_output(src, &declared("c", "vec4"));
+        assert!(
+            out.starts_with("// c\n  #  version 330 core\n#define main gls_stereo_user_main\n"),
+            "{out}"
+        );
+        assert!(is_version_directive("#\tversion 450\r\n"));
+        assert!(!is_version_directive("#versions 450\n"));
+        assert!(!is_version_directive("// #version 450\n"));
+    }
+
+    #[test]
+    fn outputs_sharing_location_0_are_copied_in_their_components() {
+        let part = |name, gl_type, component| Part {
+            name,
+            gl_type,
+            component,
+        };
+        // One variable from component 0: itself, as before.
+        assert_eq!(
+            copy_of(&[part("c[0]", 0x8B52, 0)]),
+            Ok(("vec4", "c[0]".to_owned()))
+        );
+        // Two halves, listed in either order.
+        let halves = [part("ba", 0x8B50, 2), part("rg", 0x8B50, 0)];
+        assert_eq!(copy_of(&halves), Ok(("vec4", "vec4(rg, ba)".to_owned())));
+        // A gap before (and after) a variable in component 1.
+        assert_eq!(
+            copy_of(&[part("g", 0x1405, 1)]),
+            Ok(("uvec2", "uvec2(uint(0), g)".to_owned()))
+        );
+        assert_eq!(
+            copy_of(&[part("r", 0x1404, 0), part("b", 0x1404, 2)]),
+            Ok(("ivec3", "ivec3(r, int(0), b)".to_owned()))
+        );
+        // What GLSL would not link anyway is refused with a reason.
+        let mixed = copy_of(&[part("r", 0x1406, 0), part("g", 0x1404, 1)]);
+        assert!(mixed.unwrap_err().contains("mix float and int"));
+        let past = copy_of(&[part("v", 0x8B51, 2)]);
+        assert!(past.unwrap_err().contains("past the fourth"));
+        let overlap = copy_of(&[part("a", 0x8B50, 0), part("b", 0x1406, 1)]);
+        assert!(overlap.unwrap_err().contains("b overlaps"));
+        let mat = copy_of(&[part("m", 0x8B5C, 0)]);
+        assert!(mat.unwrap_err().contains("type 0x8b5c"));
     }
 
     #[test]

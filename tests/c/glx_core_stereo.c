@@ -15,7 +15,8 @@
  *                            separable programs, and DSA on framebuffer 0;
  *                            then prints the probes (lines "probe ...")
  *   glx_core_stereo compat   immediate mode (glBegin/glEnd) with a GLSL
- *                            1.30 `out` shader in a compatibility context
+ *                            1.30 `out` shader in a compatibility context,
+ *                            and a shader writing gl_FragData[0]
  *   glx_core_stereo kept     GL 3.3 core: a program using location 6 itself
  *                            keeps output 0 in the first selected buffer
  *                            (the layer says why on stderr)
@@ -167,6 +168,11 @@ static const char *FS_AUTO = "#version 150\n"
                              "    if (gl_FragCoord.x > 0.0) return;\n"
                              "    frag = vec4(1.0);\n"
                              "}\n";
+/* GLSL allows blanks between '#' and the directive's name. */
+static const char *FS_SPACED = "// spaced directive\n"
+                               "  #  version 330 core\n"
+                               "layout(location = 0) out vec4 color;\n"
+                               "void main() { color = vec4(1.0, 0.0, 1.0, 1.0); }\n";
 static const char *FS_MRT = "#version 330 core\n"
                             "layout(location = 0) out vec4 c0;\n"
                             "layout(location = 1) out vec4 c1;\n"
@@ -241,6 +247,20 @@ static const char *ENTRY_NAME[] = {"glDrawArrays",
                                    "glDrawArraysInstancedBaseInstance",
                                    "glDrawArraysIndirect + glMultiDrawArraysIndirect"};
 
+/* One draw of the quad under GL_BACK with a program of VS33 and `fs`:
+ * both back buffers are (r, g, b), the fronts untouched. */
+static void back_shows(const char *what, const char *fs, int r, int g, int b)
+{
+    GLuint p = program(VS33, fs);
+    glUseProgram(p);
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    draw_with(0);
+    expect_buffers(what, M_BACK, r, g, b);
+    glUseProgram(0);
+    glDeleteProgram(p);
+}
+
 /* 1: a shader's user-defined output 0 reaches every buffer the draw
  * buffer selects, through every draw entry point. */
 static void user_outputs(int entries)
@@ -280,13 +300,18 @@ static void user_outputs(int entries)
     }
     glDeleteProgram(p);
     /* Output 0 without a layout qualifier, and an early return. */
-    p = program(VS33, FS_AUTO);
-    glUseProgram(p);
-    clear_all();
-    glDrawBuffer(GL_BACK);
-    draw_with(0);
-    expect_buffers("auto location, early return", M_BACK, 0, 255, 0);
-    glDeleteProgram(p);
+    back_shows("auto location, early return", FS_AUTO, 0, 255, 0);
+    /* An output name longer than 255 characters (GLSL allows 1024). */
+    static char fs_long[800];
+    char name[301];
+    memset(name, 'x', 300);
+    name[300] = '\0';
+    snprintf(fs_long, sizeof fs_long,
+             "#version 330 core\nlayout(location = 0) out vec4 %s;\n"
+             "void main() { %s = vec4(0.0, 1.0, 1.0, 1.0); }\n",
+             name, name);
+    back_shows("a 300-character output name", fs_long, 0, 255, 255);
+    back_shows("'#  version' with blanks", FS_SPACED, 255, 0, 255);
     glUseProgram(0);
     drain_errors("user outputs");
 }
@@ -405,6 +430,17 @@ static void atomic_counter_once(void)
     glDeleteProgram(p);
     glUseProgram(0);
     drain_errors("atomic counter");
+}
+
+/* GL 4.4: output 0 split into components by two variables. */
+static void component_outputs(void)
+{
+    static const char *fs = "#version 450 core\n"
+                            "layout(location = 0, component = 0) out vec2 rg;\n"
+                            "layout(location = 0, component = 2) out vec2 ba;\n"
+                            "void main() { rg = vec2(1.0, 0.5); ba = vec2(1.0, 1.0); }\n";
+    back_shows("output 0 in two components", fs, 255, 128, 255);
+    drain_errors("component outputs");
 }
 
 /* GL 4.0: a transform-feedback draw, and GL 4.1 separable programs. */
@@ -856,6 +892,19 @@ static void immediate_mode(void)
     expect_buffers("glBegin/glEnd with an `out` shader under GL_BACK", M_BACK, 0, 255, 255);
     glUseProgram(0);
     glDeleteProgram(p);
+    /* gl_FragData[0]: unlike gl_FragColor, GL writes it to draw buffer 0
+     * only, which under GL_BACK on a stereo framebuffer is both back
+     * buffers. */
+    static const char *fs_data =
+        "#version 130\nvoid main() { gl_FragData[0] = vec4(1.0, 0.0, 1.0, 1.0); }\n";
+    p = program(vs, fs_data);
+    glUseProgram(p);
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    glRectf(-1, -1, 1, 1);
+    expect_buffers("gl_FragData[0] under GL_BACK", M_BACK, 255, 0, 255);
+    glUseProgram(0);
+    glDeleteProgram(p);
     /* Fixed function too. */
     clear_all();
     glDrawBuffer(GL_BACK);
@@ -900,6 +949,7 @@ int main(int argc, char **argv)
     }
     if (core45) {
         atomic_counter_once();
+        component_outputs();
         feedback_and_separable();
         dsa();
     }

@@ -7,10 +7,9 @@ use std::process::Command;
 
 use glstereo::image::Image;
 
-/// Mean absolute difference per channel (RGB) of `got` (RGB bytes of a
-/// `width`-wide image, of which the columns from `x0`, as many as `want`
-/// has, are compared) and
-/// `want`.
+/// Mean absolute difference per RGB channel between `want` and the block
+/// of `got` of `want`'s size whose left column is `x0` (`got`: the RGB
+/// bytes of an image `width` pixels wide, as [`pillow`] decodes it).
 pub fn mean_error(got: &[u8], width: u32, x0: u32, want: &Image) -> f64 {
     let mut sum = 0u64;
     for y in 0..want.height() {
