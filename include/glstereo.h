@@ -2348,8 +2348,8 @@ void gls_gl_color_mask(uint8_t red, uint8_t green, uint8_t blue, uint8_t alpha);
 void gls_gl_color_maski(uint32_t index, uint8_t red, uint8_t green, uint8_t blue, uint8_t alpha);
 
 /**
- * `glColorMaskIndexedEXT` (GL_EXT_draw_buffers2; Mesa serves it in desktop contexts too): as
- * gls_gl_color_maski().
+ * `glColorMaskIndexedEXT` (GL_EXT_draw_buffers2; Mesa serves it in desktop
+ * contexts too): as gls_gl_color_maski().
  */
 void gls_gl_color_mask_indexed_ext(uint32_t index,
                                    uint8_t red,
@@ -2358,8 +2358,8 @@ void gls_gl_color_mask_indexed_ext(uint32_t index,
                                    uint8_t alpha);
 
 /**
- * `glColorMaskiEXT` (GL_EXT_draw_buffers_indexed; Mesa serves it in desktop contexts too): as
- * gls_gl_color_maski().
+ * `glColorMaskiEXT` (GL_EXT_draw_buffers_indexed; Mesa serves it in desktop
+ * contexts too): as gls_gl_color_maski().
  */
 void gls_gl_color_maski_ext(uint32_t index,
                             uint8_t red,
@@ -2368,8 +2368,8 @@ void gls_gl_color_maski_ext(uint32_t index,
                             uint8_t alpha);
 
 /**
- * `glColorMaskiOES` (GL_OES_draw_buffers_indexed; Mesa serves it in desktop contexts too): as
- * gls_gl_color_maski().
+ * `glColorMaskiOES` (GL_OES_draw_buffers_indexed; Mesa serves it in desktop
+ * contexts too): as gls_gl_color_maski().
  */
 void gls_gl_color_maski_oes(uint32_t index,
                             uint8_t red,

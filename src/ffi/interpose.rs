@@ -672,8 +672,8 @@ pub extern "C" fn gls_gl_color_maski(index: u32, red: u8, green: u8, blue: u8, a
     })
 }
 
-/// `glColorMaskIndexedEXT` (GL_EXT_draw_buffers2; Mesa serves it in desktop contexts too): as
-/// gls_gl_color_maski().
+/// `glColorMaskIndexedEXT` (GL_EXT_draw_buffers2; Mesa serves it in desktop
+/// contexts too): as gls_gl_color_maski().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_color_mask_indexed_ext(
     index: u32,
@@ -687,8 +687,8 @@ pub extern "C" fn gls_gl_color_mask_indexed_ext(
     })
 }
 
-/// `glColorMaskiEXT` (GL_EXT_draw_buffers_indexed; Mesa serves it in desktop contexts too): as
-/// gls_gl_color_maski().
+/// `glColorMaskiEXT` (GL_EXT_draw_buffers_indexed; Mesa serves it in desktop
+/// contexts too): as gls_gl_color_maski().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_color_maski_ext(index: u32, red: u8, green: u8, blue: u8, alpha: u8) {
     ffi_boundary!("gls_gl_color_maski_ext" for "glColorMaskiEXT", () => {
@@ -696,8 +696,8 @@ pub extern "C" fn gls_gl_color_maski_ext(index: u32, red: u8, green: u8, blue: u
     })
 }
 
-/// `glColorMaskiOES` (GL_OES_draw_buffers_indexed; Mesa serves it in desktop contexts too): as
-/// gls_gl_color_maski().
+/// `glColorMaskiOES` (GL_OES_draw_buffers_indexed; Mesa serves it in desktop
+/// contexts too): as gls_gl_color_maski().
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_color_maski_oes(index: u32, red: u8, green: u8, blue: u8, alpha: u8) {
     ffi_boundary!("gls_gl_color_maski_oes" for "glColorMaskiOES", () => {
