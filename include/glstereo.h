@@ -2025,8 +2025,9 @@ gls_result gls_parallax_report_describe(const struct gls_parallax_report *report
  * last 256 are remembered); a stereo context destroyed while current
  * (which GLX keeps until it is released, and the layer destroys then),
  * made current or destroyed again before its release. In GL, a NULL
- * pointer GL would read or write through (glGet*v data, glDrawBuffers
- * and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
+ * pointer GL would read or write through (glGet*v and glGet*i_v data,
+ * glDrawBuffers and glDeleteFramebuffers with n > 0,
+ * glGetFramebufferAttachmentParameteriv
  * params; glClearBuffer* and glClearNamedFramebuffer* values,
  * glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
  * with n > 0, glGet(Named)FramebufferParameteriv and

@@ -13,8 +13,8 @@
  *   glXGetProcAddress's name), a share context the program destroyed. The
  *   call returns what the function returns on failure (NULL, None, False,
  *   GLX_BAD_VALUE) and changes nothing.
- * - GL: a NULL pointer GL would read or write through (glGet*v data,
- *   glDrawBuffers / glDeleteFramebuffers with n > 0,
+ * - GL: a NULL pointer GL would read or write through (glGet*v and
+ *   glGet*i_v data, glDrawBuffers / glDeleteFramebuffers with n > 0,
  *   glGetFramebufferAttachmentParameteriv params): nothing happens but
  *   GL_INVALID_VALUE for glGetError (none without a current context).
  *
