@@ -2027,8 +2027,9 @@ gls_result gls_parallax_report_describe(const struct gls_parallax_report *report
  * last 256 are remembered); a stereo context destroyed while current
  * (which GLX keeps until it is released, and the layer destroys then),
  * made current or destroyed again before its release. In GL, a NULL
- * pointer GL would read or write through (glGet*v data, glDrawBuffers
- * and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
+ * pointer GL would read or write through (glGet*v and glGet*i_v data,
+ * glDrawBuffers and glDeleteFramebuffers with n > 0,
+ * glGetFramebufferAttachmentParameteriv
  * params; glClearBuffer* and glClearNamedFramebuffer* values,
  * glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
  * with n > 0, glGet(Named)FramebufferParameteriv and
@@ -2310,6 +2311,27 @@ void gls_gl_pop_attrib(void);
 void gls_gl_clear_color(float red, float green, float blue, float alpha);
 
 /**
+ * `glClearColorIiEXT` (GL_EXT_texture_integer): as gls_gl_clear_color().
+ */
+void gls_gl_clear_color_ii_ext(int32_t red, int32_t green, int32_t blue, int32_t alpha);
+
+/**
+ * `glClearColorIuiEXT` (GL_EXT_texture_integer): as gls_gl_clear_color().
+ */
+void gls_gl_clear_color_iui_ext(uint32_t red, uint32_t green, uint32_t blue, uint32_t alpha);
+
+/**
+ * `glClearColorx` (16.16 fixed point, GL_OES_fixed_point; Mesa serves it
+ * in compatibility contexts): as gls_gl_clear_color().
+ */
+void gls_gl_clear_colorx(int32_t red, int32_t green, int32_t blue, int32_t alpha);
+
+/**
+ * `glClearColorxOES`: as gls_gl_clear_colorx().
+ */
+void gls_gl_clear_colorx_oes(int32_t red, int32_t green, int32_t blue, int32_t alpha);
+
+/**
  * `glClear`: on the emulated framebuffer of a visual without alpha, the
  * colour is cleared with alpha 1.0 (which that buffer always holds), so
  * that the driver's fast full clear serves it.
@@ -2329,13 +2351,142 @@ void gls_gl_color_mask(uint8_t red, uint8_t green, uint8_t blue, uint8_t alpha);
 void gls_gl_color_maski(uint32_t index, uint8_t red, uint8_t green, uint8_t blue, uint8_t alpha);
 
 /**
- * `glGetBooleani_v`: GL_COLOR_WRITEMASK answers the program's masks.
- * Refused: `data` NULL.
+ * `glColorMaskIndexedEXT` (GL_EXT_draw_buffers2; Mesa serves it in desktop
+ * contexts too): as gls_gl_color_maski().
+ */
+void gls_gl_color_mask_indexed_ext(uint32_t index,
+                                   uint8_t red,
+                                   uint8_t green,
+                                   uint8_t blue,
+                                   uint8_t alpha);
+
+/**
+ * `glColorMaskiEXT` (GL_EXT_draw_buffers_indexed; Mesa serves it in desktop
+ * contexts too): as gls_gl_color_maski().
+ */
+void gls_gl_color_maski_ext(uint32_t index,
+                            uint8_t red,
+                            uint8_t green,
+                            uint8_t blue,
+                            uint8_t alpha);
+
+/**
+ * `glColorMaskiOES` (GL_OES_draw_buffers_indexed; Mesa serves it in desktop
+ * contexts too): as gls_gl_color_maski().
+ */
+void gls_gl_color_maski_oes(uint32_t index,
+                            uint8_t red,
+                            uint8_t green,
+                            uint8_t blue,
+                            uint8_t alpha);
+
+/**
+ * `glGetBooleani_v`: GL_COLOR_WRITEMASK answers the program's masks
+ * (what it set with gls_gl_color_mask() and gls_gl_color_maski()), where
+ * the driver's masks may differ (they never write alpha to the emulated
+ * framebuffer of a visual without alpha); every other state is the
+ * driver's. Refused: `data` NULL.
  *
  * # Safety
  * `data` must be valid for the values `pname` returns (GL's contract).
  */
 void gls_gl_get_booleani_v(uint32_t target, uint32_t index, uint8_t *data);
+
+/**
+ * `glGetBooleanIndexedvEXT` (GL_EXT_draw_buffers2): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_boolean_indexedv_ext(uint32_t target, uint32_t index, uint8_t *data);
+
+/**
+ * `glGetIntegeri_v` (GL 3.0): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_integeri_v(uint32_t target, uint32_t index, int32_t *data);
+
+/**
+ * `glGetIntegerIndexedvEXT` (GL_EXT_draw_buffers2): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_integer_indexedv_ext(uint32_t target, uint32_t index, int32_t *data);
+
+/**
+ * `glGetInteger64i_v` (GL 3.2): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_integer64i_v(uint32_t target, uint32_t index, int64_t *data);
+
+/**
+ * `glGetFloati_v` (GL 4.1): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_floati_v(uint32_t target, uint32_t index, float *data);
+
+/**
+ * `glGetFloati_vEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_floati_v_ext(uint32_t target, uint32_t index, float *data);
+
+/**
+ * `glGetFloati_vOES` (GL_OES_viewport_array): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_floati_v_oes(uint32_t target, uint32_t index, float *data);
+
+/**
+ * `glGetFloatIndexedvEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_float_indexedv_ext(uint32_t target, uint32_t index, float *data);
+
+/**
+ * `glGetDoublei_v` (GL 4.1): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_doublei_v(uint32_t target, uint32_t index, double *data);
+
+/**
+ * `glGetDoublei_vEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_doublei_v_ext(uint32_t target, uint32_t index, double *data);
+
+/**
+ * `glGetDoubleIndexedvEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+ *
+ * # Safety
+ * As gls_gl_get_booleani_v().
+ */
+void gls_gl_get_double_indexedv_ext(uint32_t target, uint32_t index, double *data);
+
+/**
+ * `glGetInteger64v` (GL 3.2): as gls_gl_get_integerv().
+ *
+ * # Safety
+ * `data` must be valid for the values `pname` returns (GL's contract).
+ */
+void gls_gl_get_integer64v(uint32_t pname, int64_t *data);
 
 /**
  * `glBlitFramebuffer`: a blit into the emulated framebuffer of a visual

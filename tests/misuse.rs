@@ -271,6 +271,18 @@ fn legacy_name(gls: &str) -> &'static str {
         ),
         ("gls_gl_create_shader_programv", "glCreateShaderProgramv"),
         ("gls_gl_get_booleani_v", "glGetBooleani_v"),
+        ("gls_gl_get_boolean_indexedv_ext", "glGetBooleanIndexedvEXT"),
+        ("gls_gl_get_integeri_v", "glGetIntegeri_v"),
+        ("gls_gl_get_integer_indexedv_ext", "glGetIntegerIndexedvEXT"),
+        ("gls_gl_get_integer64i_v", "glGetInteger64i_v"),
+        ("gls_gl_get_integer64v", "glGetInteger64v"),
+        ("gls_gl_get_floati_v", "glGetFloati_v"),
+        ("gls_gl_get_floati_v_ext", "glGetFloati_vEXT"),
+        ("gls_gl_get_floati_v_oes", "glGetFloati_vOES"),
+        ("gls_gl_get_float_indexedv_ext", "glGetFloatIndexedvEXT"),
+        ("gls_gl_get_doublei_v", "glGetDoublei_v"),
+        ("gls_gl_get_doublei_v_ext", "glGetDoublei_vEXT"),
+        ("gls_gl_get_double_indexedv_ext", "glGetDoubleIndexedvEXT"),
     ];
     NAMES
         .iter()

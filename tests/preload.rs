@@ -372,9 +372,12 @@ fn a_mono_program_runs_as_it_would_without_the_layer() {
 
 /// A stereo visual without alpha under the layer answers alpha exactly as
 /// Mesa's mono visual without alpha does: reads of 1.0 after clears,
-/// draws, blits and glClearBuffer/glClearNamedFramebuffer, blending with a
-/// destination alpha of 1.0, and GL_COLOR_WRITEMASK as the program set it
-/// (the layer keeps its eyes in RGBA8 and never lets alpha be written).
+/// draws, blits (under GL_RASTERIZER_DISCARD too) and
+/// glClearBuffer/glClearNamedFramebuffer, blending with a destination
+/// alpha of 1.0, GL_COLOR_WRITEMASK as the program set it (with
+/// glColorMask, glColorMaski or its extension names; read by any glGet),
+/// and the clear colour as any setter set it (the layer keeps its eyes in
+/// RGBA8 and never lets alpha be written).
 #[test]
 fn a_visual_without_alpha_reads_alpha_one_as_mesa_does() {
     let x = Xvfb::start(320, 240);
@@ -423,6 +426,42 @@ fn a_visual_without_alpha_reads_alpha_one_as_mesa_does() {
     );
     assert!(
         line(&layered, "blend one_minus_dst_alpha").contains("rgba 51 102 153 255"),
+        "{layered}"
+    );
+    // The other names of glColorMaski keep alpha 1.0 and answer as set.
+    for what in [
+        "glColorMaskIndexedEXT",
+        "glColorMaskiEXT",
+        "glColorMaskiOES",
+    ] {
+        let lines: Vec<&str> = layered
+            .lines()
+            .filter(|l| l.starts_with(&format!("{what} ")))
+            .collect();
+        assert_eq!(
+            lines,
+            [
+                format!("{what} writemask 1011 int 1011 index1 0111 error 0x0"),
+                format!("{what} rgba 255 102 255 255 alpha 1.000 error 0x0"),
+            ],
+            "{layered}"
+        );
+    }
+    assert!(
+        line(&layered, "fb0 queries glGetInteger64i_v 1").ends_with(" 0101"),
+        "{layered}"
+    );
+    assert!(
+        line(&layered, "fb0 queries glGetFloatv").contains("glGetInteger64v 1011"),
+        "{layered}"
+    );
+    // Rasterizer discard: the blit lands, alpha stays 1.0.
+    assert!(
+        line(&layered, "blit under rasterizer discard").contains("rgba 255 0 128 255"),
+        "{layered}"
+    );
+    assert!(
+        line(&layered, "fb0 clear after glClearColorIuiEXT").contains("rgba 128 255 64 255"),
         "{layered}"
     );
     assert_eq!(layered, plain);

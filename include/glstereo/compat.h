@@ -237,6 +237,85 @@ static inline void gls_compat_glGetBooleani_v(GLenum target, GLuint index, GLboo
 {
     gls_gl_get_booleani_v(target, index, data);
 }
+static inline void gls_compat_glGetBooleanIndexedvEXT(GLenum target, GLuint index, GLboolean *data)
+{
+    gls_gl_get_boolean_indexedv_ext(target, index, data);
+}
+static inline void gls_compat_glGetIntegeri_v(GLenum target, GLuint index, GLint *data)
+{
+    gls_gl_get_integeri_v(target, index, data);
+}
+static inline void gls_compat_glGetIntegerIndexedvEXT(GLenum target, GLuint index, GLint *data)
+{
+    gls_gl_get_integer_indexedv_ext(target, index, data);
+}
+static inline void gls_compat_glGetInteger64i_v(GLenum target, GLuint index, GLint64 *data)
+{
+    gls_gl_get_integer64i_v(target, index, data);
+}
+static inline void gls_compat_glGetFloati_v(GLenum target, GLuint index, GLfloat *data)
+{
+    gls_gl_get_floati_v(target, index, data);
+}
+static inline void gls_compat_glGetFloati_vEXT(GLenum target, GLuint index, GLfloat *data)
+{
+    gls_gl_get_floati_v_ext(target, index, data);
+}
+static inline void gls_compat_glGetFloati_vOES(GLenum target, GLuint index, GLfloat *data)
+{
+    gls_gl_get_floati_v_oes(target, index, data);
+}
+static inline void gls_compat_glGetFloatIndexedvEXT(GLenum target, GLuint index, GLfloat *data)
+{
+    gls_gl_get_float_indexedv_ext(target, index, data);
+}
+static inline void gls_compat_glGetDoublei_v(GLenum target, GLuint index, GLdouble *data)
+{
+    gls_gl_get_doublei_v(target, index, data);
+}
+static inline void gls_compat_glGetDoublei_vEXT(GLenum target, GLuint index, GLdouble *data)
+{
+    gls_gl_get_doublei_v_ext(target, index, data);
+}
+static inline void gls_compat_glGetDoubleIndexedvEXT(GLenum target, GLuint index, GLdouble *data)
+{
+    gls_gl_get_double_indexedv_ext(target, index, data);
+}
+static inline void gls_compat_glGetInteger64v(GLenum pname, GLint64 *data)
+{
+    gls_gl_get_integer64v(pname, data);
+}
+static inline void gls_compat_glColorMaskIndexedEXT(GLuint index, GLboolean red, GLboolean green,
+                                                    GLboolean blue, GLboolean alpha)
+{
+    gls_gl_color_mask_indexed_ext(index, red, green, blue, alpha);
+}
+static inline void gls_compat_glColorMaskiEXT(GLuint index, GLboolean red, GLboolean green,
+                                              GLboolean blue, GLboolean alpha)
+{
+    gls_gl_color_maski_ext(index, red, green, blue, alpha);
+}
+static inline void gls_compat_glColorMaskiOES(GLuint index, GLboolean red, GLboolean green,
+                                              GLboolean blue, GLboolean alpha)
+{
+    gls_gl_color_maski_oes(index, red, green, blue, alpha);
+}
+static inline void gls_compat_glClearColorIiEXT(GLint red, GLint green, GLint blue, GLint alpha)
+{
+    gls_gl_clear_color_ii_ext(red, green, blue, alpha);
+}
+static inline void gls_compat_glClearColorIuiEXT(GLuint red, GLuint green, GLuint blue, GLuint alpha)
+{
+    gls_gl_clear_color_iui_ext(red, green, blue, alpha);
+}
+static inline void gls_compat_glClearColorx(GLint red, GLint green, GLint blue, GLint alpha)
+{
+    gls_gl_clear_colorx(red, green, blue, alpha);
+}
+static inline void gls_compat_glClearColorxOES(GLint red, GLint green, GLint blue, GLint alpha)
+{
+    gls_gl_clear_colorx_oes(red, green, blue, alpha);
+}
 static inline void gls_compat_glBlitFramebuffer(GLint sx0, GLint sy0, GLint sx1, GLint sy1,
                                                 GLint dx0, GLint dy0, GLint dx1, GLint dy1,
                                                 GLbitfield mask, GLenum filter)
@@ -388,6 +467,25 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glClearColor gls_compat_glClearColor
 #define glColorMaski gls_compat_glColorMaski
 #define glGetBooleani_v gls_compat_glGetBooleani_v
+#define glGetBooleanIndexedvEXT gls_compat_glGetBooleanIndexedvEXT
+#define glGetIntegeri_v gls_compat_glGetIntegeri_v
+#define glGetIntegerIndexedvEXT gls_compat_glGetIntegerIndexedvEXT
+#define glGetInteger64i_v gls_compat_glGetInteger64i_v
+#define glGetFloati_v gls_compat_glGetFloati_v
+#define glGetFloati_vEXT gls_compat_glGetFloati_vEXT
+#define glGetFloati_vOES gls_compat_glGetFloati_vOES
+#define glGetFloatIndexedvEXT gls_compat_glGetFloatIndexedvEXT
+#define glGetDoublei_v gls_compat_glGetDoublei_v
+#define glGetDoublei_vEXT gls_compat_glGetDoublei_vEXT
+#define glGetDoubleIndexedvEXT gls_compat_glGetDoubleIndexedvEXT
+#define glGetInteger64v gls_compat_glGetInteger64v
+#define glColorMaskIndexedEXT gls_compat_glColorMaskIndexedEXT
+#define glColorMaskiEXT gls_compat_glColorMaskiEXT
+#define glColorMaskiOES gls_compat_glColorMaskiOES
+#define glClearColorIiEXT gls_compat_glClearColorIiEXT
+#define glClearColorIuiEXT gls_compat_glClearColorIuiEXT
+#define glClearColorx gls_compat_glClearColorx
+#define glClearColorxOES gls_compat_glClearColorxOES
 #define glBlitFramebuffer gls_compat_glBlitFramebuffer
 #define glFlush gls_compat_glFlush
 #define glFinish gls_compat_glFinish

@@ -70,8 +70,9 @@ use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
 /// last 256 are remembered); a stereo context destroyed while current
 /// (which GLX keeps until it is released, and the layer destroys then),
 /// made current or destroyed again before its release. In GL, a NULL
-/// pointer GL would read or write through (glGet*v data, glDrawBuffers
-/// and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv
+/// pointer GL would read or write through (glGet*v and glGet*i_v data,
+/// glDrawBuffers and glDeleteFramebuffers with n > 0,
+/// glGetFramebufferAttachmentParameteriv
 /// params; glClearBuffer* and glClearNamedFramebuffer* values,
 /// glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
 /// with n > 0, glGet(Named)FramebufferParameteriv and
@@ -607,7 +608,40 @@ pub extern "C" fn gls_gl_pop_attrib() {
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_clear_color(red: f32, green: f32, blue: f32, alpha: f32) {
     ffi_boundary!("gls_gl_clear_color" for "glClearColor", () => {
-        igl::clear_color(red, green, blue, alpha)
+        igl::clear_color(igl::ClearColor::Float([red, green, blue, alpha]), false)
+    })
+}
+
+/// `glClearColorIiEXT` (GL_EXT_texture_integer): as gls_gl_clear_color().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear_color_ii_ext(red: i32, green: i32, blue: i32, alpha: i32) {
+    ffi_boundary!("gls_gl_clear_color_ii_ext" for "glClearColorIiEXT", () => {
+        igl::clear_color(igl::ClearColor::Int([red, green, blue, alpha]), false)
+    })
+}
+
+/// `glClearColorIuiEXT` (GL_EXT_texture_integer): as gls_gl_clear_color().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear_color_iui_ext(red: u32, green: u32, blue: u32, alpha: u32) {
+    ffi_boundary!("gls_gl_clear_color_iui_ext" for "glClearColorIuiEXT", () => {
+        igl::clear_color(igl::ClearColor::Uint([red, green, blue, alpha]), false)
+    })
+}
+
+/// `glClearColorx` (16.16 fixed point, GL_OES_fixed_point; Mesa serves it
+/// in compatibility contexts): as gls_gl_clear_color().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear_colorx(red: i32, green: i32, blue: i32, alpha: i32) {
+    ffi_boundary!("gls_gl_clear_colorx" for "glClearColorx", () => {
+        igl::clear_color(igl::ClearColor::Fixed([red, green, blue, alpha]), false)
+    })
+}
+
+/// `glClearColorxOES`: as gls_gl_clear_colorx().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_clear_colorx_oes(red: i32, green: i32, blue: i32, alpha: i32) {
+    ffi_boundary!("gls_gl_clear_colorx_oes" for "glClearColorxOES", () => {
+        igl::clear_color(igl::ClearColor::Fixed([red, green, blue, alpha]), true)
     })
 }
 
@@ -635,12 +669,48 @@ pub extern "C" fn gls_gl_color_mask(red: u8, green: u8, blue: u8, alpha: u8) {
 #[unsafe(no_mangle)]
 pub extern "C" fn gls_gl_color_maski(index: u32, red: u8, green: u8, blue: u8, alpha: u8) {
     ffi_boundary!("gls_gl_color_maski" for "glColorMaski", () => {
-        igl::color_maski(index, red, green, blue, alpha)
+        igl::color_maski(igl::MaskiName::Core, index, red, green, blue, alpha)
     })
 }
 
-/// `glGetBooleani_v`: GL_COLOR_WRITEMASK answers the program's masks.
-/// Refused: `data` NULL.
+/// `glColorMaskIndexedEXT` (GL_EXT_draw_buffers2; Mesa serves it in desktop
+/// contexts too): as gls_gl_color_maski().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_color_mask_indexed_ext(
+    index: u32,
+    red: u8,
+    green: u8,
+    blue: u8,
+    alpha: u8,
+) {
+    ffi_boundary!("gls_gl_color_mask_indexed_ext" for "glColorMaskIndexedEXT", () => {
+        igl::color_maski(igl::MaskiName::IndexedExt, index, red, green, blue, alpha)
+    })
+}
+
+/// `glColorMaskiEXT` (GL_EXT_draw_buffers_indexed; Mesa serves it in desktop
+/// contexts too): as gls_gl_color_maski().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_color_maski_ext(index: u32, red: u8, green: u8, blue: u8, alpha: u8) {
+    ffi_boundary!("gls_gl_color_maski_ext" for "glColorMaskiEXT", () => {
+        igl::color_maski(igl::MaskiName::Ext, index, red, green, blue, alpha)
+    })
+}
+
+/// `glColorMaskiOES` (GL_OES_draw_buffers_indexed; Mesa serves it in desktop
+/// contexts too): as gls_gl_color_maski().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_color_maski_oes(index: u32, red: u8, green: u8, blue: u8, alpha: u8) {
+    ffi_boundary!("gls_gl_color_maski_oes" for "glColorMaskiOES", () => {
+        igl::color_maski(igl::MaskiName::Oes, index, red, green, blue, alpha)
+    })
+}
+
+/// `glGetBooleani_v`: GL_COLOR_WRITEMASK answers the program's masks
+/// (what it set with gls_gl_color_mask() and gls_gl_color_maski()), where
+/// the driver's masks may differ (they never write alpha to the emulated
+/// framebuffer of a visual without alpha); every other state is the
+/// driver's. Refused: `data` NULL.
 ///
 /// # Safety
 /// `data` must be valid for the values `pname` returns (GL's contract).
@@ -648,7 +718,151 @@ pub extern "C" fn gls_gl_color_maski(index: u32, red: u8, green: u8, blue: u8, a
 pub unsafe extern "C" fn gls_gl_get_booleani_v(target: u32, index: u32, data: *mut u8) {
     ffi_boundary!("gls_gl_get_booleani_v" for "glGetBooleani_v", () => {
         // SAFETY: GL's contract, forwarded.
-        unsafe { igl::get_booleani_v(target, index, data) }
+        unsafe { igl::get_indexed(&igl::GET_BOOLEANI_V, target, index, data) }
+    })
+}
+
+/// `glGetBooleanIndexedvEXT` (GL_EXT_draw_buffers2): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_boolean_indexedv_ext(target: u32, index: u32, data: *mut u8) {
+    ffi_boundary!("gls_gl_get_boolean_indexedv_ext" for "glGetBooleanIndexedvEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_BOOLEAN_INDEXEDV_EXT, target, index, data) }
+    })
+}
+
+/// `glGetIntegeri_v` (GL 3.0): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_integeri_v(target: u32, index: u32, data: *mut i32) {
+    ffi_boundary!("gls_gl_get_integeri_v" for "glGetIntegeri_v", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_INTEGERI_V, target, index, data) }
+    })
+}
+
+/// `glGetIntegerIndexedvEXT` (GL_EXT_draw_buffers2): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_integer_indexedv_ext(target: u32, index: u32, data: *mut i32) {
+    ffi_boundary!("gls_gl_get_integer_indexedv_ext" for "glGetIntegerIndexedvEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_INTEGER_INDEXEDV_EXT, target, index, data) }
+    })
+}
+
+/// `glGetInteger64i_v` (GL 3.2): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_integer64i_v(target: u32, index: u32, data: *mut i64) {
+    ffi_boundary!("gls_gl_get_integer64i_v" for "glGetInteger64i_v", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_INTEGER64I_V, target, index, data) }
+    })
+}
+
+/// `glGetFloati_v` (GL 4.1): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_floati_v(target: u32, index: u32, data: *mut f32) {
+    ffi_boundary!("gls_gl_get_floati_v" for "glGetFloati_v", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_FLOATI_V, target, index, data) }
+    })
+}
+
+/// `glGetFloati_vEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_floati_v_ext(target: u32, index: u32, data: *mut f32) {
+    ffi_boundary!("gls_gl_get_floati_v_ext" for "glGetFloati_vEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_FLOATI_V_EXT, target, index, data) }
+    })
+}
+
+/// `glGetFloati_vOES` (GL_OES_viewport_array): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_floati_v_oes(target: u32, index: u32, data: *mut f32) {
+    ffi_boundary!("gls_gl_get_floati_v_oes" for "glGetFloati_vOES", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_FLOATI_V_OES, target, index, data) }
+    })
+}
+
+/// `glGetFloatIndexedvEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_float_indexedv_ext(target: u32, index: u32, data: *mut f32) {
+    ffi_boundary!("gls_gl_get_float_indexedv_ext" for "glGetFloatIndexedvEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_FLOAT_INDEXEDV_EXT, target, index, data) }
+    })
+}
+
+/// `glGetDoublei_v` (GL 4.1): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_doublei_v(target: u32, index: u32, data: *mut f64) {
+    ffi_boundary!("gls_gl_get_doublei_v" for "glGetDoublei_v", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_DOUBLEI_V, target, index, data) }
+    })
+}
+
+/// `glGetDoublei_vEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_doublei_v_ext(target: u32, index: u32, data: *mut f64) {
+    ffi_boundary!("gls_gl_get_doublei_v_ext" for "glGetDoublei_vEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_DOUBLEI_V_EXT, target, index, data) }
+    })
+}
+
+/// `glGetDoubleIndexedvEXT` (GL_EXT_direct_state_access): as gls_gl_get_booleani_v().
+///
+/// # Safety
+/// As gls_gl_get_booleani_v().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_double_indexedv_ext(target: u32, index: u32, data: *mut f64) {
+    ffi_boundary!("gls_gl_get_double_indexedv_ext" for "glGetDoubleIndexedvEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_indexed(&igl::GET_DOUBLE_INDEXEDV_EXT, target, index, data) }
+    })
+}
+
+/// `glGetInteger64v` (GL 3.2): as gls_gl_get_integerv().
+///
+/// # Safety
+/// `data` must be valid for the values `pname` returns (GL's contract).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_integer64v(pname: u32, data: *mut i64) {
+    ffi_boundary!("gls_gl_get_integer64v" for "glGetInteger64v", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::get_integer64v(pname, data) }
     })
 }
 
@@ -783,6 +997,25 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glClearColor" => gls_gl_clear_color as *mut c_void,
         b"glColorMaski" => gls_gl_color_maski as *mut c_void,
         b"glGetBooleani_v" => gls_gl_get_booleani_v as *mut c_void,
+        b"glGetBooleanIndexedvEXT" => gls_gl_get_boolean_indexedv_ext as *mut c_void,
+        b"glGetIntegeri_v" => gls_gl_get_integeri_v as *mut c_void,
+        b"glGetIntegerIndexedvEXT" => gls_gl_get_integer_indexedv_ext as *mut c_void,
+        b"glGetInteger64i_v" => gls_gl_get_integer64i_v as *mut c_void,
+        b"glGetFloati_v" => gls_gl_get_floati_v as *mut c_void,
+        b"glGetFloati_vEXT" => gls_gl_get_floati_v_ext as *mut c_void,
+        b"glGetFloati_vOES" => gls_gl_get_floati_v_oes as *mut c_void,
+        b"glGetFloatIndexedvEXT" => gls_gl_get_float_indexedv_ext as *mut c_void,
+        b"glGetDoublei_v" => gls_gl_get_doublei_v as *mut c_void,
+        b"glGetDoublei_vEXT" => gls_gl_get_doublei_v_ext as *mut c_void,
+        b"glGetDoubleIndexedvEXT" => gls_gl_get_double_indexedv_ext as *mut c_void,
+        b"glGetInteger64v" => gls_gl_get_integer64v as *mut c_void,
+        b"glColorMaskIndexedEXT" => gls_gl_color_mask_indexed_ext as *mut c_void,
+        b"glColorMaskiEXT" => gls_gl_color_maski_ext as *mut c_void,
+        b"glColorMaskiOES" => gls_gl_color_maski_oes as *mut c_void,
+        b"glClearColorIiEXT" => gls_gl_clear_color_ii_ext as *mut c_void,
+        b"glClearColorIuiEXT" => gls_gl_clear_color_iui_ext as *mut c_void,
+        b"glClearColorx" => gls_gl_clear_colorx as *mut c_void,
+        b"glClearColorxOES" => gls_gl_clear_colorx_oes as *mut c_void,
         b"glBlitFramebuffer" => gls_gl_blit_framebuffer as *mut c_void,
         b"glFlush" => gls_gl_flush as *mut c_void,
         b"glFinish" => gls_gl_finish as *mut c_void,

@@ -99,7 +99,7 @@ pub(super) struct CtxState {
     pub(super) color_mask: [[bool; 4]; MASKED_BUFFERS],
     /// The program's clear colour (glClearColor), which the layer's fast
     /// clear of an opaque emulated framebuffer changes for a moment.
-    pub(super) clear_color: [f32; 4],
+    pub(super) clear_color: super::gl::ClearColor,
 }
 
 /// The draw buffer indices whose colour masks the layer shadows
@@ -112,7 +112,7 @@ pub(super) struct SavedSelections {
     pub(super) draw: Option<(u64, DrawSelection)>,
     pub(super) read: Option<(u64, ReadSelection)>,
     /// The program's colour masks, with GL_COLOR_BUFFER_BIT.
-    pub(super) color_mask: Option<([[bool; 4]; MASKED_BUFFERS], [f32; 4])>,
+    pub(super) color_mask: Option<([[bool; 4]; MASKED_BUFFERS], super::gl::ClearColor)>,
 }
 
 impl CtxState {
@@ -352,7 +352,7 @@ impl StereoContext {
                 destroyed: false,
                 attribs: Vec::new(),
                 color_mask: [[true; 4]; MASKED_BUFFERS],
-                clear_color: [0.0; 4],
+                clear_color: super::gl::ClearColor::Float([0.0; 4]),
             }),
         })
     }

@@ -28,15 +28,19 @@
 //! - A visual without alpha gets GL_RGBA8 eyes (llvmpipe reads them back
 //!   about six times faster than GL_RGB8) whose alpha stays 1.0, as a
 //!   default framebuffer without alpha bits reads and blends: glColorMask /
-//!   glColorMaski are kept as the program set them (GL_COLOR_WRITEMASK,
-//!   glGetBooleani_v and glPopAttrib answer and restore those), and the
-//!   driver's masks never write alpha while that framebuffer is bound for
-//!   drawing; glBlitFramebuffer, glBlitNamedFramebuffer and
-//!   glClearNamedFramebuffer into it, which the bound masks do not stop,
-//!   are followed by a clear of its alpha to 1.0. glClear of its colour
-//!   clears alpha to 1.0 with alpha written (glClearColor is kept as the
-//!   program's), so that llvmpipe's fast full clear serves it rather than
-//!   a masked quad.
+//!   glColorMaski (and its names glColorMaskIndexedEXT, glColorMaskiEXT,
+//!   glColorMaskiOES) are kept as the program set them (GL_COLOR_WRITEMASK
+//!   through every glGet*v and glGet*i_v and their extension names, and
+//!   glPopAttrib, answer and restore those), and the driver's masks never
+//!   write alpha while that framebuffer is bound for drawing;
+//!   glBlitFramebuffer, glBlitNamedFramebuffer and glClearNamedFramebuffer
+//!   into it, which the bound masks do not stop, are followed by a clear of
+//!   its alpha to 1.0 (with GL_RASTERIZER_DISCARD off for it: discard stops
+//!   clears, not blits). glClear of its colour clears alpha to 1.0 with
+//!   alpha written (the clear colour is kept as the program set it, by any
+//!   of its setters: [`ClearColor`]), so that llvmpipe's fast full clear
+//!   serves it rather than a masked quad. Not seen: these calls compiled
+//!   into a display list, which run when the list is called.
 //! - glViewport notices a resized window before the program draws into it;
 //!   glFlush / glFinish show the front buffers when the program draws to
 //!   them (single-buffered visuals, or glDrawBuffer(GL_FRONT…)).
@@ -294,25 +298,19 @@ fn emulated_value(gl: &Gl, pname: u32) -> Option<i32> {
 /// # Safety
 /// `data` must be valid for the values `pname` returns (GL's contract).
 unsafe fn get_v<T>(
+    r: &Real,
     pname: u32,
     data: *mut T,
-    forward: unsafe fn(&Gl, u32, *mut T),
+    forward: impl FnOnce(u32, *mut T),
     convert: fn(i32) -> T,
 ) -> Result<()> {
-    let r = loaded()?;
     if data.is_null() {
         return Err(refuse_null(r, "data"));
     }
-    // SAFETY: forwarded call.
-    unsafe { forward(&r.gl, pname, data) };
+    forward(pname, data);
     if pname == GL_COLOR_WRITEMASK {
-        if let Some(cur) = current() {
-            let mask = cur.sc.lock().color_mask[0];
-            for (i, &m) in mask.iter().enumerate() {
-                // SAFETY: GL_COLOR_WRITEMASK returns four values.
-                unsafe { *data.add(i) = convert(m as i32) };
-            }
-        }
+        // SAFETY: GL_COLOR_WRITEMASK returns four values (GL's contract).
+        unsafe { write_mask(0, data, convert) };
         return Ok(());
     }
     if !answered(pname) || !stereo_current() {
@@ -330,8 +328,9 @@ unsafe fn get_v<T>(
 /// # Safety
 /// `data` must be valid for the values `pname` returns (GL's contract).
 pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe { get_v(pname, data, Gl::GetIntegerv, |v| v) }
+    let r = loaded()?;
+    // SAFETY: forwarded contract; the forwarded call gets it.
+    unsafe { get_v(r, pname, data, |p, d| r.gl.GetIntegerv(p, d), |v| v) }
 }
 
 /// glGetBooleanv.
@@ -339,8 +338,17 @@ pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
 /// # Safety
 /// As [`get_integerv`].
 pub unsafe fn get_booleanv(pname: u32, data: *mut u8) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe { get_v(pname, data, Gl::GetBooleanv, |v| (v != 0) as u8) }
+    let r = loaded()?;
+    // SAFETY: forwarded contract; the forwarded call gets it.
+    unsafe {
+        get_v(
+            r,
+            pname,
+            data,
+            |p, d| r.gl.GetBooleanv(p, d),
+            |v| (v != 0) as u8,
+        )
+    }
 }
 
 /// glGetFloatv.
@@ -348,8 +356,9 @@ pub unsafe fn get_booleanv(pname: u32, data: *mut u8) -> Result<()> {
 /// # Safety
 /// As [`get_integerv`].
 pub unsafe fn get_floatv(pname: u32, data: *mut f32) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe { get_v(pname, data, Gl::GetFloatv, |v| v as f32) }
+    let r = loaded()?;
+    // SAFETY: forwarded contract; the forwarded call gets it.
+    unsafe { get_v(r, pname, data, |p, d| r.gl.GetFloatv(p, d), |v| v as f32) }
 }
 
 /// glGetDoublev.
@@ -357,8 +366,48 @@ pub unsafe fn get_floatv(pname: u32, data: *mut f32) -> Result<()> {
 /// # Safety
 /// As [`get_integerv`].
 pub unsafe fn get_doublev(pname: u32, data: *mut f64) -> Result<()> {
-    // SAFETY: forwarded contract.
-    unsafe { get_v(pname, data, Gl::GetDoublev, f64::from) }
+    let r = loaded()?;
+    // SAFETY: forwarded contract; the forwarded call gets it.
+    unsafe { get_v(r, pname, data, |p, d| r.gl.GetDoublev(p, d), f64::from) }
+}
+
+/// glGetInteger64v (GL 3.2), as [`get_integerv`].
+///
+/// # Safety
+/// As [`get_integerv`].
+pub unsafe fn get_integer64v(pname: u32, data: *mut i64) -> Result<()> {
+    let r = loaded()?;
+    let f = r
+        .extra
+        .get_integer64v
+        .ok_or_else(|| lacks("glGetInteger64v", "GL 3.2"))?;
+    // SAFETY: forwarded contract; the forwarded call gets it.
+    unsafe { get_v(r, pname, data, |p, d| f(p, d), i64::from) }
+}
+
+/// Writes the program's colour mask of draw buffer `index` (what
+/// GL_COLOR_WRITEMASK answers) over the driver's answer in `data`, as
+/// `convert` turns GL's booleans into the query's type, when a stereo
+/// context is current.
+///
+/// # Safety
+/// `data` is valid for four values.
+unsafe fn write_mask<T>(index: usize, data: *mut T, convert: fn(i32) -> T) {
+    if let Some(cur) = current() {
+        let mask = cur.sc.lock().color_mask[index];
+        for (i, &m) in mask.iter().enumerate() {
+            // SAFETY: four values (contract).
+            unsafe { *data.add(i) = convert(m as i32) };
+        }
+    }
+}
+
+/// The error for a GL function the program called that the driver lacks
+/// (`offered_by`: the GL version or extension that brings it).
+pub(super) fn lacks(name: &str, offered_by: &str) -> Error {
+    Error::BackendUnavailable(format!(
+        "the GL library lacks {name}: it needs a driver with {offered_by}"
+    ))
 }
 
 /// Binds the emulated framebuffer(s) at `target` in place of framebuffer
@@ -747,14 +796,96 @@ fn set_driver_masks(gl: &Gl, masks: &[[bool; 4]; MASKED_BUFFERS], keep_alpha: bo
     }
 }
 
-/// glClearColor: kept as the program's clear colour (see [`clear`]).
-pub fn clear_color(red: f32, green: f32, blue: f32, alpha: f32) -> Result<()> {
-    let r = loaded()?;
-    if let Some(cur) = current() {
-        cur.sc.lock().clear_color = [red, green, blue, alpha];
+/// The clear colour as the program last set it: GL keeps one clear
+/// colour, which glClearColor sets as floats, glClearColorIiEXT /
+/// glClearColorIuiEXT (GL_EXT_texture_integer) as integers and
+/// glClearColorx / glClearColorxOES (GL_OES_fixed_point) as 16.16 fixed
+/// point. The layer sets it back with the same setter, so that the
+/// driver's state (GL_COLOR_CLEAR_VALUE) is what the program left.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ClearColor {
+    /// glClearColor.
+    Float([f32; 4]),
+    /// glClearColorIiEXT.
+    Int([i32; 4]),
+    /// glClearColorIuiEXT.
+    Uint([u32; 4]),
+    /// glClearColorx / glClearColorxOES.
+    Fixed([i32; 4]),
+}
+
+/// The bits of 1.0f, the alpha an integer clear colour has for a clear of
+/// a normalized buffer: Mesa keeps the clear colour as one union of
+/// floats and integers (what glGetFloatv(GL_COLOR_CLEAR_VALUE) answers
+/// after glClearColorIuiEXT is those bits as floats), so these bits clear
+/// alpha to 1.0 there; a driver that converts the integer instead clamps
+/// it to 1.0 as well.
+const ONE_BITS: u32 = 0x3F80_0000;
+
+impl ClearColor {
+    /// The same colour with alpha 1.0, in the same setter's terms.
+    fn opaque(self) -> ClearColor {
+        match self {
+            ClearColor::Float([r, g, b, _]) => ClearColor::Float([r, g, b, 1.0]),
+            ClearColor::Int([r, g, b, _]) => ClearColor::Int([r, g, b, ONE_BITS as i32]),
+            ClearColor::Uint([r, g, b, _]) => ClearColor::Uint([r, g, b, ONE_BITS]),
+            ClearColor::Fixed([r, g, b, _]) => ClearColor::Fixed([r, g, b, 0x1_0000]),
+        }
     }
-    // SAFETY: forwarded call.
-    unsafe { r.gl.ClearColor(red, green, blue, alpha) };
+
+    /// Sets it as the driver's clear colour, with its own setter.
+    ///
+    /// # Safety
+    /// The program's context is current.
+    unsafe fn set(self, r: &Real) -> Result<()> {
+        let x = &r.extra;
+        // SAFETY: the program's context is current (contract).
+        unsafe {
+            match self {
+                ClearColor::Float([cr, cg, cb, ca]) => r.gl.ClearColor(cr, cg, cb, ca),
+                ClearColor::Int([cr, cg, cb, ca]) => x
+                    .clear_color_ii_ext
+                    .ok_or_else(|| lacks("glClearColorIiEXT", "GL_EXT_texture_integer"))?(
+                    cr, cg, cb, ca,
+                ),
+                ClearColor::Uint([cr, cg, cb, ca]) => x
+                    .clear_color_iui_ext
+                    .ok_or_else(|| lacks("glClearColorIuiEXT", "GL_EXT_texture_integer"))?(
+                    cr, cg, cb, ca,
+                ),
+                ClearColor::Fixed([cr, cg, cb, ca]) => x
+                    .clear_colorx
+                    .or(x.clear_colorx_oes)
+                    .ok_or_else(|| lacks("glClearColorx", "GL_OES_fixed_point"))?(
+                    cr, cg, cb, ca
+                ),
+            }
+        }
+        Ok(())
+    }
+}
+
+/// glClearColor, glClearColorIiEXT, glClearColorIuiEXT, glClearColorx and
+/// glClearColorxOES (`color` says which): forwarded, and kept as the
+/// program's clear colour (see [`clear`]). `fixed_oes` picks
+/// glClearColorxOES for a fixed-point colour.
+pub fn clear_color(color: ClearColor, fixed_oes: bool) -> Result<()> {
+    let r = loaded()?;
+    match (color, fixed_oes) {
+        (ClearColor::Fixed([cr, cg, cb, ca]), true) => {
+            let f = r
+                .extra
+                .clear_colorx_oes
+                .ok_or_else(|| lacks("glClearColorxOES", "GL_OES_fixed_point"))?;
+            // SAFETY: forwarded call.
+            unsafe { f(cr, cg, cb, ca) }
+        }
+        // SAFETY: forwarded call.
+        _ => unsafe { color.set(r)? },
+    }
+    if let Some(cur) = current() {
+        cur.sc.lock().clear_color = color;
+    }
     Ok(())
 }
 
@@ -774,6 +905,11 @@ pub fn clear(mask: u32) -> Result<()> {
         }
     };
     let st = cur.sc.lock();
+    // The binding is asked, not tracked: the query costs ≈ 20 ns on
+    // llvmpipe (a 1280x1024 clear ≈ 0.45 ms), while a tracked copy would
+    // have to follow every binding change the layer does not see (a layer
+    // below it, a binding made through a function pointer it never
+    // handed out), and a stale one would let alpha be written.
     // SAFETY: the program's context is current.
     let draw = unsafe { gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) } as u32;
     if !st.is_ours(draw) {
@@ -782,20 +918,23 @@ pub fn clear(mask: u32) -> Result<()> {
         unsafe { gl.Clear(mask) };
         return Ok(());
     }
-    let [cr, cg, cb, ca] = st.clear_color;
+    let color = st.clear_color;
     let mut masks = st.color_mask;
     for m in &mut masks {
         m[3] = true;
     }
     set_driver_masks(gl, &masks, false);
-    // SAFETY: the program's context is current.
-    unsafe {
-        gl.ClearColor(cr, cg, cb, 1.0);
-        gl.Clear(mask);
-        gl.ClearColor(cr, cg, cb, ca);
+    // SAFETY: the program's context is current. The colour's setter
+    // exists: the program set the colour with it.
+    let set = unsafe { color.opaque().set(r) };
+    if set.is_ok() {
+        // SAFETY: as above.
+        unsafe { gl.Clear(mask) };
     }
+    // SAFETY: as above.
+    let back = unsafe { color.set(r) };
     set_driver_masks(gl, &st.color_mask, true);
-    Ok(())
+    set.and(back)
 }
 
 /// glColorMask: kept as the program's masks (what GL_COLOR_WRITEMASK
@@ -814,15 +953,52 @@ pub fn color_mask(red: u8, green: u8, blue: u8, alpha: u8) -> Result<()> {
     Ok(())
 }
 
-/// glColorMaski: as [`color_mask`] for draw buffer `index`. An index GL
-/// refuses goes to the driver, which raises GL_INVALID_VALUE.
-pub fn color_maski(index: u32, red: u8, green: u8, blue: u8, alpha: u8) -> Result<()> {
+/// The names of glColorMaski: GL 3.0's and the extensions' (each goes to
+/// its own function below the layer).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MaskiName {
+    /// glColorMaski (GL 3.0).
+    Core,
+    /// glColorMaskIndexedEXT (GL_EXT_draw_buffers2).
+    IndexedExt,
+    /// glColorMaskiEXT (GL_EXT_draw_buffers_indexed).
+    Ext,
+    /// glColorMaskiOES (GL_OES_draw_buffers_indexed).
+    Oes,
+}
+
+/// glColorMaski (or one of its other names, `name`): as [`color_mask`]
+/// for draw buffer `index`. An index GL refuses goes to the driver, which
+/// raises GL_INVALID_VALUE.
+pub fn color_maski(
+    name: MaskiName,
+    index: u32,
+    red: u8,
+    green: u8,
+    blue: u8,
+    alpha: u8,
+) -> Result<()> {
     let r = loaded()?;
-    let Some(f) = r.extra.color_maski else {
-        return Err(Error::BackendUnavailable(
-            "the GL library lacks glColorMaski: it needs a GL 3.0 driver".into(),
-        ));
+    let x = &r.extra;
+    let (f, gl_name, offered_by) = match name {
+        MaskiName::Core => (x.color_maski, "glColorMaski", "GL 3.0"),
+        MaskiName::IndexedExt => (
+            x.color_mask_indexed_ext,
+            "glColorMaskIndexedEXT",
+            "GL_EXT_draw_buffers2",
+        ),
+        MaskiName::Ext => (
+            x.color_maski_ext,
+            "glColorMaskiEXT",
+            "GL_EXT_draw_buffers_indexed",
+        ),
+        MaskiName::Oes => (
+            x.color_maski_oes,
+            "glColorMaskiOES",
+            "GL_OES_draw_buffers_indexed",
+        ),
     };
+    let f = f.ok_or_else(|| lacks(gl_name, offered_by))?;
     if let Some(cur) = current() {
         if (index as usize) < MASKED_BUFFERS {
             let mut st = cur.sc.lock();
@@ -836,31 +1012,138 @@ pub fn color_maski(index: u32, red: u8, green: u8, blue: u8, alpha: u8) -> Resul
     Ok(())
 }
 
-/// glGetBooleani_v: GL_COLOR_WRITEMASK answers the program's masks.
-/// Refused: `data` NULL (`refuse_null`).
+/// One of the indexed glGet functions: its GL name, what brings it (a GL
+/// version or an extension), and where the layer finds it below itself.
+pub struct IndexedGet<T: 'static> {
+    /// The GL name, e.g. "glGetIntegeri_v".
+    pub name: &'static str,
+    /// The GL version or extension that brings it.
+    pub offered_by: &'static str,
+    /// The function below the layer.
+    pub pick: fn(&super::real::Extra) -> Option<super::real::GetIndexed<T>>,
+    /// How GL turns a boolean state into the query's type.
+    pub convert: fn(i32) -> T,
+}
+
+/// `glGetBooleani_v`.
+pub const GET_BOOLEANI_V: IndexedGet<u8> = IndexedGet {
+    name: "glGetBooleani_v",
+    offered_by: "GL 3.0",
+    pick: |x| x.get_booleani_v,
+    convert: |v| (v != 0) as u8,
+};
+
+/// `glGetBooleanIndexedvEXT`.
+pub const GET_BOOLEAN_INDEXEDV_EXT: IndexedGet<u8> = IndexedGet {
+    name: "glGetBooleanIndexedvEXT",
+    offered_by: "GL_EXT_draw_buffers2",
+    pick: |x| x.get_boolean_indexedv_ext,
+    convert: |v| (v != 0) as u8,
+};
+
+/// `glGetIntegeri_v`.
+pub const GET_INTEGERI_V: IndexedGet<i32> = IndexedGet {
+    name: "glGetIntegeri_v",
+    offered_by: "GL 3.0",
+    pick: |x| x.get_integeri_v,
+    convert: |v| v,
+};
+
+/// `glGetIntegerIndexedvEXT`.
+pub const GET_INTEGER_INDEXEDV_EXT: IndexedGet<i32> = IndexedGet {
+    name: "glGetIntegerIndexedvEXT",
+    offered_by: "GL_EXT_draw_buffers2",
+    pick: |x| x.get_integer_indexedv_ext,
+    convert: |v| v,
+};
+
+/// `glGetInteger64i_v`.
+pub const GET_INTEGER64I_V: IndexedGet<i64> = IndexedGet {
+    name: "glGetInteger64i_v",
+    offered_by: "GL 3.2",
+    pick: |x| x.get_integer64i_v,
+    convert: |v| v as i64,
+};
+
+/// `glGetFloati_v`.
+pub const GET_FLOATI_V: IndexedGet<f32> = IndexedGet {
+    name: "glGetFloati_v",
+    offered_by: "GL 4.1",
+    pick: |x| x.get_floati_v,
+    convert: |v| v as f32,
+};
+
+/// `glGetFloati_vEXT`.
+pub const GET_FLOATI_V_EXT: IndexedGet<f32> = IndexedGet {
+    name: "glGetFloati_vEXT",
+    offered_by: "GL_EXT_direct_state_access",
+    pick: |x| x.get_floati_v_ext,
+    convert: |v| v as f32,
+};
+
+/// `glGetFloati_vOES`.
+pub const GET_FLOATI_V_OES: IndexedGet<f32> = IndexedGet {
+    name: "glGetFloati_vOES",
+    offered_by: "GL_OES_viewport_array",
+    pick: |x| x.get_floati_v_oes,
+    convert: |v| v as f32,
+};
+
+/// `glGetFloatIndexedvEXT`.
+pub const GET_FLOAT_INDEXEDV_EXT: IndexedGet<f32> = IndexedGet {
+    name: "glGetFloatIndexedvEXT",
+    offered_by: "GL_EXT_direct_state_access",
+    pick: |x| x.get_float_indexedv_ext,
+    convert: |v| v as f32,
+};
+
+/// `glGetDoublei_v`.
+pub const GET_DOUBLEI_V: IndexedGet<f64> = IndexedGet {
+    name: "glGetDoublei_v",
+    offered_by: "GL 4.1",
+    pick: |x| x.get_doublei_v,
+    convert: f64::from,
+};
+
+/// `glGetDoublei_vEXT`.
+pub const GET_DOUBLEI_V_EXT: IndexedGet<f64> = IndexedGet {
+    name: "glGetDoublei_vEXT",
+    offered_by: "GL_EXT_direct_state_access",
+    pick: |x| x.get_doublei_v_ext,
+    convert: f64::from,
+};
+
+/// `glGetDoubleIndexedvEXT`.
+pub const GET_DOUBLE_INDEXEDV_EXT: IndexedGet<f64> = IndexedGet {
+    name: "glGetDoubleIndexedvEXT",
+    offered_by: "GL_EXT_direct_state_access",
+    pick: |x| x.get_double_indexedv_ext,
+    convert: f64::from,
+};
+
+/// glGetBooleani_v, glGetIntegeri_v, glGetInteger64i_v, glGetFloati_v,
+/// glGetDoublei_v and their extension names (`get` says which):
+/// GL_COLOR_WRITEMASK answers the program's masks; every other state is
+/// the driver's answer. Refused: `data` NULL (`refuse_null`).
 ///
 /// # Safety
 /// `data` must be valid for the values `pname` returns (GL's contract).
-pub unsafe fn get_booleani_v(pname: u32, index: u32, data: *mut u8) -> Result<()> {
+pub unsafe fn get_indexed<T>(
+    get: &IndexedGet<T>,
+    pname: u32,
+    index: u32,
+    data: *mut T,
+) -> Result<()> {
     let r = loaded()?;
-    let Some(f) = r.extra.get_booleani_v else {
-        return Err(Error::BackendUnavailable(
-            "the GL library lacks glGetBooleani_v: it needs a GL 3.0 driver".into(),
-        ));
-    };
+    let f = (get.pick)(&r.extra).ok_or_else(|| lacks(get.name, get.offered_by))?;
     if data.is_null() {
         return Err(refuse_null(r, "data"));
     }
     // SAFETY: forwarded call.
     unsafe { f(pname, index, data) };
     if pname == GL_COLOR_WRITEMASK && (index as usize) < MASKED_BUFFERS {
-        if let Some(cur) = current() {
-            let mask = cur.sc.lock().color_mask[index as usize];
-            for (i, &m) in mask.iter().enumerate() {
-                // SAFETY: GL_COLOR_WRITEMASK returns four values.
-                unsafe { *data.add(i) = m as u8 };
-            }
-        }
+        // SAFETY: GL_COLOR_WRITEMASK returns four values (GL's contract).
+        unsafe { write_mask(index as usize, data, get.convert) };
     }
     Ok(())
 }
@@ -901,6 +1184,12 @@ pub(super) fn restore_alpha(gl: &Gl, cur: &Current, fbo: u32) {
     // SAFETY: the program's context is current.
     unsafe {
         let draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+        // Rasterizer discard stops clears but not blits (GL 4.5 §14.1):
+        // off for the clear of alpha, as the blit wrote anyway.
+        let discard = gl.IsEnabled(GL_RASTERIZER_DISCARD) != 0;
+        if discard {
+            gl.Disable(GL_RASTERIZER_DISCARD);
+        }
         gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         gl.ColorMask(0, 0, 0, 1);
         let one = [0.0f32, 0.0, 0.0, 1.0];
@@ -910,6 +1199,9 @@ pub(super) fn restore_alpha(gl: &Gl, cur: &Current, fbo: u32) {
             }
         }
         gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, draw);
+        if discard {
+            gl.Enable(GL_RASTERIZER_DISCARD);
+        }
     }
     apply_color_mask(gl, cur.sc.formats(), &st);
 }

@@ -96,8 +96,9 @@
 //!   program would then draw into the layer's context). So its real
 //!   destruction waits for the release ([`context::StereoContext::defer_destroy`]),
 //!   and making it current or destroying it again meanwhile is refused;
-//! - GL: a NULL pointer GL reads or writes through (glGet*v, glDrawBuffers
-//!   and glDeleteFramebuffers with n > 0, glGetFramebufferAttachmentParameteriv,
+//! - GL: a NULL pointer GL reads or writes through (glGet*v and glGet*i_v,
+//!   glDrawBuffers and glDeleteFramebuffers with n > 0,
+//!   glGetFramebufferAttachmentParameteriv,
 //!   and the functions of [`dsa`]: glClearBuffer* and glClearNamedFramebuffer*
 //!   values, glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer
 //!   lists with n > 0, the glGet*FramebufferParameteriv and

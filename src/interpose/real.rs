@@ -25,6 +25,16 @@ pub type CreateContextAttribs = unsafe extern "C" fn(
 /// A function looked up by name, as `glXGetProcAddress` returns it.
 pub type AnyFn = unsafe extern "C" fn();
 
+/// `glColorMaski` and its extension names.
+pub type ColorMaski = unsafe extern "system" fn(u32, u8, u8, u8, u8);
+
+/// An indexed glGet (`glGetBooleani_v`, `glGetIntegeri_v`, …) whose values
+/// are `T`s.
+pub type GetIndexed<T> = unsafe extern "system" fn(u32, u32, *mut T);
+
+/// `glClearColorx` / `glClearColorxOES` (16.16 fixed point).
+pub type ClearColorx = unsafe extern "system" fn(i32, i32, i32, i32);
+
 /// Entry points that are not part of x11-dl's GLX table or of [`Gl`].
 pub struct Extra {
     /// `glXCreateContextAttribsARB` (None without GLX_ARB_create_context).
@@ -42,9 +52,50 @@ pub struct Extra {
     /// `glPopAttrib` (compatibility profile).
     pub pop_attrib: Option<unsafe extern "system" fn()>,
     /// `glColorMaski` (GL 3.0).
-    pub color_maski: Option<unsafe extern "system" fn(u32, u8, u8, u8, u8)>,
+    pub color_maski: Option<ColorMaski>,
+    /// `glColorMaskIndexedEXT` (GL_EXT_draw_buffers2).
+    pub color_mask_indexed_ext: Option<ColorMaski>,
+    /// `glColorMaskiEXT` (GL_EXT_draw_buffers_indexed; Mesa serves it in
+    /// desktop contexts too).
+    pub color_maski_ext: Option<ColorMaski>,
+    /// `glColorMaskiOES` (GL_OES_draw_buffers_indexed; as above).
+    pub color_maski_oes: Option<ColorMaski>,
     /// `glGetBooleani_v` (GL 3.0).
-    pub get_booleani_v: Option<unsafe extern "system" fn(u32, u32, *mut u8)>,
+    pub get_booleani_v: Option<GetIndexed<u8>>,
+    /// `glGetBooleanIndexedvEXT` (GL_EXT_draw_buffers2).
+    pub get_boolean_indexedv_ext: Option<GetIndexed<u8>>,
+    /// `glGetIntegeri_v` (GL 3.0).
+    pub get_integeri_v: Option<GetIndexed<i32>>,
+    /// `glGetIntegerIndexedvEXT` (GL_EXT_draw_buffers2).
+    pub get_integer_indexedv_ext: Option<GetIndexed<i32>>,
+    /// `glGetInteger64i_v` (GL 3.2).
+    pub get_integer64i_v: Option<GetIndexed<i64>>,
+    /// `glGetFloati_v` (GL 4.1).
+    pub get_floati_v: Option<GetIndexed<f32>>,
+    /// `glGetFloati_vEXT` (GL_EXT_direct_state_access).
+    pub get_floati_v_ext: Option<GetIndexed<f32>>,
+    /// `glGetFloati_vOES` (GL_OES_viewport_array; Mesa serves it in desktop
+    /// contexts too).
+    pub get_floati_v_oes: Option<GetIndexed<f32>>,
+    /// `glGetFloatIndexedvEXT` (GL_EXT_direct_state_access).
+    pub get_float_indexedv_ext: Option<GetIndexed<f32>>,
+    /// `glGetDoublei_v` (GL 4.1).
+    pub get_doublei_v: Option<GetIndexed<f64>>,
+    /// `glGetDoublei_vEXT` (GL_EXT_direct_state_access).
+    pub get_doublei_v_ext: Option<GetIndexed<f64>>,
+    /// `glGetDoubleIndexedvEXT` (GL_EXT_direct_state_access).
+    pub get_double_indexedv_ext: Option<GetIndexed<f64>>,
+    /// `glGetInteger64v` (GL 3.2).
+    pub get_integer64v: Option<unsafe extern "system" fn(u32, *mut i64)>,
+    /// `glClearColorIiEXT` (GL_EXT_texture_integer).
+    pub clear_color_ii_ext: Option<unsafe extern "system" fn(i32, i32, i32, i32)>,
+    /// `glClearColorIuiEXT` (GL_EXT_texture_integer).
+    pub clear_color_iui_ext: Option<unsafe extern "system" fn(u32, u32, u32, u32)>,
+    /// `glClearColorx` (GL_OES_fixed_point's name in OpenGL ES 1; Mesa
+    /// serves it in compatibility contexts).
+    pub clear_colorx: Option<ClearColorx>,
+    /// `glClearColorxOES` (GL_OES_fixed_point).
+    pub clear_colorx_oes: Option<ClearColorx>,
     /// GL_EXT_memory_object(_fd): eye textures read in place
     /// ([`crate::stereo::eye_memory`]).
     pub memory_objects: Option<crate::stereo::eye_memory::MemoryObjectApi>,
@@ -213,7 +264,26 @@ fn load() -> Result<Real, String> {
         push_attrib: lookup!(c"glPushAttrib"),
         pop_attrib: lookup!(c"glPopAttrib"),
         color_maski: lookup!(c"glColorMaski"),
+        color_mask_indexed_ext: lookup!(c"glColorMaskIndexedEXT"),
+        color_maski_ext: lookup!(c"glColorMaskiEXT"),
+        color_maski_oes: lookup!(c"glColorMaskiOES"),
         get_booleani_v: lookup!(c"glGetBooleani_v"),
+        get_boolean_indexedv_ext: lookup!(c"glGetBooleanIndexedvEXT"),
+        get_integeri_v: lookup!(c"glGetIntegeri_v"),
+        get_integer_indexedv_ext: lookup!(c"glGetIntegerIndexedvEXT"),
+        get_integer64i_v: lookup!(c"glGetInteger64i_v"),
+        get_floati_v: lookup!(c"glGetFloati_v"),
+        get_floati_v_ext: lookup!(c"glGetFloati_vEXT"),
+        get_floati_v_oes: lookup!(c"glGetFloati_vOES"),
+        get_float_indexedv_ext: lookup!(c"glGetFloatIndexedvEXT"),
+        get_doublei_v: lookup!(c"glGetDoublei_v"),
+        get_doublei_v_ext: lookup!(c"glGetDoublei_vEXT"),
+        get_double_indexedv_ext: lookup!(c"glGetDoubleIndexedvEXT"),
+        get_integer64v: lookup!(c"glGetInteger64v"),
+        clear_color_ii_ext: lookup!(c"glClearColorIiEXT"),
+        clear_color_iui_ext: lookup!(c"glClearColorIuiEXT"),
+        clear_colorx: lookup!(c"glClearColorx"),
+        clear_colorx_oes: lookup!(c"glClearColorxOES"),
         // SAFETY: `get` returns the named GL function or NULL.
         memory_objects: unsafe { crate::stereo::eye_memory::MemoryObjectApi::load(get) },
         sgix: Sgix {

@@ -11,9 +11,15 @@
  * (glGetBooleanv, glGetIntegerv, glGetBooleani_v) answers what the program
  * set, on framebuffer 0 and on its own framebuffer object, across
  * glPushAttrib / glPopAttrib; the program's own framebuffer object's alpha
- * is written when its mask allows it.
+ * is written when its mask allows it. Then the other ways in: the
+ * extension names of glColorMaski, every glGet that answers
+ * GL_COLOR_WRITEMASK (indexed or not), per-buffer masks across
+ * glPushAttrib / glPopAttrib, blits under GL_RASTERIZER_DISCARD (which
+ * stops clears but not blits), and the integer and fixed-point clear
+ * colour setters.
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <GL/gl.h>
@@ -27,6 +33,8 @@
 #define DRAW_FRAMEBUFFER 0x8CA9
 #define COLOR_ATTACHMENT0 0x8CE0
 #define COLOR 0x1800
+#define RASTERIZER_DISCARD 0x8C89
+#define DRAW_FRAMEBUFFER_BINDING_ 0x8CA6
 
 typedef void (*GenFramebuffers)(GLsizei, GLuint *);
 typedef void (*BindFramebuffer)(GLenum, GLuint);
@@ -39,6 +47,15 @@ typedef void (*BlitNamedFramebuffer)(GLuint, GLuint, GLint, GLint, GLint, GLint,
                                      GLint, GLint, GLbitfield, GLenum);
 typedef void (*ClearBufferfv)(GLenum, GLint, const GLfloat *);
 typedef void (*ClearNamedFramebufferfv)(GLuint, GLenum, GLint, const GLfloat *);
+
+typedef void (*GetIntegeri)(GLenum, GLuint, GLint *);
+typedef void (*GetInteger64i)(GLenum, GLuint, long long *);
+typedef void (*GetInteger64)(GLenum, long long *);
+typedef void (*GetFloati)(GLenum, GLuint, GLfloat *);
+typedef void (*GetDoublei)(GLenum, GLuint, GLdouble *);
+typedef void (*ClearColorI)(GLint, GLint, GLint, GLint);
+typedef void (*ClearColorUi)(GLuint, GLuint, GLuint, GLuint);
+typedef void (*ClearColorX)(GLint, GLint, GLint, GLint);
 
 typedef void (*AnyFn)(void);
 
@@ -68,6 +85,77 @@ static void writemask(const char *what, GetBooleani get_i)
     get_i(GL_COLOR_WRITEMASK, 1, b1);
     printf("%s writemask %d%d%d%d int %d%d%d%d index1 %d%d%d%d error 0x%x\n", what, b[0], b[1],
            b[2], b[3], n[0], n[1], n[2], n[3], b1[0], b1[1], b1[2], b1[3], glGetError());
+}
+
+/* A function the driver must have, looked up by name. */
+static AnyFn need(const char *name)
+{
+    AnyFn f = proc(name);
+    if (!f) {
+        fprintf(stderr, "the driver lacks %s\n", name);
+        exit(1);
+    }
+    return f;
+}
+
+/* GL_COLOR_WRITEMASK through every glGet that answers it: the indexed
+ * ones (GL 3.0, 4.1, GL_EXT_draw_buffers2, GL_EXT_direct_state_access,
+ * GL_OES_viewport_array) for draw buffers 0 and 1, the others for 0. */
+static void writemask_everywhere(const char *what)
+{
+    static const char *const booleans[] = {"glGetBooleani_v", "glGetBooleanIndexedvEXT"};
+    static const char *const integers[] = {"glGetIntegeri_v", "glGetIntegerIndexedvEXT"};
+    static const char *const floats[] = {"glGetFloati_v", "glGetFloati_vEXT", "glGetFloati_vOES",
+                                         "glGetFloatIndexedvEXT"};
+    static const char *const doubles[] = {"glGetDoublei_v", "glGetDoublei_vEXT",
+                                          "glGetDoubleIndexedvEXT"};
+    for (GLuint i = 0; i < 2; i++) {
+        for (size_t k = 0; k < sizeof booleans / sizeof *booleans; k++) {
+            GLboolean v[4] = {9, 9, 9, 9};
+            ((GetBooleani)need(booleans[k]))(GL_COLOR_WRITEMASK, i, v);
+            printf("%s %s %u %d%d%d%d\n", what, booleans[k], i, v[0], v[1], v[2], v[3]);
+        }
+        for (size_t k = 0; k < sizeof integers / sizeof *integers; k++) {
+            GLint v[4] = {9, 9, 9, 9};
+            ((GetIntegeri)need(integers[k]))(GL_COLOR_WRITEMASK, i, v);
+            printf("%s %s %u %d%d%d%d\n", what, integers[k], i, v[0], v[1], v[2], v[3]);
+        }
+        long long v64[4] = {9, 9, 9, 9};
+        ((GetInteger64i)need("glGetInteger64i_v"))(GL_COLOR_WRITEMASK, i, v64);
+        printf("%s glGetInteger64i_v %u %lld%lld%lld%lld\n", what, i, v64[0], v64[1], v64[2],
+               v64[3]);
+        for (size_t k = 0; k < sizeof floats / sizeof *floats; k++) {
+            GLfloat v[4] = {9, 9, 9, 9};
+            ((GetFloati)need(floats[k]))(GL_COLOR_WRITEMASK, i, v);
+            printf("%s %s %u %.0f%.0f%.0f%.0f\n", what, floats[k], i, v[0], v[1], v[2], v[3]);
+        }
+        for (size_t k = 0; k < sizeof doubles / sizeof *doubles; k++) {
+            GLdouble v[4] = {9, 9, 9, 9};
+            ((GetDoublei)need(doubles[k]))(GL_COLOR_WRITEMASK, i, v);
+            printf("%s %s %u %.0f%.0f%.0f%.0f\n", what, doubles[k], i, v[0], v[1], v[2], v[3]);
+        }
+    }
+    GLfloat f[4] = {9, 9, 9, 9};
+    GLdouble d[4] = {9, 9, 9, 9};
+    long long n[4] = {9, 9, 9, 9};
+    glGetFloatv(GL_COLOR_WRITEMASK, f);
+    glGetDoublev(GL_COLOR_WRITEMASK, d);
+    ((GetInteger64)need("glGetInteger64v"))(GL_COLOR_WRITEMASK, n);
+    printf("%s glGetFloatv %.0f%.0f%.0f%.0f glGetDoublev %.0f%.0f%.0f%.0f glGetInteger64v "
+           "%lld%lld%lld%lld error 0x%x\n",
+           what, f[0], f[1], f[2], f[3], d[0], d[1], d[2], d[3], n[0], n[1], n[2], n[3],
+           glGetError());
+}
+
+/* GL_COLOR_CLEAR_VALUE as floats and as integers. */
+static void clear_value(const char *what)
+{
+    GLfloat f[4] = {0};
+    GLint n[4] = {0};
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, f);
+    glGetIntegerv(GL_COLOR_CLEAR_VALUE, n);
+    printf("%s clear value %.3f %.3f %.3f %.3f int %d %d %d %d error 0x%x\n", what, f[0], f[1],
+           f[2], f[3], n[0], n[1], n[2], n[3], glGetError());
 }
 
 static void clear(float a)
@@ -209,6 +297,124 @@ int main(int argc, char **argv)
     bind(FRAMEBUFFER, fbo);
     glClear(GL_COLOR_BUFFER_BIT);
     pixel("fbo clear with the same colour");
+
+    /* The other names of glColorMaski (GL_EXT_draw_buffers2's, and the
+     * GLES ones libGL serves desktop contexts too) set the same masks:
+     * framebuffer 0 still reads alpha 1.0 after a draw. */
+    static const char *const maski_names[] = {"glColorMaskIndexedEXT", "glColorMaskiEXT",
+                                              "glColorMaskiOES"};
+    bind(FRAMEBUFFER, 0);
+    for (size_t k = 0; k < sizeof maski_names / sizeof *maski_names; k++) {
+        ColorMaski f = (ColorMaski)need(maski_names[k]);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+        f(0, GL_TRUE, GL_FALSE, GL_TRUE, GL_TRUE);
+        f(1, GL_FALSE, GL_TRUE, GL_TRUE, GL_TRUE);
+        writemask(maski_names[k], get_i);
+        glColor4f(1.0f, 1.0f, 1.0f, 0.3f);
+        glRectf(-1.0f, -1.0f, 1.0f, 1.0f);
+        pixel(maski_names[k]);
+    }
+
+    /* Every query of GL_COLOR_WRITEMASK answers the program's masks, on
+     * framebuffer 0 and on its own framebuffer object. */
+    glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_TRUE);
+    maski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
+    writemask_everywhere("fb0 queries");
+    bind(FRAMEBUFFER, fbo);
+    writemask_everywhere("fbo queries");
+    bind(FRAMEBUFFER, 0);
+    long long binding = -1;
+    ((GetInteger64)need("glGetInteger64v"))(DRAW_FRAMEBUFFER_BINDING_, &binding);
+    printf("glGetInteger64v draw framebuffer binding %lld error 0x%x\n", binding, glGetError());
+
+    /* glPopAttrib restores per-buffer masks, whatever is bound then. */
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    maski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
+    glPushAttrib(GL_COLOR_BUFFER_BIT);
+    glColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glPopAttrib();
+    writemask("popped per-buffer", get_i);
+    glColor4f(1.0f, 1.0f, 1.0f, 0.3f);
+    glRectf(-1.0f, -1.0f, 1.0f, 1.0f);
+    pixel("draw after per-buffer pop");
+    maski(0, GL_TRUE, GL_TRUE, GL_FALSE, GL_TRUE);
+    glPushAttrib(GL_COLOR_BUFFER_BIT);
+    bind(FRAMEBUFFER, fbo);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glPopAttrib();
+    writemask("fbo popped per-buffer", get_i);
+    /* The pop also restores framebuffer 0's draw buffer onto the
+     * framebuffer object: Mesa leaves the object's as it was, the layer
+     * does not (a draw-buffer matter, outside what this program compares),
+     * so the program sets it. */
+    glDrawBuffer(COLOR_ATTACHMENT0);
+    clear(0.75f);
+    pixel("fbo clear after per-buffer pop");
+    bind(FRAMEBUFFER, 0);
+    clear(0.25f);
+    pixel("fb0 clear after per-buffer pop");
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+
+    /* GL_RASTERIZER_DISCARD stops glClear and glClearBuffer (GL 4.5
+     * §14.1), not blits: what is blitted into framebuffer 0 still reads
+     * alpha 1.0, and the enable stays the program's. */
+    bind(FRAMEBUFFER, fbo);
+    glClearColor(1.0f, 0.0f, 0.5f, 0.25f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    bind(FRAMEBUFFER, 0);
+    clear(0.0f);
+    glEnable(RASTERIZER_DISCARD);
+    clear(0.5f);
+    pixel("clear under rasterizer discard");
+    clear_buffer(COLOR, 0, quarter);
+    pixel("clear_buffer under rasterizer discard");
+    bind(READ_FRAMEBUFFER, fbo);
+    blit(0, 0, 64, 64, 0, 0, 64, 64, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    bind(READ_FRAMEBUFFER, 0);
+    pixel("blit under rasterizer discard");
+    printf("rasterizer discard still %d\n", glIsEnabled(RASTERIZER_DISCARD));
+    glDisable(RASTERIZER_DISCARD);
+    clear(0.0f);
+    glEnable(RASTERIZER_DISCARD);
+    blit_named(fbo, 0, 0, 0, 64, 64, 0, 0, 64, 64, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    pixel("named blit under rasterizer discard");
+    clear_named(0, COLOR, 0, quarter);
+    pixel("named clear under rasterizer discard");
+    printf("rasterizer discard still %d error 0x%x\n", glIsEnabled(RASTERIZER_DISCARD),
+           glGetError());
+    glDisable(RASTERIZER_DISCARD);
+
+    /* The integer (GL_EXT_texture_integer) and fixed-point
+     * (GL_OES_fixed_point) clear colours are the colour glClear uses, and
+     * what GL_COLOR_CLEAR_VALUE answers, afterwards too. Mesa keeps one
+     * clear colour whose bits each setter writes. */
+    ClearColorUi clear_ui = (ClearColorUi)need("glClearColorIuiEXT");
+    ClearColorI clear_i = (ClearColorI)need("glClearColorIiEXT");
+    ClearColorX clear_x = (ClearColorX)need("glClearColorx");
+    ClearColorX clear_x_oes = (ClearColorX)need("glClearColorxOES");
+    clear_ui(0x3f000000u, 0x3f800000u, 0x3e800000u, 0x3e800000u);
+    glClear(GL_COLOR_BUFFER_BIT);
+    pixel("fb0 clear after glClearColorIuiEXT");
+    clear_value("glClearColorIuiEXT");
+    bind(FRAMEBUFFER, fbo);
+    glClear(GL_COLOR_BUFFER_BIT);
+    pixel("fbo clear after glClearColorIuiEXT");
+    bind(FRAMEBUFFER, 0);
+    clear_i(0x3e800000, 0x3f000000, 0x3f800000, 0x3f000000);
+    glClear(GL_COLOR_BUFFER_BIT);
+    pixel("fb0 clear after glClearColorIiEXT");
+    clear_value("glClearColorIiEXT");
+    clear_x(0x8000, 0x4000, 0x10000, 0x4000);
+    glClear(GL_COLOR_BUFFER_BIT);
+    pixel("fb0 clear after glClearColorx");
+    clear_value("glClearColorx");
+    clear_x_oes(0x4000, 0x10000, 0x8000, 0xc000);
+    glClear(GL_COLOR_BUFFER_BIT);
+    pixel("fb0 clear after glClearColorxOES");
+    clear_value("glClearColorxOES");
+    bind(FRAMEBUFFER, fbo);
+    glClear(GL_COLOR_BUFFER_BIT);
+    pixel("fbo clear after glClearColorxOES");
 
     close_x_window(&x);
     return 0;

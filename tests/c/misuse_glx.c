@@ -13,8 +13,8 @@
  *   glXGetProcAddress's name), a share context the program destroyed. The
  *   call returns what the function returns on failure (NULL, None, False,
  *   GLX_BAD_VALUE) and changes nothing.
- * - GL: a NULL pointer GL would read or write through (glGet*v data,
- *   glDrawBuffers / glDeleteFramebuffers with n > 0,
+ * - GL: a NULL pointer GL would read or write through (glGet*v and
+ *   glGet*i_v data, glDrawBuffers / glDeleteFramebuffers with n > 0,
  *   glGetFramebufferAttachmentParameteriv params): nothing happens but
  *   GL_INVALID_VALUE for glGetError (none without a current context).
  *
@@ -88,6 +88,13 @@ typedef void (*blit_named_fn)(GLuint, GLuint, GLint, GLint, GLint, GLint, GLint,
                               GLint, GLbitfield, GLenum);
 typedef void (*color_maski_fn)(GLuint, GLboolean, GLboolean, GLboolean, GLboolean);
 typedef void (*get_booleani_fn)(GLenum, GLuint, GLboolean *);
+typedef void (*get_integeri_fn)(GLenum, GLuint, GLint *);
+typedef void (*get_integer64i_fn)(GLenum, GLuint, int64_t *);
+typedef void (*get_integer64_fn)(GLenum, int64_t *);
+typedef void (*get_floati_fn)(GLenum, GLuint, GLfloat *);
+typedef void (*get_doublei_fn)(GLenum, GLuint, GLdouble *);
+typedef void (*clear_color_i_fn)(GLint, GLint, GLint, GLint);
+typedef void (*clear_color_ui_fn)(GLuint, GLuint, GLuint, GLuint);
 typedef void (*blit_fn)(GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLbitfield,
                         GLenum);
 typedef void (*invalidate_fn)(GLenum, GLsizei, const GLenum *);
@@ -121,6 +128,15 @@ static named_buffers_fn p_named_draw_buffers;
 static blit_named_fn p_blit_named;
 static color_maski_fn p_color_maski;
 static get_booleani_fn p_get_booleani;
+static color_maski_fn p_color_mask_indexed_ext, p_color_maski_ext, p_color_maski_oes;
+static get_booleani_fn p_get_boolean_indexed_ext;
+static get_integeri_fn p_get_integeri, p_get_integer_indexed_ext;
+static get_integer64i_fn p_get_integer64i;
+static get_integer64_fn p_get_integer64;
+static get_floati_fn p_get_floati, p_get_floati_ext, p_get_floati_oes, p_get_float_indexed_ext;
+static get_doublei_fn p_get_doublei, p_get_doublei_ext, p_get_double_indexed_ext;
+static clear_color_i_fn p_clear_color_ii, p_clear_colorx, p_clear_colorx_oes;
+static clear_color_ui_fn p_clear_color_iui;
 static blit_fn p_blit;
 static invalidate_fn p_invalidate;
 static invalidate_sub_fn p_invalidate_sub;
@@ -166,6 +182,25 @@ static void load_procs(void) {
     LOOKUP(p_blit_named, "glBlitNamedFramebuffer");
     LOOKUP(p_color_maski, "glColorMaski");
     LOOKUP(p_get_booleani, "glGetBooleani_v");
+    LOOKUP(p_color_mask_indexed_ext, "glColorMaskIndexedEXT");
+    LOOKUP(p_color_maski_ext, "glColorMaskiEXT");
+    LOOKUP(p_color_maski_oes, "glColorMaskiOES");
+    LOOKUP(p_get_boolean_indexed_ext, "glGetBooleanIndexedvEXT");
+    LOOKUP(p_get_integeri, "glGetIntegeri_v");
+    LOOKUP(p_get_integer_indexed_ext, "glGetIntegerIndexedvEXT");
+    LOOKUP(p_get_integer64i, "glGetInteger64i_v");
+    LOOKUP(p_get_integer64, "glGetInteger64v");
+    LOOKUP(p_get_floati, "glGetFloati_v");
+    LOOKUP(p_get_floati_ext, "glGetFloati_vEXT");
+    LOOKUP(p_get_floati_oes, "glGetFloati_vOES");
+    LOOKUP(p_get_float_indexed_ext, "glGetFloatIndexedvEXT");
+    LOOKUP(p_get_doublei, "glGetDoublei_v");
+    LOOKUP(p_get_doublei_ext, "glGetDoublei_vEXT");
+    LOOKUP(p_get_double_indexed_ext, "glGetDoubleIndexedvEXT");
+    LOOKUP(p_clear_color_ii, "glClearColorIiEXT");
+    LOOKUP(p_clear_color_iui, "glClearColorIuiEXT");
+    LOOKUP(p_clear_colorx, "glClearColorx");
+    LOOKUP(p_clear_colorx_oes, "glClearColorxOES");
     LOOKUP(p_blit, "glBlitFramebuffer");
     LOOKUP(p_invalidate, "glInvalidateFramebuffer");
     LOOKUP(p_invalidate_sub, "glInvalidateSubFramebuffer");
@@ -238,6 +273,25 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_clear_color(r, g, b, a) glClearColor((r), (g), (b), (a))
 #define gls_gl_color_maski(i, r, g, b, a) p_color_maski((i), (r), (g), (b), (a))
 #define gls_gl_get_booleani_v(p, i, d) p_get_booleani((p), (i), (d))
+#define gls_gl_color_mask_indexed_ext(i, r, g, b, a) p_color_mask_indexed_ext((i), (r), (g), (b), (a))
+#define gls_gl_color_maski_ext(i, r, g, b, a) p_color_maski_ext((i), (r), (g), (b), (a))
+#define gls_gl_color_maski_oes(i, r, g, b, a) p_color_maski_oes((i), (r), (g), (b), (a))
+#define gls_gl_get_boolean_indexedv_ext(p, i, d) p_get_boolean_indexed_ext((p), (i), (d))
+#define gls_gl_get_integeri_v(p, i, d) p_get_integeri((p), (i), (d))
+#define gls_gl_get_integer_indexedv_ext(p, i, d) p_get_integer_indexed_ext((p), (i), (d))
+#define gls_gl_get_integer64i_v(p, i, d) p_get_integer64i((p), (i), (d))
+#define gls_gl_get_integer64v(p, d) p_get_integer64((p), (d))
+#define gls_gl_get_floati_v(p, i, d) p_get_floati((p), (i), (d))
+#define gls_gl_get_floati_v_ext(p, i, d) p_get_floati_ext((p), (i), (d))
+#define gls_gl_get_floati_v_oes(p, i, d) p_get_floati_oes((p), (i), (d))
+#define gls_gl_get_float_indexedv_ext(p, i, d) p_get_float_indexed_ext((p), (i), (d))
+#define gls_gl_get_doublei_v(p, i, d) p_get_doublei((p), (i), (d))
+#define gls_gl_get_doublei_v_ext(p, i, d) p_get_doublei_ext((p), (i), (d))
+#define gls_gl_get_double_indexedv_ext(p, i, d) p_get_double_indexed_ext((p), (i), (d))
+#define gls_gl_clear_color_ii_ext(r, g, b, a) p_clear_color_ii((r), (g), (b), (a))
+#define gls_gl_clear_color_iui_ext(r, g, b, a) p_clear_color_iui((r), (g), (b), (a))
+#define gls_gl_clear_colorx(r, g, b, a) p_clear_colorx((r), (g), (b), (a))
+#define gls_gl_clear_colorx_oes(r, g, b, a) p_clear_colorx_oes((r), (g), (b), (a))
 #define gls_gl_blit_framebuffer(a, b, c, d, e, f, g, h, m, fl) \
     p_blit((a), (b), (c), (d), (e), (f), (g), (h), (m), (fl))
 #define gls_gl_flush() glFlush()
@@ -706,6 +760,34 @@ static void no_context_cases(void) {
     EXPECT_VOID(0, gls_gl_clear, GL_COLOR_BUFFER_BIT);
     EXPECT_VOID(0, gls_gl_color_maski, 0, 1, 1, 1, 1);
     EXPECT_VOID(0, gls_gl_get_booleani_v, GL_COLOR_WRITEMASK, 0, &bv);
+    EXPECT_VOID(0, gls_gl_color_mask_indexed_ext, 0, 1, 1, 1, 1);
+    EXPECT_VOID(0, gls_gl_color_maski_ext, 0, 1, 1, 1, 1);
+    EXPECT_VOID(0, gls_gl_color_maski_oes, 0, 1, 1, 1, 1);
+    EXPECT_VOID(0, gls_gl_clear_color_ii_ext, 0, 0, 0, 0);
+    EXPECT_VOID(0, gls_gl_clear_color_iui_ext, 0, 0, 0, 0);
+    EXPECT_VOID(0, gls_gl_clear_colorx, 0, 0, 0, 0);
+    EXPECT_VOID(0, gls_gl_clear_colorx_oes, 0, 0, 0, 0);
+    {
+        GLboolean b4[4] = {7, 7, 7, 7};
+        GLint i4[4] = {-5, -5, -5, -5};
+        int64_t l4[4] = {-5, -5, -5, -5};
+        GLfloat f4[4] = {-5, -5, -5, -5};
+        GLdouble d4[4] = {-5, -5, -5, -5};
+        EXPECT_VOID(0, gls_gl_get_boolean_indexedv_ext, GL_COLOR_WRITEMASK, 0, b4);
+        EXPECT_VOID(0, gls_gl_get_integeri_v, GL_COLOR_WRITEMASK, 0, i4);
+        EXPECT_VOID(0, gls_gl_get_integer_indexedv_ext, GL_COLOR_WRITEMASK, 0, i4);
+        EXPECT_VOID(0, gls_gl_get_integer64i_v, GL_COLOR_WRITEMASK, 0, l4);
+        EXPECT_VOID(0, gls_gl_get_integer64v, GL_COLOR_WRITEMASK, l4);
+        EXPECT_VOID(0, gls_gl_get_floati_v, GL_COLOR_WRITEMASK, 0, f4);
+        EXPECT_VOID(0, gls_gl_get_floati_v_ext, GL_COLOR_WRITEMASK, 0, f4);
+        EXPECT_VOID(0, gls_gl_get_floati_v_oes, GL_COLOR_WRITEMASK, 0, f4);
+        EXPECT_VOID(0, gls_gl_get_float_indexedv_ext, GL_COLOR_WRITEMASK, 0, f4);
+        EXPECT_VOID(0, gls_gl_get_doublei_v, GL_COLOR_WRITEMASK, 0, d4);
+        EXPECT_VOID(0, gls_gl_get_doublei_v_ext, GL_COLOR_WRITEMASK, 0, d4);
+        EXPECT_VOID(0, gls_gl_get_double_indexedv_ext, GL_COLOR_WRITEMASK, 0, d4);
+        CHECK(b4[0] == 7 && i4[0] == -5 && l4[0] == -5 && f4[0] == -5.0f && d4[0] == -5.0,
+              "indexed outputs written with no context");
+    }
     EXPECT_VOID(0, gls_gl_blit_framebuffer, 0, 0, 1, 1, 0, 0, 1, 1, GL_COLOR_BUFFER_BIT,
                 GL_NEAREST);
     EXPECT_VOID0(0, gls_gl_flush);
@@ -731,6 +813,30 @@ static void null_gl_pointers(const char *where) {
     EXPECT_VOID(1, gls_gl_get_doublev, GL_STEREO, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_get_booleani_v, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_boolean_indexedv_ext, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_integeri_v, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_integer_indexedv_ext, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_integer64i_v, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_integer64v, GL_STEREO, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_floati_v, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_floati_v_ext, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_floati_v_oes, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_float_indexedv_ext, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_doublei_v, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_doublei_v_ext, GL_COLOR_WRITEMASK, 0, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_double_indexedv_ext, GL_COLOR_WRITEMASK, 0, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_draw_buffers, 1, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
@@ -866,6 +972,78 @@ static void stereo_gl_cases(void *ctx) {
     CHECK(mask4[0] == 1 && mask4[1] == 0 && mask4[2] == 1 && mask4[3] == 0,
           "GL_COLOR_WRITEMASK %d%d%d%d", mask4[0], mask4[1], mask4[2], mask4[3]);
     EXPECT_VOID(0, gls_gl_color_mask, 1, 1, 1, 1);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
+    /* The other names of glColorMaski, and every indexed query: a bad
+     * index or pname is GL's error; GL_COLOR_WRITEMASK is the program's. */
+    EXPECT_VOID(0, gls_gl_color_mask_indexed_ext, 0x7777, 1, 1, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_color_maski_ext, 0x7777, 1, 1, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_color_maski_oes, 0x7777, 1, 1, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    {
+        GLboolean b4[4] = {7, 7, 7, 7};
+        GLint i4[4] = {7, 7, 7, 7}, i4b[4] = {7, 7, 7, 7};
+        int64_t l4[4] = {7, 7, 7, 7}, l4b[4] = {7, 7, 7, 7};
+        GLfloat f4[4] = {7, 7, 7, 7}, f4b[4] = {7, 7, 7, 7}, f4c[4] = {7, 7, 7, 7};
+        GLfloat f4d[4] = {7, 7, 7, 7};
+        GLdouble d4[4] = {7, 7, 7, 7}, d4b[4] = {7, 7, 7, 7}, d4c[4] = {7, 7, 7, 7};
+        EXPECT_VOID(0, gls_gl_get_boolean_indexedv_ext, 0x7777, 0, b4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_integeri_v, 0x7777, 0, i4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_integer_indexedv_ext, 0x7777, 0, i4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_integer64i_v, 0x7777, 0, l4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_integer64v, 0x7777, l4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_floati_v, 0x7777, 0, f4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_floati_v_ext, 0x7777, 0, f4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_floati_v_oes, 0x7777, 0, f4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_float_indexedv_ext, 0x7777, 0, f4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_doublei_v, 0x7777, 0, d4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_doublei_v_ext, 0x7777, 0, d4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_get_double_indexedv_ext, 0x7777, 0, d4);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+        EXPECT_VOID(0, gls_gl_color_maski_oes, 1, 0, 1, 1, 0);
+        EXPECT_VOID(0, gls_gl_color_maski_ext, 0, 1, 0, 1, 1);
+        EXPECT_VOID(0, gls_gl_get_boolean_indexedv_ext, GL_COLOR_WRITEMASK, 1, b4);
+        EXPECT_VOID(0, gls_gl_get_integeri_v, GL_COLOR_WRITEMASK, 1, i4);
+        EXPECT_VOID(0, gls_gl_get_integer_indexedv_ext, GL_COLOR_WRITEMASK, 0, i4b);
+        EXPECT_VOID(0, gls_gl_get_integer64i_v, GL_COLOR_WRITEMASK, 1, l4);
+        EXPECT_VOID(0, gls_gl_get_integer64v, GL_COLOR_WRITEMASK, l4b);
+        EXPECT_VOID(0, gls_gl_get_floati_v, GL_COLOR_WRITEMASK, 1, f4);
+        EXPECT_VOID(0, gls_gl_get_floati_v_ext, GL_COLOR_WRITEMASK, 0, f4b);
+        EXPECT_VOID(0, gls_gl_get_floati_v_oes, GL_COLOR_WRITEMASK, 1, f4c);
+        EXPECT_VOID(0, gls_gl_get_float_indexedv_ext, GL_COLOR_WRITEMASK, 0, f4d);
+        EXPECT_VOID(0, gls_gl_get_doublei_v, GL_COLOR_WRITEMASK, 1, d4);
+        EXPECT_VOID(0, gls_gl_get_doublei_v_ext, GL_COLOR_WRITEMASK, 0, d4b);
+        EXPECT_VOID(0, gls_gl_get_double_indexedv_ext, GL_COLOR_WRITEMASK, 1, d4c);
+        EXPECT_GL_ERROR(GL_NO_ERROR);
+        /* Buffer 1 is 0110, buffer 0 is 1011 (alpha written: the
+         * program's mask, whatever the driver's). */
+        CHECK(b4[0] == 0 && b4[1] == 1 && b4[2] == 1 && b4[3] == 0, "index 1 mask (boolean)");
+        CHECK(i4[0] == 0 && i4[1] == 1 && i4[2] == 1 && i4[3] == 0, "index 1 mask (integer)");
+        CHECK(i4b[0] == 1 && i4b[1] == 0 && i4b[2] == 1 && i4b[3] == 1, "index 0 mask (EXT)");
+        CHECK(l4[0] == 0 && l4[1] == 1 && l4[2] == 1 && l4[3] == 0, "index 1 mask (int64)");
+        CHECK(l4b[0] == 1 && l4b[1] == 0 && l4b[2] == 1 && l4b[3] == 1, "mask (glGetInteger64v)");
+        CHECK(f4[1] == 1.0f && f4[3] == 0.0f && f4b[3] == 1.0f && f4c[3] == 0.0f &&
+                  f4d[3] == 1.0f,
+              "masks (float)");
+        CHECK(d4[1] == 1.0 && d4[3] == 0.0 && d4b[3] == 1.0 && d4c[3] == 0.0, "masks (double)");
+    }
+    EXPECT_VOID(0, gls_gl_color_mask, 1, 1, 1, 1);
+    EXPECT_VOID(0, gls_gl_clear_color_ii_ext, 1, 2, 3, 4);
+    EXPECT_VOID(0, gls_gl_clear_color_iui_ext, 1, 2, 3, 4);
+    EXPECT_VOID(0, gls_gl_clear_colorx, 0x8000, 0x8000, 0x8000, 0x8000);
+    EXPECT_VOID(0, gls_gl_clear_colorx_oes, -0x8000, 0x20000, 0, 0);
     EXPECT_GL_ERROR(GL_NO_ERROR);
     EXPECT_VOID(0, gls_gl_clear, 0x7777 << 16);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
