@@ -8,6 +8,15 @@
 //! *slot*; a swap exchanges which slot is "front" and which is "back" for
 //! each eye and re-issues glDrawBuffers/glReadBuffer, so presenting a frame
 //! copies nothing.
+//!
+//! Where the driver allows (llvmpipe) and the formats ask for it
+//! ([`BufferFormats::in_place`]), the colour textures' storage is memory
+//! the CPU maps too ([`crate::stereo::eye_memory`]), so a composite reads
+//! the eyes where they were drawn ([`EmulatedFramebuffer::pixels`]).
+//! Such storage is immutable: a resize replaces the textures, the
+//! program's framebuffer object takes the new ones
+//! ([`EmulatedFramebuffer::reattach_app`]) and the old memory is freed
+//! once nothing renders into it ([`EmulatedFramebuffer::release_retired`]).
 
 use crate::error::{Error, Result};
 use crate::gl::Gl;
