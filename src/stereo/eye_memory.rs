@@ -532,6 +532,171 @@ impl<'a> Rows<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::backend::{BackendChoice, BackendKind, ContextRole, PlatformSurface};
+    use crate::config::glx::GLX_RGBA;
+    use crate::display::Display;
+    use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
+    use crate::stereo::emulated::{BufferFormats, EmulatedFramebuffer};
+    use std::sync::Arc;
+
+    /// An EGL context of its own (llvmpipe on the machines this project
+    /// runs on), current on this thread while alive, and its
+    /// memory-object API.
+    struct Context {
+        gl: Arc<Gl>,
+        api: MemoryObjectApi,
+        surface: Box<dyn PlatformSurface>,
+        _display: Arc<Display>,
+    }
+
+    impl Drop for Context {
+        fn drop(&mut self) {
+            let _ = self.surface.release_current();
+        }
+    }
+
+    fn context() -> Context {
+        let display = Display::open(BackendChoice::Only(BackendKind::Egl)).expect("EGL");
+        let config = display.choose_config(&[GLX_RGBA]).unwrap();
+        let surface = display.platform().create_surface(&config, 1, 1).unwrap();
+        surface.make_current(ContextRole::Compositor).unwrap();
+        let gl = display.gl().unwrap();
+        // SAFETY: the platform's GetProcAddress.
+        let api = unsafe { MemoryObjectApi::load(|n| display.platform().get_proc_address(n)) }
+            .expect("GL_EXT_memory_object's functions");
+        Context {
+            gl,
+            api,
+            surface,
+            _display: display,
+        }
+    }
+
+    /// `tex`'s pixels as glReadPixels gives them (rows bottom first).
+    unsafe fn read_back(gl: &Gl, fbo: u32, tex: u32, w: u32, h: u32) -> Vec<u8> {
+        let mut out = vec![0; (w * h * 4) as usize];
+        // SAFETY: contract; `out` holds w × h × 4 bytes.
+        unsafe {
+            gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+            gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+            gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+            gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+            gl.ReadPixels(
+                0,
+                0,
+                w as i32,
+                h as i32,
+                GL_RGBA,
+                GL_UNSIGNED_BYTE,
+                out.as_mut_ptr().cast(),
+            );
+            gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        }
+        out
+    }
+
+    #[test]
+    fn llvmpipe_draws_into_memory_the_cpu_reads_as_gl_reads_it_back() {
+        let cx = context();
+        let gl = &*cx.gl;
+        // SAFETY: the context is current.
+        unsafe {
+            let uuid = llvmpipe_identity(gl).expect("llvmpipe with GL_EXT_memory_object_fd");
+            let fbo = gl.gen_framebuffer();
+            // Odd sizes: rows padded to 4 texels and to cache lines.
+            for (w, h) in [(37, 5), (1, 1), (130, 3)] {
+                let tex = gl.gen_texture();
+                let m = TextureMemory::create(gl, &cx.api, &uuid, tex, w, h).expect("made");
+                assert!(
+                    m.verify(gl, tex, fbo),
+                    "{w}x{h}: the layout is the predicted one"
+                );
+                // Something of every row and column: a clear and a scissored box.
+                gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+                gl.FramebufferTexture2D(
+                    GL_FRAMEBUFFER,
+                    GL_COLOR_ATTACHMENT0,
+                    GL_TEXTURE_2D,
+                    tex,
+                    0,
+                );
+                gl.ClearColor(0.2, 0.4, 0.6, 0.8);
+                gl.Clear(GL_COLOR_BUFFER_BIT);
+                gl.Enable(GL_SCISSOR_TEST);
+                gl.Scissor(w as i32 / 3, h as i32 / 2, w.div_ceil(2) as i32, 1);
+                gl.ClearColor(1.0, 0.0, 0.5, 1.0);
+                gl.Clear(GL_COLOR_BUFFER_BIT);
+                gl.Disable(GL_SCISSOR_TEST);
+                gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+                gl.Finish();
+                let want = read_back(gl, fbo, tex, w, h);
+                let px = m.pixels(tex);
+                let rows = px.rect(0, 0, w, h).expect("inside");
+                let got: Vec<u8> = (0..h).flat_map(|k| rows.row(k).to_vec()).collect();
+                assert_eq!(got, want, "{w}x{h}: in place vs read back");
+                assert!(px.rect(1, 0, w, h).is_none(), "a rectangle past the edge");
+                gl.DeleteTextures(1, &tex);
+                m.release(&cx.api);
+            }
+            gl.DeleteFramebuffers(1, &fbo);
+        }
+    }
+
+    #[test]
+    fn memory_the_driver_does_not_recognise_fails_the_check() {
+        let cx = context();
+        let gl = &*cx.gl;
+        // SAFETY: the context is current.
+        unsafe {
+            let fbo = gl.gen_framebuffer();
+            let tex = gl.gen_texture();
+            // Another driver's identity: llvmpipe refuses the import.
+            let wrong = [0x5A; 16];
+            if let Some(m) = TextureMemory::create(gl, &cx.api, &wrong, tex, 16, 16) {
+                assert!(!m.verify(gl, tex, fbo), "a refused import is not used");
+                gl.DeleteTextures(1, &tex);
+                m.release(&cx.api);
+            }
+            gl.take_error();
+            gl.DeleteFramebuffers(1, &fbo);
+        }
+    }
+
+    #[test]
+    fn an_emulated_framebuffer_in_memory_is_replaced_on_resize() {
+        let cx = context();
+        let gl = &*cx.gl;
+        let shape = FramebufferShape {
+            stereo: true,
+            double_buffered: true,
+        };
+        let formats = BufferFormats {
+            in_place: Some(cx.api),
+            ..BufferFormats::matching(0, 24, 0)
+        };
+        // SAFETY: the context is current.
+        unsafe {
+            let mut fb = EmulatedFramebuffer::allocate_with(gl, shape, 20, 10, formats).unwrap();
+            let before = fb.texture(ColorBuffer::BackLeft);
+            let px = fb.pixels(ColorBuffer::BackLeft).expect("in place");
+            assert_eq!(px.texture, before);
+            // Cleared to opaque black at allocation (a visual without alpha).
+            gl.Finish();
+            let rows = px.rect(0, 0, 20, 10).unwrap();
+            assert!((0..10).all(|k| rows.row(k).chunks(4).all(|p| p == [0, 0, 0, 255])));
+            fb.resize(gl, 30, 12).unwrap();
+            let after = fb.texture(ColorBuffer::BackLeft);
+            assert_ne!(after, before, "immutable storage: a new texture");
+            let px = fb
+                .pixels(ColorBuffer::BackRight)
+                .expect("in place after the resize");
+            assert!(px.rect(0, 0, 30, 12).is_some() && px.rect(0, 0, 31, 12).is_none());
+            gl.Finish();
+            fb.release_retired(gl);
+            fb.release(gl);
+        }
+    }
 
     fn hex(b: &[u8]) -> String {
         b.iter().map(|x| format!("{x:02x}")).collect()
