@@ -141,11 +141,9 @@ pub const DEFAULT_OUTPUT: OutputMode =
 
 /// The mutable state of a surface.
 struct SurfaceState {
-    /// The eye buffers. Their GL objects go with the surface's contexts,
-    /// and so does eye memory ([`crate::stereo::eye_memory`]): Mesa
-    /// deletes the share group's memory objects (unmapping its view), and
-    /// dropping the framebuffer unmaps the library's
-    /// (tests/eye_memory.rs checks that none is left).
+    /// The eye buffers. Their GL objects go with the surface's contexts;
+    /// eye memory ([`crate::stereo::eye_memory`]) is freed before (see
+    /// `Drop for Surface`).
     fb: EmulatedFramebuffer,
     /// How the program delivers its eyes.
     framing: InputFraming,
@@ -183,6 +181,42 @@ pub struct Surface {
     state: Mutex<SurfaceState>,
     /// The capture encoder and writer threads, started by the first queued capture.
     captures: Mutex<Option<crate::capture::queue::CaptureQueue>>,
+}
+
+impl Drop for Surface {
+    /// Frees eye memory ([`crate::stereo::eye_memory`]) before the contexts
+    /// go: the application context's rendering is finished first. Left to
+    /// context destruction, Mesa unmaps the memory with the share group
+    /// while llvmpipe may still be rasterizing a swapped frame into it (a
+    /// headless swap only flushes): a crash in its rasterizer threads.
+    /// Nothing else needs a context: the GL objects go with the contexts.
+    /// No context of the surface is current anywhere now (a thread's
+    /// current surface holds a reference to it).
+    fn drop(&mut self) {
+        let st = self.state.get_mut().unwrap_or_else(|e| e.into_inner());
+        if !st.fb.holds_memory() {
+            return;
+        }
+        let (platform, gl) = (&*self.platform, &self.gl);
+        let mut release = || {
+            platform.make_current(ContextRole::App)?;
+            // SAFETY: the application context is current.
+            unsafe { gl.Finish() };
+            platform.make_current(ContextRole::Compositor)?;
+            // SAFETY: the compositor context is current; `fb.release`
+            // finishes its work before it frees the memory.
+            unsafe { st.fb.release(gl) };
+            Ok(())
+        };
+        // A thread whose current surface is being dropped with its
+        // thread-local state has nothing current to put back.
+        if CURRENT.try_with(|_| ()).is_ok() {
+            let _ = with_compositor_of(&self.display, platform, release);
+        } else {
+            let _ = release();
+            let _ = platform.release_current();
+        }
+    }
 }
 
 impl std::fmt::Debug for Surface {
