@@ -1020,7 +1020,9 @@ unsafe fn read_eye(gl: &Gl, st: &SurfaceState, buffer: ColorBuffer, out: &mut [u
         return Ok(());
     }
     // SAFETY: contract.
-    unsafe { st.fb.read_pixels(gl, buffer, out) }
+    profile::span(Stage::ReadBack, || unsafe {
+        st.fb.read_pixels(gl, buffer, out)
+    })
 }
 
 fn record_gl_error(st: &mut SurfaceState, r: &Result<()>) {
