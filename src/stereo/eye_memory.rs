@@ -23,6 +23,12 @@
 //! and the texture is an ordinary one read back as before; after one
 //! failed check no more are tried in the process.
 //! `GLSTEREO_EYE_MEMORY=0` turns the in-place reads off (for comparing).
+//!
+//! The library's own surfaces (`src/surface.rs`) make their eyes this way
+//! too: a window composes from them, and captures and read-backs copy them
+//! once (rows flipped on the way) instead of glReadPixels — when the
+//! program's context is current on the calling thread (so it is finished
+//! there first); otherwise they are read back by GL, which synchronises.
 
 use std::ffi::{CStr, c_void};
 use std::sync::atomic::{AtomicBool, Ordering};
