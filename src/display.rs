@@ -8,6 +8,7 @@ use crate::backend::{self, BackendChoice, BackendKind, Platform};
 use crate::config::{Config, ConfigRequest, EmulationPolicy};
 use crate::error::{Error, Result};
 use crate::gl::Gl;
+use crate::stereo::eye_memory::MemoryObjectApi;
 use crate::surface::Surface;
 
 /// A backend connection. Shared (`Arc`) by the surfaces made on it, which
@@ -15,6 +16,10 @@ use crate::surface::Surface;
 pub struct Display {
     platform: Box<dyn Platform>,
     gl: OnceLock<Arc<Gl>>,
+    /// GL_EXT_memory_object(_fd), loaded with the GL table (None where the
+    /// driver lacks it): surfaces' eyes read in place
+    /// ([`crate::stereo::eye_memory`]).
+    memory_objects: OnceLock<Option<MemoryObjectApi>>,
     id: u64,
 }
 
@@ -44,6 +49,7 @@ impl Display {
         Ok(Arc::new(Display {
             platform: backend::open(choice)?,
             gl: OnceLock::new(),
+            memory_objects: OnceLock::new(),
             id: next_id(),
         }))
     }
@@ -53,6 +59,7 @@ impl Display {
         Ok(Arc::new(Display {
             platform: Box::new(backend::glx::GlxPlatform::open(name)?),
             gl: OnceLock::new(),
+            memory_objects: OnceLock::new(),
             id: next_id(),
         }))
     }
@@ -82,6 +89,18 @@ impl Display {
         let gl =
             Arc::new(unsafe { Gl::load_current(|name| self.platform.get_proc_address(name))? });
         Ok(self.gl.get_or_init(|| gl).clone())
+    }
+
+    /// GL_EXT_memory_object(_fd)'s entry points of this backend, loaded on
+    /// first use (None where any is missing; whether the driver takes
+    /// memory is checked when a framebuffer is made, see
+    /// [`crate::stereo::eye_memory`]).
+    pub(crate) fn memory_objects(&self) -> Option<MemoryObjectApi> {
+        *self.memory_objects.get_or_init(|| {
+            // SAFETY: the backend's GetProcAddress returns its GL functions
+            // (or NULL).
+            unsafe { MemoryObjectApi::load(|name| self.platform.get_proc_address(name)) }
+        })
     }
 
     /// Chooses a configuration for a glXChooseVisual attribute list (without

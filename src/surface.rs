@@ -24,7 +24,7 @@ use crate::output::{AnaglyphColors, AnaglyphMethod, OutputMode, cpu};
 use crate::profile::{self, Stage};
 use crate::shims::nv3dvision::StereoSettings;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code, resolve_read_buffer};
-use crate::stereo::emulated::{EmulatedFramebuffer, default_framebuffer_query};
+use crate::stereo::emulated::{BufferFormats, EmulatedFramebuffer, default_framebuffer_query};
 
 // Captures without a stall: PNGs and stereo photos written by threads, and
 // the stereo photos themselves (src/surface/captures.rs).
@@ -117,13 +117,18 @@ pub fn make_current(surface: Option<&Arc<Surface>>) -> Result<()> {
     *s.owner.recover() = Some(me);
     CURRENT.with(|c| *c.borrow_mut() = Some((s.clone(), ContextRole::App)));
     let mut st = s.state.recover();
-    if st.fb.app_fbo() == 0 {
-        // SAFETY: the application context was just made current.
-        if let Err(e) = unsafe { st.fb.attach_app(&s.gl) } {
-            drop(st);
-            let _ = make_current(None);
-            return Err(e);
-        }
+    // SAFETY (both): the application context was just made current.
+    let attached = if st.fb.app_fbo() == 0 {
+        unsafe { st.fb.attach_app(&s.gl) }
+    } else {
+        // Eye textures replaced by a resize whose re-attachment failed at
+        // the swap (see Surface::reattach_replaced_eyes) get another try.
+        unsafe { st.fb.reattach_app(&s.gl) }
+    };
+    if let Err(e) = attached {
+        drop(st);
+        let _ = make_current(None);
+        return Err(e);
     }
     Ok(())
 }
@@ -136,6 +141,9 @@ pub const DEFAULT_OUTPUT: OutputMode =
 
 /// The mutable state of a surface.
 struct SurfaceState {
+    /// The eye buffers. Their GL objects go with the surface's contexts;
+    /// eye memory ([`crate::stereo::eye_memory`]) is freed before (see
+    /// `Drop for Surface`).
     fb: EmulatedFramebuffer,
     /// How the program delivers its eyes.
     framing: InputFraming,
@@ -156,6 +164,11 @@ struct SurfaceState {
     nv3dvision: StereoSettings,
     /// JPEG quality of stereo photos (MPO, JPS), 1 … 100.
     jpeg_quality: u8,
+    /// The application context's rendering is finished (glFinish) for the
+    /// compositor call running now: the CPU may read eyes in place
+    /// ([`crate::stereo::eye_memory`]). Set by
+    /// [`Surface::with_compositor`] around its closure only.
+    eyes_finished: bool,
 }
 
 /// A stereo (or mono) surface: emulated default framebuffer, two contexts.
@@ -168,6 +181,42 @@ pub struct Surface {
     state: Mutex<SurfaceState>,
     /// The capture encoder and writer threads, started by the first queued capture.
     captures: Mutex<Option<crate::capture::queue::CaptureQueue>>,
+}
+
+impl Drop for Surface {
+    /// Frees eye memory ([`crate::stereo::eye_memory`]) before the contexts
+    /// go: the application context's rendering is finished first. Left to
+    /// context destruction, Mesa unmaps the memory with the share group
+    /// while llvmpipe may still be rasterizing a swapped frame into it (a
+    /// headless swap only flushes): a crash in its rasterizer threads.
+    /// Nothing else needs a context: the GL objects go with the contexts.
+    /// No context of the surface is current anywhere now (a thread's
+    /// current surface holds a reference to it).
+    fn drop(&mut self) {
+        let st = self.state.get_mut().unwrap_or_else(|e| e.into_inner());
+        if !st.fb.holds_memory() {
+            return;
+        }
+        let (platform, gl) = (&*self.platform, &self.gl);
+        let mut release = || {
+            platform.make_current(ContextRole::App)?;
+            // SAFETY: the application context is current.
+            unsafe { gl.Finish() };
+            platform.make_current(ContextRole::Compositor)?;
+            // SAFETY: the compositor context is current; `fb.release`
+            // finishes its work before it frees the memory.
+            unsafe { st.fb.release(gl) };
+            Ok(())
+        };
+        // A thread whose current surface is being dropped with its
+        // thread-local state has nothing current to put back.
+        if CURRENT.try_with(|_| ()).is_ok() {
+            let _ = with_compositor_of(&self.display, platform, release);
+        } else {
+            let _ = release();
+            let _ = platform.release_current();
+        }
+    }
 }
 
 impl std::fmt::Debug for Surface {
@@ -241,17 +290,20 @@ impl Surface {
         let shape = config.shape();
         let (fb, gl) = with_compositor_of(&display, &*platform, || {
             let gl = display.gl()?;
-            // SAFETY: the compositor context is current.
-            let fb = unsafe {
-                EmulatedFramebuffer::allocate(
-                    &gl,
-                    shape,
-                    width,
-                    height,
-                    config.depth_bits,
-                    config.stencil_bits,
-                )?
+            // Eyes the CPU reads where llvmpipe draws them, where it can
+            // (checked when made; ordinary textures otherwise).
+            let formats = BufferFormats {
+                in_place: display.memory_objects(),
+                ..BufferFormats::surface(config.depth_bits, config.stencil_bits)
             };
+            // SAFETY: the compositor context is current.
+            let fb =
+                unsafe { EmulatedFramebuffer::allocate_with(&gl, shape, width, height, formats)? };
+            if fb.holds_memory() {
+                // The clears of the new eyes land before the CPU reads them.
+                // SAFETY: as above.
+                unsafe { gl.Finish() };
+            }
             Ok((fb, gl))
         })?;
         Ok(Arc::new(Surface {
@@ -271,6 +323,7 @@ impl Surface {
                 compositor: GlCompositor::new(),
                 nv3dvision: StereoSettings::new(false),
                 jpeg_quality: crate::capture::stereo_photo::DEFAULT_JPEG_QUALITY,
+                eyes_finished: false,
             }),
             captures: Mutex::new(None),
         }))
@@ -340,13 +393,31 @@ impl Surface {
         self: &Arc<Self>,
         f: impl FnOnce(&Gl, &mut SurfaceState) -> Result<T>,
     ) -> Result<T> {
-        if self.is_current_here() {
+        self.with_compositor_as(false, f)
+    }
+
+    /// [`Surface::with_compositor`]; `finished`: the caller finished the
+    /// application context's rendering itself. When it is finished either
+    /// way, `f` sees [`SurfaceState::eyes_finished`] and may read eyes in
+    /// place; otherwise (the surface is current on another thread, or on
+    /// none) they are read back by GL, which synchronises.
+    fn with_compositor_as<T>(
+        self: &Arc<Self>,
+        finished: bool,
+        f: impl FnOnce(&Gl, &mut SurfaceState) -> Result<T>,
+    ) -> Result<T> {
+        let here = self.is_current_here();
+        if here {
             // SAFETY: the application context is current; objects it renders
             // to are only guaranteed visible to another context after Finish.
             profile::span(Stage::Finish, || unsafe { self.gl.Finish() });
         }
         with_compositor_of(&self.display, &*self.platform, || {
-            f(&self.gl, &mut self.state.recover())
+            let mut st = self.state.recover();
+            st.eyes_finished = here || finished;
+            let r = f(&self.gl, &mut st);
+            st.eyes_finished = false;
+            r
         })
     }
 
@@ -511,12 +582,20 @@ impl Surface {
 
     /// [`Surface::swap_buffers`], between the profile's frame marks.
     fn swap_and_show(self: &Arc<Self>) -> Result<()> {
+        // Made current here just for the swap, the application context is
+        // finished before it is released when the window reads its eyes in
+        // place (when current here, with_compositor finishes it).
+        let here = self.is_current_here();
         profile::span(Stage::Flip, || {
             self.with_app(|st| {
                 // SAFETY: with_app made the application context current.
                 unsafe {
                     st.fb.swap(&self.gl);
-                    self.gl.Flush();
+                    if here || !st.fb.holds_memory() {
+                        self.gl.Flush();
+                    } else {
+                        self.gl.Finish();
+                    }
                 }
                 st.frames += 1;
                 Ok(())
@@ -524,7 +603,7 @@ impl Surface {
         })?;
         if let Some((width, height)) = self.platform.drawable_size() {
             let mode = self.effective_output();
-            return self.with_compositor(|gl, st| {
+            let shown = self.with_compositor_as(!here, |gl, st| {
                 let resized = st.window != Some((width, height));
                 let job = gl_job(st, mode);
                 // A software renderer's frame goes to the window as pixels
@@ -570,12 +649,43 @@ impl Surface {
                     if (fw, fh) != st.fb.size() {
                         // SAFETY: the compositor context is current.
                         unsafe { st.fb.resize(gl, fw, fh)? };
+                        if st.fb.holds_memory() {
+                            // The clears of the new eyes land before the
+                            // CPU reads them.
+                            // SAFETY: as above.
+                            unsafe { gl.Finish() };
+                        }
                     }
                 }
                 Ok(())
             });
+            // A resize replaced eye textures made from memory: the program
+            // draws its next frame into the new ones.
+            let reattached = self.reattach_replaced_eyes();
+            return shown.and(reattached);
         }
         self.platform.present()
+    }
+
+    /// After a resize replaced eye textures made from memory
+    /// ([`crate::stereo::eye_memory`]; their storage is immutable), attaches
+    /// the new ones to the application context's framebuffer object, and
+    /// frees the old memory once that context has finished with it.
+    fn reattach_replaced_eyes(self: &Arc<Self>) -> Result<()> {
+        if !self.state.recover().fb.attachments_stale() {
+            return Ok(());
+        }
+        self.with_app(|st| {
+            // SAFETY: with_app made the application context current; the
+            // compositor context finished its work when it resized (and the
+            // memory check before).
+            unsafe {
+                let reattached = st.fb.reattach_app(&self.gl);
+                self.gl.Finish();
+                st.fb.release_retired(&self.gl);
+                reattached
+            }
+        })
     }
 
     /// Reads one colour buffer (glReadBuffer naming rules: GL_FRONT is
@@ -591,7 +701,7 @@ impl Surface {
             let (w, h) = st.fb.size();
             let mut img = Image::try_new(w, h)?;
             // SAFETY: the compositor context is current; the image has w×h×4 bytes.
-            unsafe { st.fb.read_pixels(gl, buffer, img.pixels_mut())? };
+            unsafe { read_eye(gl, st, buffer, img.pixels_mut())? };
             Ok(img)
         })?;
         if self.config.request.color[3] == 0 {
@@ -867,15 +977,21 @@ pub enum CaptureImage {
     Composite,
 }
 
-/// The GL compositor's job for the front buffers as they are now.
+/// The GL compositor's job for the front buffers as they are now. Eyes
+/// are read in place only when the application's rendering is finished
+/// ([`SurfaceState::eyes_finished`]).
 fn gl_job(st: &SurfaceState, mode: OutputMode) -> Job {
-    Job::front_buffers(
+    let mut job = Job::front_buffers(
         &st.fb,
         st.framing,
         mode,
         st.options,
         st.frames.saturating_sub(1),
-    )
+    );
+    if !st.eyes_finished {
+        job.in_place = [None; 2];
+    }
+    job
 }
 
 /// The mode a composite is made in: `quad` falls back to [`DEFAULT_OUTPUT`]
@@ -885,6 +1001,28 @@ fn effective_mode(mode: OutputMode, config: &Config) -> OutputMode {
         OutputMode::Quad if config.stereo != StereoKind::Native => DEFAULT_OUTPUT,
         m => m,
     }
+}
+
+/// Reads colour buffer `buffer` into `out` (RGBA8, rows top first): from
+/// where the driver drew it when it is in place and the application's
+/// rendering is finished ([`SurfaceState::eyes_finished`]; one copy that
+/// also flips the rows), else by glReadPixels.
+///
+/// # Safety
+/// The compositor context is current; `out` holds width × height × 4 bytes.
+unsafe fn read_eye(gl: &Gl, st: &SurfaceState, buffer: ColorBuffer, out: &mut [u8]) -> Result<()> {
+    let (w, h) = st.fb.size();
+    let placed = st.fb.pixels(buffer).filter(|_| st.eyes_finished);
+    // SAFETY: finished (checked), and used before any resize or release
+    // (the state is locked).
+    if let Some(rows) = placed.as_ref().and_then(|p| unsafe { p.rect(0, 0, w, h) }) {
+        profile::span(Stage::ReadBack, || rows.copy_to(out, true));
+        return Ok(());
+    }
+    // SAFETY: contract.
+    profile::span(Stage::ReadBack, || unsafe {
+        st.fb.read_pixels(gl, buffer, out)
+    })
 }
 
 fn record_gl_error(st: &mut SurfaceState, r: &Result<()>) {

@@ -337,6 +337,17 @@ impl WindowPaths {
         for (i, rect) in job.eyes.iter().enumerate().take(if same { 1 } else { 2 }) {
             let img = &mut self.eyes[i];
             img.resize(w, h, "read-back eye")?;
+            // SAFETY: the present (or capture) finished the rendering into
+            // the eyes, and the rows are used here, before any resize
+            // (contract).
+            if let Some(rows) = unsafe { job.rows_in_place(rect, w, h) } {
+                // One copy from where the driver drew, flipped on the way
+                // when the composite wants rows top first.
+                profile::span(Stage::ReadBack, || {
+                    rows.copy_to(img.pixels_mut(), order.is_none())
+                });
+                continue;
+            }
             // SAFETY: the compositor context is current (contract); the
             // image holds w×h×4 bytes.
             profile::span(Stage::ReadBack, || unsafe {

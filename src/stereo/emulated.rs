@@ -506,6 +506,12 @@ impl EmulatedFramebuffer {
         }
     }
 
+    /// Whether any colour texture's storage (or a replaced one's, not yet
+    /// freed) is memory from [`crate::stereo::eye_memory`].
+    pub fn holds_memory(&self) -> bool {
+        self.memory.iter().any(Option::is_some) || !self.retired.is_empty()
+    }
+
     /// Where the CPU reads `buffer` in place, when its storage is memory
     /// ([`crate::stereo::eye_memory`]).
     pub fn pixels(&self, buffer: ColorBuffer) -> Option<EyePixels> {

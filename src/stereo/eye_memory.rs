@@ -23,6 +23,12 @@
 //! and the texture is an ordinary one read back as before; after one
 //! failed check no more are tried in the process.
 //! `GLSTEREO_EYE_MEMORY=0` turns the in-place reads off (for comparing).
+//!
+//! The library's own surfaces (`src/surface.rs`) make their eyes this way
+//! too: a window composes from them, and captures and read-backs copy them
+//! once (rows flipped on the way) instead of glReadPixels — when the
+//! program's context is current on the calling thread (so it is finished
+//! there first); otherwise they are read back by GL, which synchronises.
 
 use std::ffi::{CStr, c_void};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -527,6 +533,18 @@ impl<'a> Rows<'a> {
     pub fn height(&self) -> u32 {
         self.height
     }
+
+    /// Copies the rows, packed, into `out` (height × row bytes long): in
+    /// their order, or reversed when `flip` (GL's bottom-first rows become
+    /// an image's top-first ones in the same pass).
+    pub fn copy_to(&self, out: &mut [u8], flip: bool) {
+        let n = self.row_bytes;
+        assert_eq!(out.len(), n * self.height as usize, "rows copied");
+        for (k, dst) in out.chunks_exact_mut(n).enumerate() {
+            let k = k as u32;
+            dst.copy_from_slice(self.row(if flip { self.height - 1 - k } else { k }));
+        }
+    }
 }
 
 #[cfg(test)]
@@ -753,6 +771,23 @@ mod tests {
         assert_eq!(cache_lines(predicted_stride(400)), 1600);
         assert_eq!(cache_lines(predicted_stride(1)), 64);
         assert_eq!(cache_lines(predicted_stride(17)), 128);
+    }
+
+    #[test]
+    fn rows_are_copied_packed_in_order_or_flipped() {
+        // Two rows of one texel each, 8 bytes apart (4 bytes of padding).
+        let data = [1, 2, 3, 4, 0, 0, 0, 0, 5, 6, 7, 8];
+        let rows = Rows {
+            data: &data,
+            stride: 8,
+            row_bytes: 4,
+            height: 2,
+        };
+        let mut out = [0; 8];
+        rows.copy_to(&mut out, false);
+        assert_eq!(out, [1, 2, 3, 4, 5, 6, 7, 8]);
+        rows.copy_to(&mut out, true);
+        assert_eq!(out, [5, 6, 7, 8, 1, 2, 3, 4]);
     }
 
     #[test]

@@ -35,7 +35,7 @@ impl Surface {
                 out.resize(w, h, "image")?;
                 self.with_compositor(|gl, st| {
                     // SAFETY: the compositor context is current; `out` holds w×h×4 bytes.
-                    unsafe { st.fb.read_pixels(gl, s.buffer, out.pixels_mut()) }
+                    unsafe { super::read_eye(gl, st, s.buffer, out.pixels_mut()) }
                 })?;
             }
             Some(_) => {
