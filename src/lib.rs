@@ -45,5 +45,7 @@ pub mod shims;
 pub mod stereo;
 pub mod surface;
 mod sync;
+#[cfg(test)]
+mod testing;
 
 pub use error::{Error, Result};

@@ -1209,41 +1209,12 @@ mod tests {
     //! The compositor driven directly in a real EGL context, with textures
     //! of its own and a framebuffer object standing in for a window.
 
-    use std::sync::Arc;
-
     use super::*;
-    use crate::backend::{BackendChoice, BackendKind, ContextRole, PlatformSurface};
-    use crate::config::glx::GLX_RGBA;
-    use crate::display::Display;
     use crate::output::cpu::{compose, resample};
     use crate::output::layout::composite_size;
     use crate::output::pattern::{gradient, noise};
 
-    /// A compositor context of its own, current on this thread while alive.
-    struct Context {
-        gl: Arc<Gl>,
-        surface: Box<dyn PlatformSurface>,
-        _display: Arc<Display>,
-    }
-
-    impl Drop for Context {
-        fn drop(&mut self) {
-            let _ = self.surface.release_current();
-        }
-    }
-
-    fn context() -> Context {
-        let display = Display::open(BackendChoice::Only(BackendKind::Egl)).expect("EGL");
-        let config = display.choose_config(&[GLX_RGBA]).unwrap();
-        let surface = display.platform().create_surface(&config, 1, 1).unwrap();
-        surface.make_current(ContextRole::Compositor).unwrap();
-        let gl = display.gl().unwrap();
-        Context {
-            gl,
-            surface,
-            _display: display,
-        }
-    }
+    use crate::testing::egl_context as context;
 
     /// A texture holding `img` (stored bottom row first, as GL does).
     unsafe fn texture(gl: &Gl, img: &Image) -> TexRect {

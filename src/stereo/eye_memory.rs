@@ -550,44 +550,29 @@ impl<'a> Rows<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::backend::{BackendChoice, BackendKind, ContextRole, PlatformSurface};
-    use crate::config::glx::GLX_RGBA;
-    use crate::display::Display;
     use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
     use crate::stereo::emulated::{BufferFormats, EmulatedFramebuffer};
-    use std::sync::Arc;
 
-    /// An EGL context of its own (llvmpipe on the machines this project
-    /// runs on), current on this thread while alive, and its
-    /// memory-object API.
+    /// An EGL context of its own ([`crate::testing::egl_context`]) and
+    /// its memory-object API.
     struct Context {
-        gl: Arc<Gl>,
         api: MemoryObjectApi,
-        surface: Box<dyn PlatformSurface>,
-        _display: Arc<Display>,
+        cx: crate::testing::EglContext,
     }
 
-    impl Drop for Context {
-        fn drop(&mut self) {
-            let _ = self.surface.release_current();
+    impl std::ops::Deref for Context {
+        type Target = crate::testing::EglContext;
+        fn deref(&self) -> &Self::Target {
+            &self.cx
         }
     }
 
     fn context() -> Context {
-        let display = Display::open(BackendChoice::Only(BackendKind::Egl)).expect("EGL");
-        let config = display.choose_config(&[GLX_RGBA]).unwrap();
-        let surface = display.platform().create_surface(&config, 1, 1).unwrap();
-        surface.make_current(ContextRole::Compositor).unwrap();
-        let gl = display.gl().unwrap();
+        let cx = crate::testing::egl_context();
         // SAFETY: the platform's GetProcAddress.
-        let api = unsafe { MemoryObjectApi::load(|n| display.platform().get_proc_address(n)) }
+        let api = unsafe { MemoryObjectApi::load(|n| cx.display.platform().get_proc_address(n)) }
             .expect("GL_EXT_memory_object's functions");
-        Context {
-            gl,
-            api,
-            surface,
-            _display: display,
-        }
+        Context { api, cx }
     }
 
     /// `tex`'s pixels as glReadPixels gives them (rows bottom first).
