@@ -111,6 +111,10 @@ pub(super) const MASKED_BUFFERS: usize = 8;
 pub(super) struct SavedSelections {
     pub(super) draw: Option<(u64, DrawSelection)>,
     pub(super) read: Option<(u64, ReadSelection)>,
+    /// The emulated framebuffer was the one bound for drawing / reading
+    /// at the push (else the program's own object was, or none was saved).
+    pub(super) draw_on_emulated: bool,
+    pub(super) read_on_emulated: bool,
     /// The program's colour masks, with GL_COLOR_BUFFER_BIT.
     pub(super) color_mask: Option<([[bool; 4]; MASKED_BUFFERS], super::gl::ClearColor)>,
 }

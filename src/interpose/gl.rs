@@ -52,7 +52,10 @@ use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code};
-use crate::stereo::emulated::{BufferFormats, EmulatedFramebuffer, default_framebuffer_query};
+use crate::stereo::emulated::{
+    BufferFormats, DrawSelection, EmulatedFramebuffer, MAX_DRAW_BUFFERS, ReadSelection,
+    default_framebuffer_query,
+};
 
 /// GL_DEPTH and GL_STENCIL, the default framebuffer's attachment names.
 const GL_DEPTH: u32 = 0x1801;
@@ -697,7 +700,11 @@ fn push_selections(gl: &Gl, push: unsafe extern "system" fn(u32), mask: u32) {
     }
     let read_d = read_drawable(&cur);
     let mut st = cur.sc.lock();
+    let draw_on_emulated = bound(gl, &mut st.fbs, cur.draw, GL_DRAW_FRAMEBUFFER_BINDING).is_some();
+    let read_on_emulated = bound(gl, &mut st.fbs, read_d, GL_READ_FRAMEBUFFER_BINDING).is_some();
     let saved = super::context::SavedSelections {
+        draw_on_emulated,
+        read_on_emulated,
         draw: (mask & GL_COLOR_BUFFER_BIT_ATTRIB != 0)
             .then(|| {
                 st.fbs
@@ -731,6 +738,12 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
         return unsafe { pop() };
     };
     let before = stack_depth(gl, &cur);
+    // What the pop may wrongly change (see CrossPop): the buffers of the
+    // framebuffers bound now, as they are before it.
+    let kept = {
+        let mut st = cur.sc.lock();
+        CrossPop::before(gl, &cur, &mut st)
+    };
     // SAFETY: forwarded call; its GL error stays the driver's.
     unsafe { pop() };
     let after = stack_depth(gl, &cur);
@@ -742,18 +755,7 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
     let Some(saved) = st.attribs.pop() else {
         return;
     };
-    if let Some((d, sel)) = saved.draw {
-        if let Some(fb) = bound(gl, &mut st.fbs, d, GL_DRAW_FRAMEBUFFER_BINDING) {
-            // SAFETY: the program's context is current.
-            unsafe { fb.restore_draw_selection(gl, sel) };
-        }
-    }
-    if let Some((d, sel)) = saved.read {
-        if let Some(fb) = bound(gl, &mut st.fbs, d, GL_READ_FRAMEBUFFER_BINDING) {
-            // SAFETY: the program's context is current.
-            unsafe { fb.restore_read_selection(gl, sel) };
-        }
-    }
+    kept.after(gl, &mut st, &saved);
     if let Some((mask, clear_color)) = saved.color_mask {
         // GL restored the driver's masks as they were at the push (alpha
         // off if the emulated framebuffer was bound then): put the
@@ -761,6 +763,116 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
         st.color_mask = mask;
         st.clear_color = clear_color;
         apply_color_mask(gl, cur.sc.formats(), &st);
+    }
+}
+
+/// The buffer selections of the framebuffers bound just before a
+/// glPopAttrib, for a pop across framebuffers. GL restores the draw and
+/// read buffers a push saved onto whatever framebuffer is bound at the
+/// pop; Mesa (22.3, a mono visual) leaves a framebuffer's buffers as they
+/// are when the saved names do not fit it — default-framebuffer names
+/// (GL_BACK…) popped while a framebuffer object is bound, attachments
+/// popped while the default framebuffer is bound — with no error, and
+/// applies GL_NONE anywhere. Under the layer the driver saw the
+/// emulation's own attachments where the program had framebuffer 0,
+/// which fit any framebuffer object: so the layer puts back what the
+/// driver should have left (`tests/c/glx_opaque_alpha.c` compares each
+/// case with Mesa's mono visual).
+struct CrossPop {
+    /// The program's own draw framebuffer object and its draw buffers
+    /// (the driver's GL_DRAW_BUFFERi), when it is the one bound.
+    own_draw: Option<([u32; MAX_DRAW_BUFFERS], usize)>,
+    /// The program's own read framebuffer object's read buffer.
+    own_read: Option<u32>,
+    /// The emulated draw / read selections, when the emulated
+    /// framebuffer is the one bound.
+    emulated_draw: Option<(u64, DrawSelection)>,
+    emulated_read: Option<(u64, ReadSelection)>,
+}
+
+impl CrossPop {
+    fn before(gl: &Gl, cur: &Current, st: &mut CtxState) -> CrossPop {
+        let read_d = read_drawable(cur);
+        let emulated_draw = bound(gl, &mut st.fbs, cur.draw, GL_DRAW_FRAMEBUFFER_BINDING)
+            .map(|fb| (cur.draw, fb.draw_selection()));
+        let emulated_read = bound(gl, &mut st.fbs, read_d, GL_READ_FRAMEBUFFER_BINDING)
+            .map(|fb| (read_d, fb.read_selection()));
+        // SAFETY: the program's context is current (callers); queries
+        // that raise no error.
+        unsafe {
+            let own = |binding| {
+                let name = gl.integer(binding) as u32;
+                name != 0 && !st.is_ours(name)
+            };
+            let own_draw = own(GL_DRAW_FRAMEBUFFER_BINDING).then(|| {
+                let n = (gl.integer(GL_MAX_DRAW_BUFFERS).max(1) as usize).min(MAX_DRAW_BUFFERS);
+                let mut bufs = [GL_NONE; MAX_DRAW_BUFFERS];
+                for (i, b) in bufs.iter_mut().enumerate().take(n) {
+                    *b = gl.integer(GL_DRAW_BUFFER0 + i as u32) as u32;
+                }
+                (bufs, n)
+            });
+            let own_read =
+                own(GL_READ_FRAMEBUFFER_BINDING).then(|| gl.integer(GL_READ_BUFFER) as u32);
+            CrossPop {
+                own_draw,
+                own_read,
+                emulated_draw,
+                emulated_read,
+            }
+        }
+    }
+
+    /// After the driver's pop of `saved`'s entry: the emulated selections
+    /// it saved go back where the emulated framebuffer is bound, and a pop
+    /// across framebuffers ends as GL says.
+    fn after(self, gl: &Gl, st: &mut CtxState, saved: &super::context::SavedSelections) {
+        // SAFETY (all blocks): the program's context is current (callers).
+        if let Some((d, sel)) = saved.draw {
+            if saved.draw_on_emulated {
+                if let Some(fb) = bound(gl, &mut st.fbs, d, GL_DRAW_FRAMEBUFFER_BINDING) {
+                    unsafe { fb.restore_draw_selection(gl, sel) };
+                } else if let Some((bufs, n)) = self.own_draw.filter(|_| !sel.is_none()) {
+                    // Default-framebuffer names onto the program's object.
+                    unsafe { gl.DrawBuffers(n as i32, bufs.as_ptr()) };
+                }
+            } else if let Some((d0, before)) = self.emulated_draw {
+                // The program's object's buffers onto the emulated one.
+                if let Some(fb) = bound(gl, &mut st.fbs, d0, GL_DRAW_FRAMEBUFFER_BINDING) {
+                    let all_none = unsafe {
+                        (0..MAX_DRAW_BUFFERS as u32)
+                            .all(|i| gl.integer(GL_DRAW_BUFFER0 + i) as u32 == GL_NONE)
+                    };
+                    unsafe {
+                        if all_none {
+                            let _ = fb.set_draw_buffer(gl, GL_NONE);
+                        } else {
+                            fb.restore_draw_selection(gl, before);
+                        }
+                    }
+                }
+            }
+        }
+        if let Some((d, sel)) = saved.read {
+            if saved.read_on_emulated {
+                if let Some(fb) = bound(gl, &mut st.fbs, d, GL_READ_FRAMEBUFFER_BINDING) {
+                    unsafe { fb.restore_read_selection(gl, sel) };
+                } else if let Some(buf) = self.own_read.filter(|_| !sel.is_none()) {
+                    unsafe { gl.ReadBuffer(buf) };
+                }
+            } else if let Some((d0, before)) = self.emulated_read {
+                if let Some(fb) = bound(gl, &mut st.fbs, d0, GL_READ_FRAMEBUFFER_BINDING) {
+                    let none = unsafe { gl.integer(GL_READ_BUFFER) as u32 == GL_NONE };
+                    unsafe {
+                        if none {
+                            let _ = fb.set_read_buffer(gl, GL_NONE);
+                        } else {
+                            fb.restore_read_selection(gl, before);
+                        }
+                    }
+                }
+            }
+        }
     }
 }
 

@@ -106,6 +106,24 @@ pub struct ReadSelection {
     buffer: Option<ColorBuffer>,
 }
 
+impl DrawSelection {
+    /// Whether every name the program gave is GL_NONE (the only names a
+    /// default framebuffer and a framebuffer object both accept).
+    pub fn is_none(&self) -> bool {
+        match self.0 {
+            DrawState::Single { name, .. } => name == GL_NONE,
+            DrawState::Multi { n, names, .. } => names[..n].iter().all(|&b| b == GL_NONE),
+        }
+    }
+}
+
+impl ReadSelection {
+    /// Whether the program's name is GL_NONE.
+    pub fn is_none(&self) -> bool {
+        self.name == GL_NONE
+    }
+}
+
 /// The draw-buffer state as the program set it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum DrawState {

@@ -343,17 +343,64 @@ int main(int argc, char **argv)
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glPopAttrib();
     writemask("fbo popped per-buffer", get_i);
-    /* The pop also restores framebuffer 0's draw buffer onto the
-     * framebuffer object: Mesa leaves the object's as it was, the layer
-     * does not (a draw-buffer matter, outside what this program compares),
-     * so the program sets it. */
-    glDrawBuffer(COLOR_ATTACHMENT0);
+    /* The pop also restores framebuffer 0's draw buffer (GL_BACK) onto the
+     * framebuffer object, which GL refuses: GL_INVALID_OPERATION, the
+     * object keeps its own. */
+    {
+        GLint db = 0;
+        GLenum e = glGetError();
+        glGetIntegerv(GL_DRAW_BUFFER, &db);
+        printf("fbo draw buffer after a pop pushed on 0: 0x%x, pop error 0x%x\n", (unsigned)db, e);
+    }
     clear(0.75f);
     pixel("fbo clear after per-buffer pop");
     bind(FRAMEBUFFER, 0);
     clear(0.25f);
     pixel("fb0 clear after per-buffer pop");
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+
+    /* And the other way: the object's draw and read buffers pushed,
+     * popped onto framebuffer 0, which keeps GL_BACK; GL_NONE pushed on 0
+     * goes onto the object. */
+    {
+        GLint db = 0, rb = 0;
+        GLenum e;
+        bind(FRAMEBUFFER, fbo);
+        glPushAttrib(GL_COLOR_BUFFER_BIT | GL_PIXEL_MODE_BIT);
+        bind(FRAMEBUFFER, 0);
+        glPopAttrib();
+        e = glGetError();
+        glGetIntegerv(GL_DRAW_BUFFER, &db);
+        glGetIntegerv(GL_READ_BUFFER, &rb);
+        printf("fb0 draw buffer 0x%x read buffer 0x%x after a pop pushed on the fbo, pop error 0x%x\n",
+               (unsigned)db, (unsigned)rb, e);
+        glDrawBuffer(GL_NONE);
+        glReadBuffer(GL_NONE);
+        glPushAttrib(GL_COLOR_BUFFER_BIT | GL_PIXEL_MODE_BIT);
+        glDrawBuffer(GL_BACK);
+        glReadBuffer(GL_BACK);
+        bind(FRAMEBUFFER, fbo);
+        glPopAttrib();
+        e = glGetError();
+        glGetIntegerv(GL_DRAW_BUFFER, &db);
+        glGetIntegerv(GL_READ_BUFFER, &rb);
+        printf("fbo draw buffer 0x%x read buffer 0x%x after GL_NONE popped from 0, pop error 0x%x\n",
+               (unsigned)db, (unsigned)rb, e);
+        glDrawBuffer(COLOR_ATTACHMENT0);
+        glReadBuffer(COLOR_ATTACHMENT0);
+        bind(FRAMEBUFFER, 0);
+        glPushAttrib(GL_PIXEL_MODE_BIT);
+        bind(FRAMEBUFFER, fbo);
+        glPopAttrib();
+        e = glGetError();
+        glGetIntegerv(GL_READ_BUFFER, &rb);
+        printf("fbo read buffer 0x%x after GL_BACK popped from 0, pop error 0x%x\n", (unsigned)rb, e);
+        bind(FRAMEBUFFER, 0);
+        glGetIntegerv(GL_DRAW_BUFFER, &db);
+        glGetIntegerv(GL_READ_BUFFER, &rb);
+        printf("fb0 draw buffer 0x%x read buffer 0x%x at the end, error 0x%x\n", (unsigned)db, (unsigned)rb,
+               glGetError());
+    }
 
     /* GL_RASTERIZER_DISCARD stops glClear and glClearBuffer (GL 4.5
      * §14.1), not blits: what is blitted into framebuffer 0 still reads
