@@ -779,98 +779,133 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
 /// driver should have left (`tests/c/glx_opaque_alpha.c` compares each
 /// case with Mesa's mono visual).
 struct CrossPop {
-    /// The program's own draw framebuffer object and its draw buffers
-    /// (the driver's GL_DRAW_BUFFERi), when it is the one bound.
-    own_draw: Option<([u32; MAX_DRAW_BUFFERS], usize)>,
-    /// The program's own read framebuffer object's read buffer.
-    own_read: Option<u32>,
-    /// The emulated draw / read selections, when the emulated
-    /// framebuffer is the one bound.
-    emulated_draw: Option<(u64, DrawSelection)>,
-    emulated_read: Option<(u64, ReadSelection)>,
+    draw: Kept<([u32; MAX_DRAW_BUFFERS], usize), DrawSelection>,
+    read: Kept<u32, ReadSelection>,
+}
+
+/// What a pop across framebuffers must not change, for draw or read.
+enum Kept<Own, Emulated> {
+    /// The pop lands where its push was made (or restores nothing here).
+    Nothing,
+    /// Pushed on the emulated framebuffer, popping onto the program's own
+    /// object: its buffers as they are now (GL_DRAW_BUFFERi / GL_READ_BUFFER).
+    Own(Own),
+    /// Pushed on the program's object, popping onto the emulated
+    /// framebuffer of this drawable: its selection as it is now.
+    Emulated(u64, Emulated),
 }
 
 impl CrossPop {
+    /// Before the driver pops `top` (the matching push's entry): only the
+    /// cases that cross framebuffers are queried.
     fn before(gl: &Gl, cur: &Current, st: &mut CtxState) -> CrossPop {
-        let read_d = read_drawable(cur);
-        let emulated_draw = bound(gl, &mut st.fbs, cur.draw, GL_DRAW_FRAMEBUFFER_BINDING)
-            .map(|fb| (cur.draw, fb.draw_selection()));
-        let emulated_read = bound(gl, &mut st.fbs, read_d, GL_READ_FRAMEBUFFER_BINDING)
-            .map(|fb| (read_d, fb.read_selection()));
-        // SAFETY: the program's context is current (callers); queries
-        // that raise no error.
-        unsafe {
-            let own = |binding| {
-                let name = gl.integer(binding) as u32;
-                name != 0 && !st.is_ours(name)
+        let Some(top) = st.attribs.last() else {
+            return CrossPop {
+                draw: Kept::Nothing,
+                read: Kept::Nothing,
             };
-            let own_draw = own(GL_DRAW_FRAMEBUFFER_BINDING).then(|| {
-                let n = (gl.integer(GL_MAX_DRAW_BUFFERS).max(1) as usize).min(MAX_DRAW_BUFFERS);
+        };
+        let (draw_saved, draw_on) = (top.draw.is_some(), top.draw_on_emulated);
+        let (read_saved, read_on) = (top.read.is_some(), top.read_on_emulated);
+        let read_d = read_drawable(cur);
+        // SAFETY: the program's context is current (callers); queries that
+        // raise no error.
+        let own = |st: &CtxState, binding| unsafe {
+            let name = gl.integer(binding) as u32;
+            name != 0 && !st.is_ours(name)
+        };
+        let draw = if !draw_saved {
+            Kept::Nothing
+        } else if draw_on {
+            if own(st, GL_DRAW_FRAMEBUFFER_BINDING) {
+                // SAFETY: as above.
+                let n =
+                    unsafe { gl.integer(GL_MAX_DRAW_BUFFERS) }.clamp(1, MAX_DRAW_BUFFERS as i32);
                 let mut bufs = [GL_NONE; MAX_DRAW_BUFFERS];
-                for (i, b) in bufs.iter_mut().enumerate().take(n) {
-                    *b = gl.integer(GL_DRAW_BUFFER0 + i as u32) as u32;
+                for (i, b) in bufs.iter_mut().enumerate().take(n as usize) {
+                    // SAFETY: as above.
+                    *b = unsafe { gl.integer(GL_DRAW_BUFFER0 + i as u32) } as u32;
                 }
-                (bufs, n)
-            });
-            let own_read =
-                own(GL_READ_FRAMEBUFFER_BINDING).then(|| gl.integer(GL_READ_BUFFER) as u32);
-            CrossPop {
-                own_draw,
-                own_read,
-                emulated_draw,
-                emulated_read,
+                Kept::Own((bufs, n as usize))
+            } else {
+                Kept::Nothing
             }
-        }
+        } else {
+            bound(gl, &mut st.fbs, cur.draw, GL_DRAW_FRAMEBUFFER_BINDING)
+                .map_or(Kept::Nothing, |fb| {
+                    Kept::Emulated(cur.draw, fb.draw_selection())
+                })
+        };
+        let read = if !read_saved {
+            Kept::Nothing
+        } else if read_on {
+            if own(st, GL_READ_FRAMEBUFFER_BINDING) {
+                // SAFETY: as above.
+                Kept::Own(unsafe { gl.integer(GL_READ_BUFFER) } as u32)
+            } else {
+                Kept::Nothing
+            }
+        } else {
+            bound(gl, &mut st.fbs, read_d, GL_READ_FRAMEBUFFER_BINDING)
+                .map_or(Kept::Nothing, |fb| {
+                    Kept::Emulated(read_d, fb.read_selection())
+                })
+        };
+        CrossPop { draw, read }
     }
 
     /// After the driver's pop of `saved`'s entry: the emulated selections
     /// it saved go back where the emulated framebuffer is bound, and a pop
-    /// across framebuffers ends as GL says.
+    /// across framebuffers leaves the bound one's buffers, except GL_NONE.
     fn after(self, gl: &Gl, st: &mut CtxState, saved: &super::context::SavedSelections) {
-        // SAFETY (all blocks): the program's context is current (callers).
+        // SAFETY (every block): the program's context is current (callers).
         if let Some((d, sel)) = saved.draw {
-            if saved.draw_on_emulated {
-                if let Some(fb) = bound(gl, &mut st.fbs, d, GL_DRAW_FRAMEBUFFER_BINDING) {
-                    unsafe { fb.restore_draw_selection(gl, sel) };
-                } else if let Some((bufs, n)) = self.own_draw.filter(|_| !sel.is_none()) {
-                    // Default-framebuffer names onto the program's object.
-                    unsafe { gl.DrawBuffers(n as i32, bufs.as_ptr()) };
-                }
-            } else if let Some((d0, before)) = self.emulated_draw {
-                // The program's object's buffers onto the emulated one.
-                if let Some(fb) = bound(gl, &mut st.fbs, d0, GL_DRAW_FRAMEBUFFER_BINDING) {
-                    let all_none = unsafe {
-                        (0..MAX_DRAW_BUFFERS as u32)
-                            .all(|i| gl.integer(GL_DRAW_BUFFER0 + i) as u32 == GL_NONE)
-                    };
-                    unsafe {
-                        if all_none {
-                            let _ = fb.set_draw_buffer(gl, GL_NONE);
-                        } else {
-                            fb.restore_draw_selection(gl, before);
+            let fb = bound(gl, &mut st.fbs, d, GL_DRAW_FRAMEBUFFER_BINDING);
+            match (self.draw, fb) {
+                (_, Some(fb)) if saved.draw_on_emulated => unsafe {
+                    fb.restore_draw_selection(gl, sel)
+                },
+                (Kept::Own((bufs, n)), _) if !sel.is_none() => unsafe {
+                    gl.DrawBuffers(n as i32, bufs.as_ptr())
+                },
+                (Kept::Emulated(d0, before), _) => {
+                    if let Some(fb) = bound(gl, &mut st.fbs, d0, GL_DRAW_FRAMEBUFFER_BINDING) {
+                        // The driver popped the program's object's buffers
+                        // onto the emulated framebuffer: only GL_NONE fits.
+                        let none = (0..MAX_DRAW_BUFFERS as u32)
+                            .all(|i| unsafe { gl.integer(GL_DRAW_BUFFER0 + i) } as u32 == GL_NONE);
+                        unsafe {
+                            if none {
+                                let _ = fb.set_draw_buffer(gl, GL_NONE);
+                            } else {
+                                fb.restore_draw_selection(gl, before);
+                            }
                         }
                     }
                 }
+                _ => {}
             }
         }
         if let Some((d, sel)) = saved.read {
-            if saved.read_on_emulated {
-                if let Some(fb) = bound(gl, &mut st.fbs, d, GL_READ_FRAMEBUFFER_BINDING) {
-                    unsafe { fb.restore_read_selection(gl, sel) };
-                } else if let Some(buf) = self.own_read.filter(|_| !sel.is_none()) {
-                    unsafe { gl.ReadBuffer(buf) };
-                }
-            } else if let Some((d0, before)) = self.emulated_read {
-                if let Some(fb) = bound(gl, &mut st.fbs, d0, GL_READ_FRAMEBUFFER_BINDING) {
-                    let none = unsafe { gl.integer(GL_READ_BUFFER) as u32 == GL_NONE };
-                    unsafe {
-                        if none {
-                            let _ = fb.set_read_buffer(gl, GL_NONE);
-                        } else {
-                            fb.restore_read_selection(gl, before);
+            let fb = bound(gl, &mut st.fbs, d, GL_READ_FRAMEBUFFER_BINDING);
+            match (self.read, fb) {
+                (_, Some(fb)) if saved.read_on_emulated => unsafe {
+                    fb.restore_read_selection(gl, sel)
+                },
+                (Kept::Own(buf), _) if !sel.is_none() => unsafe { gl.ReadBuffer(buf) },
+                (Kept::Emulated(d0, before), _) => {
+                    if let Some(fb) = bound(gl, &mut st.fbs, d0, GL_READ_FRAMEBUFFER_BINDING) {
+                        let none = unsafe { gl.integer(GL_READ_BUFFER) } as u32 == GL_NONE;
+                        unsafe {
+                            if none {
+                                let _ = fb.set_read_buffer(gl, GL_NONE);
+                            } else {
+                                fb.restore_read_selection(gl, before);
+                            }
                         }
                     }
                 }
+                _ => {}
             }
         }
     }
