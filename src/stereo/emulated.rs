@@ -428,29 +428,35 @@ impl EmulatedFramebuffer {
             // SAFETY: as above; `tex` has no storage.
             let made =
                 unsafe { TextureMemory::create(gl, &api, &uuid, tex, self.width, self.height) };
+            let Some(m) = made else {
+                all = false;
+                break;
+            };
             // SAFETY: as above.
-            match made.filter(|m| unsafe { m.verify(gl, tex, self.read_fbo) }) {
-                Some(m) => self.memory[slot] = Some(m),
-                None => {
-                    all = false;
-                    break;
-                }
+            let fits = unsafe { m.verify(gl, tex, self.read_fbo) };
+            self.memory[slot] = Some(m);
+            if !fits {
+                all = false;
+                break;
             }
         }
         if all {
             return true;
         }
         eye_memory::give_up("the driver did not take memory for them, or laid it out otherwise");
-        // SAFETY: as above. The textures were only ever used here: every
-        // one that may have been given storage gets a new name.
+        // SAFETY: as above. The textures and memory made here were only
+        // used here (memory retired by earlier sizes waits for the program
+        // as before): every texture that may have been given storage gets
+        // a new name, and its memory goes after it.
         unsafe {
             gl.Finish();
-            self.retire_memory(gl);
-            self.release_retired(gl);
             for slot in 0..4 {
                 if self.textures[slot] != 0 {
                     gl.DeleteTextures(1, &self.textures[slot]);
                     self.textures[slot] = gl.gen_texture();
+                }
+                if let Some(m) = self.memory[slot].take() {
+                    m.release(&api);
                 }
             }
         }
