@@ -138,7 +138,7 @@ enum DrawState {
 }
 
 /// The storage formats of an emulated framebuffer's buffers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug)]
 pub struct BufferFormats {
     /// Internal format of each colour texture: GL_RGBA8 (GL_RGB8 where a
     /// caller asks for it; llvmpipe reads GL_RGB8 back about six times

@@ -48,16 +48,6 @@ pub struct MemoryObjectApi {
     tex_storage_mem_2d: unsafe extern "system" fn(u32, i32, u32, i32, i32, u32, u64),
 }
 
-/// A process has one GL library: any two loaded tables are the same API
-/// (function addresses are not compared; they need not be unique).
-impl PartialEq for MemoryObjectApi {
-    fn eq(&self, _: &MemoryObjectApi) -> bool {
-        true
-    }
-}
-
-impl Eq for MemoryObjectApi {}
-
 impl MemoryObjectApi {
     /// Loads the four functions through `get`; None if any is missing.
     ///
