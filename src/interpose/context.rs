@@ -719,9 +719,6 @@ impl StereoContext {
             .ok_or_else(|| Error::invalid_operation("no stereo buffers for this drawable"))?;
         // SAFETY: the program's context is current on this thread.
         unsafe {
-            // Textures replaced since it was last current (a resize of
-            // storage from memory) go into its framebuffer object.
-            drawn.fb.reattach_app(gl)?;
             if flip {
                 profile::span(Stage::Flip, || drawn.fb.swap(gl));
             }
