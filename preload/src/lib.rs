@@ -23,35 +23,57 @@ use glstereo::interpose::next;
 /// glstereo's implementation. Entered again while the thread is inside the
 /// layer — libGL's own code, or a layer below, calling the name back while
 /// the layer calls down — it is not the program calling: it forwards to the
-/// next definition of the name ([`pass_down`]). `own_export` maps each name
-/// to its export for glXGetProcAddress.
+/// next definition of the name ([`pass_down`]).
+///
+/// The body lives in a function of this library's own (`local::NAME`,
+/// not exported); the exported `NAME` only calls it, and `own_export` hands
+/// out the local function's address for glXGetProcAddress. The exported
+/// name's address would not do: taken in code, it is read through the
+/// global symbol table, which yields the *first* definition in the process
+/// — a layer preloaded above this one (VirtualGL's faker, apitrace's
+/// glxtrace) would be handed its own function back as "the real one".
 macro_rules! export {
     ($( $name:ident => $target:ident ( $($arg:ident : $ty:ty),* ) $(-> $ret:ty)? ; )*) => {
+        /// The bodies of the exports, at addresses of this library's own.
+        mod local {
+            use super::*;
+            $(
+                #[allow(unused_unsafe)]
+                pub(super) unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+                    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                    let (_inside, depth) = next::enter();
+                    if depth > 0 {
+                        let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
+                        // SAFETY: the next definition of this function, with its
+                        // signature, and the caller's arguments.
+                        return unsafe {
+                            std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
+                        };
+                    }
+                    // SAFETY: the caller's arguments, under the contract of the
+                    // GLX/GL function this replaces, which the target shares.
+                    unsafe { gls::$target($($arg),*) }
+                }
+            )*
+        }
+
         $(
             #[doc = concat!("`", stringify!($name), "`: see `", stringify!($target), "` in glstereo.h.")]
             #[unsafe(no_mangle)]
-            #[allow(unused_unsafe)]
             pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
-                static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
-                let (_inside, depth) = next::enter();
-                if depth > 0 {
-                    let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
-                    // SAFETY: the next definition of this function, with its
-                    // signature, and the caller's arguments.
-                    return unsafe {
-                        std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
-                    };
-                }
-                // SAFETY: the caller's arguments, under the contract of the
-                // GLX/GL function this replaces, which the target shares.
-                unsafe { gls::$target($($arg),*) }
+                // SAFETY: the caller's arguments, forwarded.
+                unsafe { local::$name($($arg),*) }
             }
         )*
 
-        /// The export standing for `name`, for glXGetProcAddress.
+        /// This library's own function standing for `name`, for
+        /// glXGetProcAddress (see the macro's doc: never the exported
+        /// name's address).
         fn own_export(name: &[u8]) -> Option<*mut c_void> {
             match name {
-                $( n if n == stringify!($name).as_bytes() => Some($name as *mut c_void), )*
+                $( n if n == stringify!($name).as_bytes() => Some(local::$name as *mut c_void), )*
+                b"glXGetProcAddress" => Some(local_get_proc_address as *mut c_void),
+                b"glXGetProcAddressARB" => Some(local_get_proc_address_arb as *mut c_void),
                 _ => None,
             }
         }
@@ -226,20 +248,33 @@ unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAdd
     as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
 }
 
-/// `glXGetProcAddressARB`: this library's exports for their names (so a
-/// function found this way is guarded as a direct link is), the layer's
-/// other replacements, the function below the layer for every other name.
+/// glXGetProcAddressARB's body, at an address of this library's own.
+unsafe extern "C" fn local_get_proc_address_arb(name: *const c_uchar) -> ProcAddress {
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddressARB\0") }
+}
+
+/// glXGetProcAddress's body, at an address of this library's own.
+unsafe extern "C" fn local_get_proc_address(name: *const c_uchar) -> ProcAddress {
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddress\0") }
+}
+
+/// `glXGetProcAddressARB`: this library's own functions for the names it
+/// replaces (so a function found this way is guarded as the direct link
+/// is), the layer's other replacements, the function below the layer for
+/// every other name.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddressARB(name: *const c_uchar) -> ProcAddress {
     // SAFETY: GLX's contract.
-    unsafe { get_proc_address(name, "glXGetProcAddressARB\0") }
+    unsafe { local_get_proc_address_arb(name) }
 }
 
 /// `glXGetProcAddress`: as [`glXGetProcAddressARB`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddress(name: *const c_uchar) -> ProcAddress {
     // SAFETY: GLX's contract.
-    unsafe { get_proc_address(name, "glXGetProcAddress\0") }
+    unsafe { local_get_proc_address(name) }
 }
 
 /// `dlopen`: libGL.so(.1), libGLX.so(.0) and libOpenGL.so(.0) opened by a
