@@ -2275,6 +2275,30 @@ void gls_gl_delete_framebuffers(int32_t n, const uint32_t *framebuffers);
 void gls_gl_delete_framebuffers_ext(int32_t n, const uint32_t *framebuffers);
 
 /**
+ * `glDeleteTextures`: the layer's own textures (in the program's share
+ * group, under names from the top of the non-negative range) are left
+ * alone, as names the program never made are; every other name is
+ * deleted.
+ */
+void gls_gl_delete_textures(int32_t n, const uint32_t *textures);
+
+/**
+ * `glDeleteTexturesEXT`: as gls_gl_delete_textures().
+ */
+void gls_gl_delete_textures_ext(int32_t n, const uint32_t *textures);
+
+/**
+ * `glDeleteRenderbuffers`: as gls_gl_delete_textures(), for the layer's
+ * depth/stencil renderbuffers.
+ */
+void gls_gl_delete_renderbuffers(int32_t n, const uint32_t *renderbuffers);
+
+/**
+ * `glDeleteRenderbuffersEXT`: as gls_gl_delete_renderbuffers().
+ */
+void gls_gl_delete_renderbuffers_ext(int32_t n, const uint32_t *renderbuffers);
+
+/**
  * `glGetFramebufferAttachmentParameteriv`: on the emulated default
  * framebuffer, GL_FRONT_LEFT … GL_BACK_RIGHT, GL_DEPTH and GL_STENCIL
  * answer as the window's buffers do (a buffer the visual lacks has type

@@ -225,6 +225,10 @@ fn legacy_name(gls: &str) -> &'static str {
         ("gls_gl_get_doublev", "glGetDoublev"),
         ("gls_gl_delete_framebuffers", "glDeleteFramebuffers"),
         ("gls_gl_delete_framebuffers_ext", "glDeleteFramebuffersEXT"),
+        ("gls_gl_delete_textures", "glDeleteTextures"),
+        ("gls_gl_delete_textures_ext", "glDeleteTexturesEXT"),
+        ("gls_gl_delete_renderbuffers", "glDeleteRenderbuffers"),
+        ("gls_gl_delete_renderbuffers_ext", "glDeleteRenderbuffersEXT"),
         (
             "gls_gl_get_framebuffer_attachment_parameteriv",
             "glGetFramebufferAttachmentParameteriv",

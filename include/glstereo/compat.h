@@ -196,6 +196,14 @@ static inline void gls_compat_glDeleteFramebuffers(GLsizei n, const GLuint *fram
 {
     gls_gl_delete_framebuffers(n, framebuffers);
 }
+static inline void gls_compat_glDeleteTextures(GLsizei n, const GLuint *textures)
+{
+    gls_gl_delete_textures(n, textures);
+}
+static inline void gls_compat_glDeleteRenderbuffers(GLsizei n, const GLuint *renderbuffers)
+{
+    gls_gl_delete_renderbuffers(n, renderbuffers);
+}
 static inline void gls_compat_glGetFramebufferAttachmentParameteriv(GLenum target,
                                                                    GLenum attachment,
                                                                    GLenum pname, GLint *params)
@@ -458,6 +466,8 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glGetDoublev gls_compat_glGetDoublev
 #define glBindFramebuffer gls_compat_glBindFramebuffer
 #define glDeleteFramebuffers gls_compat_glDeleteFramebuffers
+#define glDeleteTextures gls_compat_glDeleteTextures
+#define glDeleteRenderbuffers gls_compat_glDeleteRenderbuffers
 #define glGetFramebufferAttachmentParameteriv gls_compat_glGetFramebufferAttachmentParameteriv
 #define glPushAttrib gls_compat_glPushAttrib
 #define glPopAttrib gls_compat_glPopAttrib

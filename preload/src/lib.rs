@@ -159,6 +159,10 @@ export! {
     glBindFramebufferEXT => gls_gl_bind_framebuffer_ext(target: u32, framebuffer: u32);
     glDeleteFramebuffers => gls_gl_delete_framebuffers(n: i32, framebuffers: *const u32);
     glDeleteFramebuffersEXT => gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *const u32);
+    glDeleteTextures => gls_gl_delete_textures(n: i32, textures: *const u32);
+    glDeleteTexturesEXT => gls_gl_delete_textures_ext(n: i32, textures: *const u32);
+    glDeleteRenderbuffers => gls_gl_delete_renderbuffers(n: i32, renderbuffers: *const u32);
+    glDeleteRenderbuffersEXT => gls_gl_delete_renderbuffers_ext(n: i32, renderbuffers: *const u32);
     glGetFramebufferAttachmentParameteriv => gls_gl_get_framebuffer_attachment_parameteriv(target: u32, attachment: u32, pname: u32, params: *mut i32);
     glGetFramebufferAttachmentParameterivEXT => gls_gl_get_framebuffer_attachment_parameteriv_ext(target: u32, attachment: u32, pname: u32, params: *mut i32);
     glPushAttrib => gls_gl_push_attrib(mask: u32);

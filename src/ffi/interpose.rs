@@ -555,6 +555,46 @@ pub unsafe extern "C" fn gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *c
     })
 }
 
+/// `glDeleteTextures`: the layer's own textures (in the program's share
+/// group, under names from the top of the non-negative range) are left
+/// alone, as names the program never made are; every other name is
+/// deleted.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_textures(n: i32, textures: *const u32) {
+    ffi_boundary!("gls_gl_delete_textures" for "glDeleteTextures", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, textures, igl::Deleted::Textures(false)) }
+    })
+}
+
+/// `glDeleteTexturesEXT`: as gls_gl_delete_textures().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_textures_ext(n: i32, textures: *const u32) {
+    ffi_boundary!("gls_gl_delete_textures_ext" for "glDeleteTexturesEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, textures, igl::Deleted::Textures(true)) }
+    })
+}
+
+/// `glDeleteRenderbuffers`: as gls_gl_delete_textures(), for the layer's
+/// depth/stencil renderbuffers.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_renderbuffers(n: i32, renderbuffers: *const u32) {
+    ffi_boundary!("gls_gl_delete_renderbuffers" for "glDeleteRenderbuffers", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, renderbuffers, igl::Deleted::Renderbuffers(false)) }
+    })
+}
+
+/// `glDeleteRenderbuffersEXT`: as gls_gl_delete_renderbuffers().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_renderbuffers_ext(n: i32, renderbuffers: *const u32) {
+    ffi_boundary!("gls_gl_delete_renderbuffers_ext" for "glDeleteRenderbuffersEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, renderbuffers, igl::Deleted::Renderbuffers(true)) }
+    })
+}
+
 /// `glGetFramebufferAttachmentParameteriv`: on the emulated default
 /// framebuffer, GL_FRONT_LEFT … GL_BACK_RIGHT, GL_DEPTH and GL_STENCIL
 /// answer as the window's buffers do (a buffer the visual lacks has type
@@ -983,6 +1023,10 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glBindFramebufferEXT" => gls_gl_bind_framebuffer_ext as *mut c_void,
         b"glDeleteFramebuffers" => gls_gl_delete_framebuffers as *mut c_void,
         b"glDeleteFramebuffersEXT" => gls_gl_delete_framebuffers_ext as *mut c_void,
+        b"glDeleteTextures" => gls_gl_delete_textures as *mut c_void,
+        b"glDeleteTexturesEXT" => gls_gl_delete_textures_ext as *mut c_void,
+        b"glDeleteRenderbuffers" => gls_gl_delete_renderbuffers as *mut c_void,
+        b"glDeleteRenderbuffersEXT" => gls_gl_delete_renderbuffers_ext as *mut c_void,
         b"glGetFramebufferAttachmentParameteriv" => {
             gls_gl_get_framebuffer_attachment_parameteriv as *mut c_void
         }

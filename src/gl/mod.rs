@@ -204,14 +204,28 @@ impl Gl {
         self.version
     }
 
-    /// From now on, [`Gl::gen_texture`] and [`Gl::gen_renderbuffer`] name
-    /// objects downward from [`RESERVED_NAME_TOP`] instead of asking the
-    /// driver. For objects made in a share group that an unmodified program
-    /// also uses (the LD_PRELOAD interposer): legacy programs often bind
-    /// texture names they never generated (`glBindTexture(GL_TEXTURE_2D, 1)`
-    /// is legal in the compatibility profile), so the library's objects must
-    /// not take the small names glGen* hands out first. Needs a
-    /// compatibility-profile context (binding an unused name creates it).
+    /// From now on, [`Gl::gen_texture`], [`Gl::gen_renderbuffer`] and
+    /// [`Gl::gen_framebuffer`] name objects downward from
+    /// [`RESERVED_NAME_TOP`] instead of asking the driver. For objects made
+    /// in a share group that an unmodified program also uses (the
+    /// LD_PRELOAD interposer): legacy programs often bind texture names
+    /// they never generated (`glBindTexture(GL_TEXTURE_2D, 1)` is legal in
+    /// the compatibility profile), so the library's objects must not take
+    /// the small names glGen* hands out first. Needs a compatibility-profile
+    /// context (binding an unused name creates it).
+    ///
+    /// The names stay below 2³¹: bindings are read back as `GLint`
+    /// (glGetIntegerv), and programs and other layers store them so —
+    /// VirtualGL puts back only bindings that read as non-negative. Mesa
+    /// hands out `highest name ever used + 1` while that fits below
+    /// 0xFFFFFFFE, else the lowest free names; a name at 0x7FFFFFFF would
+    /// make the program's next glGen* name 0x80000000 (negative as a
+    /// `GLint`). So each reserved object is followed by one at
+    /// [`ALLOCATOR_CEILING`], made and deleted at once ([`Gl::push_ceiling`]):
+    /// Mesa's highest name ever used stays there, and the program's glGen*
+    /// names stay the lowest free ones, as small as without the library.
+    /// No object with a name above 2³¹ is left behind, and none is ever
+    /// bound in a program's context.
     pub fn reserve_names(&mut self) {
         self.reserved = Some(AtomicU32::new(RESERVED_NAME_TOP));
     }
@@ -220,6 +234,28 @@ impl Gl {
         self.reserved
             .as_ref()
             .map(|next| next.fetch_sub(1, Ordering::Relaxed))
+    }
+
+    /// Whether [`Gl::reserve_names`] is on and has handed out a name: the
+    /// library has objects in some program's share group.
+    pub fn reserved_names_used(&self) -> bool {
+        self.reserved
+            .as_ref()
+            .is_some_and(|next| next.load(Ordering::Relaxed) != RESERVED_NAME_TOP)
+    }
+
+    /// Makes and deletes an object named [`ALLOCATOR_CEILING`] with `bind`
+    /// (a glBind* of a target taking that kind of object) and `delete`
+    /// (its glDelete*): see [`Gl::reserve_names`]. The binding is left at 0
+    /// (callers restore theirs).
+    ///
+    /// # Safety
+    /// A compatibility-profile context of this backend must be current.
+    unsafe fn push_ceiling(&self, bind: impl Fn(u32), delete: unsafe fn(&Gl, i32, *const u32)) {
+        bind(ALLOCATOR_CEILING);
+        bind(0);
+        // SAFETY: contract; one name read.
+        unsafe { delete(self, 1, &ALLOCATOR_CEILING) };
     }
 
     /// One new texture name, bound to GL_TEXTURE_2D (the binding is left
@@ -231,13 +267,17 @@ impl Gl {
         let mut name = 0;
         // SAFETY: contract; one name written.
         unsafe {
+            let bind = |n| self.BindTexture(enums::GL_TEXTURE_2D, n);
             match self.next_reserved() {
-                Some(n) => name = n,
+                Some(n) => {
+                    name = n;
+                    self.push_ceiling(bind, Gl::DeleteTextures);
+                }
                 None => self.GenTextures(1, &mut name),
             }
             // Binding creates the object (and marks a reserved name used).
-            self.BindTexture(enums::GL_TEXTURE_2D, name);
-            self.BindTexture(enums::GL_TEXTURE_2D, 0);
+            bind(name);
+            bind(0);
         }
         name
     }
@@ -251,12 +291,16 @@ impl Gl {
         let mut name = 0;
         // SAFETY: contract; one name written.
         unsafe {
+            let bind = |n| self.BindRenderbuffer(enums::GL_RENDERBUFFER, n);
             match self.next_reserved() {
-                Some(n) => name = n,
+                Some(n) => {
+                    name = n;
+                    self.push_ceiling(bind, Gl::DeleteRenderbuffers);
+                }
                 None => self.GenRenderbuffers(1, &mut name),
             }
-            self.BindRenderbuffer(enums::GL_RENDERBUFFER, name);
-            self.BindRenderbuffer(enums::GL_RENDERBUFFER, 0);
+            bind(name);
+            bind(0);
         }
         name
     }
@@ -279,8 +323,10 @@ impl Gl {
                     name = n;
                     let draw = self.integer(enums::GL_DRAW_FRAMEBUFFER_BINDING) as u32;
                     let read = self.integer(enums::GL_READ_FRAMEBUFFER_BINDING) as u32;
+                    let bind = |n| self.BindFramebuffer(enums::GL_FRAMEBUFFER, n);
+                    self.push_ceiling(bind, Gl::DeleteFramebuffers);
                     // Binding creates the object.
-                    self.BindFramebuffer(enums::GL_FRAMEBUFFER, name);
+                    bind(name);
                     self.BindFramebuffer(enums::GL_DRAW_FRAMEBUFFER, draw);
                     self.BindFramebuffer(enums::GL_READ_FRAMEBUFFER, read);
                 }
@@ -288,6 +334,33 @@ impl Gl {
             }
         }
         name
+    }
+
+    /// One new framebuffer-object name for the *current* context, which may
+    /// be a program's (the emulated default framebuffer's object), left
+    /// bound to GL_FRAMEBUFFER. With [`Gl::reserve_names`], a reserved name
+    /// where the context creates objects by binding (compatibility
+    /// profile); else, and in a core-profile context (which refuses names
+    /// glGenFramebuffers did not hand out, and where a program cannot bind
+    /// a name it guessed either), the driver's. The caller keeps the
+    /// program's pending GL errors: this reads the error queue.
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn gen_framebuffer_here(&self) -> u32 {
+        // SAFETY: contract.
+        unsafe {
+            if let Some(n) = self.next_reserved() {
+                self.BindFramebuffer(enums::GL_FRAMEBUFFER, n);
+                if self.GetError() == enums::GL_NO_ERROR {
+                    return n;
+                }
+            }
+            let mut name = 0;
+            self.GenFramebuffers(1, &mut name);
+            self.BindFramebuffer(enums::GL_FRAMEBUFFER, name);
+            name
+        }
     }
 
     /// glGetString as a Rust string ("" when NULL).
@@ -354,20 +427,23 @@ impl Gl {
     }
 }
 
-/// The first name [`Gl::reserve_names`] hands out; later ones count down.
-/// Mesa hands out `highest name in use + 1` while that fits and otherwise
-/// the lowest free names, so names at the very top leave the program's own
-/// glGen* results small, as they are without the library.
-pub const RESERVED_NAME_TOP: u32 = 0xFFFF_FFFE;
+/// The first name [`Gl::reserve_names`] hands out; later ones count down:
+/// the highest name that reads as non-negative through a `GLint`.
+pub const RESERVED_NAME_TOP: u32 = 0x7FFF_FFFF;
 
 /// How many names below [`RESERVED_NAME_TOP`] count as reserved: far more
 /// than the library ever makes, far above anything glGen* hands out.
 pub const RESERVED_NAME_SPAN: u32 = 1 << 24;
 
+/// The name of the short-lived object that keeps Mesa's name allocator
+/// handing out the lowest free names ([`Gl::reserve_names`]): the highest
+/// name Mesa's quick path (`highest + 1`) no longer takes.
+pub const ALLOCATOR_CEILING: u32 = 0xFFFF_FFFE;
+
 /// Whether `name` lies in the library's reserved range (see
 /// [`Gl::reserve_names`]): a program can only have it by guessing.
 pub fn is_reserved_name(name: u32) -> bool {
-    name > RESERVED_NAME_TOP - RESERVED_NAME_SPAN
+    name > RESERVED_NAME_TOP - RESERVED_NAME_SPAN && name <= RESERVED_NAME_TOP
 }
 
 /// Parses the GL_VERSION string of the current context into (major, minor).

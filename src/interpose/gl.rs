@@ -521,6 +521,64 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
     Ok(())
 }
 
+/// Which objects a glDelete* call names (see [`delete_objects`]).
+#[derive(Clone, Copy)]
+pub enum Deleted {
+    /// glDeleteTextures (glDeleteTexturesEXT when true).
+    Textures(bool),
+    /// glDeleteRenderbuffers (glDeleteRenderbuffersEXT when true).
+    Renderbuffers(bool),
+}
+
+/// glDeleteTextures, glDeleteRenderbuffers and their EXT names: the
+/// layer's own objects, which live in the program's share group under
+/// reserved names ([`crate::gl::Gl::reserve_names`]), are left alone, as
+/// names the program never made are; every other name is forwarded, in
+/// order. Refused: `names` NULL with `n` > 0 (`refuse_null`).
+///
+/// # Safety
+/// `names` must hold `n` values (GL's contract).
+pub unsafe fn delete_objects(n: i32, names: *const u32, what: Deleted) -> Result<()> {
+    let r = loaded()?;
+    if missing(n, names) {
+        return Err(refuse_null(
+            r,
+            match what {
+                Deleted::Textures(_) => "textures",
+                Deleted::Renderbuffers(_) => "renderbuffers",
+            },
+        ));
+    }
+    let forward = |n: i32, p: *const u32| match what {
+        // SAFETY: forwarded calls.
+        Deleted::Textures(true) if r.extra.delete_textures_ext.is_some() => unsafe {
+            (r.extra.delete_textures_ext.expect("checked"))(n, p)
+        },
+        Deleted::Textures(_) => unsafe { r.gl.DeleteTextures(n, p) },
+        Deleted::Renderbuffers(true) if r.extra.delete_renderbuffers_ext.is_some() => unsafe {
+            (r.extra.delete_renderbuffers_ext.expect("checked"))(n, p)
+        },
+        Deleted::Renderbuffers(_) => unsafe { r.gl.DeleteRenderbuffers(n, p) },
+    };
+    if n <= 0 || !r.gl.reserved_names_used() {
+        forward(n, names);
+        return Ok(());
+    }
+    // SAFETY: GL's contract: `names` holds n values.
+    let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
+    if !list.iter().any(|&name| crate::gl::is_reserved_name(name)) {
+        forward(n, names);
+        return Ok(());
+    }
+    let kept: Vec<u32> = list
+        .iter()
+        .copied()
+        .filter(|&name| !crate::gl::is_reserved_name(name))
+        .collect();
+    forward(kept.len() as i32, kept.as_ptr());
+    Ok(())
+}
+
 /// glGetFramebufferAttachmentParameteriv (…EXT when `ext`). Refused:
 /// `params` NULL (`refuse_null`).
 ///

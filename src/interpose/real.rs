@@ -43,6 +43,10 @@ pub struct Extra {
     pub bind_framebuffer_ext: Option<unsafe extern "system" fn(u32, u32)>,
     /// `glDeleteFramebuffersEXT`.
     pub delete_framebuffers_ext: Option<unsafe extern "system" fn(i32, *const u32)>,
+    /// `glDeleteTexturesEXT` (GL_EXT_texture_object).
+    pub delete_textures_ext: Option<unsafe extern "system" fn(i32, *const u32)>,
+    /// `glDeleteRenderbuffersEXT` (GL_EXT_framebuffer_object).
+    pub delete_renderbuffers_ext: Option<unsafe extern "system" fn(i32, *const u32)>,
     /// `glDrawBuffersARB`.
     pub draw_buffers_arb: Option<unsafe extern "system" fn(i32, *const u32)>,
     /// `glGetFramebufferAttachmentParameterivEXT`.
@@ -259,6 +263,8 @@ fn load() -> Result<Real, String> {
         create_context_attribs: lookup!(c"glXCreateContextAttribsARB"),
         bind_framebuffer_ext: lookup!(c"glBindFramebufferEXT"),
         delete_framebuffers_ext: lookup!(c"glDeleteFramebuffersEXT"),
+        delete_textures_ext: lookup!(c"glDeleteTexturesEXT"),
+        delete_renderbuffers_ext: lookup!(c"glDeleteRenderbuffersEXT"),
         draw_buffers_arb: lookup!(c"glDrawBuffersARB"),
         get_attachment_ext: lookup!(c"glGetFramebufferAttachmentParameterivEXT"),
         push_attrib: lookup!(c"glPushAttrib"),

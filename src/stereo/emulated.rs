@@ -642,8 +642,7 @@ impl EmulatedFramebuffer {
         unsafe {
             let prev_draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
             let prev_read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
-            gl.GenFramebuffers(1, &mut self.app_fbo);
-            gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
+            self.app_fbo = gl.gen_framebuffer_here();
             let attached = self.attach_storage(gl);
             if attached.is_ok() {
                 self.apply_draw(gl);

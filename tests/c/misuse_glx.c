@@ -115,6 +115,8 @@ static create_pbuffer_sgix_fn p_create_pbuffer_sgix;
 static draw_buffers_fn p_draw_buffers, p_draw_buffers_arb;
 static bind_framebuffer_fn p_bind_framebuffer, p_bind_framebuffer_ext;
 static delete_framebuffers_fn p_delete_framebuffers, p_delete_framebuffers_ext;
+static delete_framebuffers_fn p_delete_textures, p_delete_textures_ext;
+static delete_framebuffers_fn p_delete_renderbuffers, p_delete_renderbuffers_ext;
 static attachment_fn p_attachment, p_attachment_ext;
 static clear_fv_fn p_clear_fv;
 static clear_iv_fn p_clear_iv;
@@ -167,6 +169,10 @@ static void load_procs(void) {
     LOOKUP(p_bind_framebuffer_ext, "glBindFramebufferEXT");
     LOOKUP(p_delete_framebuffers, "glDeleteFramebuffers");
     LOOKUP(p_delete_framebuffers_ext, "glDeleteFramebuffersEXT");
+    LOOKUP(p_delete_textures, "glDeleteTextures");
+    LOOKUP(p_delete_textures_ext, "glDeleteTexturesEXT");
+    LOOKUP(p_delete_renderbuffers, "glDeleteRenderbuffers");
+    LOOKUP(p_delete_renderbuffers_ext, "glDeleteRenderbuffersEXT");
     LOOKUP(p_attachment, "glGetFramebufferAttachmentParameteriv");
     LOOKUP(p_attachment_ext, "glGetFramebufferAttachmentParameterivEXT");
     LOOKUP(p_clear_fv, "glClearBufferfv");
@@ -262,6 +268,10 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_bind_framebuffer_ext(t, f) p_bind_framebuffer_ext((t), (f))
 #define gls_gl_delete_framebuffers(n, f) p_delete_framebuffers((n), (f))
 #define gls_gl_delete_framebuffers_ext(n, f) p_delete_framebuffers_ext((n), (f))
+#define gls_gl_delete_textures(n, t) p_delete_textures((n), (t))
+#define gls_gl_delete_textures_ext(n, t) p_delete_textures_ext((n), (t))
+#define gls_gl_delete_renderbuffers(n, r) p_delete_renderbuffers((n), (r))
+#define gls_gl_delete_renderbuffers_ext(n, r) p_delete_renderbuffers_ext((n), (r))
 #define gls_gl_get_framebuffer_attachment_parameteriv(t, a, p, v) p_attachment((t), (a), (p), (v))
 #define gls_gl_get_framebuffer_attachment_parameteriv_ext(t, a, p, v) \
     p_attachment_ext((t), (a), (p), (v))
@@ -752,6 +762,10 @@ static void no_context_cases(void) {
     EXPECT_VOID(0, gls_gl_bind_framebuffer_ext, GL_FRAMEBUFFER_, 0);
     EXPECT_VOID(0, gls_gl_delete_framebuffers, 1, &name);
     EXPECT_VOID(0, gls_gl_delete_framebuffers_ext, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_textures, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_textures_ext, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_renderbuffers, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_renderbuffers_ext, 1, &name);
     EXPECT_VOID(0, gls_gl_push_attrib, GL_COLOR_BUFFER_BIT);
     EXPECT_VOID0(0, gls_gl_pop_attrib);
     EXPECT_VOID(0, gls_gl_viewport, 0, 0, -1, -1);
@@ -845,6 +859,14 @@ static void null_gl_pointers(const char *where) {
     EXPECT_VOID(1, gls_gl_delete_framebuffers, 1, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_delete_framebuffers_ext, 3, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_textures, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_textures_ext, 2, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_renderbuffers, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_renderbuffers_ext, 4, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_get_framebuffer_attachment_parameteriv, GL_FRAMEBUFFER_, GL_BACK_LEFT,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, NULL);
