@@ -2666,6 +2666,41 @@ void gls_gl_invalidate_sub_framebuffer(uint32_t target,
                                        int32_t height);
 
 /**
+ * `glInvalidateNamedFramebufferData`: on framebuffer 0, as
+ * gls_gl_invalidate_framebuffer() with framebuffer 0 bound. Refused:
+ * `attachments` NULL with n > 0.
+ */
+void gls_gl_invalidate_named_framebuffer_data(uint32_t framebuffer,
+                                              int32_t num_attachments,
+                                              const uint32_t *attachments);
+
+/**
+ * `glInvalidateNamedFramebufferSubData`: as
+ * gls_gl_invalidate_named_framebuffer_data().
+ */
+void gls_gl_invalidate_named_framebuffer_sub_data(uint32_t framebuffer,
+                                                  int32_t num_attachments,
+                                                  const uint32_t *attachments,
+                                                  int32_t x,
+                                                  int32_t y,
+                                                  int32_t width,
+                                                  int32_t height);
+
+/**
+ * `glCheckNamedFramebufferStatus`: framebuffer 0 is the emulated default
+ * framebuffer, complete as a window is (whatever a layer below has as its
+ * framebuffer 0); `target` is checked as GL checks it (GL_INVALID_ENUM
+ * and 0).
+ */
+uint32_t gls_gl_check_named_framebuffer_status(uint32_t framebuffer, uint32_t target);
+
+/**
+ * `glCheckNamedFramebufferStatusEXT` (GL_EXT_direct_state_access): as
+ * gls_gl_check_named_framebuffer_status().
+ */
+uint32_t gls_gl_check_named_framebuffer_status_ext(uint32_t framebuffer, uint32_t target);
+
+/**
  * `glGetNamedFramebufferAttachmentParameteriv`: on framebuffer 0, as
  * gls_gl_get_framebuffer_attachment_parameteriv() with framebuffer 0
  * bound (GL_FRAMEBUFFER_DEFAULT, the window's component sizes; the right

@@ -228,7 +228,10 @@ fn legacy_name(gls: &str) -> &'static str {
         ("gls_gl_delete_textures", "glDeleteTextures"),
         ("gls_gl_delete_textures_ext", "glDeleteTexturesEXT"),
         ("gls_gl_delete_renderbuffers", "glDeleteRenderbuffers"),
-        ("gls_gl_delete_renderbuffers_ext", "glDeleteRenderbuffersEXT"),
+        (
+            "gls_gl_delete_renderbuffers_ext",
+            "glDeleteRenderbuffersEXT",
+        ),
         (
             "gls_gl_get_framebuffer_attachment_parameteriv",
             "glGetFramebufferAttachmentParameteriv",
@@ -257,6 +260,22 @@ fn legacy_name(gls: &str) -> &'static str {
             "glNamedFramebufferDrawBuffers",
         ),
         ("gls_gl_invalidate_framebuffer", "glInvalidateFramebuffer"),
+        (
+            "gls_gl_invalidate_named_framebuffer_data",
+            "glInvalidateNamedFramebufferData",
+        ),
+        (
+            "gls_gl_invalidate_named_framebuffer_sub_data",
+            "glInvalidateNamedFramebufferSubData",
+        ),
+        (
+            "gls_gl_check_named_framebuffer_status",
+            "glCheckNamedFramebufferStatus",
+        ),
+        (
+            "gls_gl_check_named_framebuffer_status_ext",
+            "glCheckNamedFramebufferStatusEXT",
+        ),
         (
             "gls_gl_invalidate_sub_framebuffer",
             "glInvalidateSubFramebuffer",

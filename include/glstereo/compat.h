@@ -405,6 +405,22 @@ static inline void gls_compat_glInvalidateSubFramebuffer(GLenum target, GLsizei 
 {
     gls_gl_invalidate_sub_framebuffer(target, n, attachments, x, y, width, height);
 }
+static inline void gls_compat_glInvalidateNamedFramebufferData(GLuint framebuffer, GLsizei n,
+                                                               const GLenum *attachments)
+{
+    gls_gl_invalidate_named_framebuffer_data(framebuffer, n, attachments);
+}
+static inline void gls_compat_glInvalidateNamedFramebufferSubData(GLuint framebuffer, GLsizei n,
+                                                                  const GLenum *attachments,
+                                                                  GLint x, GLint y, GLsizei width,
+                                                                  GLsizei height)
+{
+    gls_gl_invalidate_named_framebuffer_sub_data(framebuffer, n, attachments, x, y, width, height);
+}
+static inline GLenum gls_compat_glCheckNamedFramebufferStatus(GLuint framebuffer, GLenum target)
+{
+    return gls_gl_check_named_framebuffer_status(framebuffer, target);
+}
 static inline void gls_compat_glGetNamedFramebufferAttachmentParameteriv(GLuint framebuffer,
                                                                          GLenum attachment,
                                                                          GLenum pname,
@@ -512,6 +528,9 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glBlitNamedFramebuffer gls_compat_glBlitNamedFramebuffer
 #define glInvalidateFramebuffer gls_compat_glInvalidateFramebuffer
 #define glInvalidateSubFramebuffer gls_compat_glInvalidateSubFramebuffer
+#define glInvalidateNamedFramebufferData gls_compat_glInvalidateNamedFramebufferData
+#define glInvalidateNamedFramebufferSubData gls_compat_glInvalidateNamedFramebufferSubData
+#define glCheckNamedFramebufferStatus gls_compat_glCheckNamedFramebufferStatus
 #define glGetNamedFramebufferAttachmentParameteriv gls_compat_glGetNamedFramebufferAttachmentParameteriv
 #define glGetNamedFramebufferParameteriv gls_compat_glGetNamedFramebufferParameteriv
 #define glGetFramebufferParameteriv gls_compat_glGetFramebufferParameteriv

@@ -208,6 +208,10 @@ export! {
     glBlitNamedFramebuffer => gls_gl_blit_named_framebuffer(read: u32, draw: u32, sx0: i32, sy0: i32, sx1: i32, sy1: i32, dx0: i32, dy0: i32, dx1: i32, dy1: i32, mask: u32, filter: u32);
     glInvalidateFramebuffer => gls_gl_invalidate_framebuffer(target: u32, n: i32, attachments: *const u32);
     glInvalidateSubFramebuffer => gls_gl_invalidate_sub_framebuffer(target: u32, n: i32, attachments: *const u32, x: i32, y: i32, width: i32, height: i32);
+    glInvalidateNamedFramebufferData => gls_gl_invalidate_named_framebuffer_data(framebuffer: u32, n: i32, attachments: *const u32);
+    glInvalidateNamedFramebufferSubData => gls_gl_invalidate_named_framebuffer_sub_data(framebuffer: u32, n: i32, attachments: *const u32, x: i32, y: i32, width: i32, height: i32);
+    glCheckNamedFramebufferStatus => gls_gl_check_named_framebuffer_status(framebuffer: u32, target: u32) -> u32;
+    glCheckNamedFramebufferStatusEXT => gls_gl_check_named_framebuffer_status_ext(framebuffer: u32, target: u32) -> u32;
     glGetNamedFramebufferAttachmentParameteriv => gls_gl_get_named_framebuffer_attachment_parameteriv(framebuffer: u32, attachment: u32, pname: u32, params: *mut i32);
     glGetNamedFramebufferParameteriv => gls_gl_get_named_framebuffer_parameteriv(framebuffer: u32, pname: u32, params: *mut i32);
     glGetFramebufferParameteriv => gls_gl_get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut i32);

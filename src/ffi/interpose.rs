@@ -1076,6 +1076,16 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glBlitNamedFramebuffer" => gls_gl_blit_named_framebuffer as *mut c_void,
         b"glInvalidateFramebuffer" => gls_gl_invalidate_framebuffer as *mut c_void,
         b"glInvalidateSubFramebuffer" => gls_gl_invalidate_sub_framebuffer as *mut c_void,
+        b"glInvalidateNamedFramebufferData" => {
+            gls_gl_invalidate_named_framebuffer_data as *mut c_void
+        }
+        b"glInvalidateNamedFramebufferSubData" => {
+            gls_gl_invalidate_named_framebuffer_sub_data as *mut c_void
+        }
+        b"glCheckNamedFramebufferStatus" => gls_gl_check_named_framebuffer_status as *mut c_void,
+        b"glCheckNamedFramebufferStatusEXT" => {
+            gls_gl_check_named_framebuffer_status_ext as *mut c_void
+        }
         b"glGetNamedFramebufferAttachmentParameteriv" => {
             gls_gl_get_named_framebuffer_attachment_parameteriv as *mut c_void
         }
@@ -1276,6 +1286,66 @@ pub unsafe extern "C" fn gls_gl_invalidate_sub_framebuffer(
     ffi_boundary!("gls_gl_invalidate_sub_framebuffer" for "glInvalidateSubFramebuffer", () => {
         // SAFETY: GL's contract, forwarded.
         unsafe { idsa::invalidate_sub_framebuffer(target, num_attachments, attachments, [x, y, width, height]) }
+    })
+}
+
+/// `glInvalidateNamedFramebufferData`: on framebuffer 0, as
+/// gls_gl_invalidate_framebuffer() with framebuffer 0 bound. Refused:
+/// `attachments` NULL with n > 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_invalidate_named_framebuffer_data(
+    framebuffer: u32,
+    num_attachments: i32,
+    attachments: *const u32,
+) {
+    ffi_boundary!("gls_gl_invalidate_named_framebuffer_data" for "glInvalidateNamedFramebufferData", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::invalidate_named_framebuffer_data(framebuffer, num_attachments, attachments) }
+    })
+}
+
+/// `glInvalidateNamedFramebufferSubData`: as
+/// gls_gl_invalidate_named_framebuffer_data().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_invalidate_named_framebuffer_sub_data(
+    framebuffer: u32,
+    num_attachments: i32,
+    attachments: *const u32,
+    x: i32,
+    y: i32,
+    width: i32,
+    height: i32,
+) {
+    ffi_boundary!("gls_gl_invalidate_named_framebuffer_sub_data" for "glInvalidateNamedFramebufferSubData", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe {
+            idsa::invalidate_named_framebuffer_sub_data(
+                framebuffer,
+                num_attachments,
+                attachments,
+                [x, y, width, height],
+            )
+        }
+    })
+}
+
+/// `glCheckNamedFramebufferStatus`: framebuffer 0 is the emulated default
+/// framebuffer, complete as a window is (whatever a layer below has as its
+/// framebuffer 0); `target` is checked as GL checks it (GL_INVALID_ENUM
+/// and 0).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_check_named_framebuffer_status(framebuffer: u32, target: u32) -> u32 {
+    ffi_boundary!("gls_gl_check_named_framebuffer_status" for "glCheckNamedFramebufferStatus", 0 => {
+        idsa::check_named_framebuffer_status(framebuffer, target, false)
+    })
+}
+
+/// `glCheckNamedFramebufferStatusEXT` (GL_EXT_direct_state_access): as
+/// gls_gl_check_named_framebuffer_status().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_check_named_framebuffer_status_ext(framebuffer: u32, target: u32) -> u32 {
+    ffi_boundary!("gls_gl_check_named_framebuffer_status_ext" for "glCheckNamedFramebufferStatusEXT", 0 => {
+        idsa::check_named_framebuffer_status(framebuffer, target, true)
     })
 }
 

@@ -43,7 +43,7 @@ use super::gl::{
 use super::real::{Real, loaded};
 use crate::error::{Error, Result};
 use crate::gl::enums::*;
-use crate::stereo::buffers::gl_error_code;
+use crate::stereo::buffers::{default_invalidate_error, gl_error_code};
 use crate::stereo::emulated::{DrawSlots, EmulatedFramebuffer};
 use crate::stereo::outputs::{LinkFns, Outcome};
 
@@ -54,6 +54,9 @@ type ClearFn<T> = unsafe extern "system" fn(u32, i32, *const T);
 type ClearNamedFn<T> = unsafe extern "system" fn(u32, u32, i32, *const T);
 type InvalidateFn = unsafe extern "system" fn(u32, i32, *const u32);
 type InvalidateSubFn = unsafe extern "system" fn(u32, i32, *const u32, i32, i32, i32, i32);
+type InvalidateNamedFn = unsafe extern "system" fn(u32, i32, *const u32);
+type InvalidateNamedSubFn = unsafe extern "system" fn(u32, i32, *const u32, i32, i32, i32, i32);
+type CheckNamedFn = unsafe extern "system" fn(u32, u32) -> u32;
 type ParamFn = unsafe extern "system" fn(u32, u32, *mut i32);
 type AttachmentFn = unsafe extern "system" fn(u32, u32, u32, *mut i32);
 type BlitFn = unsafe extern "system" fn(u32, u32, i32, i32, i32, i32, i32, i32, i32, i32, u32, u32);
@@ -102,6 +105,10 @@ fns! {
     blit_named: BlitFn = c"glBlitNamedFramebuffer";
     invalidate: InvalidateFn = c"glInvalidateFramebuffer";
     invalidate_sub: InvalidateSubFn = c"glInvalidateSubFramebuffer";
+    invalidate_named: InvalidateNamedFn = c"glInvalidateNamedFramebufferData";
+    invalidate_named_sub: InvalidateNamedSubFn = c"glInvalidateNamedFramebufferSubData";
+    check_named: CheckNamedFn = c"glCheckNamedFramebufferStatus";
+    check_named_ext: CheckNamedFn = c"glCheckNamedFramebufferStatusEXT";
     named_attachment: AttachmentFn = c"glGetNamedFramebufferAttachmentParameteriv";
     named_parameter: ParamFn = c"glGetNamedFramebufferParameteriv";
     parameter: ParamFn = c"glGetFramebufferParameteriv";
@@ -429,26 +436,33 @@ fn emulated_at(r: &Real, cur: &Current, target: u32) -> bool {
     bound(&r.gl, &mut st.fbs, drawable, binding).is_some()
 }
 
-/// Runs `call`, a forwarded call on `target`, on the window's framebuffer
-/// when the emulated one is bound at `target` (then returning the current
-/// context), else as it is.
-fn on_window_at(r: &Real, target: u32, call: impl FnOnce()) -> Option<Current> {
-    match current() {
-        Some(cur) if emulated_at(r, &cur, target) => {
-            with_window_framebuffer(&r.gl, call);
-            Some(cur)
-        }
-        _ => {
-            call();
-            None
-        }
+/// Invalidation of the emulated default framebuffer (`size`: the Sub
+/// forms' width and height): validated as a driver validates a window
+/// ([`default_invalidate_error`], the error queued), whatever the layer
+/// below has as framebuffer 0; the eyes keep their contents (a hint GL
+/// lets an implementation ignore).
+///
+/// # Safety
+/// `attachments` holds `n` values when `n` > 0 (GL's contract).
+unsafe fn invalidate_emulated(
+    cur: &Current,
+    n: i32,
+    attachments: *const u32,
+    size: Option<(i32, i32)>,
+) {
+    let list = if n > 0 {
+        // SAFETY: contract; not NULL (callers refuse that).
+        unsafe { std::slice::from_raw_parts(attachments, n as usize) }
+    } else {
+        &[]
+    };
+    if let Some(e) = default_invalidate_error(n, list, size) {
+        cur.sc.lock().push_error(e);
     }
 }
 
-/// glInvalidateFramebuffer: with framebuffer 0 bound at `target`, validated
-/// by the window's framebuffer (the driver's errors for a default
-/// framebuffer); the emulated buffers keep their contents (a hint GL lets
-/// an implementation ignore). Refused: `attachments` NULL with n > 0.
+/// glInvalidateFramebuffer: with framebuffer 0 bound at `target`,
+/// [`invalidate_emulated`]. Refused: `attachments` NULL with n > 0.
 ///
 /// # Safety
 /// `attachments` must hold `n` values (GL's contract).
@@ -458,8 +472,14 @@ pub unsafe fn invalidate_framebuffer(target: u32, n: i32, attachments: *const u3
     if missing(n, attachments) {
         return Err(refuse_null(r, "attachments"));
     }
-    // SAFETY: forwarded call.
-    on_window_at(r, target, || unsafe { real(target, n, attachments) });
+    match current() {
+        // SAFETY: contract.
+        Some(cur) if emulated_at(r, &cur, target) => unsafe {
+            invalidate_emulated(&cur, n, attachments, None)
+        },
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, n, attachments) },
+    }
     Ok(())
 }
 
@@ -479,11 +499,95 @@ pub unsafe fn invalidate_sub_framebuffer(
         return Err(refuse_null(r, "attachments"));
     }
     let [x, y, w, h] = rect;
-    // SAFETY: forwarded call.
-    on_window_at(r, target, || unsafe {
-        real(target, n, attachments, x, y, w, h)
-    });
+    match current() {
+        // SAFETY: contract.
+        Some(cur) if emulated_at(r, &cur, target) => unsafe {
+            invalidate_emulated(&cur, n, attachments, Some((w, h)))
+        },
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, n, attachments, x, y, w, h) },
+    }
     Ok(())
+}
+
+/// The current stereo context, when framebuffer 0 is emulated in it (what
+/// direct state access on 0 names).
+fn emulated_fb0() -> Option<Current> {
+    current().filter(|c| with_fb0(c, false, |_, _| ()).is_some())
+}
+
+/// glInvalidateNamedFramebufferData: on framebuffer 0, when it is
+/// emulated, [`invalidate_emulated`]. Refused: `attachments` NULL with n > 0.
+///
+/// # Safety
+/// `attachments` must hold `n` values (GL's contract).
+pub unsafe fn invalidate_named_framebuffer_data(
+    framebuffer: u32,
+    n: i32,
+    attachments: *const u32,
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().invalidate_named, "glInvalidateNamedFramebufferData")?;
+    if missing(n, attachments) {
+        return Err(refuse_null(r, "attachments"));
+    }
+    match emulated_fb0().filter(|_| framebuffer == 0) {
+        // SAFETY: contract.
+        Some(cur) => unsafe { invalidate_emulated(&cur, n, attachments, None) },
+        // SAFETY: forwarded call.
+        None => unsafe { real(framebuffer, n, attachments) },
+    }
+    Ok(())
+}
+
+/// glInvalidateNamedFramebufferSubData: as
+/// [`invalidate_named_framebuffer_data`].
+///
+/// # Safety
+/// As [`invalidate_named_framebuffer_data`].
+pub unsafe fn invalidate_named_framebuffer_sub_data(
+    framebuffer: u32,
+    n: i32,
+    attachments: *const u32,
+    rect: [i32; 4],
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(
+        fns().invalidate_named_sub,
+        "glInvalidateNamedFramebufferSubData",
+    )?;
+    if missing(n, attachments) {
+        return Err(refuse_null(r, "attachments"));
+    }
+    let [x, y, w, h] = rect;
+    match emulated_fb0().filter(|_| framebuffer == 0) {
+        // SAFETY: contract.
+        Some(cur) => unsafe { invalidate_emulated(&cur, n, attachments, Some((w, h))) },
+        // SAFETY: forwarded call.
+        None => unsafe { real(framebuffer, n, attachments, x, y, w, h) },
+    }
+    Ok(())
+}
+
+/// glCheckNamedFramebufferStatus (…EXT when `ext`): framebuffer 0, when it
+/// is emulated, is answered by the emulated framebuffer's own object (the
+/// read drawable's for GL_READ_FRAMEBUFFER; the driver checks `target`),
+/// whatever the layer below has as framebuffer 0 (VirtualGL makes contexts
+/// current without a surface: there it is GL_FRAMEBUFFER_UNDEFINED).
+pub fn check_named_framebuffer_status(framebuffer: u32, target: u32, ext: bool) -> Result<u32> {
+    loaded()?;
+    let real = if ext {
+        need(fns().check_named_ext, "glCheckNamedFramebufferStatusEXT")?
+    } else {
+        need(fns().check_named, "glCheckNamedFramebufferStatus")?
+    };
+    let own = (framebuffer == 0)
+        .then(current)
+        .flatten()
+        .and_then(|cur| with_fb0(&cur, target == GL_READ_FRAMEBUFFER, |fb, _| fb.app_fbo()))
+        .filter(|&fbo| fbo != 0);
+    // SAFETY: forwarded call, on the emulated framebuffer's object for 0.
+    Ok(unsafe { real(own.unwrap_or(framebuffer), target) })
 }
 
 /// glGetNamedFramebufferAttachmentParameteriv: on framebuffer 0, as
@@ -507,11 +611,22 @@ pub unsafe fn get_named_framebuffer_attachment_parameteriv(
         return Err(refuse_null(r, "params"));
     }
     if framebuffer == 0 {
-        if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
+        if let Some(cur) = emulated_fb0() {
+            // The window's buffer answers as glGetFramebufferAttachmentParameteriv
+            // finds it, through the layer below (VirtualGL stands in for
+            // framebuffer 0 there; the named form on 0 would ask a context
+            // current without a surface).
             // SAFETY: the program's context is current; `params` not NULL.
             unsafe {
                 emulated_attachment(&cur, attachment, pname, params, |twin| {
-                    real(0, twin, pname, params)
+                    with_window_framebuffer(&r.gl, || {
+                        r.gl.GetFramebufferAttachmentParameteriv(
+                            GL_DRAW_FRAMEBUFFER,
+                            twin,
+                            pname,
+                            params,
+                        )
+                    })
                 })
             };
             return Ok(());
@@ -552,14 +667,8 @@ pub unsafe fn get_named_framebuffer_parameteriv(
         return Err(refuse_null(r, "params"));
     }
     if framebuffer == 0 {
-        if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
-            // The window's framebuffer bound: the driver brings its read
-            // state up to date only for a bound framebuffer (Mesa answers
-            // GL_IMPLEMENTATION_COLOR_READ_FORMAT with GL_INVALID_OPERATION
-            // otherwise).
-            // SAFETY: forwarded call, on the window's framebuffer.
-            with_window_framebuffer(&r.gl, || unsafe { real(0, pname, params) });
-            stereo_parameter(&cur, pname, params);
+        if let Some(cur) = emulated_fb0() {
+            default_parameter(r, &cur, pname, params);
             return Ok(());
         }
     }
@@ -579,11 +688,44 @@ pub unsafe fn get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut 
     if params.is_null() {
         return Err(refuse_null(r, "params"));
     }
-    // SAFETY: forwarded call.
-    if let Some(cur) = on_window_at(r, target, || unsafe { real(target, pname, params) }) {
-        stereo_parameter(&cur, pname, params);
+    match current() {
+        Some(cur) if emulated_at(r, &cur, target) => default_parameter(r, &cur, pname, params),
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, pname, params) },
     }
     Ok(())
+}
+
+/// glGetFramebufferParameters' answer for the emulated default
+/// framebuffer (`params` not NULL): GL_STEREO and GL_DOUBLEBUFFER its own;
+/// the parameters GL 4.5 gives only to framebuffer objects
+/// (GL_FRAMEBUFFER_DEFAULT_*) GL_INVALID_OPERATION; every other the
+/// window's, through the layer below with its framebuffer 0 bound (the
+/// driver brings the read format up to date only for a bound framebuffer)
+/// — values and GL_INVALID_ENUM for unknown names.
+fn default_parameter(r: &Real, cur: &Current, pname: u32, params: *mut i32) {
+    const GL_FRAMEBUFFER_DEFAULT_WIDTH: u32 = 0x9310;
+    const GL_FRAMEBUFFER_DEFAULT_FIXED_SAMPLE_LOCATIONS: u32 = 0x9314;
+    const GL_IMPLEMENTATION_COLOR_READ_TYPE: u32 = 0x8B9A;
+    const GL_IMPLEMENTATION_COLOR_READ_FORMAT: u32 = 0x8B9B;
+    if (GL_FRAMEBUFFER_DEFAULT_WIDTH..=GL_FRAMEBUFFER_DEFAULT_FIXED_SAMPLE_LOCATIONS)
+        .contains(&pname)
+    {
+        cur.sc.lock().push_error(GL_INVALID_OPERATION);
+        return;
+    }
+    let Some(real) = fns().parameter else {
+        return;
+    };
+    let target = match pname {
+        GL_IMPLEMENTATION_COLOR_READ_FORMAT | GL_IMPLEMENTATION_COLOR_READ_TYPE => {
+            GL_READ_FRAMEBUFFER
+        }
+        _ => GL_DRAW_FRAMEBUFFER,
+    };
+    // SAFETY: forwarded call, on the window's framebuffer; `params` not NULL.
+    with_window_framebuffer(&r.gl, || unsafe { real(target, pname, params) });
+    stereo_parameter(cur, pname, params);
 }
 
 /// Relinks `program` with output 0 copied ([`LinkFns::duplicate_output_zero`])

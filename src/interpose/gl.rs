@@ -671,6 +671,13 @@ pub(super) unsafe fn emulated_attachment(
             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => cur.sc.lock().push_error(GL_INVALID_ENUM),
             _ => cur.sc.lock().push_error(GL_INVALID_OPERATION),
         },
+        // GL 4.5 §9.2.3: a default framebuffer's buffers answer only these
+        // (an object name, texture level or layer is an FBO's); Mesa says
+        // so for its windows too. Not asked of the window below, which a
+        // layer such as VirtualGL stands in for with an object of its own.
+        _ if !DEFAULT_ATTACHMENT_PNAMES.contains(&pname) => {
+            cur.sc.lock().push_error(GL_INVALID_ENUM)
+        }
         _ => window(match color {
             Some(ColorBuffer::FrontRight) => GL_FRONT_LEFT,
             Some(ColorBuffer::BackRight) => GL_BACK_LEFT,
@@ -678,6 +685,21 @@ pub(super) unsafe fn emulated_attachment(
         }),
     }
 }
+
+/// The glGetFramebufferAttachmentParameteriv names a default
+/// framebuffer's buffers answer: the object type, the component sizes,
+/// the component type and the colour encoding.
+const DEFAULT_ATTACHMENT_PNAMES: [u32; 9] = [
+    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+    0x8212, // GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE
+    0x8213, // GREEN_SIZE
+    0x8214, // BLUE_SIZE
+    0x8215, // ALPHA_SIZE
+    0x8216, // DEPTH_SIZE
+    0x8217, // STENCIL_SIZE
+    0x8211, // COMPONENT_TYPE
+    0x8210, // COLOR_ENCODING
+];
 
 /// glViewport: before forwarding it, a size other than the buffers' makes
 /// the layer check (once a frame) whether the window was resized.

@@ -49,6 +49,8 @@
 
 /* Tokens newer than GL/gl.h (1.3) and GL/glx.h (1.4). */
 #define GL_FRAMEBUFFER_ 0x8D40u
+#define GL_READ_FRAMEBUFFER_ 0x8CA8u
+#define GL_FRAMEBUFFER_COMPLETE_ 0x8CD5u
 #define GL_DRAW_FRAMEBUFFER_BINDING_ 0x8CA6u
 #define GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_ 0x8CD0u
 #define GL_COLOR_ 0x1800u
@@ -142,6 +144,13 @@ static clear_color_ui_fn p_clear_color_iui;
 static blit_fn p_blit;
 static invalidate_fn p_invalidate;
 static invalidate_sub_fn p_invalidate_sub;
+typedef void (*invalidate_named_fn)(GLuint, GLsizei, const GLenum *);
+typedef void (*invalidate_named_sub_fn)(GLuint, GLsizei, const GLenum *, GLint, GLint, GLsizei,
+                                        GLsizei);
+typedef GLenum (*check_named_fn)(GLuint, GLenum);
+static invalidate_named_fn p_invalidate_named;
+static invalidate_named_sub_fn p_invalidate_named_sub;
+static check_named_fn p_check_named, p_check_named_ext;
 static named_attachment_fn p_named_attachment;
 static parameter_fn p_named_parameter, p_parameter;
 static link_program_fn p_link_program;
@@ -210,6 +219,10 @@ static void load_procs(void) {
     LOOKUP(p_blit, "glBlitFramebuffer");
     LOOKUP(p_invalidate, "glInvalidateFramebuffer");
     LOOKUP(p_invalidate_sub, "glInvalidateSubFramebuffer");
+    LOOKUP(p_invalidate_named, "glInvalidateNamedFramebufferData");
+    LOOKUP(p_invalidate_named_sub, "glInvalidateNamedFramebufferSubData");
+    LOOKUP(p_check_named, "glCheckNamedFramebufferStatus");
+    LOOKUP(p_check_named_ext, "glCheckNamedFramebufferStatusEXT");
     LOOKUP(p_named_attachment, "glGetNamedFramebufferAttachmentParameteriv");
     LOOKUP(p_named_parameter, "glGetNamedFramebufferParameteriv");
     LOOKUP(p_parameter, "glGetFramebufferParameteriv");
@@ -321,6 +334,11 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_invalidate_framebuffer(t, n, a) p_invalidate((t), (n), (a))
 #define gls_gl_invalidate_sub_framebuffer(t, n, a, x, y, w, h) \
     p_invalidate_sub((t), (n), (a), (x), (y), (w), (h))
+#define gls_gl_invalidate_named_framebuffer_data(f, n, a) p_invalidate_named((f), (n), (a))
+#define gls_gl_invalidate_named_framebuffer_sub_data(f, n, a, x, y, w, h) \
+    p_invalidate_named_sub((f), (n), (a), (x), (y), (w), (h))
+#define gls_gl_check_named_framebuffer_status(f, t) p_check_named((f), (t))
+#define gls_gl_check_named_framebuffer_status_ext(f, t) p_check_named_ext((f), (t))
 #define gls_gl_get_named_framebuffer_attachment_parameteriv(f, a, p, v) \
     p_named_attachment((f), (a), (p), (v))
 #define gls_gl_get_named_framebuffer_parameteriv(f, p, v) p_named_parameter((f), (p), (v))
@@ -892,6 +910,10 @@ static void null_gl_pointers(const char *where) {
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_invalidate_sub_framebuffer, GL_FRAMEBUFFER_, 2, NULL, 0, 0, 1, 1);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_invalidate_named_framebuffer_data, 0, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_invalidate_named_framebuffer_sub_data, 0, 3, NULL, 0, 0, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_get_named_framebuffer_attachment_parameteriv, 0, GL_BACK_LEFT,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
@@ -1072,11 +1094,26 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_VOID(0, gls_gl_clear_color, 0.0f, 0.0f, 0.0f, 0.0f);
     EXPECT_GL_ERROR(GL_NO_ERROR);
     const GLenum bad_attachment[1] = {0x7777};
+    GLenum status;
     EXPECT_VOID(0, gls_gl_invalidate_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
     EXPECT_VOID(0, gls_gl_invalidate_sub_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment, 0, 0,
                 1, 1);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_invalidate_named_framebuffer_data, 0, 1, bad_attachment);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_invalidate_named_framebuffer_sub_data, 0, 1, bad_attachment, 0, 0, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_invalidate_named_framebuffer_sub_data, 0, 0, bad_attachment, 0, 0, -1,
+                1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_RET(status == 0, 0, status, gls_gl_check_named_framebuffer_status, 0, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_RET(status == 0, 0, status, gls_gl_check_named_framebuffer_status_ext, 0, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_RET(status == GL_FRAMEBUFFER_COMPLETE_, 0, status, gls_gl_check_named_framebuffer_status,
+               0, GL_READ_FRAMEBUFFER_);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
     EXPECT_VOID(0, gls_gl_get_named_framebuffer_attachment_parameteriv, 0, 0x7777,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, &iv);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
