@@ -17,7 +17,10 @@
 //!   double-buffered window gets the composite from memory instead, through
 //!   a MIT-SHM image per drawable (`backend/xshm.rs`): the eyes are read
 //!   back in bands and composed on the CPU straight into the shared
-//!   segment, with no full-window GL pass and no swap.
+//!   segment, with no full-window GL pass and no swap — unless the next
+//!   glXSwapBuffers belongs to another GL layer below this one (MangoHud,
+//!   VirtualGL, apitrace: [`super::real::Real::swap_layered`]), which must
+//!   see every frame: then the composite goes through GL and that swap.
 
 use std::cell::Cell;
 use std::collections::HashMap;
@@ -765,9 +768,17 @@ impl StereoContext {
         // single-buffered windows: Mesa's software driver copies the
         // program's real front buffer into the window when the program
         // flushes, over the frame put there.
+        // Not when the next glXSwapBuffers is another layer's: that layer
+        // must see every frame (MangoHud's HUD, VirtualGL's transport).
         // Some(size after the put) when the frame went out through MIT-SHM.
         let mut seen = None;
-        let shown = if self.shape.double_buffered {
+        if r.swap_layered {
+            settings::tell(
+                "frames are presented through the glXSwapBuffers of a GL layer below glstereo \
+                 (composed by GL, not put with MIT-SHM)",
+            );
+        }
+        let shown = if self.shape.double_buffered && !r.swap_layered {
             // SAFETY: the layer's context is current on the drawable, whose
             // X drawable is `x_window`; the job's textures are shared with it.
             unsafe {

@@ -127,10 +127,11 @@ pub unsafe fn choose_visual(
     // SAFETY: the caller's list, read by its structure.
     let list = unsafe { read_visual_list(attribs) };
     let (mut stripped, stereo) = strip_visual_stereo(&list);
-    if stereo && settings::wants_native_quad() {
+    if stereo && settings::native_allowed() {
         // SAFETY: forwarded call.
         let v = unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) };
         if !v.is_null() {
+            tell_native();
             return Ok(v);
         }
     }
@@ -219,10 +220,11 @@ pub unsafe fn choose_fbconfig(
     if !stereo {
         return Ok(choose(attribs));
     }
-    if settings::wants_native_quad() {
+    if settings::native_allowed() {
         let native = choose(attribs);
         // SAFETY: nelements was written by the real call when it returned a list.
         if !native.is_null() && unsafe { *nelements } > 0 {
+            tell_native();
             return Ok(native);
         }
     }
@@ -246,9 +248,12 @@ pub unsafe fn choose_fbconfig(
 }
 
 /// glXGetFBConfigs: the server's configurations, followed by a stereo twin
-/// of each RGBA window configuration (so programs that pick from the whole
-/// list, as GLFW does, find stereo ones). The first entries are the real
-/// list, in its order.
+/// of each mono RGBA window configuration (so programs that pick from the
+/// whole list, as GLFW does, find stereo ones). The first entries are the
+/// real list, in its order — but for the stereo configurations the driver
+/// or a layer below offers (VirtualGL has 144), which are left out when
+/// the user chose a format ([`settings::native_allowed`]): the program
+/// then picks one of the layer's, emulated and shown in that format.
 ///
 /// Refused: a NULL display or `nelements`.
 ///
@@ -269,14 +274,19 @@ pub unsafe fn get_fbconfigs(
     }
     // SAFETY: the count of the list the real call returned.
     let n = unsafe { *nelements }.max(0) as usize;
-    // SAFETY: n entries.
-    let reals: Vec<GLXFBConfig> = unsafe { std::slice::from_raw_parts(configs, n) }.to_vec();
     let attr = |c: GLXFBConfig, a: c_int| {
         let mut v = 0;
         // SAFETY: a real configuration of this display.
         unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
         v
     };
+    // SAFETY: n entries.
+    let reals: Vec<GLXFBConfig> = unsafe { std::slice::from_raw_parts(configs, n) }
+        .iter()
+        .copied()
+        .filter(|&c| settings::native_allowed() || attr(c, GLX_STEREO) == 0)
+        .collect();
+    let n = reals.len();
     watch(r, dpy);
     let twins: Vec<GLXFBConfig> = registry::with(|reg| {
         reals
@@ -374,6 +384,15 @@ pub unsafe fn get_visual_from_fbconfig(
     Ok(v)
 }
 
+/// Says (with GLSTEREO_VERBOSE) that a stereo request got native stereo.
+fn tell_native() {
+    settings::tell(
+        "stereo is native: the driver's or a GL layer below's own stereo configuration, \
+         shown as that layer shows it; choose a format (glstereo-run -m MODE) to have \
+         glstereo emulate and show it instead",
+    );
+}
+
 /// Makes program context `ctx` a stereo context: creates the layer's
 /// context (`make_ours(ctx)`, sharing its objects; X errors trapped) and
 /// records the shape the configuration gives (`attrib` reads it). On
@@ -407,6 +426,10 @@ fn adopt(
         )
     };
     let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
+    settings::tell(&format!(
+        "stereo is emulated: both eyes shown as {} in the program's window",
+        settings::window_mode().canonical_name()
+    ));
     watch(r, dpy);
     registry::with(|reg| reg.add_context(ctx as usize, sc));
 }
@@ -442,7 +465,16 @@ pub unsafe fn create_context(
     }
     // SAFETY: the program's visual.
     let id = unsafe { (*vis).visualid };
-    if registry::with(|reg| reg.is_stereo_visual(vis as usize, id)) {
+    let emulated = registry::with(|reg| reg.is_stereo_visual(vis as usize, id));
+    if !emulated && settings::verbose() {
+        let mut native = 0;
+        // SAFETY: a valid visual.
+        unsafe { (r.glx.glXGetConfig)(dpy, vis, GLX_STEREO, &mut native) };
+        if native != 0 {
+            tell_native();
+        }
+    }
+    if emulated {
         adopt(
             r,
             dpy,
@@ -503,6 +535,14 @@ pub unsafe fn create_config_context(
         },
     };
     forget(ctx);
+    if !stereo && !ctx.is_null() && settings::verbose() {
+        let mut native = 0;
+        // SAFETY: a real configuration.
+        unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, GLX_STEREO, &mut native) };
+        if native != 0 {
+            tell_native();
+        }
+    }
     if stereo && !ctx.is_null() {
         adopt(
             r,

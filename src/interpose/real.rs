@@ -220,6 +220,10 @@ pub struct Real {
     pub gl: Gl,
     /// The rest.
     pub extra: Extra,
+    /// The next glXSwapBuffers is not libGL's own but a GL layer's below
+    /// this one (MangoHud draws its HUD there, VirtualGL sends the frame,
+    /// apitrace records it): every frame must go through it.
+    pub swap_layered: bool,
 }
 
 // SAFETY: function tables only; the functions are thread-safe as GLX and
@@ -301,11 +305,14 @@ fn load() -> Result<Real, String> {
             create_pbuffer: lookup!(c"glXCreateGLXPbufferSGIX"),
         },
     };
+    let swap_layered = glx.glXSwapBuffers as *const c_void
+        != super::next::bottom_symbol(c"glXSwapBuffers").cast_const();
     Ok(Real {
         xlib,
         glx,
         gl,
         extra,
+        swap_layered,
     })
 }
 

@@ -76,7 +76,7 @@ fn describe(mode: OutputMode) -> String {
 
 fn help() -> String {
     let mut s = String::from(
-        "Usage: glstereo-run [-m MODE] [-s] [-c DIR [-f FORMATS] [-q N]] [--] PROGRAM [ARGS...]\n\
+        "Usage: glstereo-run [-m MODE] [-s] [-v] [-c DIR [-f FORMATS] [-q N]] [--] PROGRAM [ARGS...]\n\
          \n\
          Runs PROGRAM, an unmodified OpenGL (GLX) program, with glstereo's stereo\n\
          layer preloaded. A program that asks for a stereo visual (GLX_STEREO,\n\
@@ -88,8 +88,14 @@ fn help() -> String {
          Options:\n\
          \x20 -m, --mode MODE     how the window shows the eyes (sets GLSTEREO_MODE;\n\
          \x20                     default: $GLSTEREO_MODE, else anaglyph-red-cyan;\n\
-         \x20                     -st MODE as in vglrun)\n\
+         \x20                     -st MODE as in vglrun). A format other than quad\n\
+         \x20                     also emulates the stereo a driver or a GL layer\n\
+         \x20                     below (VirtualGL) offers; without one, that\n\
+         \x20                     native stereo is used as it is\n\
          \x20 -s, --swap-eyes     exchange left and right (GLSTEREO_SWAP_EYES=1)\n\
+         \x20 -v, --verbose       say on stderr which stereo the program got (native or\n\
+         \x20                     emulated, in which format) and how frames are\n\
+         \x20                     presented (GLSTEREO_VERBOSE=1)\n\
          \x20 -c, --capture DIR   write every presented frame to DIR as left-NNNNNN.png,\n\
          \x20                     right-NNNNNN.png and composite-NNNNNN.png (made if\n\
          \x20                     missing; sets GLSTEREO_CAPTURE_DIR)\n\
@@ -127,7 +133,7 @@ fn help() -> String {
         ));
     }
     s.push_str(
-        "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK (0..1),\n\
+        "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_VERBOSE, GLSTEREO_CROSSTALK (0..1),\n\
          GLSTEREO_SATURATION (0..1), GLSTEREO_CAPTURE_DIR, GLSTEREO_CAPTURE_FORMAT,\n\
          GLSTEREO_JPEG_QUALITY (1..100); GLSTEREO_PRELOAD_LIB names\n\
          the preload library when it is not installed beside glstereo-run.\n\
@@ -144,6 +150,7 @@ struct Request {
     capture: Option<PathBuf>,
     capture_format: Option<String>,
     jpeg_quality: Option<String>,
+    verbose: bool,
     program: Vec<OsString>,
 }
 
@@ -160,6 +167,7 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
         capture: None,
         capture_format: None,
         jpeg_quality: None,
+        verbose: false,
         program: Vec::new(),
     };
     let mut i = 0;
@@ -189,6 +197,7 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
                 req.mode = Some(mode);
             }
             "-s" | "--swap-eyes" => req.swap_eyes = true,
+            "-v" | "--verbose" => req.verbose = true,
             "-c" | "--capture" => req.capture = Some(PathBuf::from(value(&flag)?)),
             "-f" | "--capture-format" => {
                 req.capture_format = Some(value(&flag)?.to_string_lossy().into_owned());
@@ -274,6 +283,9 @@ fn run(req: Request) -> Result<std::io::Error, String> {
     }
     if req.swap_eyes {
         cmd.env(ENV_SWAP_EYES, "1");
+    }
+    if req.verbose {
+        cmd.env(glstereo::interpose::settings::ENV_VERBOSE, "1");
     }
     if let Some(f) = &req.capture_format {
         cmd.env(ENV_CAPTURE_FORMAT, f);
