@@ -11,9 +11,9 @@
 //! context's version ([`Gl::version`]), not from the pointer.
 
 pub mod enums;
+pub mod names;
 
 use std::ffi::{CStr, c_char, c_void};
-use std::sync::atomic::{AtomicU32, Ordering};
 
 use crate::error::{Error, Result};
 
@@ -43,8 +43,8 @@ macro_rules! gl_table {
         pub struct Gl {
             $( $method: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
             version: (u32, u32),
-            /// The next reserved name, when shared objects are named from the top ([`Gl::reserve_names`]).
-            reserved: Option<AtomicU32>,
+            /// The names of the library's objects in a program's share group ([`Gl::own_names`]).
+            names: Option<names::LayerNames>,
         }
 
         impl Gl {
@@ -68,7 +68,7 @@ macro_rules! gl_table {
                         unsafe { std::mem::transmute::<*const c_void, unsafe extern "system" fn($($ty),*) $(-> $ret)?>(p) }
                     }, )*
                     version: (0, 0),
-                    reserved: None,
+                    names: None,
                 })
             }
 
@@ -205,162 +205,140 @@ impl Gl {
     }
 
     /// From now on, [`Gl::gen_texture`], [`Gl::gen_renderbuffer`] and
-    /// [`Gl::gen_framebuffer`] name objects downward from
-    /// [`RESERVED_NAME_TOP`] instead of asking the driver. For objects made
-    /// in a share group that an unmodified program also uses (the
-    /// LD_PRELOAD interposer): legacy programs often bind texture names
-    /// they never generated (`glBindTexture(GL_TEXTURE_2D, 1)` is legal in
-    /// the compatibility profile), so the library's objects must not take
-    /// the small names glGen* hands out first. Needs a compatibility-profile
-    /// context (binding an unused name creates it).
-    ///
-    /// The names stay below 2³¹: bindings are read back as `GLint`
-    /// (glGetIntegerv), and programs and other layers store them so —
-    /// VirtualGL puts back only bindings that read as non-negative. Mesa
-    /// hands out `highest name ever used + 1` while that fits below
-    /// 0xFFFFFFFE, else the lowest free names; a name at 0x7FFFFFFF would
-    /// make the program's next glGen* name 0x80000000 (negative as a
-    /// `GLint`). So each reserved object is followed by one at
-    /// [`ALLOCATOR_CEILING`], made and deleted at once ([`Gl::push_ceiling`]):
-    /// Mesa's highest name ever used stays there, and the program's glGen*
-    /// names stay the lowest free ones, as small as without the library.
-    /// No object with a name above 2³¹ is left behind, and none is ever
-    /// bound in a program's context.
-    pub fn reserve_names(&mut self) {
-        self.reserved = Some(AtomicU32::new(RESERVED_NAME_TOP));
+    /// [`Gl::gen_framebuffer`] keep no name below [`names::NAME_FLOOR`],
+    /// and remember the names they hand out until [`Gl::delete_textures`]
+    /// (and the like) deletes them: for objects made in a share group that
+    /// an unmodified program also uses (the LD_PRELOAD interposer). The
+    /// [`names`] module says why.
+    pub fn own_names(&mut self) {
+        self.names = Some(names::LayerNames::default());
     }
 
-    fn next_reserved(&self) -> Option<u32> {
-        self.reserved
-            .as_ref()
-            .map(|next| next.fetch_sub(1, Ordering::Relaxed))
+    /// Whether `name` names an object of `kind` the library made (with
+    /// [`Gl::own_names`] on).
+    pub fn owns(&self, kind: names::Kind, name: u32) -> bool {
+        self.names.as_ref().is_some_and(|n| n.owns(kind, name))
     }
 
-    /// Whether [`Gl::reserve_names`] is on and has handed out a name: the
-    /// library has objects in some program's share group.
-    pub fn reserved_names_used(&self) -> bool {
-        self.reserved
-            .as_ref()
-            .is_some_and(|next| next.load(Ordering::Relaxed) != RESERVED_NAME_TOP)
+    /// Whether the library holds any object of `kind` (with
+    /// [`Gl::own_names`] on): a glDelete* of the program needs no look-up
+    /// otherwise.
+    pub fn owns_any(&self, kind: names::Kind) -> bool {
+        self.names.as_ref().is_some_and(|n| n.any(kind))
     }
 
-    /// Makes and deletes an object named [`ALLOCATOR_CEILING`] with `bind`
-    /// (a glBind* of a target taking that kind of object) and `delete`
-    /// (its glDelete*): see [`Gl::reserve_names`]. The binding is left at 0
-    /// (callers restore theirs).
-    ///
-    /// # Safety
-    /// A compatibility-profile context of this backend must be current.
-    unsafe fn push_ceiling(&self, bind: impl Fn(u32), delete: unsafe fn(&Gl, i32, *const u32)) {
-        bind(ALLOCATOR_CEILING);
-        bind(0);
-        // SAFETY: contract; one name read.
-        unsafe { delete(self, 1, &ALLOCATOR_CEILING) };
+    /// One name from `make` / `delete` (glGen* / glDelete* of `kind`): with
+    /// [`Gl::own_names`], at or above the floor and remembered as the
+    /// library's.
+    fn generate(
+        &self,
+        kind: names::Kind,
+        make: impl Fn(&mut [u32]),
+        delete: impl Fn(&[u32]),
+    ) -> u32 {
+        match &self.names {
+            Some(owned) => {
+                let name = names::generate_above_floor(make, delete);
+                owned.keep(kind, name);
+                name
+            }
+            None => {
+                let mut one = [0];
+                make(&mut one);
+                one[0]
+            }
+        }
     }
 
     /// One new texture name, bound to GL_TEXTURE_2D (the binding is left
-    /// at 0). See [`Gl::reserve_names`].
+    /// at 0). See [`Gl::own_names`].
     ///
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_texture(&self) -> u32 {
-        let mut name = 0;
-        // SAFETY: contract; one name written.
+        // SAFETY: contract; slices of the sizes given.
         unsafe {
-            let bind = |n| self.BindTexture(enums::GL_TEXTURE_2D, n);
-            match self.next_reserved() {
-                Some(n) => {
-                    name = n;
-                    self.push_ceiling(bind, Gl::DeleteTextures);
-                }
-                None => self.GenTextures(1, &mut name),
-            }
-            // Binding creates the object (and marks a reserved name used).
-            bind(name);
-            bind(0);
+            let name = self.generate(
+                names::Kind::Texture,
+                |o| self.GenTextures(o.len() as i32, o.as_mut_ptr()),
+                |d| self.DeleteTextures(d.len() as i32, d.as_ptr()),
+            );
+            // Binding creates the object.
+            self.BindTexture(enums::GL_TEXTURE_2D, name);
+            self.BindTexture(enums::GL_TEXTURE_2D, 0);
+            name
         }
-        name
     }
 
     /// One new renderbuffer name (created; the binding is left at 0). See
-    /// [`Gl::reserve_names`].
+    /// [`Gl::own_names`].
     ///
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_renderbuffer(&self) -> u32 {
-        let mut name = 0;
-        // SAFETY: contract; one name written.
+        // SAFETY: contract; slices of the sizes given.
         unsafe {
-            let bind = |n| self.BindRenderbuffer(enums::GL_RENDERBUFFER, n);
-            match self.next_reserved() {
-                Some(n) => {
-                    name = n;
-                    self.push_ceiling(bind, Gl::DeleteRenderbuffers);
-                }
-                None => self.GenRenderbuffers(1, &mut name),
-            }
-            bind(name);
-            bind(0);
+            let name = self.generate(
+                names::Kind::Renderbuffer,
+                |o| self.GenRenderbuffers(o.len() as i32, o.as_mut_ptr()),
+                |d| self.DeleteRenderbuffers(d.len() as i32, d.as_ptr()),
+            );
+            self.BindRenderbuffer(enums::GL_RENDERBUFFER, name);
+            self.BindRenderbuffer(enums::GL_RENDERBUFFER, 0);
+            name
         }
-        name
     }
 
-    /// One new framebuffer-object name, for the library's own contexts
-    /// (compositor and layer contexts, compatibility profile). Mesa shares
-    /// framebuffer objects across a share group, so with
-    /// [`Gl::reserve_names`] they too come from the reserved range, where a
-    /// program that deletes or binds names it guessed cannot reach them.
-    /// The framebuffer bindings are left as they were.
+    /// One new framebuffer-object name (not bound: the caller binds it to
+    /// attach). See [`Gl::own_names`].
     ///
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_framebuffer(&self) -> u32 {
-        let mut name = 0;
-        // SAFETY: contract; one name written, bindings restored.
+        // SAFETY: contract; slices of the sizes given.
         unsafe {
-            match self.next_reserved() {
-                Some(n) => {
-                    name = n;
-                    let draw = self.integer(enums::GL_DRAW_FRAMEBUFFER_BINDING) as u32;
-                    let read = self.integer(enums::GL_READ_FRAMEBUFFER_BINDING) as u32;
-                    let bind = |n| self.BindFramebuffer(enums::GL_FRAMEBUFFER, n);
-                    self.push_ceiling(bind, Gl::DeleteFramebuffers);
-                    // Binding creates the object.
-                    bind(name);
-                    self.BindFramebuffer(enums::GL_DRAW_FRAMEBUFFER, draw);
-                    self.BindFramebuffer(enums::GL_READ_FRAMEBUFFER, read);
-                }
-                None => self.GenFramebuffers(1, &mut name),
-            }
+            self.generate(
+                names::Kind::Framebuffer,
+                |o| self.GenFramebuffers(o.len() as i32, o.as_mut_ptr()),
+                |d| self.DeleteFramebuffers(d.len() as i32, d.as_ptr()),
+            )
         }
-        name
     }
 
-    /// One new framebuffer-object name for the *current* context, which may
-    /// be a program's (the emulated default framebuffer's object), left
-    /// bound to GL_FRAMEBUFFER. With [`Gl::reserve_names`], a reserved name
-    /// where the context creates objects by binding (compatibility
-    /// profile); else, and in a core-profile context (which refuses names
-    /// glGenFramebuffers did not hand out, and where a program cannot bind
-    /// a name it guessed either), the driver's. The caller keeps the
-    /// program's pending GL errors: this reads the error queue.
+    /// glDeleteTextures of the library's own `names` (forgotten as its).
     ///
     /// # Safety
     /// A context of this backend must be current.
-    pub unsafe fn gen_framebuffer_here(&self) -> u32 {
-        // SAFETY: contract.
-        unsafe {
-            if let Some(n) = self.next_reserved() {
-                self.BindFramebuffer(enums::GL_FRAMEBUFFER, n);
-                if self.GetError() == enums::GL_NO_ERROR {
-                    return n;
-                }
-            }
-            let mut name = 0;
-            self.GenFramebuffers(1, &mut name);
-            self.BindFramebuffer(enums::GL_FRAMEBUFFER, name);
-            name
+    pub unsafe fn delete_textures(&self, names: &[u32]) {
+        if let Some(owned) = &self.names {
+            owned.release(names::Kind::Texture, names);
         }
+        // SAFETY: contract.
+        unsafe { self.DeleteTextures(names.len() as i32, names.as_ptr()) }
+    }
+
+    /// glDeleteRenderbuffers of the library's own `names`.
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn delete_renderbuffers(&self, names: &[u32]) {
+        if let Some(owned) = &self.names {
+            owned.release(names::Kind::Renderbuffer, names);
+        }
+        // SAFETY: contract.
+        unsafe { self.DeleteRenderbuffers(names.len() as i32, names.as_ptr()) }
+    }
+
+    /// glDeleteFramebuffers of the library's own `names`.
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn delete_framebuffers(&self, names: &[u32]) {
+        if let Some(owned) = &self.names {
+            owned.release(names::Kind::Framebuffer, names);
+        }
+        // SAFETY: contract.
+        unsafe { self.DeleteFramebuffers(names.len() as i32, names.as_ptr()) }
     }
 
     /// glGetString as a Rust string ("" when NULL).
@@ -425,25 +403,6 @@ impl Gl {
             e => Err(Error::Gl(format!("{what}: GL error {e:#06x}"))),
         }
     }
-}
-
-/// The first name [`Gl::reserve_names`] hands out; later ones count down:
-/// the highest name that reads as non-negative through a `GLint`.
-pub const RESERVED_NAME_TOP: u32 = 0x7FFF_FFFF;
-
-/// How many names below [`RESERVED_NAME_TOP`] count as reserved: far more
-/// than the library ever makes, far above anything glGen* hands out.
-pub const RESERVED_NAME_SPAN: u32 = 1 << 24;
-
-/// The name of the short-lived object that keeps Mesa's name allocator
-/// handing out the lowest free names ([`Gl::reserve_names`]): the highest
-/// name Mesa's quick path (`highest + 1`) no longer takes.
-pub const ALLOCATOR_CEILING: u32 = 0xFFFF_FFFE;
-
-/// Whether `name` lies in the library's reserved range (see
-/// [`Gl::reserve_names`]): a program can only have it by guessing.
-pub fn is_reserved_name(name: u32) -> bool {
-    name > RESERVED_NAME_TOP - RESERVED_NAME_SPAN && name <= RESERVED_NAME_TOP
 }
 
 /// Parses the GL_VERSION string of the current context into (major, minor).

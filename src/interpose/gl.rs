@@ -51,6 +51,7 @@ use super::real::{Real, loaded};
 use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
+use crate::gl::names::Kind;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code};
 use crate::stereo::emulated::{
     BufferFormats, DrawSelection, EmulatedFramebuffer, MAX_DRAW_BUFFERS, ReadSelection,
@@ -491,11 +492,11 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
     let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
     let kept: Vec<u32> = {
         let st = cur.sc.lock();
-        // The emulated framebuffer, and the reserved names of the layer's
-        // own framebuffers (Mesa shares framebuffers across the share group).
+        // The emulated framebuffer, and the layer's own framebuffers (Mesa
+        // shares framebuffers across the share group).
         list.iter()
             .copied()
-            .filter(|&f| !st.is_ours(f) && !crate::gl::is_reserved_name(f))
+            .filter(|&f| !st.is_ours(f) && !r.gl.owns(Kind::Framebuffer, f))
             .collect()
     };
     forward(kept.len() as i32, kept.as_ptr());
@@ -531,21 +532,25 @@ pub enum Deleted {
 }
 
 /// glDeleteTextures, glDeleteRenderbuffers and their EXT names: the
-/// layer's own objects, which live in the program's share group under
-/// reserved names ([`crate::gl::Gl::reserve_names`]), are left alone, as
-/// names the program never made are; every other name is forwarded, in
-/// order. Refused: `names` NULL with `n` > 0 (`refuse_null`).
+/// layer's own objects, which live in the program's share group
+/// ([`crate::gl::names`]), are left alone, as names the program never made
+/// are; every other name is forwarded, in order. Refused: `names` NULL
+/// with `n` > 0 (`refuse_null`).
 ///
 /// # Safety
 /// `names` must hold `n` values (GL's contract).
 pub unsafe fn delete_objects(n: i32, names: *const u32, what: Deleted) -> Result<()> {
     let r = loaded()?;
+    let kind = match what {
+        Deleted::Textures(_) => Kind::Texture,
+        Deleted::Renderbuffers(_) => Kind::Renderbuffer,
+    };
     if missing(n, names) {
         return Err(refuse_null(
             r,
-            match what {
-                Deleted::Textures(_) => "textures",
-                Deleted::Renderbuffers(_) => "renderbuffers",
+            match kind {
+                Kind::Texture => "textures",
+                _ => "renderbuffers",
             },
         ));
     }
@@ -560,23 +565,34 @@ pub unsafe fn delete_objects(n: i32, names: *const u32, what: Deleted) -> Result
         },
         Deleted::Renderbuffers(_) => unsafe { r.gl.DeleteRenderbuffers(n, p) },
     };
-    if n <= 0 || !r.gl.reserved_names_used() {
+    if n <= 0 || !r.gl.owns_any(kind) {
         forward(n, names);
         return Ok(());
     }
     // SAFETY: GL's contract: `names` holds n values.
     let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
-    if !list.iter().any(|&name| crate::gl::is_reserved_name(name)) {
+    if !list.iter().any(|&name| r.gl.owns(kind, name)) || !in_stereo_group(r) {
         forward(n, names);
         return Ok(());
     }
     let kept: Vec<u32> = list
         .iter()
         .copied()
-        .filter(|&name| !crate::gl::is_reserved_name(name))
+        .filter(|&name| !r.gl.owns(kind, name))
         .collect();
     forward(kept.len() as i32, kept.as_ptr());
     Ok(())
+}
+
+/// Whether the context current on this thread shares objects with a
+/// stereo context (where the layer's objects live): a stereo context, or
+/// one the program made sharing with one.
+fn in_stereo_group(r: &Real) -> bool {
+    stereo_current() || {
+        // SAFETY: a plain getter of the calling thread's GLX state.
+        let ctx = unsafe { (r.glx.glXGetCurrentContext)() } as usize;
+        ctx != 0 && super::registry::with(|reg| reg.in_stereo_group(ctx))
+    }
 }
 
 /// glGetFramebufferAttachmentParameteriv (…EXT when `ext`). Refused:

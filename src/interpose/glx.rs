@@ -33,6 +33,13 @@ const GLX_RENDER_TYPE: c_int = 0x8011;
 const GLX_WINDOW_BIT: c_int = 0x1;
 const GLX_RGBA_BIT: c_int = 0x1;
 const GLX_RGBA_TYPE: c_int = 0x8014;
+/// glXCreateContextAttribsARB's list for the layer's own contexts: the
+/// compatibility profile, the driver's highest version.
+const COMPATIBILITY: [c_int; 3] = [
+    0x9126, // GLX_CONTEXT_PROFILE_MASK_ARB
+    0x2,    // GLX_CONTEXT_COMPATIBILITY_PROFILE_BIT_ARB
+    0,
+];
 /// glXGetConfig / glXGetFBConfigAttrib success.
 const SUCCESS: c_int = 0;
 /// glXGetConfig / glXGetFBConfigAttrib: a bad argument (libglvnd's answer
@@ -401,10 +408,19 @@ fn adopt(
     r: &Real,
     dpy: *mut Display,
     ctx: GLXContext,
-    make_ours: impl FnOnce(GLXContext) -> GLXContext,
+    make_ours: &[&dyn Fn(GLXContext) -> GLXContext],
     attrib: impl Fn(c_int) -> c_int,
 ) {
-    let (ours, err) = trap_x_errors(&r.xlib, dpy, || make_ours(ctx));
+    // The first way that works (each tried with its own X errors trapped).
+    let mut ours = std::ptr::null_mut();
+    let mut err = 0;
+    for make in make_ours {
+        let (c, e) = trap_x_errors(&r.xlib, dpy, || make(ctx));
+        (ours, err) = (c, e);
+        if !c.is_null() && e == 0 {
+            break;
+        }
+    }
     if ours.is_null() || err != 0 {
         super::warn(&format!(
             "the layer's own GL context could not be created (X error {err}): \
@@ -418,7 +434,10 @@ fn adopt(
     };
     let bits = |a| attrib(a).max(0) as u32;
     let formats = BufferFormats {
-        in_place: r.extra.memory_objects,
+        // Eyes in memory the CPU reads serve the MIT-SHM path; a GL layer
+        // below (RenderDoc, apitrace) must see plain GL it can record and
+        // replay, and frames go through GL there anyway.
+        in_place: r.extra.memory_objects.filter(|_| !r.swap_layered),
         ..BufferFormats::matching(
             bits(GLX_ALPHA_SIZE),
             bits(GLX_DEPTH_SIZE),
@@ -435,10 +454,14 @@ fn adopt(
 }
 
 /// Forgets whatever was known about a context at this address (a new
-/// context may reuse a destroyed one's address).
-fn forget(ctx: GLXContext) {
+/// context may reuse a destroyed one's address), and records the share
+/// group it joins.
+fn forget(ctx: GLXContext, share: GLXContext) {
     if !ctx.is_null() {
-        registry::with(|reg| reg.born(ctx as usize));
+        registry::with(|reg| {
+            reg.born(ctx as usize);
+            reg.join_group(ctx as usize, share as usize);
+        });
     }
 }
 
@@ -459,7 +482,7 @@ pub unsafe fn create_context(
     live_share(share, "shareList (destroyed by glXDestroyContext)")?;
     // SAFETY: forwarded call.
     let ctx = unsafe { (r.glx.glXCreateContext)(dpy, vis, share, direct) };
-    forget(ctx);
+    forget(ctx, share);
     if ctx.is_null() {
         return Ok(ctx);
     }
@@ -480,7 +503,7 @@ pub unsafe fn create_context(
             dpy,
             ctx,
             // SAFETY: the same visual, sharing the program's context.
-            |prog| unsafe { (r.glx.glXCreateContext)(dpy, vis, prog, direct) },
+            &[&|prog| unsafe { (r.glx.glXCreateContext)(dpy, vis, prog, direct) }],
             |a| {
                 let mut v = 0;
                 // SAFETY: a valid visual.
@@ -534,7 +557,7 @@ pub unsafe fn create_config_context(
             None => std::ptr::null_mut(),
         },
     };
-    forget(ctx);
+    forget(ctx, share);
     if !stereo && !ctx.is_null() && settings::verbose() {
         let mut native = 0;
         // SAFETY: a real configuration.
@@ -548,9 +571,20 @@ pub unsafe fn create_config_context(
             r,
             dpy,
             ctx,
-            // SAFETY: a compatibility context of the same configuration,
-            // sharing the program's objects.
-            |prog| unsafe { (r.glx.glXCreateNewContext)(dpy, c, GLX_RGBA_TYPE, prog, direct) },
+            &[
+                // A compatibility context of the same configuration, sharing
+                // the program's objects, made as GL 3.2+ programs make
+                // theirs: RenderDoc below captures only frames whose
+                // context was made with glXCreateContextAttribsARB, and the
+                // frame's swap is this context's.
+                &|prog| match r.extra.create_context_attribs {
+                    // SAFETY: a valid configuration and a None-terminated list.
+                    Some(f) => unsafe { f(dpy, c, prog, direct, COMPATIBILITY.as_ptr()) },
+                    None => std::ptr::null_mut(),
+                },
+                // SAFETY: as above, the GLX 1.3 way.
+                &|prog| unsafe { (r.glx.glXCreateNewContext)(dpy, c, GLX_RGBA_TYPE, prog, direct) },
+            ],
             |a| {
                 let mut v = 0;
                 // SAFETY: a real configuration.

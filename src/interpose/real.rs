@@ -215,8 +215,9 @@ pub struct Real {
     pub xlib: Xlib,
     /// The GLX functions below the layer.
     pub glx: Glx,
-    /// GL functions (dispatch stubs). Textures and renderbuffers made
-    /// through it take reserved names ([`Gl::reserve_names`]).
+    /// GL functions (dispatch stubs). The objects made through it in a
+    /// program's share group are named as [`crate::gl::names`] says
+    /// ([`Gl::own_names`]).
     pub gl: Gl,
     /// The rest.
     pub extra: Extra,
@@ -254,7 +255,7 @@ fn load() -> Result<Real, String> {
     // SAFETY: the next glXGetProcAddressARB returns each named GL function
     // (libglvnd returns a dispatch stub for every gl* name) or NULL.
     let mut gl = unsafe { Gl::load(get) }.map_err(|e| e.to_string())?;
-    gl.reserve_names();
+    gl.own_names();
     macro_rules! lookup {
         ($name:literal) => {{
             let p = get($name);

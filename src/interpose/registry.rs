@@ -61,6 +61,15 @@ pub struct Registry {
     dead: VecDeque<usize>,
     /// Displays whose XCloseDisplay calls [`Registry::forget_display`].
     watched: HashSet<usize>,
+    /// Every live context the program made → its share group (contexts
+    /// made with a share context join its group; the layer's own contexts
+    /// join the program's).
+    groups: HashMap<usize, u64>,
+    /// Share groups holding a stereo context, whose objects include the
+    /// layer's.
+    stereo_groups: HashSet<u64>,
+    /// The last share group number handed out.
+    last_group: u64,
 }
 
 /// What [`Registry::forget_display`] removed, to be dropped after the
@@ -152,6 +161,28 @@ impl Registry {
         self.dead.retain(|&c| c != ctx);
         self.contexts.remove(&ctx);
         self.doomed.remove(&ctx);
+        self.groups.remove(&ctx);
+    }
+
+    /// Records new context `ctx`, made sharing objects with `share` (0:
+    /// none), in `share`'s share group or a group of its own.
+    pub fn join_group(&mut self, ctx: usize, share: usize) {
+        let group = match self.groups.get(&share) {
+            Some(&g) if share != 0 => g,
+            _ => {
+                self.last_group += 1;
+                self.last_group
+            }
+        };
+        self.groups.insert(ctx, group);
+    }
+
+    /// Whether context `ctx` shares objects with a stereo context (and so
+    /// with the layer's objects).
+    pub fn in_stereo_group(&self, ctx: usize) -> bool {
+        self.groups
+            .get(&ctx)
+            .is_some_and(|g| self.stereo_groups.contains(g))
     }
 
     /// Records a stereo context destroyed while current (its destruction
@@ -173,6 +204,9 @@ impl Registry {
 
     /// Records a stereo context.
     pub fn add_context(&mut self, ctx: usize, sc: Arc<StereoContext>) {
+        if let Some(&g) = self.groups.get(&ctx) {
+            self.stereo_groups.insert(g);
+        }
         self.contexts.insert(ctx, sc);
     }
 

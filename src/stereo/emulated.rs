@@ -452,7 +452,7 @@ impl EmulatedFramebuffer {
             gl.Finish();
             for slot in 0..4 {
                 if self.textures[slot] != 0 {
-                    gl.DeleteTextures(1, &self.textures[slot]);
+                    gl.delete_textures(&[self.textures[slot]]);
                     self.textures[slot] = gl.gen_texture();
                 }
                 if let Some(m) = self.memory[slot].take() {
@@ -473,7 +473,7 @@ impl EmulatedFramebuffer {
             if let Some(m) = self.memory[slot].take() {
                 // SAFETY: a context is current (contract of the callers).
                 unsafe {
-                    gl.DeleteTextures(1, &self.textures[slot]);
+                    gl.delete_textures(&[self.textures[slot]]);
                     self.textures[slot] = gl.gen_texture();
                 }
                 self.retired.push(m);
@@ -564,7 +564,7 @@ impl EmulatedFramebuffer {
     unsafe fn delete(&mut self, gl: &Gl) {
         // SAFETY: a context is current (contract of the callers).
         unsafe {
-            gl.DeleteTextures(4, self.textures.as_ptr());
+            gl.delete_textures(&self.textures);
             if self.memory.iter().any(Option::is_some) || !self.retired.is_empty() {
                 // Memory goes with its memory object: nothing may render
                 // into it any more.
@@ -575,9 +575,9 @@ impl EmulatedFramebuffer {
                 self.release_retired(gl);
             }
             if self.depth_stencil != 0 {
-                gl.DeleteRenderbuffers(1, &self.depth_stencil);
+                gl.delete_renderbuffers(&[self.depth_stencil]);
             }
-            gl.DeleteFramebuffers(1, &self.read_fbo);
+            gl.delete_framebuffers(&[self.read_fbo]);
         }
         self.textures = [0; 4];
         self.depth_stencil = 0;
@@ -642,7 +642,8 @@ impl EmulatedFramebuffer {
         unsafe {
             let prev_draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
             let prev_read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
-            self.app_fbo = gl.gen_framebuffer_here();
+            self.app_fbo = gl.gen_framebuffer();
+            gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
             let attached = self.attach_storage(gl);
             if attached.is_ok() {
                 self.apply_draw(gl);
@@ -651,7 +652,7 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, prev_draw);
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, prev_read);
             if attached.is_err() {
-                gl.DeleteFramebuffers(1, &self.app_fbo);
+                gl.delete_framebuffers(&[self.app_fbo]);
                 self.app_fbo = 0;
             }
             attached
