@@ -24,9 +24,20 @@ pub struct Built {
 /// target directory of this test binary, once per test binary. `cargo
 /// test` builds only what the root package's tests link; the preload
 /// library is a cdylib of another package, so it is built here, fresh.
+///
+/// `GLSTEREO_TEST_BUILD=DIR` uses the glstereo-run and preload library
+/// already built in DIR (e.g. an older build's target/debug) instead: how
+/// to see a test fail on the code before a fix.
 pub fn built() -> &'static Built {
     static BUILT: OnceLock<Built> = OnceLock::new();
     BUILT.get_or_init(|| {
+        if let Some(dir) = std::env::var_os("GLSTEREO_TEST_BUILD") {
+            let dir = PathBuf::from(dir);
+            return Built {
+                run: dir.join("glstereo-run"),
+                preload: dir.join("libglstereo_preload.so"),
+            };
+        }
         let deps = super::lib_dir();
         let profile_dir = deps.parent().expect("target/<profile>");
         let target = profile_dir.parent().expect("target");
