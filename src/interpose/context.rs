@@ -5,8 +5,8 @@
 //! Objects and where they live:
 //! - the colour textures and the depth/stencil renderbuffer of each
 //!   drawable's [`EmulatedFramebuffer`] are made in the layer's context,
-//!   which shares objects with the program's (names from the top of the
-//!   name space: [`crate::gl::Gl::reserve_names`]);
+//!   which shares objects with the program's (names as
+//!   [`crate::gl::names`] says);
 //! - the framebuffer object the program renders into is made in the
 //!   program's context (framebuffer objects are not shared) and bound
 //!   wherever the program would have framebuffer 0;

@@ -21,13 +21,20 @@
 //!   answer from the window's framebuffer (GL_SAMPLES, GL_SAMPLE_BUFFERS,
 //!   the implementation read format and type, and the errors), with
 //!   GL_STEREO and GL_DOUBLEBUFFER those of the emulated one;
-//! - glInvalidate(Sub)Framebuffer with framebuffer 0 bound is validated as
-//!   the driver validates it on a window (GL_COLOR, GL_FRONT_LEFT …,
-//!   GL_DEPTH, GL_STENCIL), by asking the window: invalidation is a hint,
-//!   and the emulated buffers keep their contents. The named forms on 0,
-//!   glCheckNamedFramebufferStatus(0, …) and glReadnPixels go to the
-//!   driver unchanged: the window's answers are the right ones (the read
+//! - glInvalidate(Sub)Framebuffer with framebuffer 0 bound, and
+//!   glInvalidateNamedFramebuffer(Sub)Data on 0, are validated as Mesa
+//!   validates a window (GL_COLOR, GL_DEPTH, GL_STENCIL, GL_FRONT_LEFT …
+//!   GL_BACK_RIGHT: [`crate::stereo::buffers::default_invalidate_error`]):
+//!   invalidation is a hint, and the emulated buffers keep their contents;
+//! - glCheckNamedFramebufferStatus(0, …) is the emulated framebuffer
+//!   object's status; glReadnPixels goes to the driver unchanged (the read
 //!   framebuffer bound is the emulated one).
+//!
+//! What describes the window's own buffers (component sizes and encoding,
+//! samples, the read format) is asked of framebuffer 0 as the layer below
+//! presents it, through the non-named queries (which VirtualGL translates
+//! for the framebuffer object it stands in with); nothing is asked of a
+//! framebuffer 0 by name, which a layer below may have left undefined.
 //! - glLinkProgram / glCreateShaderProgramv: a program with a user-defined
 //!   fragment output at location 0 is relinked with copies of it
 //!   ([`crate::stereo::outputs`]), so output 0 reaches every buffer a
@@ -462,7 +469,8 @@ unsafe fn invalidate_emulated(
 }
 
 /// glInvalidateFramebuffer: with framebuffer 0 bound at `target`,
-/// [`invalidate_emulated`]. Refused: `attachments` NULL with n > 0.
+/// validated as a driver validates a window's, the eyes kept (a hint).
+/// Refused: `attachments` NULL with n > 0.
 ///
 /// # Safety
 /// `attachments` must hold `n` values (GL's contract).
@@ -517,7 +525,8 @@ fn emulated_fb0() -> Option<Current> {
 }
 
 /// glInvalidateNamedFramebufferData: on framebuffer 0, when it is
-/// emulated, [`invalidate_emulated`]. Refused: `attachments` NULL with n > 0.
+/// emulated, as [`invalidate_framebuffer`]. Refused: `attachments` NULL
+/// with n > 0.
 ///
 /// # Safety
 /// `attachments` must hold `n` values (GL's contract).

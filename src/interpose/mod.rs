@@ -129,12 +129,45 @@
 //! on is not updated (said on stderr): GLX would swap a context's drawable
 //! only where it is current too.
 //!
-//! Names: the layer's textures and renderbuffers live in the program's
-//! share group, so they take names from the top of the name space
-//! ([`crate::gl::Gl::reserve_names`]): legacy programs bind small texture
-//! names they never generated. Its framebuffer object in the program's
-//! context is never reported (bindings of it read 0) and never deleted by
-//! the program.
+//! Names: the layer's textures, renderbuffers and framebuffer objects live
+//! in the program's share group. They take glGen* names as a program's
+//! own do, never below 4096 ([`crate::gl::names`] says why: layers below
+//! track objects by name, bindings read through a GLint must stay
+//! non-negative, legacy programs bind small texture names they never
+//! generated). The program's glDelete* leave them alone; its framebuffer
+//! object in the program's context is never reported (bindings of it read
+//! 0).
+//!
+//! # Other GL layers in the process
+//!
+//! The layer is one of several: VirtualGL, apitrace, RenderDoc and
+//! MangoHud stack above or below it (tests/stacking.rs runs each, in both
+//! launch orders). Above it, a layer asks it for "the real" functions
+//! (dlsym(RTLD_NEXT), glXGetProcAddress, dlopen of libGL) and gets the
+//! layer's own — never the first definition of a name in the process,
+//! which would be that layer's own function (preload/src/lib.rs). Below
+//! it ([`next`]):
+//! - every frame goes through the next glXSwapBuffers when that is another
+//!   layer's ([`real::Real::swap_layered`]): MangoHud draws its HUD there,
+//!   VirtualGL sends the frame, apitrace and RenderDoc end a frame there;
+//!   the composite is drawn by GL then, not put with MIT-SHM, and the eyes
+//!   are plain textures (no imported memory, which no layer can replay);
+//! - the layer's own context is made with glXCreateContextAttribsARB
+//!   where the program's configuration allows (RenderDoc captures only
+//!   such contexts' frames);
+//! - framebuffer 0 answers from the emulated framebuffer, whatever the
+//!   layer below has as its framebuffer 0 (VirtualGL makes contexts current
+//!   without a surface: there it is undefined) — see [`dsa`];
+//! - stereo a driver or a layer below offers (VirtualGL's own 144 stereo
+//!   configurations) is used as it is when the user chose no format, and
+//!   emulated like a mono configuration when the user chose one
+//!   ([`settings::native_allowed`]); GLSTEREO_VERBOSE says which.
+//!
+//! A layer above that takes libGL's functions straight from libGL,
+//! bypassing every layer after it (MangoHud, when it is preloaded before
+//! glstereo by hand: it finds libc's dlopen by walking the ELF tables), is
+//! out of reach: the program's contexts and swaps never pass through
+//! glstereo then.
 
 pub mod attribs;
 pub mod capture;
