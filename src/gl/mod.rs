@@ -205,11 +205,11 @@ impl Gl {
     }
 
     /// From now on, [`Gl::gen_texture`], [`Gl::gen_renderbuffer`] and
-    /// [`Gl::gen_framebuffer`] keep no name below [`names::NAME_FLOOR`],
-    /// and remember the names they hand out until [`Gl::delete_textures`]
-    /// (and the like) deletes them: for objects made in a share group that
-    /// an unmodified program also uses (the LD_PRELOAD interposer). The
-    /// [`names`] module says why.
+    /// [`Gl::gen_framebuffer`] name objects as [`names`] says (for objects
+    /// made in a share group that an unmodified program also uses: the
+    /// LD_PRELOAD interposer) and remember them until
+    /// [`Gl::delete_textures`] (and the like) deletes them. Needs a
+    /// compatibility-profile context (binding an unused name creates it).
     pub fn own_names(&mut self) {
         self.names = Some(names::LayerNames::default());
     }
@@ -227,27 +227,29 @@ impl Gl {
         self.names.as_ref().is_some_and(|n| n.any(kind))
     }
 
-    /// One name from `make` / `delete` (glGen* / glDelete* of `kind`): with
-    /// [`Gl::own_names`], at or above the floor and remembered as the
-    /// library's.
-    fn generate(
+    /// A texture or renderbuffer name: with [`Gl::own_names`], from the
+    /// reserved range, followed by the allocator ceiling (`bind` binds a
+    /// name of the kind, `delete` deletes one) and remembered; else
+    /// glGen*'s (`make`).
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    unsafe fn reserved_or_generated(
         &self,
         kind: names::Kind,
-        make: impl Fn(&mut [u32]),
-        delete: impl Fn(&[u32]),
+        make: impl Fn() -> u32,
+        bind: impl Fn(u32),
+        delete: impl Fn(u32),
     ) -> u32 {
-        match &self.names {
-            Some(owned) => {
-                let name = names::generate_above_floor(make, delete);
-                owned.keep(kind, name);
-                name
-            }
-            None => {
-                let mut one = [0];
-                make(&mut one);
-                one[0]
-            }
-        }
+        let Some(owned) = &self.names else {
+            return make();
+        };
+        let name = names::next_reserved();
+        bind(names::ALLOCATOR_CEILING);
+        bind(0);
+        delete(names::ALLOCATOR_CEILING);
+        owned.keep(kind, name);
+        name
     }
 
     /// One new texture name, bound to GL_TEXTURE_2D (the binding is left
@@ -256,16 +258,22 @@ impl Gl {
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_texture(&self) -> u32 {
-        // SAFETY: contract; slices of the sizes given.
+        // SAFETY: contract; one name written or read at a time.
         unsafe {
-            let name = self.generate(
+            let bind = |n| self.BindTexture(enums::GL_TEXTURE_2D, n);
+            let name = self.reserved_or_generated(
                 names::Kind::Texture,
-                |o| self.GenTextures(o.len() as i32, o.as_mut_ptr()),
-                |d| self.DeleteTextures(d.len() as i32, d.as_ptr()),
+                || {
+                    let mut n = 0;
+                    self.GenTextures(1, &mut n);
+                    n
+                },
+                bind,
+                |n| self.DeleteTextures(1, &n),
             );
             // Binding creates the object.
-            self.BindTexture(enums::GL_TEXTURE_2D, name);
-            self.BindTexture(enums::GL_TEXTURE_2D, 0);
+            bind(name);
+            bind(0);
             name
         }
     }
@@ -276,33 +284,39 @@ impl Gl {
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_renderbuffer(&self) -> u32 {
-        // SAFETY: contract; slices of the sizes given.
+        // SAFETY: contract; one name written or read at a time.
         unsafe {
-            let name = self.generate(
+            let bind = |n| self.BindRenderbuffer(enums::GL_RENDERBUFFER, n);
+            let name = self.reserved_or_generated(
                 names::Kind::Renderbuffer,
-                |o| self.GenRenderbuffers(o.len() as i32, o.as_mut_ptr()),
-                |d| self.DeleteRenderbuffers(d.len() as i32, d.as_ptr()),
+                || {
+                    let mut n = 0;
+                    self.GenRenderbuffers(1, &mut n);
+                    n
+                },
+                bind,
+                |n| self.DeleteRenderbuffers(1, &n),
             );
-            self.BindRenderbuffer(enums::GL_RENDERBUFFER, name);
-            self.BindRenderbuffer(enums::GL_RENDERBUFFER, 0);
+            bind(name);
+            bind(0);
             name
         }
     }
 
-    /// One new framebuffer-object name (not bound: the caller binds it to
-    /// attach). See [`Gl::own_names`].
+    /// One new framebuffer-object name from glGenFramebuffers (not bound:
+    /// the caller binds it to attach), remembered as the library's with
+    /// [`Gl::own_names`].
     ///
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_framebuffer(&self) -> u32 {
-        // SAFETY: contract; slices of the sizes given.
-        unsafe {
-            self.generate(
-                names::Kind::Framebuffer,
-                |o| self.GenFramebuffers(o.len() as i32, o.as_mut_ptr()),
-                |d| self.DeleteFramebuffers(d.len() as i32, d.as_ptr()),
-            )
+        let mut name = 0;
+        // SAFETY: contract; one name written.
+        unsafe { self.GenFramebuffers(1, &mut name) };
+        if let Some(owned) = &self.names {
+            owned.keep(names::Kind::Framebuffer, name);
         }
+        name
     }
 
     /// glDeleteTextures of the library's own `names` (forgotten as its).

@@ -4,34 +4,48 @@
 //!
 //! # What the names must do
 //!
-//! - Come from the driver's glGen*, as any program's do. A GL layer below
-//!   the library may track every object it sees named: RenderDoc 1.24
-//!   crashes on glBindFramebuffer of a name glGenFramebuffers never handed
-//!   out (measured), and apitrace and VirtualGL record or translate what
-//!   they see. So no name is made up, not even for a moment.
+//! - Stay out of the way of the names a legacy program uses without
+//!   generating them: `glBindTexture(GL_TEXTURE_2D, 1)` creates texture 1
+//!   in the compatibility profile, and programs of the GL 1.x era number
+//!   their textures themselves from 1.
+//! - Leave the program's own glGen* names as they are without the library:
+//!   small (legacy programs index small tables with them).
 //! - Read as non-negative through a `GLint`: bindings are read back with
 //!   glGetIntegerv, and programs and layers keep them so (VirtualGL puts
-//!   back only bindings >= 0). glGen* names are small.
-//! - Stay out of the way of names a legacy program uses without generating
-//!   them: `glBindTexture(GL_TEXTURE_2D, 1)` creates texture 1 in the
-//!   compatibility profile, and programs of the GL 1.x era number their
-//!   textures (and display lists) themselves from 1. So the library never
-//!   keeps a name below [`NAME_FLOOR`]: when glGen* hands it a lower one,
-//!   it generates a block of [`NAME_FLOOR`] names at once, keeps the
-//!   highest and deletes the others (generated names are the driver's own
-//!   business, which every layer sees as a program's). Mesa hands out
-//!   "highest name ever used + 1" while that fits, so a program's own
-//!   glGen* names then continue above the block; drivers that hand out the
-//!   lowest free name give them back from 1.
+//!   back only bindings >= 0).
+//! - Not trouble a GL layer below that tracks objects: RenderDoc 1.24
+//!   crashed on glBindFramebuffer of a framebuffer name glGenFramebuffers
+//!   never handed out, in the library's context (it took texture and
+//!   renderbuffer names made by binding).
 //! - Be out of reach of the program's glDelete*: [`LayerNames::owns`] says
 //!   which names are the library's (the interposer leaves them alone, as
 //!   names the program never made).
+//!
+//! So textures and renderbuffers take names counting down from
+//! [`RESERVED_TOP`], created by binding them (the library's context is a
+//! compatibility one), where no program's name is. Mesa hands out "highest
+//! name ever used + 1" while that fits below 0xFFFFFFFE, else the lowest
+//! free names; a name at 0x7FFFFFFF would make the program's next glGen*
+//! name 0x80000000. So each such object is followed by one at
+//! [`ALLOCATOR_CEILING`], made and deleted at once: Mesa's highest name
+//! stays there, and the program's glGen* names stay the lowest free ones.
+//! No object with a name of 2³¹ or more is left, and none is ever bound
+//! in a program's context. Framebuffer objects, which a program almost
+//! never numbers itself, take glGen* names as any program's do (on Mesa,
+//! which shares them across the share group, the program's next ones
+//! start a few names later).
 
 use std::collections::HashSet;
 use std::sync::Mutex;
 
-/// Names below this are never kept by the library (see the module doc).
-pub const NAME_FLOOR: u32 = 4096;
+/// The first name textures and renderbuffers of the library take; later
+/// ones count down: the highest name that reads as non-negative through a
+/// `GLint`.
+pub const RESERVED_TOP: u32 = 0x7FFF_FFFF;
+
+/// The name of the short-lived object that keeps Mesa's name allocator
+/// handing out the lowest free names (see the module doc).
+pub const ALLOCATOR_CEILING: u32 = 0xFFFF_FFFE;
 
 /// The kinds of objects the library names in a program's share group.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -64,7 +78,7 @@ pub struct LayerNames {
 impl LayerNames {
     /// Whether `name` is one the library holds (in some share group).
     pub fn owns(&self, kind: Kind, name: u32) -> bool {
-        name >= NAME_FLOOR && self.lock()[kind.index()].contains(&name)
+        name != 0 && self.lock()[kind.index()].contains(&name)
     }
 
     /// Whether the library holds any name of `kind`.
@@ -90,78 +104,23 @@ impl LayerNames {
     }
 }
 
-/// One name of `kind` at or above [`NAME_FLOOR`], from `make` (glGen*: fills
-/// the slice) and `delete` (glDelete*): the first generated name when it
-/// is high enough, else the highest of a block of [`NAME_FLOOR`] generated
-/// at once, the rest deleted again. 0 when the driver hands out nothing
-/// (no context, out of memory).
-pub fn generate_above_floor(make: impl Fn(&mut [u32]), delete: impl Fn(&[u32])) -> u32 {
-    let mut one = [0u32];
-    make(&mut one);
-    if one[0] >= NAME_FLOOR || one[0] == 0 {
-        return one[0];
-    }
-    delete(&one);
-    let mut block = vec![0u32; NAME_FLOOR as usize];
-    make(&mut block);
-    let Some((&kept, rest)) = block.split_last() else {
-        return 0;
-    };
-    delete(rest);
-    kept
+/// The next name of the reserved range (textures and renderbuffers).
+pub(super) fn next_reserved() -> u32 {
+    use std::sync::atomic::{AtomicU32, Ordering};
+    static NEXT: AtomicU32 = AtomicU32::new(RESERVED_TOP);
+    NEXT.fetch_sub(1, Ordering::Relaxed)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::cell::RefCell;
-
-    /// An allocator as Mesa's: highest name ever used + 1.
-    struct Mesa {
-        max: RefCell<u32>,
-        live: RefCell<HashSet<u32>>,
-    }
-
-    impl Mesa {
-        fn new(used: u32) -> Mesa {
-            Mesa {
-                max: RefCell::new(used),
-                live: RefCell::new((1..=used).collect()),
-            }
-        }
-        fn make(&self, out: &mut [u32]) {
-            for n in out {
-                *self.max.borrow_mut() += 1;
-                *n = *self.max.borrow();
-                self.live.borrow_mut().insert(*n);
-            }
-        }
-        fn delete(&self, names: &[u32]) {
-            for n in names {
-                self.live.borrow_mut().remove(n);
-            }
-        }
-    }
 
     #[test]
-    fn a_name_below_the_floor_is_never_kept_and_the_block_is_given_back() {
-        let m = Mesa::new(3);
-        let name = generate_above_floor(|o| m.make(o), |d| m.delete(d));
-        assert!(name >= NAME_FLOOR, "{name}");
-        // Only the kept name and the program's three stay alive.
-        let live = m.live.borrow();
-        assert_eq!(live.len(), 4, "{live:?}");
-        assert!(live.contains(&name) && (1..=3).all(|n| live.contains(&n)));
-        drop(live);
-        // The program's next generated name is above the block.
-        let mut next = [0];
-        m.make(&mut next);
-        assert!(next[0] > name);
-        // Later names of the library are taken as they come.
-        assert_eq!(
-            generate_above_floor(|o| m.make(o), |d| m.delete(d)),
-            next[0] + 1
-        );
+    fn reserved_names_read_as_non_negative_gl_ints() {
+        let a = next_reserved();
+        let b = next_reserved();
+        assert!(b < a && a <= RESERVED_TOP);
+        assert!((a as i32) > 0 && (b as i32) > 0);
     }
 
     #[test]

@@ -130,13 +130,14 @@
 //! only where it is current too.
 //!
 //! Names: the layer's textures, renderbuffers and framebuffer objects live
-//! in the program's share group. They take glGen* names as a program's
-//! own do, never below 4096 ([`crate::gl::names`] says why: layers below
-//! track objects by name, bindings read through a GLint must stay
-//! non-negative, legacy programs bind small texture names they never
-//! generated). The program's glDelete* leave them alone; its framebuffer
-//! object in the program's context is never reported (bindings of it read
-//! 0).
+//! in the program's share group. Textures and renderbuffers take names
+//! from just below 2^31, framebuffer objects glGen* names
+//! ([`crate::gl::names`] says why: legacy programs bind small texture
+//! names they never generated and index small tables with their generated
+//! ones, bindings read through a GLint must stay non-negative, layers
+//! below track framebuffer objects by name). The program's glDelete* leave
+//! them alone; the layer's framebuffer object in the program's context is
+//! never reported (bindings of it read 0).
 //!
 //! # Other GL layers in the process
 //!
