@@ -34,7 +34,7 @@ XVFB=$!
 while [ ! -s "$TMP/display" ]; do sleep 0.05; done
 export DISPLAY=":$(cat "$TMP/display")"
 
-median() { sed 's/.*median \([0-9.]*\) ms.*/\1/'; }
+median() { grep 'median' | tail -n 1 | sed 's/.*median \([0-9.]*\) ms.*/\1/'; }
 alone() { "$RUN" -m "$MODE" "$TMP/loop" stereo "$W" "$H" "$N" | median; }
 # The layer goes after glstereo in LD_PRELOAD (glstereo-run puts itself first).
 below() { LD_PRELOAD="$1" "$RUN" -m "$MODE" "$TMP/loop" stereo "$W" "$H" "$N" | median; }
