@@ -76,10 +76,12 @@ pub(super) struct Drawn {
 /// may be held when a state is locked, never the other way round.
 pub(super) struct CtxState {
     pub(super) fbs: HashMap<u64, Drawn>,
-    /// GL errors raised by the emulation (or saved from the driver before
-    /// the layer called GL in the program's context), oldest first, each
-    /// code once: what glGetError reports before the driver's own.
-    pub(super) pending: Vec<u32>,
+    /// The context's GL error flag as Mesa keeps it: the first error
+    /// raised since the last glGetError, by the emulation or by the driver
+    /// (saved before the layer called GL in the program's context), or
+    /// GL_NO_ERROR. glGetError reports it before asking the driver; every
+    /// later error until then is dropped, as Mesa drops it.
+    pub(super) pending: u32,
     compositor: GlCompositor,
     /// Whether the program's context can host the emulation (GL ≥ 3.0);
     /// None until first bound.
@@ -125,24 +127,42 @@ impl CtxState {
         fbo != 0 && self.fbs.values().any(|d| d.fb.app_fbo() == fbo)
     }
 
-    /// Queues a GL error for glGetError (each code once, as GL's flags).
-    pub(super) fn push_error(&mut self, code: u32) {
-        if code != GL_NO_ERROR && !self.pending.contains(&code) {
-            self.pending.push(code);
+    /// Raises GL error `code` in the program's context (current: callers),
+    /// as Mesa records one: only when no error was raised since the last
+    /// glGetError, the driver's included (an error the driver holds came
+    /// first, and is the one kept).
+    pub(super) fn push_error(&mut self, gl: &Gl, code: u32) {
+        if code == GL_NO_ERROR || self.pending != GL_NO_ERROR {
+            return;
+        }
+        self.save_driver_errors(gl);
+        if self.pending == GL_NO_ERROR {
+            self.pending = code;
         }
     }
 
-    /// Moves the driver's pending errors into the queue, so the layer's own
-    /// GL calls in the program's context neither lose nor fake any.
+    /// Moves the driver's error flag into [`CtxState::pending`] (where one
+    /// is held already, the driver's later error is dropped, as Mesa drops
+    /// it), so the layer's own GL calls in the program's context neither
+    /// lose nor fake any.
     pub(super) fn save_driver_errors(&mut self, gl: &Gl) {
-        for _ in 0..16 {
-            // SAFETY: the program's context is current (callers).
-            let e = unsafe { gl.GetError() };
-            if e == GL_NO_ERROR {
-                break;
-            }
-            self.push_error(e);
+        // SAFETY: the program's context is current (callers).
+        let e = unsafe { gl.GetError() };
+        if self.pending == GL_NO_ERROR {
+            self.pending = e;
         }
+    }
+
+    /// glGetError: the flag [`CtxState::pending`] holds, clearing the
+    /// driver's too (an error it raised since came later and is dropped);
+    /// None when it holds none (the driver's flag is the answer).
+    pub(super) fn take_error(&mut self, gl: &Gl) -> Option<u32> {
+        if self.pending == GL_NO_ERROR {
+            return None;
+        }
+        // SAFETY: the program's context is current (callers).
+        unsafe { gl.GetError() };
+        Some(std::mem::replace(&mut self.pending, GL_NO_ERROR))
     }
 }
 
@@ -349,7 +369,7 @@ impl StereoContext {
             closed: AtomicBool::new(false),
             state: Mutex::new(CtxState {
                 fbs: HashMap::new(),
-                pending: Vec::new(),
+                pending: GL_NO_ERROR,
                 compositor: GlCompositor::new(),
                 usable: None,
                 owner: None,

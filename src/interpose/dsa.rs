@@ -137,8 +137,9 @@ fn with_fb0<T>(
     let fb = &mut st.fbs.get_mut(&drawable)?.fb;
     let mut errors = Vec::new();
     let v = f(fb, &mut errors);
-    for e in errors {
-        st.push_error(e);
+    if let (Some(&e), Ok(r)) = (errors.first(), super::real::real()) {
+        // The first error only: GL keeps one (later ones are dropped).
+        st.push_error(&r.gl, e);
     }
     Some(v)
 }
@@ -510,7 +511,7 @@ pub unsafe fn get_named_framebuffer_attachment_parameteriv(
         if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
             // SAFETY: the program's context is current; `params` not NULL.
             unsafe {
-                emulated_attachment(&cur, attachment, pname, params, |twin| {
+                emulated_attachment(&r.gl, &cur, attachment, pname, params, |twin| {
                     real(0, twin, pname, params)
                 })
             };

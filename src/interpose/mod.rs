@@ -104,8 +104,8 @@
 //!   lists with n > 0, the glGet*FramebufferParameteriv and
 //!   glGetNamedFramebufferAttachmentParameteriv params,
 //!   glCreateShaderProgramv strings):
-//!   nothing happens but GL_INVALID_VALUE, in the stereo context's queue of
-//!   emulated errors or, in any other context, raised by the driver itself
+//!   nothing happens but GL_INVALID_VALUE, in the stereo context's error
+//!   flag or, in any other context, raised by the driver itself
 //!   with glViewport(0, 0, -1, -1) (GL rejects it with exactly that error
 //!   and no other effect). With no context current nothing is raised, as
 //!   GL raises nothing then.
@@ -113,8 +113,14 @@
 //! Pointers that are not NULL but wrong (freed, too short, unterminated
 //! lists) cannot be detected, by libGL or the layer. The layer's own GL
 //! queries in the program's context never add or hide a GL error (the
-//! program's pending errors are moved to the queue first; see
-//! [`gl::push_attrib`] in a core-profile context).
+//! program's pending error is moved to the context's flag first; see
+//! [`gl::push_attrib`] in a core-profile context), and a query the driver
+//! refuses gets no emulated answer written.
+//!
+//! GL errors are kept as Mesa keeps them: one flag per context, the first
+//! error raised since the last glGetError, whether the emulation or the
+//! driver raised it; later ones are dropped. (GL 4.5 describes one flag
+//! per error code; where Mesa can answer, the layer's answer is Mesa's.)
 //!
 //! # Threads
 //!

@@ -711,6 +711,73 @@ static void dsa(void)
     drain_errors("dsa queries");
 }
 
+/* glGetError until GL_NO_ERROR (at most 4), printed after `what`. */
+static void probe_errors(const char *what)
+{
+    printf("probe errors after %s:", what);
+    for (int i = 0; i < 4; i++) {
+        GLenum e = glGetError();
+        printf(" 0x%x", e);
+        if (e == GL_NO_ERROR) break;
+    }
+    printf("\n");
+}
+
+/* Queries the driver refuses leave the program's variable alone; a run of
+ * bad calls leaves the errors GL keeps (Mesa: the first since the last
+ * glGetError). */
+static void probe_queries_and_errors(void)
+{
+    GLint max = get_int(GL_MAX_DRAW_BUFFERS);
+    for (GLenum i = 0; i < 16; i++) {
+        GLint v = -7;
+        GLboolean b = 7;
+        GLfloat f = -7.0f;
+        GLdouble dv = -7.0;
+        GLint64 v64 = -7;
+        glGetIntegerv(GL_DRAW_BUFFER0 + i, &v);
+        GLenum ev = glGetError();
+        glGetBooleanv(GL_DRAW_BUFFER0 + i, &b);
+        GLenum eb = glGetError();
+        glGetFloatv(GL_DRAW_BUFFER0 + i, &f);
+        GLenum ef = glGetError();
+        glGetDoublev(GL_DRAW_BUFFER0 + i, &dv);
+        GLenum ed = glGetError();
+        glGetInteger64v(GL_DRAW_BUFFER0 + i, &v64);
+        GLenum e64 = glGetError();
+        printf("probe glGet*v(GL_DRAW_BUFFER%u) of %d: %d 0x%x %d 0x%x %g 0x%x %g 0x%x %lld 0x%x\n",
+               i, max, v, ev, b, eb, f, ef, dv, ed, (long long)v64, e64);
+    }
+    GLint mask[4] = {-7, -7, -7, -7};
+    glGetIntegeri_v(GL_COLOR_WRITEMASK, 99, mask);
+    printf("probe glGetIntegeri_v(GL_COLOR_WRITEMASK, 99): %d 0x%x\n", mask[0], glGetError());
+
+    glDrawBuffer(GL_COLOR_ATTACHMENT0);
+    glViewport(0, 0, -1, -1);
+    glEnable(0x1234);
+    probe_errors("glDrawBuffer(GL_COLOR_ATTACHMENT0), glViewport(-1), glEnable(0x1234)");
+    glViewport(0, 0, -1, -1);
+    glDrawBuffer(0x1234);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    probe_errors("glViewport(-1), glDrawBuffer(0x1234), glReadBuffer(GL_COLOR_ATTACHMENT0)");
+    glDrawBuffer(0x1234);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glDrawBuffers(1, (const GLenum[]){GL_BACK});
+    probe_errors("glDrawBuffer(0x1234), glReadBuffer(GL_COLOR_ATTACHMENT0), glDrawBuffers({GL_BACK})");
+    GLint v = -7;
+    glEnable(0x1234);
+    glGetIntegerv(GL_DRAW_BUFFER9, &v);
+    glDrawBuffer(0x1234);
+    probe_errors("glEnable(0x1234), glGetIntegerv(GL_DRAW_BUFFER9), glDrawBuffer(0x1234)");
+    glGetIntegerv(GL_DRAW_BUFFER9, &v);
+    glViewport(0, 0, -1, -1);
+    glGetIntegerv(GL_STEREO, &v);
+    glGetIntegerv(GL_DRAW_BUFFER, &v);
+    probe_errors("glGetIntegerv(GL_DRAW_BUFFER9), glViewport(-1), glGetIntegerv(GL_STEREO)");
+    glDrawBuffer(GL_BACK);
+    glReadBuffer(GL_BACK);
+}
+
 /* The answers GL gives about a default framebuffer that do not depend on
  * stereo: printed, for the test to compare with the driver's on a mono
  * configuration. */
@@ -815,6 +882,7 @@ static void probes(void)
     printf("probe glBlitNamedFramebuffer(0, 0, depth, linear): 0x%x\n", glGetError());
     glDrawBuffer(GL_BACK);
     glReadBuffer(GL_BACK);
+    probe_queries_and_errors();
 }
 
 typedef GLXContext (*CreateContextAttribs)(Display *, GLXFBConfig, GLXContext, Bool,
