@@ -13,8 +13,10 @@
 //!   emulation's or the driver's, and drops the rest, as Mesa does.
 //!   A query the driver refuses (GL_DRAW_BUFFER8 with 8 draw buffers)
 //!   keeps its error and gets no emulated answer written.
-//! - glGetIntegerv / Booleanv / Floatv / Doublev answer GL_STEREO (true),
-//!   GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i), GL_READ_BUFFER and the draw/read
+//! - glGetIntegerv / Booleanv / Floatv / Doublev answer GL_STEREO (true)
+//!   and GL_DOUBLEBUFFER while the emulated framebuffer is the draw
+//!   framebuffer (GL answers them from the draw framebuffer: with the
+//!   program's own object bound, the driver's false), GL_DRAW_BUFFER(i), GL_READ_BUFFER and the draw/read
 //!   framebuffer bindings (0 for the emulated framebuffer) as a stereo
 //!   visual would; GL_RED/GREEN/BLUE/ALPHA/DEPTH/STENCIL_BITS, GL_SAMPLES
 //!   and GL_SAMPLE_BUFFERS come from the window's real framebuffer (the

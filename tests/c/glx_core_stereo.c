@@ -725,7 +725,8 @@ static void probe_errors(const char *what)
 
 /* Queries the driver refuses leave the program's variable alone; a run of
  * bad calls leaves the errors GL keeps (Mesa: the first since the last
- * glGetError). */
+ * glGetError); GL_STEREO and GL_DOUBLEBUFFER come from the draw
+ * framebuffer, false for a framebuffer object. */
 static void probe_queries_and_errors(void)
 {
     GLint max = get_int(GL_MAX_DRAW_BUFFERS);
@@ -776,6 +777,17 @@ static void probe_queries_and_errors(void)
     probe_errors("glGetIntegerv(GL_DRAW_BUFFER9), glViewport(-1), glGetIntegerv(GL_STEREO)");
     glDrawBuffer(GL_BACK);
     glReadBuffer(GL_BACK);
+
+    GLuint fbo = 0;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    GLboolean st = 7, db = 7;
+    glGetBooleanv(GL_STEREO, &st);
+    glGetBooleanv(GL_DOUBLEBUFFER, &db);
+    printf("probe GL_STEREO GL_DOUBLEBUFFER with a framebuffer object drawn: %d %d %d %d 0x%x\n",
+           st, db, get_int(GL_STEREO), get_int(GL_DOUBLEBUFFER), glGetError());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
 }
 
 /* The answers GL gives about a default framebuffer that do not depend on
