@@ -16,7 +16,7 @@ CARGO_PROFILE_FLAG := $(if $(filter release,$(PROFILE)),--release,)
 DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosmesa6 \
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind \
-                libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev qtbase5-dev g++ \
+                libx11-xcb-dev libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev qtbase5-dev g++ \
                 openscenegraph mesa-utils apitrace python3-pil libimage-exiftool-perl
 
 .PHONY: all deps build header examples demo test check-sanitize lint bench clean install uninstall

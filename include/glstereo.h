@@ -2165,9 +2165,31 @@ unsigned long gls_glx_create_window(void *dpy,
                                     const int *attrib_list);
 
 /**
- * `glXDestroyWindow`.
+ * `glXDestroyWindow`: the stereo buffers of the window go with it, in
+ * every stereo context it was bound to (where it is current, when it is
+ * released, as GLX keeps a current drawable until then).
  */
 void gls_glx_destroy_window(void *dpy, unsigned long window);
+
+/**
+ * `glXDestroyPbuffer`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_pbuffer(void *dpy, unsigned long pbuf);
+
+/**
+ * `glXDestroyGLXPbufferSGIX`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_glx_pbuffer_sgix(void *dpy, unsigned long pbuf);
+
+/**
+ * `glXDestroyPixmap`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_pixmap(void *dpy, unsigned long pixmap);
+
+/**
+ * `glXDestroyGLXPixmap`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_glx_pixmap(void *dpy, unsigned long pixmap);
 
 /**
  * `glXCreatePixmap` (mono: the real configuration of a stereo one).

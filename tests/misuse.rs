@@ -216,6 +216,13 @@ fn legacy_name(gls: &str) -> &'static str {
             "glXCreateGLXPixmapWithConfigSGIX",
         ),
         ("gls_glx_create_glx_pbuffer_sgix", "glXCreateGLXPbufferSGIX"),
+        ("gls_glx_destroy_pbuffer", "glXDestroyPbuffer"),
+        (
+            "gls_glx_destroy_glx_pbuffer_sgix",
+            "glXDestroyGLXPbufferSGIX",
+        ),
+        ("gls_glx_destroy_pixmap", "glXDestroyPixmap"),
+        ("gls_glx_destroy_glx_pixmap", "glXDestroyGLXPixmap"),
         ("gls_glx_get_proc_address", "glXGetProcAddress"),
         ("gls_gl_draw_buffers", "glDrawBuffers"),
         ("gls_gl_draw_buffers_arb", "glDrawBuffersARB"),

@@ -147,6 +147,18 @@ static inline GLXPbuffer gls_compat_glXCreatePbuffer(Display *dpy, GLXFBConfig c
 {
     return gls_glx_create_pbuffer(dpy, (void *)config, attribs);
 }
+static inline void gls_compat_glXDestroyPbuffer(Display *dpy, GLXPbuffer pbuf)
+{
+    gls_glx_destroy_pbuffer(dpy, pbuf);
+}
+static inline void gls_compat_glXDestroyPixmap(Display *dpy, GLXPixmap pixmap)
+{
+    gls_glx_destroy_pixmap(dpy, pixmap);
+}
+static inline void gls_compat_glXDestroyGLXPixmap(Display *dpy, GLXPixmap pixmap)
+{
+    gls_glx_destroy_glx_pixmap(dpy, pixmap);
+}
 static inline gls_compat_proc gls_compat_glXGetProcAddress(const GLubyte *name)
 {
     /* An object pointer to a function pointer, as POSIX dlsym() allows. */
@@ -445,6 +457,9 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glXDestroyWindow gls_compat_glXDestroyWindow
 #define glXCreatePixmap gls_compat_glXCreatePixmap
 #define glXCreatePbuffer gls_compat_glXCreatePbuffer
+#define glXDestroyPbuffer gls_compat_glXDestroyPbuffer
+#define glXDestroyPixmap gls_compat_glXDestroyPixmap
+#define glXDestroyGLXPixmap gls_compat_glXDestroyGLXPixmap
 #define glXGetProcAddress gls_compat_glXGetProcAddress
 #define glXGetProcAddressARB gls_compat_glXGetProcAddress
 

@@ -33,7 +33,7 @@ use x11_dl::xlib::XVisualInfo;
 use super::boundary::ffi_boundary;
 use crate::interpose::dsa as idsa;
 use crate::interpose::gl as igl;
-use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
+use crate::interpose::glx::{self as iglx, Destroy, Flavour, NewContext, Offscreen};
 
 /// The gls_glx_* and gls_gl_* functions stand in for the legacy GLX and GL
 /// functions a stereo program calls: `<glstereo/compat.h>` maps their
@@ -368,12 +368,50 @@ pub unsafe extern "C" fn gls_glx_create_window(
     })
 }
 
-/// `glXDestroyWindow`.
+/// `glXDestroyWindow`: the stereo buffers of the window go with it, in
+/// every stereo context it was bound to (where it is current, when it is
+/// released, as GLX keeps a current drawable until then).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_glx_destroy_window(dpy: *mut c_void, window: c_ulong) {
     ffi_boundary!("gls_glx_destroy_window" for "glXDestroyWindow", () => {
         // SAFETY: GLX's contract, forwarded.
-        unsafe { iglx::destroy_window(dpy.cast(), window) }
+        unsafe { iglx::destroy_drawable(dpy.cast(), window, Destroy::Window) }
+    })
+}
+
+/// `glXDestroyPbuffer`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_pbuffer(dpy: *mut c_void, pbuf: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_pbuffer" for "glXDestroyPbuffer", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pbuf, Destroy::Pbuffer) }
+    })
+}
+
+/// `glXDestroyGLXPbufferSGIX`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_glx_pbuffer_sgix(dpy: *mut c_void, pbuf: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_glx_pbuffer_sgix" for "glXDestroyGLXPbufferSGIX", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pbuf, Destroy::PbufferSgix) }
+    })
+}
+
+/// `glXDestroyPixmap`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_pixmap(dpy: *mut c_void, pixmap: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_pixmap" for "glXDestroyPixmap", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pixmap, Destroy::Pixmap) }
+    })
+}
+
+/// `glXDestroyGLXPixmap`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_glx_pixmap(dpy: *mut c_void, pixmap: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_glx_pixmap" for "glXDestroyGLXPixmap", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pixmap, Destroy::GlxPixmap) }
     })
 }
 
@@ -963,6 +1001,10 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glXSwapBuffers" => gls_glx_swap_buffers as *mut c_void,
         b"glXCreateWindow" => gls_glx_create_window as *mut c_void,
         b"glXDestroyWindow" => gls_glx_destroy_window as *mut c_void,
+        b"glXDestroyPbuffer" => gls_glx_destroy_pbuffer as *mut c_void,
+        b"glXDestroyGLXPbufferSGIX" => gls_glx_destroy_glx_pbuffer_sgix as *mut c_void,
+        b"glXDestroyPixmap" => gls_glx_destroy_pixmap as *mut c_void,
+        b"glXDestroyGLXPixmap" => gls_glx_destroy_glx_pixmap as *mut c_void,
         b"glXCreatePixmap" => gls_glx_create_pixmap as *mut c_void,
         b"glXCreatePbuffer" => gls_glx_create_pbuffer as *mut c_void,
         b"glXCreateGLXPixmapWithConfigSGIX" => {

@@ -20,7 +20,12 @@
 //!   drawable's emulated default framebuffer — the four colour buffers and
 //!   the shared depth/stencil buffer of [`crate::stereo::emulated`], sized
 //!   to the drawable and resized with it — and binds it in the program's
-//!   context wherever the program has framebuffer 0;
+//!   context wherever the program has framebuffer 0. Those buffers live
+//!   as long as the drawable: the GLX destroy functions free them in every
+//!   context (a drawable current somewhere when its context is released),
+//!   and a window destroyed behind GLX's back (XDestroyWindow, its parent,
+//!   xcb, another client) is found gone the next time the context is made
+//!   current on a new drawable ([`context::StereoContext::drawable_destroyed`]);
 //! - GL calls about the default framebuffer are answered as a stereo
 //!   visual would ([`gl`]), with the exact GL errors of
 //!   [`crate::stereo::buffers`]; so are glClearBuffer and GL 4.5 direct

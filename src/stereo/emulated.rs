@@ -661,6 +661,22 @@ impl EmulatedFramebuffer {
         }
     }
 
+    /// Deletes the application's framebuffer object, when the drawable it
+    /// stands for goes: the textures it holds (and their memory) are freed
+    /// only once no framebuffer object holds them.
+    ///
+    /// # Safety
+    /// The context the object was made in (the application's) must be
+    /// current on this thread.
+    pub unsafe fn delete_app_fbo(&mut self, gl: &Gl) {
+        if self.app_fbo != 0 {
+            // SAFETY: contract.
+            unsafe { gl.DeleteFramebuffers(1, &self.app_fbo) };
+            self.app_fbo = 0;
+            self.attachments_stale = false;
+        }
+    }
+
     unsafe fn attach_storage(&self, gl: &Gl) -> Result<()> {
         // SAFETY: the application context is current with app_fbo bound.
         unsafe {

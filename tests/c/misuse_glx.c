@@ -60,6 +60,8 @@
 /* GLX protocol errors, from the extension's error base. */
 #define GLX_BAD_CONTEXT_ 0
 #define GLX_BAD_FBCONFIG_ 9
+#define GLX_BAD_PIXMAP_ 3
+#define GLX_BAD_PBUFFER_ 10
 
 #ifdef MISUSE_PRELOAD
 /* ---- the gls_ names onto the real GLX/GL names (glstereo-run) --------- */
@@ -71,6 +73,7 @@ typedef GLXContext (*create_context_sgix_fn)(Display *, void *, int, GLXContext,
 typedef GLXContext (*create_context_attribs_fn)(Display *, GLXFBConfig, GLXContext, Bool, const int *);
 typedef GLXPixmap (*create_pixmap_sgix_fn)(Display *, void *, Pixmap);
 typedef GLXPbuffer (*create_pbuffer_sgix_fn)(Display *, void *, unsigned, unsigned, int *);
+typedef void (*destroy_pbuffer_sgix_fn)(Display *, GLXPbuffer);
 typedef void (*draw_buffers_fn)(GLsizei, const GLenum *);
 typedef void (*bind_framebuffer_fn)(GLenum, GLuint);
 typedef void (*delete_framebuffers_fn)(GLsizei, const GLuint *);
@@ -112,6 +115,7 @@ static create_context_sgix_fn p_create_context_sgix;
 static create_context_attribs_fn p_create_context_attribs;
 static create_pixmap_sgix_fn p_create_pixmap_sgix;
 static create_pbuffer_sgix_fn p_create_pbuffer_sgix;
+static destroy_pbuffer_sgix_fn p_destroy_pbuffer_sgix;
 static draw_buffers_fn p_draw_buffers, p_draw_buffers_arb;
 static bind_framebuffer_fn p_bind_framebuffer, p_bind_framebuffer_ext;
 static delete_framebuffers_fn p_delete_framebuffers, p_delete_framebuffers_ext;
@@ -161,6 +165,7 @@ static void load_procs(void) {
     LOOKUP(p_create_context_attribs, "glXCreateContextAttribsARB");
     LOOKUP(p_create_pixmap_sgix, "glXCreateGLXPixmapWithConfigSGIX");
     LOOKUP(p_create_pbuffer_sgix, "glXCreateGLXPbufferSGIX");
+    LOOKUP(p_destroy_pbuffer_sgix, "glXDestroyGLXPbufferSGIX");
     LOOKUP(p_draw_buffers, "glDrawBuffers");
     LOOKUP(p_draw_buffers_arb, "glDrawBuffersARB");
     LOOKUP(p_bind_framebuffer, "glBindFramebuffer");
@@ -248,6 +253,10 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_glx_create_glx_pixmap_with_config_sgix(d, c, p) p_create_pixmap_sgix(D(d), (c), (p))
 #define gls_glx_create_glx_pbuffer_sgix(d, c, w, h, a) \
     p_create_pbuffer_sgix(D(d), (c), (w), (h), (int *)(a))
+#define gls_glx_destroy_pbuffer(d, p) glXDestroyPbuffer(D(d), (p))
+#define gls_glx_destroy_glx_pbuffer_sgix(d, p) p_destroy_pbuffer_sgix(D(d), (p))
+#define gls_glx_destroy_pixmap(d, p) glXDestroyPixmap(D(d), (p))
+#define gls_glx_destroy_glx_pixmap(d, p) glXDestroyGLXPixmap(D(d), (p))
 #define gls_glx_get_proc_address(n) proc_pointer(glXGetProcAddressARB(n))
 #define gls_gl_draw_buffer(b) glDrawBuffer(b)
 #define gls_gl_draw_buffers(n, b) p_draw_buffers((n), (b))
@@ -560,6 +569,10 @@ static void null_display_cases(void *ctx) {
     EXPECT_RET(id == 0, 1, id, gls_glx_create_pbuffer, NULL, cfg, NULL);
     EXPECT_RET(id == 0, 1, id, gls_glx_create_glx_pixmap_with_config_sgix, NULL, cfg, win);
     EXPECT_RET(id == 0, 1, id, gls_glx_create_glx_pbuffer_sgix, NULL, cfg, 16, 16, NULL);
+    EXPECT_VOID(1, gls_glx_destroy_pbuffer, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_glx_pbuffer_sgix, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_pixmap, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_glx_pixmap, NULL, 0x7777);
 
     /* With a stereo context current: nothing changes. */
     EXPECT_RET(ok == True, 0, ok, gls_glx_make_current, dpy, win, ctx);
@@ -631,6 +644,15 @@ static void null_pointer_cases(void) {
     EXPECT_RET(id == 0, 0, id, gls_glx_create_glx_pixmap_with_config_sgix, dpy, NULL, win);
     EXPECT_RET(id == 0, 0, id, gls_glx_create_glx_pbuffer_sgix, dpy, NULL, 16, 16, NULL);
     x_error(dpy);
+    /* Drawables GLX does not know: libGL's X errors. */
+    EXPECT_VOID(0, gls_glx_destroy_pbuffer, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PBUFFER_);
+    EXPECT_VOID(0, gls_glx_destroy_glx_pbuffer_sgix, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, 0); /* Mesa sends nothing for a pbuffer it does not know */
+    EXPECT_VOID(0, gls_glx_destroy_pixmap, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PIXMAP_);
+    EXPECT_VOID(0, gls_glx_destroy_glx_pixmap, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PIXMAP_);
 
     /* Bad screens and attributes: libGL's answers. */
     EXPECT_RET(v == NULL, 0, v, gls_glx_choose_visual, dpy, 99, VIS_STEREO);
