@@ -2714,6 +2714,60 @@ void gls_gl_link_program(uint32_t program);
 uint32_t gls_gl_create_shader_programv(uint32_t kind, int32_t count, const char *const *strings);
 
 /**
+ * `glGetProgramiv`: in a stereo context GL_PROGRAM_BINARY_LENGTH counts
+ * the 12-byte tag gls_gl_get_program_binary() puts before the driver's
+ * binary; everything else is the driver's answer. Refused: `params` NULL
+ * (GL_INVALID_VALUE, nothing written).
+ */
+void gls_gl_get_programiv(uint32_t program, uint32_t pname, int32_t *params);
+
+/**
+ * `glGetProgramBinary`: in a stereo context, the driver's binary of the
+ * program as linked there (with the copies of output 0 that
+ * gls_gl_link_program() adds) behind a 12-byte tag of glstereo's, in the
+ * driver's binary format; a program whose copies glstereo cannot vouch
+ * for gets the driver's binary as it is. Refused: `binary_format` NULL,
+ * or `binary` NULL with `buf_size` > 0 (GL_INVALID_VALUE).
+ */
+void gls_gl_get_program_binary(uint32_t program,
+                               int32_t buf_size,
+                               int32_t *length,
+                               uint32_t *binary_format,
+                               void *binary);
+
+/**
+ * `glGetProgramBinaryOES`: as gls_gl_get_program_binary().
+ */
+void gls_gl_get_program_binary_oes(uint32_t program,
+                                   int32_t buf_size,
+                                   int32_t *length,
+                                   uint32_t *binary_format,
+                                   void *binary);
+
+/**
+ * `glProgramBinary`: a binary gls_gl_get_program_binary() tagged loads
+ * the driver's binary behind the tag. In a stereo context a binary
+ * without the tag (made without glstereo, or by a mono context) is kept
+ * only when its fragment output 0 needs no copies; otherwise its load
+ * fails as GL lets a load fail (GL_LINK_STATUS false, no GL error; a
+ * shader cache then compiles the source, which glLinkProgram links with
+ * the copies) and stderr says so once. Refused: `binary` NULL with
+ * `length` > 0 (GL_INVALID_VALUE).
+ */
+void gls_gl_program_binary(uint32_t program,
+                           uint32_t binary_format,
+                           const void *binary,
+                           int32_t length);
+
+/**
+ * `glProgramBinaryOES`: as gls_gl_program_binary().
+ */
+void gls_gl_program_binary_oes(uint32_t program,
+                               uint32_t binary_format,
+                               const void *binary,
+                               int32_t length);
+
+/**
  * Like gls_surface_save_png, but returns as soon as the pixels are read
  * back: the PNG is encoded and written (atomically, temporary file then
  * rename) by the surface's capture threads, in the order queued, so a

@@ -216,6 +216,11 @@ fn legacy_name(gls: &str) -> &'static str {
             "glXCreateGLXPixmapWithConfigSGIX",
         ),
         ("gls_glx_create_glx_pbuffer_sgix", "glXCreateGLXPbufferSGIX"),
+        ("gls_gl_get_programiv", "glGetProgramiv"),
+        ("gls_gl_get_program_binary", "glGetProgramBinary"),
+        ("gls_gl_get_program_binary_oes", "glGetProgramBinaryOES"),
+        ("gls_gl_program_binary", "glProgramBinary"),
+        ("gls_gl_program_binary_oes", "glProgramBinaryOES"),
         ("gls_glx_destroy_pbuffer", "glXDestroyPbuffer"),
         (
             "gls_glx_destroy_glx_pbuffer_sgix",

@@ -435,6 +435,20 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 {
     return gls_gl_create_shader_programv(type, count, strings);
 }
+static inline void gls_compat_glGetProgramiv(GLuint program, GLenum pname, GLint *params)
+{
+    gls_gl_get_programiv(program, pname, params);
+}
+static inline void gls_compat_glGetProgramBinary(GLuint program, GLsizei bufSize, GLsizei *length,
+                                                 GLenum *binaryFormat, void *binary)
+{
+    gls_gl_get_program_binary(program, bufSize, length, binaryFormat, binary);
+}
+static inline void gls_compat_glProgramBinary(GLuint program, GLenum binaryFormat,
+                                              const void *binary, GLsizei length)
+{
+    gls_gl_program_binary(program, binaryFormat, binary, length);
+}
 
 #ifdef __cplusplus
 }
@@ -522,5 +536,8 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glGetFramebufferParameteriv gls_compat_glGetFramebufferParameteriv
 #define glLinkProgram gls_compat_glLinkProgram
 #define glCreateShaderProgramv gls_compat_glCreateShaderProgramv
+#define glGetProgramiv gls_compat_glGetProgramiv
+#define glGetProgramBinary gls_compat_glGetProgramBinary
+#define glProgramBinary gls_compat_glProgramBinary
 
 #endif /* GLSTEREO_COMPAT_H */

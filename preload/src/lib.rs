@@ -192,6 +192,11 @@ export! {
     glLinkProgram => gls_gl_link_program(program: u32);
     glLinkProgramARB => gls_gl_link_program(program: u32);
     glCreateShaderProgramv => gls_gl_create_shader_programv(kind: u32, count: i32, strings: *const *const std::ffi::c_char) -> u32;
+    glGetProgramiv => gls_gl_get_programiv(program: u32, pname: u32, params: *mut i32);
+    glGetProgramBinary => gls_gl_get_program_binary(program: u32, buf_size: i32, length: *mut i32, binary_format: *mut u32, binary: *mut c_void);
+    glGetProgramBinaryOES => gls_gl_get_program_binary_oes(program: u32, buf_size: i32, length: *mut i32, binary_format: *mut u32, binary: *mut c_void);
+    glProgramBinary => gls_gl_program_binary(program: u32, binary_format: u32, binary: *const c_void, length: i32);
+    glProgramBinaryOES => gls_gl_program_binary_oes(program: u32, binary_format: u32, binary: *const c_void, length: i32);
 }
 
 /// A function as `glXGetProcAddress` returns it.

@@ -31,6 +31,7 @@ use x11_dl::glx::{GLXContext, GLXFBConfig};
 use x11_dl::xlib::XVisualInfo;
 
 use super::boundary::ffi_boundary;
+use crate::interpose::binaries as ibin;
 use crate::interpose::dsa as idsa;
 use crate::interpose::gl as igl;
 use crate::interpose::glx::{self as iglx, Destroy, Flavour, NewContext, Offscreen};
@@ -1083,6 +1084,11 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glGetFramebufferParameteriv" => gls_gl_get_framebuffer_parameteriv as *mut c_void,
         b"glLinkProgram" | b"glLinkProgramARB" => gls_gl_link_program as *mut c_void,
         b"glCreateShaderProgramv" => gls_gl_create_shader_programv as *mut c_void,
+        b"glGetProgramiv" => gls_gl_get_programiv as *mut c_void,
+        b"glGetProgramBinary" => gls_gl_get_program_binary as *mut c_void,
+        b"glGetProgramBinaryOES" => gls_gl_get_program_binary_oes as *mut c_void,
+        b"glProgramBinary" => gls_gl_program_binary as *mut c_void,
+        b"glProgramBinaryOES" => gls_gl_program_binary_oes as *mut c_void,
         _ => return None,
     };
     Some(f)
@@ -1355,5 +1361,87 @@ pub unsafe extern "C" fn gls_gl_create_shader_programv(
     ffi_boundary!("gls_gl_create_shader_programv" for "glCreateShaderProgramv", 0 => {
         // SAFETY: GL's contract, forwarded.
         unsafe { idsa::create_shader_programv(kind, count, strings) }
+    })
+}
+
+/// `glGetProgramiv`: in a stereo context GL_PROGRAM_BINARY_LENGTH counts
+/// the 12-byte tag gls_gl_get_program_binary() puts before the driver's
+/// binary; everything else is the driver's answer. Refused: `params` NULL
+/// (GL_INVALID_VALUE, nothing written).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_programiv(program: u32, pname: u32, params: *mut i32) {
+    ffi_boundary!("gls_gl_get_programiv" for "glGetProgramiv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::get_programiv(program, pname, params) }
+    })
+}
+
+/// `glGetProgramBinary`: in a stereo context, the driver's binary of the
+/// program as linked there (with the copies of output 0 that
+/// gls_gl_link_program() adds) behind a 12-byte tag of glstereo's, in the
+/// driver's binary format; a program whose copies glstereo cannot vouch
+/// for gets the driver's binary as it is. Refused: `binary_format` NULL,
+/// or `binary` NULL with `buf_size` > 0 (GL_INVALID_VALUE).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_program_binary(
+    program: u32,
+    buf_size: i32,
+    length: *mut i32,
+    binary_format: *mut u32,
+    binary: *mut c_void,
+) {
+    ffi_boundary!("gls_gl_get_program_binary" for "glGetProgramBinary", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::get_program_binary(program, buf_size, length, binary_format, binary, false) }
+    })
+}
+
+/// `glGetProgramBinaryOES`: as gls_gl_get_program_binary().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_program_binary_oes(
+    program: u32,
+    buf_size: i32,
+    length: *mut i32,
+    binary_format: *mut u32,
+    binary: *mut c_void,
+) {
+    ffi_boundary!("gls_gl_get_program_binary_oes" for "glGetProgramBinaryOES", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::get_program_binary(program, buf_size, length, binary_format, binary, true) }
+    })
+}
+
+/// `glProgramBinary`: a binary gls_gl_get_program_binary() tagged loads
+/// the driver's binary behind the tag. In a stereo context a binary
+/// without the tag (made without glstereo, or by a mono context) is kept
+/// only when its fragment output 0 needs no copies; otherwise its load
+/// fails as GL lets a load fail (GL_LINK_STATUS false, no GL error; a
+/// shader cache then compiles the source, which glLinkProgram links with
+/// the copies) and stderr says so once. Refused: `binary` NULL with
+/// `length` > 0 (GL_INVALID_VALUE).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_program_binary(
+    program: u32,
+    binary_format: u32,
+    binary: *const c_void,
+    length: i32,
+) {
+    ffi_boundary!("gls_gl_program_binary" for "glProgramBinary", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::program_binary(program, binary_format, binary, length, false) }
+    })
+}
+
+/// `glProgramBinaryOES`: as gls_gl_program_binary().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_program_binary_oes(
+    program: u32,
+    binary_format: u32,
+    binary: *const c_void,
+    length: i32,
+) {
+    ffi_boundary!("gls_gl_program_binary_oes" for "glProgramBinaryOES", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::program_binary(program, binary_format, binary, length, true) }
     })
 }

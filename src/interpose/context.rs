@@ -107,6 +107,9 @@ pub(super) struct CtxState {
     /// The program's clear colour (glClearColor), which the layer's fast
     /// clear of an opaque emulated framebuffer changes for a moment.
     pub(super) clear_color: super::gl::ClearColor,
+    /// How the programs linked here reach the selected buffers (what
+    /// their binaries are tagged with, [`super::binaries`]).
+    pub(super) programs: super::binaries::Linked,
 }
 
 /// The draw buffer indices whose colour masks the layer shadows
@@ -409,6 +412,7 @@ impl StereoContext {
                 attribs: Vec::new(),
                 color_mask: [[true; 4]; MASKED_BUFFERS],
                 clear_color: super::gl::ClearColor::Float([0.0; 4]),
+                programs: Default::default(),
             }),
         })
     }

@@ -113,6 +113,11 @@ fn fns() -> &'static Fns {
     FNS.get_or_init(load)
 }
 
+/// What relinking needs (None before GL 4.3).
+pub(super) fn link_fns() -> Option<&'static LinkFns> {
+    fns().link.as_ref()
+}
+
 /// The real function, or the refusal a missing one gets (the program
 /// called a function the driver does not have).
 fn need<T>(f: Option<T>, name: &str) -> Result<T> {
@@ -599,6 +604,11 @@ fn duplicate(r: &Real, cur: &Current, program: u32, source: Option<&str>) {
     let outcome = unsafe { link.duplicate_output_zero(program, source) };
     // SAFETY: as above; drops the relink's own errors.
     while unsafe { r.gl.GetError() } != GL_NO_ERROR {}
+    super::binaries::record_link(
+        &mut cur.sc.lock(),
+        program,
+        !matches!(outcome, Outcome::Kept(_)),
+    );
     if let Outcome::Kept(why) = outcome {
         // Once per reason, not per program: engines link many variants of
         // one shader (and the ones drawing only into their own framebuffer

@@ -31,7 +31,8 @@
 //!   [`crate::stereo::buffers`]; so are glClearBuffer and GL 4.5 direct
 //!   state access on framebuffer 0, and programs are linked so that a
 //!   shader's output 0 reaches every buffer a name such as GL_BACK selects
-//!   ([`dsa`], [`crate::stereo::outputs`]);
+//!   ([`dsa`], [`crate::stereo::outputs`]), program binaries included
+//!   ([`binaries`]);
 //! - glXSwapBuffers flips back and front buffers and shows the front
 //!   buffers composed in GLSTEREO_MODE (default anaglyph-red-cyan) in the
 //!   window ([`context::StereoContext::present`]), and, with
@@ -148,6 +149,7 @@
 //! the program.
 
 pub mod attribs;
+pub mod binaries;
 pub mod capture;
 pub mod context;
 pub mod dsa;

@@ -60,6 +60,8 @@
 /* GLX protocol errors, from the extension's error base. */
 #define GLX_BAD_CONTEXT_ 0
 #define GLX_BAD_FBCONFIG_ 9
+#define GL_LINK_STATUS_ 0x8B82
+#define GL_PROGRAM_BINARY_FORMAT_MESA_ 0x875F
 #define GLX_BAD_PIXMAP_ 3
 #define GLX_BAD_PBUFFER_ 10
 
@@ -107,6 +109,9 @@ typedef void (*named_attachment_fn)(GLuint, GLenum, GLenum, GLint *);
 typedef void (*parameter_fn)(GLuint, GLenum, GLint *);
 typedef void (*link_program_fn)(GLuint);
 typedef GLuint (*create_shader_programv_fn)(GLenum, GLsizei, const char *const *);
+typedef void (*get_programiv_fn)(GLuint, GLenum, GLint *);
+typedef void (*get_program_binary_fn)(GLuint, GLsizei, GLsizei *, GLenum *, void *);
+typedef void (*program_binary_fn)(GLuint, GLenum, const void *, GLsizei);
 
 static choose_fbconfig_sgix_fn p_choose_fbconfig_sgix;
 static get_fbconfig_attrib_sgix_fn p_get_fbconfig_attrib_sgix;
@@ -148,6 +153,9 @@ static named_attachment_fn p_named_attachment;
 static parameter_fn p_named_parameter, p_parameter;
 static link_program_fn p_link_program;
 static create_shader_programv_fn p_create_shader_programv;
+static get_programiv_fn p_get_programiv;
+static get_program_binary_fn p_get_program_binary, p_get_program_binary_oes;
+static program_binary_fn p_program_binary, p_program_binary_oes;
 
 /* Extension functions, looked up as programs do (the layer's for its names). */
 #define LOOKUP(var, name)                                                    \
@@ -214,6 +222,11 @@ static void load_procs(void) {
     LOOKUP(p_parameter, "glGetFramebufferParameteriv");
     LOOKUP(p_link_program, "glLinkProgram");
     LOOKUP(p_create_shader_programv, "glCreateShaderProgramv");
+    LOOKUP(p_get_programiv, "glGetProgramiv");
+    LOOKUP(p_get_program_binary, "glGetProgramBinary");
+    LOOKUP(p_get_program_binary_oes, "glGetProgramBinaryOES");
+    LOOKUP(p_program_binary, "glProgramBinary");
+    LOOKUP(p_program_binary_oes, "glProgramBinaryOES");
 }
 
 static void *proc_pointer(void (*f)(void)) {
@@ -326,6 +339,12 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_get_framebuffer_parameteriv(t, p, v) p_parameter((t), (p), (v))
 #define gls_gl_link_program(p) p_link_program(p)
 #define gls_gl_create_shader_programv(t, n, s) p_create_shader_programv((t), (n), (s))
+#define gls_gl_get_programiv(p, n, v) p_get_programiv((p), (n), (v))
+#define gls_gl_get_program_binary(p, n, l, f, b) p_get_program_binary((p), (n), (l), (f), (b))
+#define gls_gl_get_program_binary_oes(p, n, l, f, b) \
+    p_get_program_binary_oes((p), (n), (l), (f), (b))
+#define gls_gl_program_binary(p, f, b, n) p_program_binary((p), (f), (b), (n))
+#define gls_gl_program_binary_oes(p, f, b, n) p_program_binary_oes((p), (f), (b), (n))
 
 /* Messages go to stderr here, where tests/misuse.rs reads them. */
 static void sentinel(void) {}
@@ -902,6 +921,22 @@ static void null_gl_pointers(const char *where) {
     GLuint prog = 7;
     EXPECT_RET(prog == 0, 1, prog, gls_gl_create_shader_programv, GL_FRAGMENT_SHADER_, 1, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    GLsizei blen = -5;
+    GLenum bfmt = 7;
+    unsigned char bbuf[16];
+    EXPECT_VOID(1, gls_gl_get_programiv, 0x7777, GL_LINK_STATUS_, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary, 0x7777, 16, &blen, NULL, bbuf);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary, 0x7777, 16, &blen, &bfmt, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary_oes, 0x7777, 16, &blen, NULL, bbuf);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_program_binary, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, NULL, 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_program_binary_oes, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, NULL, 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    CHECK(blen == -5 && bfmt == 7, "program binary outputs written on a refusal");
     /* n = 0 needs no pointer. */
     EXPECT_VOID(0, gls_gl_draw_buffers, 0, NULL);
     EXPECT_VOID(0, gls_gl_delete_framebuffers, 0, NULL);
@@ -1086,6 +1121,24 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
     EXPECT_VOID(0, gls_gl_link_program, 0x7777);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    {
+        GLint st = -5;
+        GLsizei blen = -5;
+        GLenum bfmt = 7;
+        unsigned char bbuf[16] = {0};
+        EXPECT_VOID(0, gls_gl_get_programiv, 0x7777, GL_LINK_STATUS_, &st);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_get_program_binary, 0x7777, 16, &blen, &bfmt, bbuf);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_get_program_binary_oes, 0x7777, -1, &blen, &bfmt, bbuf);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_program_binary, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, bbuf, 16);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_program_binary_oes, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, bbuf,
+                    -1);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        CHECK(st == -5 && bfmt == 7, "program outputs written on an error");
+    }
     const char *src[1] = {"void main() {}"};
     GLuint sp = 7;
     EXPECT_RET(sp == 0, 0, sp, gls_gl_create_shader_programv, 0x7777, 1, src);
