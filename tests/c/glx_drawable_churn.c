@@ -23,6 +23,10 @@
  *   idle        a GLX window drawn once, the context released, the window
  *               destroyed (glXDestroyWindow, XDestroyWindow); the context
  *               stays and is never bound again
+ *   thread      a GLX window made current and drawn on a second thread,
+ *               destroyed (glXDestroyWindow, XDestroyWindow) by the main
+ *               thread while current there; the second thread then
+ *               moves on to the next window, and releases the last one
  * N drawables (default 50), 640x480, each cleared and shown (a swap or a
  * glFinish). Even iterations release the context before destroying the
  * drawable; odd ones destroy it while it is current (GLX keeps it until
@@ -38,6 +42,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -106,9 +111,12 @@ static void sample(const char *mode, const char *when)
     fflush(stdout);
 }
 
-enum kind { GLXWINDOW, XWINDOW, PARENT, XCB, OTHER, PBUFFER, SGIX, PIXMAP, GLXPIXMAP, IDLE };
+enum kind {
+    GLXWINDOW, XWINDOW, PARENT, XCB, OTHER, PBUFFER, SGIX, PIXMAP, GLXPIXMAP, IDLE, THREAD
+};
 static const char *KIND_NAME[] = {"glxwindow", "xwindow", "parent", "xcb",   "other",
-                                  "pbuffer",   "sgix",    "pixmap", "glxpixmap", "idle"};
+                                  "pbuffer",   "sgix",    "pixmap", "glxpixmap", "idle",
+                                  "thread"};
 
 /* One drawable and what it is made of. */
 struct drawable {
@@ -147,6 +155,7 @@ static int make(struct world *w, enum kind k, struct drawable *out)
     switch (k) {
     case GLXWINDOW:
     case IDLE:
+    case THREAD:
         out->window = x_window(w, root);
         out->gl = glXCreateWindow(w->d, w->config, out->window, NULL);
         break;
@@ -187,6 +196,7 @@ static void destroy(struct world *w, enum kind k, struct drawable *dr)
     switch (k) {
     case GLXWINDOW:
     case IDLE:
+    case THREAD:
         glXDestroyWindow(w->d, dr->gl);
         XDestroyWindow(w->d, dr->window);
         break;
@@ -231,7 +241,7 @@ static void destroy(struct world *w, enum kind k, struct drawable *dr)
  * of a single-buffered drawable), then shows it. */
 static void draw(struct world *w, enum kind k, struct drawable *dr, int i)
 {
-    int window = k <= OTHER || k == IDLE;
+    int window = k <= OTHER || k == IDLE || k == THREAD;
     glViewport(0, 0, W, H);
     glDrawBuffer(window ? GL_BACK : GL_FRONT);
     glClearColor((float)(i % 7) / 7.0f, 0.5f, 0.25f, 1.0f);
@@ -291,6 +301,77 @@ static int open_world(struct world *w, enum kind k, int *stereo)
     return 1;
 }
 
+/* The second thread of `thread`: one step at a time, as the main thread
+ * says. */
+struct relay {
+    struct world *w;
+    struct drawable dr;
+    int step, n, checks_failed;
+    pthread_mutex_t m;
+    pthread_cond_t c;
+};
+
+static void wait_step(struct relay *r, int step)
+{
+    pthread_mutex_lock(&r->m);
+    while (r->step < step) pthread_cond_wait(&r->c, &r->m);
+    pthread_mutex_unlock(&r->m);
+}
+
+static void set_step(struct relay *r, int step)
+{
+    pthread_mutex_lock(&r->m);
+    r->step = step;
+    pthread_cond_broadcast(&r->c);
+    pthread_mutex_unlock(&r->m);
+}
+
+/* Steps only grow. Drawable i: at 3i + 1 a new window is in r->dr: make
+ * current on it (releasing the one destroyed under it) and draw; 3i + 2:
+ * drawn; 3i + 3: the main thread destroyed it. After the last: release,
+ * then step 3n + 4. */
+static void *second_thread(void *arg)
+{
+    struct relay *r = arg;
+    for (int i = 1; i <= r->n; i++) {
+        wait_step(r, 3 * i + 1);
+        if (!glXMakeContextCurrent(r->w->d, r->dr.gl, r->dr.gl, r->w->ctx)) r->checks_failed++;
+        draw(r->w, THREAD, &r->dr, i);
+        set_step(r, 3 * i + 2);
+        wait_step(r, 3 * i + 3);
+    }
+    glXMakeContextCurrent(r->w->d, None, None, NULL);
+    set_step(r, 3 * r->n + 4);
+    return NULL;
+}
+
+static void run_thread(struct world *w, const char *mode, int n)
+{
+    struct relay r;
+    memset(&r, 0, sizeof r);
+    r.w = w;
+    r.n = n;
+    pthread_mutex_init(&r.m, NULL);
+    pthread_cond_init(&r.c, NULL);
+    pthread_t t;
+    pthread_create(&t, NULL, second_thread, &r);
+    for (int i = 1; i <= n; i++) {
+        CHECK(make(w, THREAD, &r.dr), "drawable %d", i);
+        set_step(&r, 3 * i + 1);
+        wait_step(&r, 3 * i + 2);
+        /* Current on the second thread: GLX keeps it until released there. */
+        struct drawable dr = r.dr;
+        destroy(w, THREAD, &dr);
+        if (i == WARM) sample(mode, "warm");
+        if (i == n) sample(mode, "end");
+        set_step(&r, 3 * i + 3);
+    }
+    wait_step(&r, 3 * n + 4);
+    pthread_join(t, NULL);
+    CHECK(r.checks_failed == 0, "the second thread made the context current every time");
+    sample(mode, "released");
+}
+
 static enum kind parse(const char *s)
 {
     for (int k = 0; k < (int)(sizeof KIND_NAME / sizeof KIND_NAME[0]); k++) {
@@ -303,7 +384,7 @@ int main(int argc, char **argv)
 {
     if (argc < 2 || (int)parse(argv[1]) < 0) {
         fprintf(stderr, "usage: glx_drawable_churn "
-                        "glxwindow|xwindow|parent|xcb|other|pbuffer|sgix|pixmap|glxpixmap|idle "
+                        "glxwindow|xwindow|parent|xcb|other|pbuffer|sgix|pixmap|glxpixmap|idle|thread "
                         "[N]\n");
         return 1;
     }
@@ -312,10 +393,13 @@ int main(int argc, char **argv)
     if (n <= WARM) n = WARM + 1;
     struct world w;
     int stereo = 0;
+    if (k == THREAD && !XInitThreads()) return 2;
     if (!open_world(&w, k, &stereo)) return 2;
     printf("stereo %d\n", stereo);
     sample(argv[1], "start");
-    if (k == IDLE) {
+    if (k == THREAD) {
+        run_thread(&w, argv[1], n);
+    } else if (k == IDLE) {
         /* The context is released before each drawable goes, and kept. */
         for (int i = 1; i <= n; i++) {
             struct drawable dr;
