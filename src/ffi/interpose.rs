@@ -78,7 +78,9 @@ use crate::interpose::glx::{self as iglx, Destroy, Flavour, NewContext, Offscree
 /// glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
 /// with n > 0, glGet(Named)FramebufferParameteriv and
 /// glGetNamedFramebufferAttachmentParameteriv params, glCreateShaderProgramv
-/// strings with count > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
+/// strings with count > 0, glGetProgramiv params, glGetProgramBinary's
+/// format and, with bufSize > 0, binary, glProgramBinary's binary with
+/// length > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
 /// current context (none with no context current). A pointer that is not
 /// NULL but wrong (freed, too short, not terminated) cannot be detected.
 /// An internal failure (a bug) is caught and reported as a refusal.

@@ -109,7 +109,9 @@
 //!   values, glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer
 //!   lists with n > 0, the glGet*FramebufferParameteriv and
 //!   glGetNamedFramebufferAttachmentParameteriv params,
-//!   glCreateShaderProgramv strings):
+//!   glCreateShaderProgramv strings; and of [`binaries`]: glGetProgramiv
+//!   params, glGetProgramBinary's format and binary, glProgramBinary's
+//!   binary):
 //!   nothing happens but GL_INVALID_VALUE, in the stereo context's error
 //!   flag or, in any other context, raised by the driver itself
 //!   with glViewport(0, 0, -1, -1) (GL rejects it with exactly that error
