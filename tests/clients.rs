@@ -507,7 +507,7 @@ const REFUSED: &str = "a program binary made without glstereo's copies";
 /// program in both), the window side by side; its stderr.
 fn qt6_window_shows_both_eyes(x: &Xvfb, cache: &Path, what: &str) -> String {
     let cmd = qt6_command(under_layer(x, &qt6_client(), &["window"]), cache);
-    let out = run_client_saying(x, cmd, "qt6_stereo", &[REFUSED]);
+    let out = run_client_saying(x, cmd, "qt6 stereo window", &[REFUSED]);
     let report = out.lines.iter().find(|l| l.starts_with("report "));
     assert_eq!(
         report.map(String::as_str),
@@ -590,7 +590,7 @@ fn qt6_opengl_widget_in_a_stereo_window_reads_its_framebuffer_object_as_mono() {
         "Mesa's answer in paintGL"
     );
     let cmd = qt6_command(under_layer(&x, &qt6_client(), &["widget"]), &cache);
-    let out = run_client_saying(&x, cmd, "qt6_stereo", &[REFUSED]);
+    let out = run_client_saying(&x, cmd, "qt6 stereo widget", &[REFUSED]);
     assert_eq!(
         paint(&out.lines),
         paint(&mesa_lines),

@@ -22,9 +22,13 @@
  *                       "report toolkit_stereo T error E".
  *
  * Both print "ready", then wait for a line on stdin (the test grabs the
- * window, titled "qt6_stereo") and exit 0; 2 when there is no context.
+ * window, titled "qt6 stereo window" or "qt6 stereo widget": not the
+ * program's name, which Qt also gives an unmapped leader window, that
+ * XGetImage cannot read) and exit 0; 2 when there is no context.
  */
 #include <QApplication>
+#include <QElapsedTimer>
+#include <QEventLoop>
 #include <QGuiApplication>
 #include <QOpenGLContext>
 #include <QOpenGLExtraFunctions>
@@ -32,6 +36,8 @@
 #include <QOpenGLShaderProgram>
 #include <QOpenGLWidget>
 #include <QSurfaceFormat>
+#include <QThread>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <QWidget>
 #include <QWindow>
@@ -87,7 +93,7 @@ static int run_window(int argc, char **argv)
     QWindow window;
     window.setSurfaceType(QSurface::OpenGLSurface);
     window.setFormat(format);
-    window.setTitle("qt6_stereo");
+    window.setTitle("qt6 stereo window");
     window.setGeometry(0, 0, width, height);
     window.show();
     QOpenGLContext context;
@@ -96,8 +102,11 @@ static int run_window(int argc, char **argv)
         fprintf(stderr, "no stereo context\n");
         return 2;
     }
-    for (int i = 0; i < 200 && !window.isExposed(); i++) {
+    QElapsedTimer waited;
+    waited.start();
+    while (!window.isExposed() && waited.elapsed() < 60000) {
         app.processEvents(QEventLoop::AllEvents, 10);
+        QThread::msleep(5);
     }
     QOpenGLFunctions *f = context.functions();
     auto draw_buffer = reinterpret_cast<DrawBufferFn>(context.getProcAddress("glDrawBuffer"));
@@ -190,19 +199,23 @@ static int run_widget(int argc, char **argv)
     QSurfaceFormat::setDefaultFormat(format);
     QApplication app(argc, argv);
     QWidget top;
-    top.setWindowTitle("qt6_stereo");
+    top.setWindowTitle("qt6 stereo widget");
     auto *layout = new QVBoxLayout(&top);
     layout->setContentsMargins(0, 0, 0, 0);
     auto *widget = new Widget;
     layout->addWidget(widget);
     bool swapped = false;
-    QObject::connect(widget, &QOpenGLWidget::frameSwapped, [&swapped] { swapped = true; });
+    QEventLoop shown;
+    QObject::connect(widget, &QOpenGLWidget::frameSwapped, [&swapped, &shown] {
+        swapped = true;
+        shown.quit();
+    });
+    /* Until Qt has composed the widget into the window and swapped (at
+     * most 60 s: a loaded machine). */
+    QTimer::singleShot(60000, &shown, &QEventLoop::quit);
     top.setGeometry(0, 0, width, height);
     top.show();
-    /* Until Qt has composed the widget into the window and swapped. */
-    for (int i = 0; i < 3000 && !swapped; i++) {
-        app.processEvents(QEventLoop::AllEvents, 10);
-    }
+    if (!swapped) shown.exec();
     if (!swapped || !widget->painted || widget->context() == nullptr) {
         fprintf(stderr, "the widget was not painted and shown\n");
         return 2;
