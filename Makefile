@@ -10,14 +10,15 @@ CARGO_PROFILE_FLAG := $(if $(filter release,$(PROFILE)),--release,)
 # Runtime: Mesa's EGL/GL/OSMesa (llvmpipe), Xvfb for the GLX tests.
 # Build: the GL/EGL/OSMesa/GLUT headers for the C examples, pkg-config, a C compiler.
 # Tests: valgrind (leak attribution through Mesa; gcc brings ASan/UBSan/LSan);
-# the real clients of tests/clients.rs: GLFW, SDL2, PyOpenGL, libepoxy, Qt 5 (g++),
+# the real clients of tests/clients.rs: GLFW, SDL2, PyOpenGL, libepoxy, Qt 5 and 6 (g++),
 # OpenSceneGraph's osgshape, glxgears; the GL layers glstereo stacks with
 # (apitrace, MangoHud, RenderDoc's renderdoccmd and in-app API header);
 # Pillow and exiftool, the independent readers of the MPO/JPS stereo photos.
 DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosmesa6 \
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind \
-                libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev qtbase5-dev g++ \
+                libx11-xcb-dev libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev \
+                qtbase5-dev qt6-base-dev g++ \
                 openscenegraph mesa-utils apitrace mangohud renderdoccmd librenderdoc-dev \
                 python3-pil libimage-exiftool-perl
 

@@ -2034,7 +2034,9 @@ gls_result gls_parallax_report_describe(const struct gls_parallax_report *report
  * glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
  * with n > 0, glGet(Named)FramebufferParameteriv and
  * glGetNamedFramebufferAttachmentParameteriv params, glCreateShaderProgramv
- * strings with count > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
+ * strings with count > 0, glGetProgramiv params, glGetProgramBinary's
+ * format and, with bufSize > 0, binary, glProgramBinary's binary with
+ * length > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
  * current context (none with no context current). A pointer that is not
  * NULL but wrong (freed, too short, not terminated) cannot be detected.
  * An internal failure (a bug) is caught and reported as a refusal.
@@ -2165,9 +2167,31 @@ unsigned long gls_glx_create_window(void *dpy,
                                     const int *attrib_list);
 
 /**
- * `glXDestroyWindow`.
+ * `glXDestroyWindow`: the stereo buffers of the window go with it, in
+ * every stereo context it was bound to (where it is current, when it is
+ * released, as GLX keeps a current drawable until then).
  */
 void gls_glx_destroy_window(void *dpy, unsigned long window);
+
+/**
+ * `glXDestroyPbuffer`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_pbuffer(void *dpy, unsigned long pbuf);
+
+/**
+ * `glXDestroyGLXPbufferSGIX`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_glx_pbuffer_sgix(void *dpy, unsigned long pbuf);
+
+/**
+ * `glXDestroyPixmap`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_pixmap(void *dpy, unsigned long pixmap);
+
+/**
+ * `glXDestroyGLXPixmap`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_glx_pixmap(void *dpy, unsigned long pixmap);
 
 /**
  * `glXCreatePixmap` (mono: the real configuration of a stereo one).
@@ -2749,6 +2773,60 @@ void gls_gl_link_program(uint32_t program);
  * (returns 0).
  */
 uint32_t gls_gl_create_shader_programv(uint32_t kind, int32_t count, const char *const *strings);
+
+/**
+ * `glGetProgramiv`: in a stereo context GL_PROGRAM_BINARY_LENGTH counts
+ * the 12-byte tag gls_gl_get_program_binary() puts before the driver's
+ * binary; everything else is the driver's answer. Refused: `params` NULL
+ * (GL_INVALID_VALUE, nothing written).
+ */
+void gls_gl_get_programiv(uint32_t program, uint32_t pname, int32_t *params);
+
+/**
+ * `glGetProgramBinary`: in a stereo context, the driver's binary of the
+ * program as linked there (with the copies of output 0 that
+ * gls_gl_link_program() adds) behind a 12-byte tag of glstereo's, in the
+ * driver's binary format; a program whose copies glstereo cannot vouch
+ * for gets the driver's binary as it is. Refused: `binary_format` NULL,
+ * or `binary` NULL with `buf_size` > 0 (GL_INVALID_VALUE).
+ */
+void gls_gl_get_program_binary(uint32_t program,
+                               int32_t buf_size,
+                               int32_t *length,
+                               uint32_t *binary_format,
+                               void *binary);
+
+/**
+ * `glGetProgramBinaryOES`: as gls_gl_get_program_binary().
+ */
+void gls_gl_get_program_binary_oes(uint32_t program,
+                                   int32_t buf_size,
+                                   int32_t *length,
+                                   uint32_t *binary_format,
+                                   void *binary);
+
+/**
+ * `glProgramBinary`: a binary gls_gl_get_program_binary() tagged loads
+ * the driver's binary behind the tag. In a stereo context a binary
+ * without the tag (made without glstereo, or by a mono context) is kept
+ * only when its fragment output 0 needs no copies; otherwise its load
+ * fails as GL lets a load fail (GL_LINK_STATUS false, no GL error; a
+ * shader cache then compiles the source, which glLinkProgram links with
+ * the copies) and stderr says so once. Refused: `binary` NULL with
+ * `length` > 0 (GL_INVALID_VALUE).
+ */
+void gls_gl_program_binary(uint32_t program,
+                           uint32_t binary_format,
+                           const void *binary,
+                           int32_t length);
+
+/**
+ * `glProgramBinaryOES`: as gls_gl_program_binary().
+ */
+void gls_gl_program_binary_oes(uint32_t program,
+                               uint32_t binary_format,
+                               const void *binary,
+                               int32_t length);
 
 /**
  * Like gls_surface_save_png, but returns as soon as the pixels are read

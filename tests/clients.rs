@@ -1,6 +1,6 @@
 //! Real clients under glstereo-run, each unmodified, on a private Xvfb:
 //! programs written on Debian's own toolkits (GLFW 3.3, SDL2, PyOpenGL +
-//! freeglut, libepoxy, Qt 5), OpenSceneGraph's osgshape and Mesa's glxgears, each
+//! freeglut, libepoxy, Qt 5, Qt 6), OpenSceneGraph's osgshape and Mesa's glxgears, each
 //! finding GL the way its toolkit does (a direct link, dlopen + dlsym,
 //! ctypes, glXGetProcAddress). Each must get stereo, land each eye's
 //! clears and draws in that eye's buffers, and show both eyes in its window
@@ -14,7 +14,7 @@
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::clients::*;
@@ -104,6 +104,167 @@ fn libepoxy_glx_stereo_window_shows_both_eyes() {
 #[test]
 fn qt5_stereo_surface_format_shows_both_eyes() {
     check_layered(&qt_client(), &[], "qt_stereo", "Qt 5 QWindow");
+}
+
+/// A private shader cache directory for Qt (and Mesa): XDG_CACHE_HOME.
+fn qt6_cache(name: &str) -> PathBuf {
+    common::scratch(&format!("qt6-cache-{name}"))
+}
+
+/// `qt6_stereo MODE` with the shader cache in `cache`, Qt's cache log on.
+fn qt6_command(mut cmd: Command, cache: &Path) -> Command {
+    cmd.env("XDG_CACHE_HOME", cache)
+        .env("QT_LOGGING_RULES", "qt.opengl.diskcache.debug=true");
+    cmd
+}
+
+/// `qt6_stereo MODE` without the layer (Mesa's mono fallback), which fills
+/// the shader cache `cache` with Mesa's program binaries: its stdout.
+fn qt6_without_layer(x: &Xvfb, mode: &str, cache: &Path) -> String {
+    let mut cmd = under_layer(x, &qt6_client(), &[mode]);
+    // The same environment, without glstereo-run.
+    let mut plain = Command::new(qt6_client());
+    plain.arg(mode);
+    for (k, v) in cmd.get_envs() {
+        if let Some(v) = v {
+            plain.env(k, v);
+        }
+    }
+    plain.env_remove("LD_PRELOAD");
+    let _ = &mut cmd;
+    let out = common::run_ok(&mut qt6_command(plain, cache));
+    let binaries = std::fs::read_dir(cache)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().starts_with("qtshadercache"))
+        .flat_map(|d| std::fs::read_dir(d.path()).unwrap())
+        .count();
+    assert!(
+        binaries > 0,
+        "Qt cached no program binary without the layer:\n{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The frame of qt6_stereo.cpp `window` at eye pixel (x, y): magenta
+/// (drawn under GL_BACK, so in both eyes), a green square in the left eye
+/// and a yellow one in the right, where eyes.h puts its squares.
+fn qt6_eye_colour(left: bool, x: u32, y: u32) -> [u8; 3] {
+    match (left, eye_colour(left, x, y)) {
+        (true, [0, 255, 0]) => [0, 255, 0],
+        (false, [255, 255, 0]) => [255, 255, 0],
+        _ => [255, 0, 255],
+    }
+}
+
+/// The line the layer says when it refuses a program binary.
+const REFUSED: &str = "a program binary made without glstereo's copies";
+
+/// qt6_stereo.cpp `window` under the layer with the shader cache `cache`:
+/// stereo granted, both eyes' pixels (a draw under GL_BACK with the cached
+/// program in both), the window side by side; its stderr.
+fn qt6_window_shows_both_eyes(x: &Xvfb, cache: &Path, what: &str) -> String {
+    let cmd = qt6_command(under_layer(x, &qt6_client(), &["window"]), cache);
+    let out = run_client_saying(x, cmd, "qt6 stereo window", &[REFUSED]);
+    let report = out.lines.iter().find(|l| l.starts_with("report "));
+    assert_eq!(
+        report.map(String::as_str),
+        Some("report gl_stereo 1 toolkit_stereo 1 error 0x0"),
+        "{what}: {:?}",
+        out.lines
+    );
+    let pixels: Vec<&String> = out
+        .lines
+        .iter()
+        .filter(|l| l.starts_with("pixel "))
+        .collect();
+    assert_eq!(pixels.len(), 12, "{what}: {:?}", out.lines);
+    for l in pixels {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        let n: Vec<u32> = f[2..].iter().map(|v| v.parse().unwrap()).collect();
+        let want = qt6_eye_colour(f[1].ends_with("_LEFT"), n[0], n[1]);
+        assert_eq!(
+            [n[2] as u8, n[3] as u8, n[4] as u8],
+            want,
+            "{what}: {l} (the program's draw under GL_BACK must reach both eyes)\n{}",
+            out.stderr
+        );
+    }
+    check_side_by_side_of(&out.shot, what, qt6_eye_colour);
+    out.stderr
+}
+
+#[test]
+fn qt6_stereo_window_with_an_empty_shader_cache_shows_both_eyes() {
+    let x = Xvfb::start(320, 240);
+    let cache = qt6_cache("empty");
+    let first = qt6_window_shows_both_eyes(&x, &cache, "Qt 6 QWindow, empty cache");
+    assert!(
+        first.contains("Program binary not in cache") && !first.contains(REFUSED),
+        "{first}"
+    );
+    // The binary Qt cached under the layer loads under it.
+    let second = qt6_window_shows_both_eyes(&x, &cache, "Qt 6 QWindow, its own cache");
+    assert!(
+        second.contains("Program binary received from cache") && !second.contains(REFUSED),
+        "the layer's own program binary did not load from Qt's cache:\n{second}"
+    );
+}
+
+#[test]
+fn qt6_stereo_window_with_a_shader_cache_filled_without_the_layer_shows_both_eyes() {
+    let x = Xvfb::start(320, 240);
+    let cache = qt6_cache("filled");
+    qt6_without_layer(&x, "window", &cache);
+    let stderr = qt6_window_shows_both_eyes(&x, &cache, "Qt 6 QWindow, cache filled without");
+    assert!(
+        stderr.contains(REFUSED) && stderr.contains("Program binary failed to load"),
+        "the binary Mesa cached without the copies was not refused:\n{stderr}"
+    );
+    // Qt cached the program it compiled instead: it loads now.
+    let again = qt6_window_shows_both_eyes(&x, &cache, "Qt 6 QWindow, cache refilled");
+    assert!(
+        again.contains("Program binary received from cache") && !again.contains(REFUSED),
+        "{again}"
+    );
+}
+
+#[test]
+fn qt6_opengl_widget_in_a_stereo_window_reads_its_framebuffer_object_as_mono() {
+    let x = Xvfb::start(320, 240);
+    let cache = qt6_cache("widget");
+    let mesa = qt6_without_layer(&x, "widget", &cache);
+    let paint = |lines: &[String]| {
+        lines
+            .iter()
+            .find(|l| l.starts_with("paint "))
+            .cloned()
+            .unwrap_or_default()
+    };
+    let mesa_lines: Vec<String> = mesa.lines().map(str::to_owned).collect();
+    assert_eq!(
+        paint(&mesa_lines),
+        "paint gl_stereo 0 gl_doublebuffer 0 fbo_bound 1",
+        "Mesa's answer in paintGL"
+    );
+    let cmd = qt6_command(under_layer(&x, &qt6_client(), &["widget"]), &cache);
+    let out = run_client_saying(&x, cmd, "qt6 stereo widget", &[REFUSED]);
+    assert_eq!(
+        paint(&out.lines),
+        paint(&mesa_lines),
+        "GL_STEREO / GL_DOUBLEBUFFER in paintGL, with Qt's framebuffer object bound"
+    );
+    assert!(
+        out.lines
+            .iter()
+            .any(|l| l == "report toolkit_stereo 1 error 0x0"),
+        "{:?}",
+        out.lines
+    );
+    // Qt composes the widget into the stereo window: both eyes green.
+    check_side_by_side_of(&out.shot, "Qt 6 QOpenGLWidget", |_, _, _| [0, 255, 0]);
 }
 
 #[test]

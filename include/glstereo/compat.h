@@ -147,6 +147,18 @@ static inline GLXPbuffer gls_compat_glXCreatePbuffer(Display *dpy, GLXFBConfig c
 {
     return gls_glx_create_pbuffer(dpy, (void *)config, attribs);
 }
+static inline void gls_compat_glXDestroyPbuffer(Display *dpy, GLXPbuffer pbuf)
+{
+    gls_glx_destroy_pbuffer(dpy, pbuf);
+}
+static inline void gls_compat_glXDestroyPixmap(Display *dpy, GLXPixmap pixmap)
+{
+    gls_glx_destroy_pixmap(dpy, pixmap);
+}
+static inline void gls_compat_glXDestroyGLXPixmap(Display *dpy, GLXPixmap pixmap)
+{
+    gls_glx_destroy_glx_pixmap(dpy, pixmap);
+}
 static inline gls_compat_proc gls_compat_glXGetProcAddress(const GLubyte *name)
 {
     /* An object pointer to a function pointer, as POSIX dlsym() allows. */
@@ -447,6 +459,20 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 {
     return gls_gl_create_shader_programv(type, count, strings);
 }
+static inline void gls_compat_glGetProgramiv(GLuint program, GLenum pname, GLint *params)
+{
+    gls_gl_get_programiv(program, pname, params);
+}
+static inline void gls_compat_glGetProgramBinary(GLuint program, GLsizei bufSize, GLsizei *length,
+                                                 GLenum *binaryFormat, void *binary)
+{
+    gls_gl_get_program_binary(program, bufSize, length, binaryFormat, binary);
+}
+static inline void gls_compat_glProgramBinary(GLuint program, GLenum binaryFormat,
+                                              const void *binary, GLsizei length)
+{
+    gls_gl_program_binary(program, binaryFormat, binary, length);
+}
 
 #ifdef __cplusplus
 }
@@ -469,6 +495,9 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glXDestroyWindow gls_compat_glXDestroyWindow
 #define glXCreatePixmap gls_compat_glXCreatePixmap
 #define glXCreatePbuffer gls_compat_glXCreatePbuffer
+#define glXDestroyPbuffer gls_compat_glXDestroyPbuffer
+#define glXDestroyPixmap gls_compat_glXDestroyPixmap
+#define glXDestroyGLXPixmap gls_compat_glXDestroyGLXPixmap
 #define glXGetProcAddress gls_compat_glXGetProcAddress
 #define glXGetProcAddressARB gls_compat_glXGetProcAddress
 
@@ -536,5 +565,8 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glGetFramebufferParameteriv gls_compat_glGetFramebufferParameteriv
 #define glLinkProgram gls_compat_glLinkProgram
 #define glCreateShaderProgramv gls_compat_glCreateShaderProgramv
+#define glGetProgramiv gls_compat_glGetProgramiv
+#define glGetProgramBinary gls_compat_glGetProgramBinary
+#define glProgramBinary gls_compat_glProgramBinary
 
 #endif /* GLSTEREO_COMPAT_H */

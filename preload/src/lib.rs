@@ -142,6 +142,10 @@ export! {
     glXSwapBuffers => gls_glx_swap_buffers(dpy: *mut c_void, drawable: c_ulong);
     glXCreateWindow => gls_glx_create_window(dpy: *mut c_void, config: *mut c_void, win: c_ulong, attribs: *const c_int) -> c_ulong;
     glXDestroyWindow => gls_glx_destroy_window(dpy: *mut c_void, win: c_ulong);
+    glXDestroyPbuffer => gls_glx_destroy_pbuffer(dpy: *mut c_void, pbuf: c_ulong);
+    glXDestroyGLXPbufferSGIX => gls_glx_destroy_glx_pbuffer_sgix(dpy: *mut c_void, pbuf: c_ulong);
+    glXDestroyPixmap => gls_glx_destroy_pixmap(dpy: *mut c_void, pixmap: c_ulong);
+    glXDestroyGLXPixmap => gls_glx_destroy_glx_pixmap(dpy: *mut c_void, pixmap: c_ulong);
     glXCreatePixmap => gls_glx_create_pixmap(dpy: *mut c_void, config: *mut c_void, pixmap: c_ulong, attribs: *const c_int) -> c_ulong;
     glXCreatePbuffer => gls_glx_create_pbuffer(dpy: *mut c_void, config: *mut c_void, attribs: *const c_int) -> c_ulong;
     glXCreateGLXPixmapWithConfigSGIX => gls_glx_create_glx_pixmap_with_config_sgix(dpy: *mut c_void, config: *mut c_void, pixmap: c_ulong) -> c_ulong;
@@ -218,6 +222,11 @@ export! {
     glLinkProgram => gls_gl_link_program(program: u32);
     glLinkProgramARB => gls_gl_link_program(program: u32);
     glCreateShaderProgramv => gls_gl_create_shader_programv(kind: u32, count: i32, strings: *const *const std::ffi::c_char) -> u32;
+    glGetProgramiv => gls_gl_get_programiv(program: u32, pname: u32, params: *mut i32);
+    glGetProgramBinary => gls_gl_get_program_binary(program: u32, buf_size: i32, length: *mut i32, binary_format: *mut u32, binary: *mut c_void);
+    glGetProgramBinaryOES => gls_gl_get_program_binary_oes(program: u32, buf_size: i32, length: *mut i32, binary_format: *mut u32, binary: *mut c_void);
+    glProgramBinary => gls_gl_program_binary(program: u32, binary_format: u32, binary: *const c_void, length: i32);
+    glProgramBinaryOES => gls_gl_program_binary_oes(program: u32, binary_format: u32, binary: *const c_void, length: i32);
 }
 
 /// A function as `glXGetProcAddress` returns it.
@@ -330,9 +339,6 @@ forward! {
     glXIsDirect(dpy: *mut c_void, ctx: *mut c_void) -> c_int;
     glXCopyContext(dpy: *mut c_void, src: *mut c_void, dst: *mut c_void, mask: c_ulong);
     glXCreateGLXPixmap(dpy: *mut c_void, vis: *mut c_void, pixmap: c_ulong) -> c_ulong;
-    glXDestroyGLXPixmap(dpy: *mut c_void, pixmap: c_ulong);
-    glXDestroyPixmap(dpy: *mut c_void, pixmap: c_ulong);
-    glXDestroyPbuffer(dpy: *mut c_void, pbuffer: c_ulong);
     glXWaitGL();
     glXWaitX();
     glXUseXFont(font: c_ulong, first: c_int, count: c_int, list_base: c_int);

@@ -73,16 +73,23 @@ pub(super) struct Drawn {
     /// the frame to be shown), None when unknown: the next present of a
     /// frame of that size needs no request of its own to learn it.
     size_seen: Option<(u32, u32)>,
+    /// Its drawable was destroyed where the buffers could not be freed at
+    /// once (while current: GLX keeps a current drawable until it is
+    /// released; or while the context was current on another thread):
+    /// freed when the context is next bound or released.
+    gone: bool,
 }
 
 /// The mutable part of a stereo context. Lock order: the registry's lock
 /// may be held when a state is locked, never the other way round.
 pub(super) struct CtxState {
     pub(super) fbs: HashMap<u64, Drawn>,
-    /// GL errors raised by the emulation (or saved from the driver before
-    /// the layer called GL in the program's context), oldest first, each
-    /// code once: what glGetError reports before the driver's own.
-    pub(super) pending: Vec<u32>,
+    /// The context's GL error flag as Mesa keeps it: the first error
+    /// raised since the last glGetError, by the emulation or by the driver
+    /// (saved before the layer called GL in the program's context), or
+    /// GL_NO_ERROR. glGetError reports it before asking the driver; every
+    /// later error until then is dropped, as Mesa drops it.
+    pub(super) pending: u32,
     compositor: GlCompositor,
     /// Whether the program's context can host the emulation (GL ≥ 3.0);
     /// None until first bound.
@@ -103,6 +110,9 @@ pub(super) struct CtxState {
     /// The program's clear colour (glClearColor), which the layer's fast
     /// clear of an opaque emulated framebuffer changes for a moment.
     pub(super) clear_color: super::gl::ClearColor,
+    /// How the programs linked here reach the selected buffers (what
+    /// their binaries are tagged with, [`super::binaries`]).
+    pub(super) programs: super::binaries::Linked,
 }
 
 /// The draw buffer indices whose colour masks the layer shadows
@@ -128,24 +138,42 @@ impl CtxState {
         fbo != 0 && self.fbs.values().any(|d| d.fb.app_fbo() == fbo)
     }
 
-    /// Queues a GL error for glGetError (each code once, as GL's flags).
-    pub(super) fn push_error(&mut self, code: u32) {
-        if code != GL_NO_ERROR && !self.pending.contains(&code) {
-            self.pending.push(code);
+    /// Raises GL error `code` in the program's context (current: callers),
+    /// as Mesa records one: only when no error was raised since the last
+    /// glGetError, the driver's included (an error the driver holds came
+    /// first, and is the one kept).
+    pub(super) fn push_error(&mut self, gl: &Gl, code: u32) {
+        if code == GL_NO_ERROR || self.pending != GL_NO_ERROR {
+            return;
+        }
+        self.save_driver_errors(gl);
+        if self.pending == GL_NO_ERROR {
+            self.pending = code;
         }
     }
 
-    /// Moves the driver's pending errors into the queue, so the layer's own
-    /// GL calls in the program's context neither lose nor fake any.
+    /// Moves the driver's error flag into [`CtxState::pending`] (where one
+    /// is held already, the driver's later error is dropped, as Mesa drops
+    /// it), so the layer's own GL calls in the program's context neither
+    /// lose nor fake any.
     pub(super) fn save_driver_errors(&mut self, gl: &Gl) {
-        for _ in 0..16 {
-            // SAFETY: the program's context is current (callers).
-            let e = unsafe { gl.GetError() };
-            if e == GL_NO_ERROR {
-                break;
-            }
-            self.push_error(e);
+        // SAFETY: the program's context is current (callers).
+        let e = unsafe { gl.GetError() };
+        if self.pending == GL_NO_ERROR {
+            self.pending = e;
         }
+    }
+
+    /// glGetError: the flag [`CtxState::pending`] holds, clearing the
+    /// driver's too (an error it raised since came later and is dropped);
+    /// None when it holds none (the driver's flag is the answer).
+    pub(super) fn take_error(&mut self, gl: &Gl) -> Option<u32> {
+        if self.pending == GL_NO_ERROR {
+            return None;
+        }
+        // SAFETY: the program's context is current (callers).
+        unsafe { gl.GetError() };
+        Some(std::mem::replace(&mut self.pending, GL_NO_ERROR))
     }
 }
 
@@ -160,6 +188,11 @@ pub struct StereoContext {
     /// Its display was closed: nothing may be done with it any more (it
     /// may still sit in another thread's current slot).
     closed: AtomicBool,
+    /// Held while the layer makes the program's context current itself,
+    /// and around glXMakeCurrent of it: the layer's own make-current of a
+    /// context that is current nowhere (to free a destroyed drawable's
+    /// buffers, or to present) never races the program's.
+    binding: Mutex<()>,
 }
 
 /// The stereo context current on this thread and its drawables.
@@ -278,6 +311,27 @@ impl Saved {
     }
 }
 
+/// Deletes the program-side objects of destroyed drawables' buffers (their
+/// framebuffer objects, which hold the textures) and finishes the
+/// program's rendering, so that nothing renders into their memory when the
+/// layer's context frees it ([`StereoContext::free_shared_side`]).
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn free_program_side(gl: &Gl, gone: &mut [(u64, Drawn)]) {
+    if gone.is_empty() {
+        return;
+    }
+    // SAFETY: contract. Deleting a bound framebuffer object reverts the
+    // binding to 0, where the caller binds what belongs there.
+    unsafe {
+        for (_, d) in gone.iter_mut() {
+            d.fb.delete_app_fbo(gl);
+        }
+        gl.Finish();
+    }
+}
+
 /// XGetGeometry of X drawable `x`: its size, None when the request
 /// fails or the size is empty. One round trip, whose reply also tells that
 /// the server has processed every earlier request. Its X error is not
@@ -350,9 +404,10 @@ impl StereoContext {
             shape,
             formats,
             closed: AtomicBool::new(false),
+            binding: Mutex::new(()),
             state: Mutex::new(CtxState {
                 fbs: HashMap::new(),
-                pending: Vec::new(),
+                pending: GL_NO_ERROR,
                 compositor: GlCompositor::new(),
                 usable: None,
                 owner: None,
@@ -360,6 +415,7 @@ impl StereoContext {
                 attribs: Vec::new(),
                 color_mask: [[true; 4]; MASKED_BUFFERS],
                 clear_color: super::gl::ClearColor::Float([0.0; 4]),
+                programs: Default::default(),
             }),
         })
     }
@@ -382,6 +438,14 @@ impl StereoContext {
     /// The framebuffer shape of its visual.
     pub fn shape(&self) -> FramebufferShape {
         self.shape
+    }
+
+    /// Held around the program's glXMakeCurrent of this context and
+    /// wherever the layer makes it current itself: the layer's own
+    /// make-current of a context that is current nowhere never races the
+    /// program's.
+    pub fn hold_binding(&self) -> MutexGuard<'_, ()> {
+        self.binding.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     pub(super) fn lock(&self) -> MutexGuard<'_, CtxState> {
@@ -528,6 +592,7 @@ impl StereoContext {
         if read != draw && read != 0 {
             wanted.push((read, drawable_size(r, self.display, read)?));
         }
+        let gone_ids = self.gone_drawables(r, draw, read);
         let mut st = self.lock();
         if st.usable.is_none() {
             // SAFETY: the program's context is current.
@@ -541,15 +606,24 @@ impl StereoContext {
                     .into(),
             ));
         }
+        let mut gone: Vec<(u64, Drawn)> = gone_ids
+            .iter()
+            .filter_map(|&d| st.fbs.remove_entry(&d))
+            .collect();
         let stale: Vec<(u64, (u32, u32))> = wanted
             .iter()
             .copied()
             .filter(|(d, size)| st.fbs.get(d).is_none_or(|x| x.fb.size() != *size))
             .collect();
-        if !stale.is_empty() {
+        // SAFETY: the program's context is current.
+        unsafe { free_program_side(gl, &mut gone) };
+        if !stale.is_empty() || !gone.is_empty() {
             let saved = Saved::now(r);
-            self.make_ours_current(r, draw)?;
-            let made = self.allocate(gl, &mut st, &stale);
+            let made = self.make_ours_current(r, draw).and_then(|()| {
+                // SAFETY: the layer's context is current.
+                unsafe { self.free_shared_side(r, gone) };
+                self.allocate(gl, &mut st, &stale)
+            });
             saved.restore(r, self.display);
             made?;
         }
@@ -585,6 +659,186 @@ impl StereoContext {
         }
     }
 
+    /// The drawables whose buffers [`Self::bind`] of `draw` and `read`
+    /// frees: those marked gone ([`Drawn::gone`]), and, when one of `draw`
+    /// and `read` is new to the context, every other one that no longer
+    /// exists (an X window destroyed with XDestroyWindow, with its parent,
+    /// through xcb or by another client, which the layer does not see):
+    /// one trapped XGetGeometry each (glXQueryDrawable for pbuffers and
+    /// pixmaps), only then, never per frame. Takes the registry's lock:
+    /// call it with no state locked.
+    fn gone_drawables(&self, r: &Real, draw: u64, read: u64) -> Vec<u64> {
+        let (mut gone, others) = {
+            let st = self.lock();
+            let new = !st.fbs.contains_key(&draw) || (read != 0 && !st.fbs.contains_key(&read));
+            let mut gone = Vec::new();
+            let mut others = Vec::new();
+            for (&d, drawn) in &st.fbs {
+                if drawn.gone {
+                    // Also when it is `draw` or `read`: a new drawable
+                    // with the destroyed one's id gets buffers of its own.
+                    gone.push(d);
+                } else if new && d != draw && d != read {
+                    others.push(d);
+                }
+            }
+            (gone, others)
+        };
+        gone.extend(
+            others
+                .into_iter()
+                .filter(|&d| drawable_size(r, self.display, d).is_err()),
+        );
+        gone
+    }
+
+    /// Drawable `drawable` of this context's display is being destroyed
+    /// (glXDestroyWindow, glXDestroyPbuffer, glXDestroyPixmap…; called
+    /// before the real destroy, while it still exists): frees its buffers
+    /// now where GLX allows, else marks them to be freed when the context
+    /// is next bound or released. Current here on
+    /// another drawable: freed in the program's context, then the layer's.
+    /// Current nowhere: the program's context and the layer's are made
+    /// current for the moment (with no drawable, or on `drawable`), then
+    /// what was current is put back. Current on `drawable` (GLX keeps it
+    /// until released) or on another thread: marked.
+    pub fn drawable_destroyed(self: &Arc<Self>, drawable: u64) {
+        if self.is_closed() {
+            return;
+        }
+        let Ok(r) = real() else {
+            return;
+        };
+        let _binding = self.hold_binding();
+        let here_on = current()
+            .filter(|c| Arc::ptr_eq(&c.sc, self))
+            .map(|c| (c.draw, c.read));
+        let mut st = self.lock();
+        let elsewhere = st.owner.is_some() && here_on.is_none();
+        let Some(drawn) = st.fbs.get_mut(&drawable) else {
+            return;
+        };
+        match here_on {
+            Some((draw, read)) if draw == drawable || read == drawable => {
+                drawn.gone = true;
+                return;
+            }
+            _ if elsewhere => {
+                drawn.gone = true;
+                return;
+            }
+            _ => {}
+        }
+        let drawn = st.fbs.remove_entry(&drawable).expect("found above");
+        let host = here_on.map_or(drawable, |(draw, _)| draw);
+        if let Some(kept) = self.free_now(r, vec![drawn], here_on.is_some(), host) {
+            st.fbs.extend(kept);
+        }
+    }
+
+    /// After this context stopped being current on this thread: frees the
+    /// buffers of drawables destroyed while it was current on them, now
+    /// that it is current nowhere (as [`Self::drawable_destroyed`]).
+    pub fn released(self: &Arc<Self>) {
+        if self.is_closed() {
+            return;
+        }
+        let Ok(r) = real() else {
+            return;
+        };
+        let _binding = self.hold_binding();
+        let mut st = self.lock();
+        if st.owner.is_some() || st.destroyed || !st.fbs.values().any(|d| d.gone) {
+            return;
+        }
+        let ids: Vec<u64> = st
+            .fbs
+            .iter()
+            .filter(|(_, d)| d.gone)
+            .map(|(&k, _)| k)
+            .collect();
+        let gone: Vec<(u64, Drawn)> = ids.iter().filter_map(|d| st.fbs.remove_entry(d)).collect();
+        // No drawable to fall back on: these are destroyed.
+        if let Some(kept) = self.free_now(r, gone, false, 0) {
+            st.fbs.extend(kept);
+        }
+    }
+
+    /// Frees `gone` (removed from the state, whose lock the caller holds
+    /// with [`StereoContext::binding`]): in the program's context — current
+    /// here when `program_current`, else made current with no drawable or
+    /// on `host` — its framebuffer objects go and its rendering is
+    /// finished; then in the layer's, the textures, their memory and the
+    /// images. What was current is put back. Returns the entries it could
+    /// not free (no context could be made current), marked gone, keyed by
+    /// drawable, for the caller to put back.
+    fn free_now(
+        &self,
+        r: &Real,
+        mut gone: Vec<(u64, Drawn)>,
+        program_current: bool,
+        host: u64,
+    ) -> Option<Vec<(u64, Drawn)>> {
+        let saved = Saved::now(r);
+        let give_back = |mut gone: Vec<(u64, Drawn)>| {
+            for (_, d) in &mut gone {
+                d.gone = true;
+            }
+            Some(gone)
+        };
+        if !program_current && !self.make_current_anywhere(r, self.ctx, host) {
+            saved.restore(r, self.display);
+            return give_back(gone);
+        }
+        // SAFETY: the program's context is current.
+        unsafe { free_program_side(&r.gl, &mut gone) };
+        let ours = self.make_current_anywhere(r, self.ours, host);
+        let kept = if ours {
+            // SAFETY: the layer's context is current.
+            unsafe { self.free_shared_side(r, gone) };
+            None
+        } else {
+            give_back(gone)
+        };
+        saved.restore(r, self.display);
+        kept
+    }
+
+    /// Makes `ctx` (the program's context or the layer's) current with no
+    /// drawable (GLX 1.3 with GL ≥ 3.0 contexts; Mesa allows it), else on
+    /// `host` (0: none), X errors trapped; false when neither works.
+    fn make_current_anywhere(&self, r: &Real, ctx: usize, host: u64) -> bool {
+        let dpy = self.display as *mut xlib::Display;
+        let attempt = |d: u64| {
+            let (ok, err) = trap_x_errors(&r.xlib, dpy, || {
+                // SAFETY: an open display, a context of the program's or
+                // the layer's, current nowhere else (binding held, or
+                // current on this thread), and a drawable or None.
+                unsafe { (r.glx.glXMakeContextCurrent)(dpy, d, d, ctx as GLXContext) }
+            });
+            ok != 0 && err == 0
+        };
+        attempt(0) || (host != 0 && attempt(host))
+    }
+
+    /// Frees the shared objects of destroyed drawables' buffers (their
+    /// framebuffer objects in the program's context went first,
+    /// [`free_program_side`]): textures, renderbuffer, memory, images.
+    ///
+    /// # Safety
+    /// The layer's context is current on this thread.
+    unsafe fn free_shared_side(&self, r: &Real, gone: Vec<(u64, Drawn)>) {
+        let dpy = self.display as *mut xlib::Display;
+        for (_, mut d) in gone {
+            // SAFETY: the layer's context (which made them) is current;
+            // the program's finished its rendering into them.
+            unsafe {
+                d.fb.release(&r.gl);
+                d.image.release(&r.xlib, dpy, Connection::Open);
+            }
+        }
+    }
+
     /// Allocates or resizes the framebuffers of `stale` drawables; the
     /// layer's context is current.
     fn allocate(&self, gl: &Gl, st: &mut CtxState, stale: &[(u64, (u32, u32))]) -> Result<()> {
@@ -606,6 +860,7 @@ impl StereoContext {
                             last_bound: 0,
                             viewport_checked: false,
                             size_seen: None,
+                            gone: false,
                         },
                     );
                 }
@@ -652,6 +907,7 @@ impl StereoContext {
         let r = loaded()?;
         self.check_open()?;
         let saved = Saved::now(r);
+        let _binding = (!here).then(|| self.hold_binding());
         if !here {
             // Not current on this thread (and not on another: checked by the
             // caller): bind it here for the flip.

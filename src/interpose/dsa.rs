@@ -127,6 +127,11 @@ fn fns() -> &'static Fns {
     FNS.get_or_init(load)
 }
 
+/// What relinking needs (None before GL 4.3).
+pub(super) fn link_fns() -> Option<&'static LinkFns> {
+    fns().link.as_ref()
+}
+
 /// The real function, or the refusal a missing one gets (the program
 /// called a function the driver does not have).
 fn need<T>(f: Option<T>, name: &str) -> Result<T> {
@@ -151,8 +156,9 @@ fn with_fb0<T>(
     let fb = &mut st.fbs.get_mut(&drawable)?.fb;
     let mut errors = Vec::new();
     let v = f(fb, &mut errors);
-    for e in errors {
-        st.push_error(e);
+    if let (Some(&e), Ok(r)) = (errors.first(), super::real::real()) {
+        // The first error only: GL keeps one (later ones are dropped).
+        st.push_error(&r.gl, e);
     }
     Some(v)
 }
@@ -452,6 +458,7 @@ fn emulated_at(r: &Real, cur: &Current, target: u32) -> bool {
 /// # Safety
 /// `attachments` holds `n` values when `n` > 0 (GL's contract).
 unsafe fn invalidate_emulated(
+    r: &Real,
     cur: &Current,
     n: i32,
     attachments: *const u32,
@@ -464,7 +471,7 @@ unsafe fn invalidate_emulated(
         &[]
     };
     if let Some(e) = default_invalidate_error(n, list, size) {
-        cur.sc.lock().push_error(e);
+        cur.sc.lock().push_error(&r.gl, e);
     }
 }
 
@@ -483,7 +490,7 @@ pub unsafe fn invalidate_framebuffer(target: u32, n: i32, attachments: *const u3
     match current() {
         // SAFETY: contract.
         Some(cur) if emulated_at(r, &cur, target) => unsafe {
-            invalidate_emulated(&cur, n, attachments, None)
+            invalidate_emulated(r, &cur, n, attachments, None)
         },
         // SAFETY: forwarded call.
         _ => unsafe { real(target, n, attachments) },
@@ -510,7 +517,7 @@ pub unsafe fn invalidate_sub_framebuffer(
     match current() {
         // SAFETY: contract.
         Some(cur) if emulated_at(r, &cur, target) => unsafe {
-            invalidate_emulated(&cur, n, attachments, Some((w, h)))
+            invalidate_emulated(r, &cur, n, attachments, Some((w, h)))
         },
         // SAFETY: forwarded call.
         _ => unsafe { real(target, n, attachments, x, y, w, h) },
@@ -542,7 +549,7 @@ pub unsafe fn invalidate_named_framebuffer_data(
     }
     match emulated_fb0().filter(|_| framebuffer == 0) {
         // SAFETY: contract.
-        Some(cur) => unsafe { invalidate_emulated(&cur, n, attachments, None) },
+        Some(cur) => unsafe { invalidate_emulated(r, &cur, n, attachments, None) },
         // SAFETY: forwarded call.
         None => unsafe { real(framebuffer, n, attachments) },
     }
@@ -571,7 +578,7 @@ pub unsafe fn invalidate_named_framebuffer_sub_data(
     let [x, y, w, h] = rect;
     match emulated_fb0().filter(|_| framebuffer == 0) {
         // SAFETY: contract.
-        Some(cur) => unsafe { invalidate_emulated(&cur, n, attachments, Some((w, h))) },
+        Some(cur) => unsafe { invalidate_emulated(r, &cur, n, attachments, Some((w, h))) },
         // SAFETY: forwarded call.
         None => unsafe { real(framebuffer, n, attachments, x, y, w, h) },
     }
@@ -627,7 +634,7 @@ pub unsafe fn get_named_framebuffer_attachment_parameteriv(
             // current without a surface).
             // SAFETY: the program's context is current; `params` not NULL.
             unsafe {
-                emulated_attachment(&cur, attachment, pname, params, |twin| {
+                emulated_attachment(&r.gl, &cur, attachment, pname, params, |twin| {
                     with_window_framebuffer(&r.gl, || {
                         r.gl.GetFramebufferAttachmentParameteriv(
                             GL_DRAW_FRAMEBUFFER,
@@ -720,7 +727,7 @@ fn default_parameter(r: &Real, cur: &Current, pname: u32, params: *mut i32) {
     if (GL_FRAMEBUFFER_DEFAULT_WIDTH..=GL_FRAMEBUFFER_DEFAULT_FIXED_SAMPLE_LOCATIONS)
         .contains(&pname)
     {
-        cur.sc.lock().push_error(GL_INVALID_OPERATION);
+        cur.sc.lock().push_error(&r.gl, GL_INVALID_OPERATION);
         return;
     }
     let Some(real) = fns().parameter else {
@@ -749,6 +756,11 @@ fn duplicate(r: &Real, cur: &Current, program: u32, source: Option<&str>) {
     let outcome = unsafe { link.duplicate_output_zero(program, source) };
     // SAFETY: as above; drops the relink's own errors.
     while unsafe { r.gl.GetError() } != GL_NO_ERROR {}
+    super::binaries::record_link(
+        &mut cur.sc.lock(),
+        program,
+        !matches!(outcome, Outcome::Kept(_)),
+    );
     if let Outcome::Kept(why) = outcome {
         // Once per reason, not per program: engines link many variants of
         // one shader (and the ones drawing only into their own framebuffer

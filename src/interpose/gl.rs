@@ -7,11 +7,16 @@
 //! follows [`crate::stereo::buffers`]):
 //! - glDrawBuffer / glDrawBuffers / glReadBuffer select emulated buffers
 //!   while framebuffer 0 is bound; a bad value raises the GL error GL
-//!   would (queued for glGetError) and changes nothing. With the program's
+//!   would (kept for glGetError) and changes nothing. With the program's
 //!   own framebuffer object bound they go to the driver unchanged.
-//! - glGetError reports the emulation's errors first, then the driver's.
-//! - glGetIntegerv / Booleanv / Floatv / Doublev answer GL_STEREO (true),
-//!   GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i), GL_READ_BUFFER and the draw/read
+//! - glGetError reports the first error since the last glGetError, the
+//!   emulation's or the driver's, and drops the rest, as Mesa does.
+//!   A query the driver refuses (GL_DRAW_BUFFER8 with 8 draw buffers)
+//!   keeps its error and gets no emulated answer written.
+//! - glGetIntegerv / Booleanv / Floatv / Doublev answer GL_STEREO (true)
+//!   and GL_DOUBLEBUFFER while the emulated framebuffer is the draw
+//!   framebuffer (GL answers them from the draw framebuffer: with the
+//!   program's own object bound, the driver's false), GL_DRAW_BUFFER(i), GL_READ_BUFFER and the draw/read
 //!   framebuffer bindings (0 for the emulated framebuffer) as a stereo
 //!   visual would; GL_RED/GREEN/BLUE/ALPHA/DEPTH/STENCIL_BITS, GL_SAMPLES
 //!   and GL_SAMPLE_BUFFERS come from the window's real framebuffer (the
@@ -73,14 +78,14 @@ const GL_COLOR_WRITEMASK: u32 = 0x0C23;
 
 /// Refuses a NULL pointer that GL would read or write through (libGL
 /// dereferences it and crashes): nothing is forwarded, and GL_INVALID_VALUE
-/// is raised in the current context — in a stereo context's queue of
-/// emulated errors, in any other context by the driver itself through
+/// is raised in the current context — in a stereo context's error flag
+/// ([`CtxState::push_error`]), in any other context by the driver itself through
 /// glViewport(0, 0, -1, -1), which GL rejects with exactly that error and
 /// no other effect. With no context current nothing is raised (GL calls do
 /// nothing then).
 pub(super) fn refuse_null(r: &Real, what: &'static str) -> Error {
     match current() {
-        Some(cur) => cur.sc.lock().push_error(GL_INVALID_VALUE),
+        Some(cur) => cur.sc.lock().push_error(&r.gl, GL_INVALID_VALUE),
         // SAFETY: an erroneous call GL ignores, in whatever context is current.
         None => unsafe { r.gl.Viewport(0, 0, -1, -1) },
     }
@@ -111,7 +116,7 @@ pub(super) fn read_drawable(cur: &Current) -> u64 {
 }
 
 /// Runs `f` on the emulated framebuffer the program has bound at
-/// `binding` (of `drawable`), queueing its GL error; false when the
+/// `binding` (of `drawable`), raising its GL error; false when the
 /// program has its own framebuffer bound (the driver handles the call).
 fn on_emulated(
     cur: &Current,
@@ -125,7 +130,7 @@ fn on_emulated(
         return false;
     };
     if let Err(e) = f(fb, gl) {
-        st.push_error(gl_error_code(&e));
+        st.push_error(gl, gl_error_code(&e));
     }
     true
 }
@@ -208,9 +213,8 @@ pub fn read_buffer(src: u32) -> Result<()> {
 pub fn get_error() -> Result<u32> {
     let r = loaded()?;
     if let Some(cur) = current() {
-        let mut st = cur.sc.lock();
-        if !st.pending.is_empty() {
-            return Ok(st.pending.remove(0));
+        if let Some(e) = cur.sc.lock().take_error(&r.gl) {
+            return Ok(e);
         }
     }
     // SAFETY: forwarded call.
@@ -311,13 +315,19 @@ unsafe fn get_v<T>(
     if data.is_null() {
         return Err(refuse_null(r, "data"));
     }
-    forward(pname, data);
+    let cur = match current() {
+        Some(cur) if answered(pname) || pname == GL_COLOR_WRITEMASK => cur,
+        _ => {
+            forward(pname, data);
+            return Ok(());
+        }
+    };
+    if !driver_accepts(&r.gl, &cur, || forward(pname, data)) {
+        return Ok(());
+    }
     if pname == GL_COLOR_WRITEMASK {
         // SAFETY: GL_COLOR_WRITEMASK returns four values (GL's contract).
         unsafe { write_mask(0, data, convert) };
-        return Ok(());
-    }
-    if !answered(pname) || !stereo_current() {
         return Ok(());
     }
     if let Some(v) = emulated_value(&r.gl, pname) {
@@ -325,6 +335,24 @@ unsafe fn get_v<T>(
         unsafe { *data = convert(v) };
     }
     Ok(())
+}
+
+/// Runs `query`, the driver's answer to a query the layer may answer
+/// over, in the stereo context `cur` (current), and says whether the
+/// driver took it: where it raised an error (a pname or index it does not
+/// have, such as GL_DRAW_BUFFER8 with 8 draw buffers), GL writes nothing,
+/// so the layer must not either; the error stays the program's (kept as
+/// Mesa keeps it, [`CtxState::push_error`]). The program's earlier error
+/// is saved first, so that the query's own is told apart.
+pub(super) fn driver_accepts(gl: &Gl, cur: &Current, query: impl FnOnce()) -> bool {
+    cur.sc.lock().save_driver_errors(gl);
+    query();
+    // SAFETY: the program's context is current (callers).
+    let e = unsafe { gl.GetError() };
+    if e != GL_NO_ERROR {
+        cur.sc.lock().push_error(gl, e);
+    }
+    e == GL_NO_ERROR
 }
 
 /// glGetIntegerv. Refused: `data` NULL (`refuse_null`).
@@ -649,7 +677,7 @@ unsafe fn attachment_parameter(
     }
     // SAFETY: forwarded contract.
     unsafe {
-        emulated_attachment(&cur, attachment, pname, params, |twin| {
+        emulated_attachment(gl, &cur, attachment, pname, params, |twin| {
             with_window_framebuffer(gl, || forward(twin))
         })
     }
@@ -666,6 +694,7 @@ unsafe fn attachment_parameter(
 /// # Safety
 /// The program's context is current; `params` is not NULL.
 pub(super) unsafe fn emulated_attachment(
+    gl: &Gl,
     cur: &Current,
     attachment: u32,
     pname: u32,
@@ -678,21 +707,21 @@ pub(super) unsafe fn emulated_attachment(
         GL_FRONT_RIGHT => Some(ColorBuffer::FrontRight),
         GL_BACK_RIGHT => Some(ColorBuffer::BackRight),
         GL_DEPTH | GL_STENCIL => None,
-        _ => return cur.sc.lock().push_error(GL_INVALID_ENUM),
+        _ => return cur.sc.lock().push_error(gl, GL_INVALID_ENUM),
     };
     match color {
         Some(b) if !cur.sc.shape().allocated().contains(b) => match pname {
             // SAFETY: not NULL (contract), one value (GL's contract).
             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE => unsafe { *params = GL_NONE as i32 },
-            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => cur.sc.lock().push_error(GL_INVALID_ENUM),
-            _ => cur.sc.lock().push_error(GL_INVALID_OPERATION),
+            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => cur.sc.lock().push_error(gl, GL_INVALID_ENUM),
+            _ => cur.sc.lock().push_error(gl, GL_INVALID_OPERATION),
         },
         // GL 4.5 §9.2.3: a default framebuffer's buffers answer only these
         // (an object name, texture level or layer is an FBO's); Mesa says
         // so for its windows too. Not asked of the window below, which a
         // layer such as VirtualGL stands in for with an object of its own.
         _ if !DEFAULT_ATTACHMENT_PNAMES.contains(&pname) => {
-            cur.sc.lock().push_error(GL_INVALID_ENUM)
+            cur.sc.lock().push_error(gl, GL_INVALID_ENUM)
         }
         _ => window(match color {
             Some(ColorBuffer::FrontRight) => GL_FRONT_LEFT,
@@ -759,7 +788,7 @@ pub fn flush(finish: bool) -> Result<()> {
 
 /// The attribute stack's depth, read in the program's context without
 /// touching its GL errors: the driver's pending error (the program's) is
-/// moved to the stereo context's queue first, and the error of the query
+/// moved to the stereo context's flag first, and the error of the query
 /// itself (GL_INVALID_ENUM in a core-profile context, which has no
 /// attribute stack) is dropped; None then.
 fn stack_depth(gl: &Gl, cur: &Current) -> Option<i32> {
@@ -1382,9 +1411,16 @@ pub unsafe fn get_indexed<T>(
     if data.is_null() {
         return Err(refuse_null(r, "data"));
     }
-    // SAFETY: forwarded call.
-    unsafe { f(pname, index, data) };
-    if pname == GL_COLOR_WRITEMASK && (index as usize) < MASKED_BUFFERS {
+    // SAFETY (both): forwarded call.
+    let forward = || unsafe { f(pname, index, data) };
+    let cur = match current() {
+        Some(cur) if pname == GL_COLOR_WRITEMASK && (index as usize) < MASKED_BUFFERS => cur,
+        _ => {
+            forward();
+            return Ok(());
+        }
+    };
+    if driver_accepts(&r.gl, &cur, forward) {
         // SAFETY: GL_COLOR_WRITEMASK returns four values (GL's contract).
         unsafe { write_mask(index as usize, data, get.convert) };
     }

@@ -9,6 +9,7 @@
 //! buffer).
 
 use std::ffi::{c_int, c_ulong};
+use std::sync::Arc;
 
 use x11_dl::glx::{GLXContext, GLXFBConfig};
 use x11_dl::xlib::{Display, XExtCodes, XVisualInfo};
@@ -668,6 +669,16 @@ pub unsafe fn make_current(
     if !ctx.is_null() && registry::with(|reg| reg.is_doomed(ctx as usize)) {
         return Err(doomed());
     }
+    let sc = if ctx.is_null() {
+        None
+    } else {
+        registry::with(|reg| reg.context(ctx as usize))
+    };
+    let before = current();
+    // The layer's own make-current of this context (freeing a destroyed
+    // drawable's buffers while it is current nowhere) waits for this one.
+    let held = sc.clone();
+    let binding = held.as_ref().map(|sc| sc.hold_binding());
     let ok = match read {
         // SAFETY: forwarded calls.
         None => unsafe { (r.glx.glXMakeCurrent)(dpy, draw, ctx) },
@@ -677,11 +688,6 @@ pub unsafe fn make_current(
         return Ok(ok);
     }
     let read = read.unwrap_or(draw);
-    let sc = if ctx.is_null() {
-        None
-    } else {
-        registry::with(|reg| reg.context(ctx as usize))
-    };
     let next = match sc {
         Some(sc) if draw != 0 && !sc.unusable() => match sc.bind(draw, read) {
             Ok(()) => Some(Current {
@@ -698,6 +704,14 @@ pub unsafe fn make_current(
         _ => None,
     };
     set_current(next);
+    drop(binding);
+    // The context current here before, now current nowhere: the buffers
+    // of drawables destroyed while it was current on them go.
+    if let Some(old) = before {
+        if current().is_none_or(|now| !Arc::ptr_eq(&now.sc, &old.sc)) {
+            old.sc.released();
+        }
+    }
     Ok(ok)
 }
 
@@ -760,16 +774,55 @@ pub unsafe fn create_window(
     Ok(w)
 }
 
-/// glXDestroyWindow. Refused: a NULL display.
+/// A GLX drawable's destroyer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Destroy {
+    /// glXDestroyWindow.
+    Window,
+    /// glXDestroyPbuffer.
+    Pbuffer,
+    /// glXDestroyGLXPbufferSGIX.
+    PbufferSgix,
+    /// glXDestroyPixmap.
+    Pixmap,
+    /// glXDestroyGLXPixmap.
+    GlxPixmap,
+}
+
+/// glXDestroyWindow, glXDestroyPbuffer, glXDestroyGLXPbufferSGIX,
+/// glXDestroyPixmap and glXDestroyGLXPixmap (`what` says which): the
+/// stereo buffers every stereo context of the display has for the
+/// drawable are freed ([`StereoContext::drawable_destroyed`]: at once,
+/// or when the context is released where GLX keeps the drawable), then
+/// the real function destroys it. Refused: a NULL display.
 ///
 /// # Safety
-/// As glXDestroyWindow.
-pub unsafe fn destroy_window(dpy: *mut Display, window: c_ulong) -> Result<()> {
+/// As the GLX function.
+pub unsafe fn destroy_drawable(dpy: *mut Display, drawable: c_ulong, what: Destroy) -> Result<()> {
     let r = loaded()?;
     display(dpy)?;
-    registry::with(|reg| reg.remove_glx_window(dpy as usize, window));
-    // SAFETY: forwarded call.
-    unsafe { (r.glx.glXDestroyWindow)(dpy, window) };
+    if drawable != 0 {
+        for sc in registry::with(|reg| reg.contexts_of(dpy as usize)) {
+            sc.drawable_destroyed(drawable);
+        }
+    }
+    if what == Destroy::Window {
+        registry::with(|reg| reg.remove_glx_window(dpy as usize, drawable));
+    }
+    // SAFETY: forwarded calls.
+    unsafe {
+        match what {
+            Destroy::Window => (r.glx.glXDestroyWindow)(dpy, drawable),
+            Destroy::Pbuffer => (r.glx.glXDestroyPbuffer)(dpy, drawable),
+            Destroy::PbufferSgix => {
+                if let Some(f) = r.extra.sgix.destroy_pbuffer {
+                    f(dpy, drawable)
+                }
+            }
+            Destroy::Pixmap => (r.glx.glXDestroyPixmap)(dpy, drawable),
+            Destroy::GlxPixmap => (r.glx.glXDestroyGLXPixmap)(dpy, drawable),
+        }
+    }
     Ok(())
 }
 

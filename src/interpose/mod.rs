@@ -20,13 +20,19 @@
 //!   drawable's emulated default framebuffer — the four colour buffers and
 //!   the shared depth/stencil buffer of [`crate::stereo::emulated`], sized
 //!   to the drawable and resized with it — and binds it in the program's
-//!   context wherever the program has framebuffer 0;
+//!   context wherever the program has framebuffer 0. Those buffers live
+//!   as long as the drawable: the GLX destroy functions free them in every
+//!   context (a drawable current somewhere when its context is released),
+//!   and a window destroyed behind GLX's back (XDestroyWindow, its parent,
+//!   xcb, another client) is found gone the next time the context is made
+//!   current on a new drawable ([`context::StereoContext::drawable_destroyed`]);
 //! - GL calls about the default framebuffer are answered as a stereo
 //!   visual would ([`gl`]), with the exact GL errors of
 //!   [`crate::stereo::buffers`]; so are glClearBuffer and GL 4.5 direct
 //!   state access on framebuffer 0, and programs are linked so that a
 //!   shader's output 0 reaches every buffer a name such as GL_BACK selects
-//!   ([`dsa`], [`crate::stereo::outputs`]);
+//!   ([`dsa`], [`crate::stereo::outputs`]), program binaries included
+//!   ([`binaries`]);
 //! - glXSwapBuffers flips back and front buffers and shows the front
 //!   buffers composed in GLSTEREO_MODE (default anaglyph-red-cyan) in the
 //!   window ([`context::StereoContext::present`]), and, with
@@ -103,9 +109,11 @@
 //!   values, glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer
 //!   lists with n > 0, the glGet*FramebufferParameteriv and
 //!   glGetNamedFramebufferAttachmentParameteriv params,
-//!   glCreateShaderProgramv strings):
-//!   nothing happens but GL_INVALID_VALUE, in the stereo context's queue of
-//!   emulated errors or, in any other context, raised by the driver itself
+//!   glCreateShaderProgramv strings; and of [`binaries`]: glGetProgramiv
+//!   params, glGetProgramBinary's format and binary, glProgramBinary's
+//!   binary):
+//!   nothing happens but GL_INVALID_VALUE, in the stereo context's error
+//!   flag or, in any other context, raised by the driver itself
 //!   with glViewport(0, 0, -1, -1) (GL rejects it with exactly that error
 //!   and no other effect). With no context current nothing is raised, as
 //!   GL raises nothing then.
@@ -113,8 +121,14 @@
 //! Pointers that are not NULL but wrong (freed, too short, unterminated
 //! lists) cannot be detected, by libGL or the layer. The layer's own GL
 //! queries in the program's context never add or hide a GL error (the
-//! program's pending errors are moved to the queue first; see
-//! [`gl::push_attrib`] in a core-profile context).
+//! program's pending error is moved to the context's flag first; see
+//! [`gl::push_attrib`] in a core-profile context), and a query the driver
+//! refuses gets no emulated answer written.
+//!
+//! GL errors are kept as Mesa keeps them: one flag per context, the first
+//! error raised since the last glGetError, whether the emulation or the
+//! driver raised it; later ones are dropped. (GL 4.5 describes one flag
+//! per error code; where Mesa can answer, the layer's answer is Mesa's.)
 //!
 //! # Threads
 //!
@@ -171,6 +185,7 @@
 //! glstereo then.
 
 pub mod attribs;
+pub mod binaries;
 pub mod capture;
 pub mod context;
 pub mod dsa;

@@ -142,6 +142,8 @@ pub struct Sgix {
     pub create_pbuffer: Option<
         unsafe extern "C" fn(*mut xlib::Display, GLXFBConfig, u32, u32, *const c_int) -> c_ulong,
     >,
+    /// `glXDestroyGLXPbufferSGIX`.
+    pub destroy_pbuffer: Option<unsafe extern "C" fn(*mut xlib::Display, c_ulong)>,
 }
 
 macro_rules! glx_table {
@@ -194,6 +196,9 @@ glx_table! {
     glXCreateWindow(*mut xlib::Display, GLXFBConfig, c_ulong, *const c_int) -> c_ulong;
     glXDestroyContext(*mut xlib::Display, GLXContext);
     glXDestroyWindow(*mut xlib::Display, c_ulong);
+    glXDestroyPbuffer(*mut xlib::Display, c_ulong);
+    glXDestroyPixmap(*mut xlib::Display, c_ulong);
+    glXDestroyGLXPixmap(*mut xlib::Display, c_ulong);
     glXGetConfig(*mut xlib::Display, *mut xlib::XVisualInfo, c_int, *mut c_int) -> c_int;
     glXGetCurrentContext() -> GLXContext;
     glXGetCurrentDisplay() -> *mut xlib::Display;
@@ -304,6 +309,7 @@ fn load() -> Result<Real, String> {
             create_context: lookup!(c"glXCreateContextWithConfigSGIX"),
             create_pixmap: lookup!(c"glXCreateGLXPixmapWithConfigSGIX"),
             create_pbuffer: lookup!(c"glXCreateGLXPbufferSGIX"),
+            destroy_pbuffer: lookup!(c"glXDestroyGLXPbufferSGIX"),
         },
     };
     let swap_layered = glx.glXSwapBuffers as *const c_void

@@ -71,7 +71,9 @@ impl DrawSlots {
 /// `draw` and `read` are the emulated framebuffer when its object is the
 /// one bound to that target, None when the program has bound its own.
 ///
-/// Answered: GL_STEREO and GL_DOUBLEBUFFER (from the shape);
+/// Answered: GL_STEREO and GL_DOUBLEBUFFER (from the shape, when the
+/// emulated framebuffer is the draw framebuffer: GL answers them from the
+/// draw framebuffer, and a framebuffer object is neither);
 /// GL_DRAW_BUFFER, GL_DRAW_BUFFERi and GL_READ_BUFFER (as the program set
 /// them); GL_DRAW_FRAMEBUFFER_BINDING and GL_READ_FRAMEBUFFER_BINDING (0:
 /// the emulation's framebuffer object is the default framebuffer).
@@ -82,8 +84,8 @@ pub fn default_framebuffer_query(
     read: Option<&EmulatedFramebuffer>,
 ) -> Option<i32> {
     match (pname, draw, read) {
-        (GL_STEREO, _, _) => Some(shape.stereo as i32),
-        (GL_DOUBLEBUFFER, _, _) => Some(shape.double_buffered as i32),
+        (GL_STEREO, Some(_), _) => Some(shape.stereo as i32),
+        (GL_DOUBLEBUFFER, Some(_), _) => Some(shape.double_buffered as i32),
         (GL_DRAW_FRAMEBUFFER_BINDING, Some(_), _) => Some(0),
         (GL_READ_FRAMEBUFFER_BINDING, _, Some(_)) => Some(0),
         (GL_DRAW_BUFFER, Some(fb), _) => Some(fb.draw_buffer_query(0) as i32),
@@ -656,6 +658,22 @@ impl EmulatedFramebuffer {
                 self.app_fbo = 0;
             }
             attached
+        }
+    }
+
+    /// Deletes the application's framebuffer object, when the drawable it
+    /// stands for goes: the textures it holds (and their memory) are freed
+    /// only once no framebuffer object holds them.
+    ///
+    /// # Safety
+    /// The context the object was made in (the application's) must be
+    /// current on this thread.
+    pub unsafe fn delete_app_fbo(&mut self, gl: &Gl) {
+        if self.app_fbo != 0 {
+            // SAFETY: contract.
+            unsafe { gl.DeleteFramebuffers(1, &self.app_fbo) };
+            self.app_fbo = 0;
+            self.attachments_stale = false;
         }
     }
 

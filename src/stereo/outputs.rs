@@ -30,7 +30,8 @@
 //! into its own components ([`copy_of`]); or `gl_FragData[0]`, copied to
 //! `gl_FragData[5…7]` ([`Copies`]). The program keeps the user's shader
 //! objects attached, and a failure at any step (no source: SPIR-V or
-//! program binaries; several fragment shaders; locations 5…7 or
+//! program binaries, which [`crate::interpose::binaries`] keeps from being
+//! loaded without the copies; several fragment shaders; locations 5…7 or
 //! dual-source outputs in use; `gl_FragData` elements other than 0
 //! written; the rewritten shader not compiling) relinks the program as the
 //! user linked it and says why ([`Outcome::Kept`]).
@@ -314,6 +315,22 @@ pub enum Outcome {
     Kept(String),
 }
 
+/// Where a linked program's fragment output 0 goes under a glDrawBuffer
+/// name selecting several buffers, as its interface shows
+/// ([`LinkFns::reach`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reach {
+    /// Every selected buffer: it carries the copies, or has nothing to
+    /// copy (fixed function, gl_FragColor, no output at location 0).
+    Every,
+    /// The first selected buffer only: a user-defined output at location
+    /// 0 without copies.
+    First,
+    /// Not shown: it writes `gl_FragData`, whose copies (elements 5…7)
+    /// its interface does not tell apart.
+    Unknown,
+}
+
 /// One fragment output of a linked program.
 struct Output {
     name: String,
@@ -472,6 +489,31 @@ impl LinkFns {
                 }
             }
             Outcome::Kept("the rewritten program does not link".into())
+        }
+    }
+
+    /// Where the fragment output 0 of `program` (linked, or loaded from a
+    /// binary) goes, from its interface alone. May raise GL errors (the
+    /// GL_LOCATION_COMPONENT query before GL 4.4); callers keep the
+    /// program's error state apart.
+    ///
+    /// # Safety
+    /// A GL context must be current on this thread, `program` a program
+    /// object of it.
+    pub unsafe fn reach(&self, program: u32) -> Reach {
+        // SAFETY: contract.
+        let outputs = unsafe { self.outputs(program) };
+        if outputs.iter().any(|o| o.name.starts_with(COPY_PREFIX)) {
+            Reach::Every
+        } else if outputs
+            .iter()
+            .any(|o| o.location == 0 && !o.name.starts_with("gl_"))
+        {
+            Reach::First
+        } else if outputs.iter().any(|o| o.name.starts_with("gl_FragData")) {
+            Reach::Unknown
+        } else {
+            Reach::Every
         }
     }
 

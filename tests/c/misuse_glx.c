@@ -62,6 +62,10 @@
 /* GLX protocol errors, from the extension's error base. */
 #define GLX_BAD_CONTEXT_ 0
 #define GLX_BAD_FBCONFIG_ 9
+#define GL_LINK_STATUS_ 0x8B82
+#define GL_PROGRAM_BINARY_FORMAT_MESA_ 0x875F
+#define GLX_BAD_PIXMAP_ 3
+#define GLX_BAD_PBUFFER_ 10
 
 #ifdef MISUSE_PRELOAD
 /* ---- the gls_ names onto the real GLX/GL names (glstereo-run) --------- */
@@ -73,6 +77,7 @@ typedef GLXContext (*create_context_sgix_fn)(Display *, void *, int, GLXContext,
 typedef GLXContext (*create_context_attribs_fn)(Display *, GLXFBConfig, GLXContext, Bool, const int *);
 typedef GLXPixmap (*create_pixmap_sgix_fn)(Display *, void *, Pixmap);
 typedef GLXPbuffer (*create_pbuffer_sgix_fn)(Display *, void *, unsigned, unsigned, int *);
+typedef void (*destroy_pbuffer_sgix_fn)(Display *, GLXPbuffer);
 typedef void (*draw_buffers_fn)(GLsizei, const GLenum *);
 typedef void (*bind_framebuffer_fn)(GLenum, GLuint);
 typedef void (*delete_framebuffers_fn)(GLsizei, const GLuint *);
@@ -106,6 +111,9 @@ typedef void (*named_attachment_fn)(GLuint, GLenum, GLenum, GLint *);
 typedef void (*parameter_fn)(GLuint, GLenum, GLint *);
 typedef void (*link_program_fn)(GLuint);
 typedef GLuint (*create_shader_programv_fn)(GLenum, GLsizei, const char *const *);
+typedef void (*get_programiv_fn)(GLuint, GLenum, GLint *);
+typedef void (*get_program_binary_fn)(GLuint, GLsizei, GLsizei *, GLenum *, void *);
+typedef void (*program_binary_fn)(GLuint, GLenum, const void *, GLsizei);
 
 static choose_fbconfig_sgix_fn p_choose_fbconfig_sgix;
 static get_fbconfig_attrib_sgix_fn p_get_fbconfig_attrib_sgix;
@@ -114,6 +122,7 @@ static create_context_sgix_fn p_create_context_sgix;
 static create_context_attribs_fn p_create_context_attribs;
 static create_pixmap_sgix_fn p_create_pixmap_sgix;
 static create_pbuffer_sgix_fn p_create_pbuffer_sgix;
+static destroy_pbuffer_sgix_fn p_destroy_pbuffer_sgix;
 static draw_buffers_fn p_draw_buffers, p_draw_buffers_arb;
 static bind_framebuffer_fn p_bind_framebuffer, p_bind_framebuffer_ext;
 static delete_framebuffers_fn p_delete_framebuffers, p_delete_framebuffers_ext;
@@ -155,6 +164,9 @@ static named_attachment_fn p_named_attachment;
 static parameter_fn p_named_parameter, p_parameter;
 static link_program_fn p_link_program;
 static create_shader_programv_fn p_create_shader_programv;
+static get_programiv_fn p_get_programiv;
+static get_program_binary_fn p_get_program_binary, p_get_program_binary_oes;
+static program_binary_fn p_program_binary, p_program_binary_oes;
 
 /* Extension functions, looked up as programs do (the layer's for its names). */
 #define LOOKUP(var, name)                                                    \
@@ -172,6 +184,7 @@ static void load_procs(void) {
     LOOKUP(p_create_context_attribs, "glXCreateContextAttribsARB");
     LOOKUP(p_create_pixmap_sgix, "glXCreateGLXPixmapWithConfigSGIX");
     LOOKUP(p_create_pbuffer_sgix, "glXCreateGLXPbufferSGIX");
+    LOOKUP(p_destroy_pbuffer_sgix, "glXDestroyGLXPbufferSGIX");
     LOOKUP(p_draw_buffers, "glDrawBuffers");
     LOOKUP(p_draw_buffers_arb, "glDrawBuffersARB");
     LOOKUP(p_bind_framebuffer, "glBindFramebuffer");
@@ -228,6 +241,11 @@ static void load_procs(void) {
     LOOKUP(p_parameter, "glGetFramebufferParameteriv");
     LOOKUP(p_link_program, "glLinkProgram");
     LOOKUP(p_create_shader_programv, "glCreateShaderProgramv");
+    LOOKUP(p_get_programiv, "glGetProgramiv");
+    LOOKUP(p_get_program_binary, "glGetProgramBinary");
+    LOOKUP(p_get_program_binary_oes, "glGetProgramBinaryOES");
+    LOOKUP(p_program_binary, "glProgramBinary");
+    LOOKUP(p_program_binary_oes, "glProgramBinaryOES");
 }
 
 static void *proc_pointer(void (*f)(void)) {
@@ -267,6 +285,10 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_glx_create_glx_pixmap_with_config_sgix(d, c, p) p_create_pixmap_sgix(D(d), (c), (p))
 #define gls_glx_create_glx_pbuffer_sgix(d, c, w, h, a) \
     p_create_pbuffer_sgix(D(d), (c), (w), (h), (int *)(a))
+#define gls_glx_destroy_pbuffer(d, p) glXDestroyPbuffer(D(d), (p))
+#define gls_glx_destroy_glx_pbuffer_sgix(d, p) p_destroy_pbuffer_sgix(D(d), (p))
+#define gls_glx_destroy_pixmap(d, p) glXDestroyPixmap(D(d), (p))
+#define gls_glx_destroy_glx_pixmap(d, p) glXDestroyGLXPixmap(D(d), (p))
 #define gls_glx_get_proc_address(n) proc_pointer(glXGetProcAddressARB(n))
 #define gls_gl_draw_buffer(b) glDrawBuffer(b)
 #define gls_gl_draw_buffers(n, b) p_draw_buffers((n), (b))
@@ -345,6 +367,12 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_get_framebuffer_parameteriv(t, p, v) p_parameter((t), (p), (v))
 #define gls_gl_link_program(p) p_link_program(p)
 #define gls_gl_create_shader_programv(t, n, s) p_create_shader_programv((t), (n), (s))
+#define gls_gl_get_programiv(p, n, v) p_get_programiv((p), (n), (v))
+#define gls_gl_get_program_binary(p, n, l, f, b) p_get_program_binary((p), (n), (l), (f), (b))
+#define gls_gl_get_program_binary_oes(p, n, l, f, b) \
+    p_get_program_binary_oes((p), (n), (l), (f), (b))
+#define gls_gl_program_binary(p, f, b, n) p_program_binary((p), (f), (b), (n))
+#define gls_gl_program_binary_oes(p, f, b, n) p_program_binary_oes((p), (f), (b), (n))
 
 /* Messages go to stderr here, where tests/misuse.rs reads them. */
 static void sentinel(void) {}
@@ -588,6 +616,10 @@ static void null_display_cases(void *ctx) {
     EXPECT_RET(id == 0, 1, id, gls_glx_create_pbuffer, NULL, cfg, NULL);
     EXPECT_RET(id == 0, 1, id, gls_glx_create_glx_pixmap_with_config_sgix, NULL, cfg, win);
     EXPECT_RET(id == 0, 1, id, gls_glx_create_glx_pbuffer_sgix, NULL, cfg, 16, 16, NULL);
+    EXPECT_VOID(1, gls_glx_destroy_pbuffer, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_glx_pbuffer_sgix, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_pixmap, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_glx_pixmap, NULL, 0x7777);
 
     /* With a stereo context current: nothing changes. */
     EXPECT_RET(ok == True, 0, ok, gls_glx_make_current, dpy, win, ctx);
@@ -659,6 +691,15 @@ static void null_pointer_cases(void) {
     EXPECT_RET(id == 0, 0, id, gls_glx_create_glx_pixmap_with_config_sgix, dpy, NULL, win);
     EXPECT_RET(id == 0, 0, id, gls_glx_create_glx_pbuffer_sgix, dpy, NULL, 16, 16, NULL);
     x_error(dpy);
+    /* Drawables GLX does not know: libGL's X errors. */
+    EXPECT_VOID(0, gls_glx_destroy_pbuffer, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PBUFFER_);
+    EXPECT_VOID(0, gls_glx_destroy_glx_pbuffer_sgix, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, 0); /* Mesa sends nothing for a pbuffer it does not know */
+    EXPECT_VOID(0, gls_glx_destroy_pixmap, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PIXMAP_);
+    EXPECT_VOID(0, gls_glx_destroy_glx_pixmap, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PIXMAP_);
 
     /* Bad screens and attributes: libGL's answers. */
     EXPECT_RET(v == NULL, 0, v, gls_glx_choose_visual, dpy, 99, VIS_STEREO);
@@ -924,6 +965,22 @@ static void null_gl_pointers(const char *where) {
     GLuint prog = 7;
     EXPECT_RET(prog == 0, 1, prog, gls_gl_create_shader_programv, GL_FRAGMENT_SHADER_, 1, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    GLsizei blen = -5;
+    GLenum bfmt = 7;
+    unsigned char bbuf[16];
+    EXPECT_VOID(1, gls_gl_get_programiv, 0x7777, GL_LINK_STATUS_, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary, 0x7777, 16, &blen, NULL, bbuf);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary, 0x7777, 16, &blen, &bfmt, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary_oes, 0x7777, 16, &blen, NULL, bbuf);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_program_binary, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, NULL, 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_program_binary_oes, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, NULL, 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    CHECK(blen == -5 && bfmt == 7, "program binary outputs written on a refusal");
     /* n = 0 needs no pointer. */
     EXPECT_VOID(0, gls_gl_draw_buffers, 0, NULL);
     EXPECT_VOID(0, gls_gl_delete_framebuffers, 0, NULL);
@@ -1123,6 +1180,24 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
     EXPECT_VOID(0, gls_gl_link_program, 0x7777);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    {
+        GLint st = -5;
+        GLsizei blen = -5;
+        GLenum bfmt = 7;
+        unsigned char bbuf[16] = {0};
+        EXPECT_VOID(0, gls_gl_get_programiv, 0x7777, GL_LINK_STATUS_, &st);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_get_program_binary, 0x7777, 16, &blen, &bfmt, bbuf);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_get_program_binary_oes, 0x7777, -1, &blen, &bfmt, bbuf);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_program_binary, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, bbuf, 16);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_program_binary_oes, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, bbuf,
+                    -1);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        CHECK(st == -5 && bfmt == 7, "program outputs written on an error");
+    }
     const char *src[1] = {"void main() {}"};
     GLuint sp = 7;
     EXPECT_RET(sp == 0, 0, sp, gls_gl_create_shader_programv, 0x7777, 1, src);

@@ -236,16 +236,31 @@ impl Screen {
     }
 
     /// The window's contents as the server has them (RGBA, alpha 255).
+    /// Waits (up to 30 s) for the window to be viewable: XGetImage of a
+    /// window not mapped yet is a BadMatch X error, which Xlib's default
+    /// handler turns into the exit of the whole test binary (a loaded
+    /// machine maps a program's window later than it says it is ready).
     pub fn grab(&self, window: u64) -> Image {
         let x = &self.xlib;
         // SAFETY: valid display; the window exists while the program waits.
         unsafe {
             let mut attrs: xlib::XWindowAttributes = std::mem::zeroed();
-            assert_ne!(
-                (x.XGetWindowAttributes)(self.display, window, &mut attrs),
-                0,
-                "window {window:#x} exists"
-            );
+            let deadline = std::time::Instant::now() + Duration::from_secs(30);
+            loop {
+                assert_ne!(
+                    (x.XGetWindowAttributes)(self.display, window, &mut attrs),
+                    0,
+                    "window {window:#x} exists"
+                );
+                if attrs.map_state == xlib::IsViewable {
+                    break;
+                }
+                assert!(
+                    std::time::Instant::now() < deadline,
+                    "window {window:#x} is not viewable within 30 s"
+                );
+                std::thread::sleep(Duration::from_millis(50));
+            }
             let (w, h) = (attrs.width as u32, attrs.height as u32);
             let img = (x.XGetImage)(self.display, window, 0, 0, w, h, !0, xlib::ZPixmap);
             assert!(!img.is_null(), "XGetImage of {window:#x}");
