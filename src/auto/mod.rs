@@ -1,6 +1,7 @@
 //! Automatic stereo of unmodified mono programs (issue 23): design in
 //! progress; see the submodules.
 
+pub mod entry_points;
 pub mod fixed;
 pub mod glsl;
 pub mod link;
