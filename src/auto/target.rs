@@ -225,3 +225,98 @@ impl EyeTarget {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::auto::testgl::{GL_COLOR_BUFFER_BIT, GL_DEPTH_BUFFER_BIT, ProgramFns};
+    use crate::testing::egl_context;
+
+    gl_fns! {
+        struct More {
+            clear_color = c"glClearColor": fn(f32, f32, f32, f32);
+            clear = c"glClear": fn(u32);
+            blit_framebuffer = c"glBlitFramebuffer": fn(i32, i32, i32, i32, i32, i32, i32, i32, u32, u32);
+            new_list = c"glNewList": fn(u32, u32);
+            end_list = c"glEndList": fn();
+            call_list = c"glCallList": fn(u32);
+            get_uniformfv = c"glGetUniformfv": fn(u32, i32, *mut f32);
+        }
+    }
+
+    const W: i32 = 8;
+    const H: i32 = 4;
+
+    unsafe fn pixel(fns: &TargetFns) -> [u8; 4] {
+        let mut p = [0u8; 4];
+        // SAFETY: a context is current; one pixel.
+        unsafe { (fns.read_pixels)(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, p.as_mut_ptr().cast()) };
+        p
+    }
+
+    /// What the design relies on: reads of a layered framebuffer see layer
+    /// 0 (the left eye), a blit into it writes layer 0 only, one glClear
+    /// clears both layers, and glUniform is compiled into display lists.
+    #[test]
+    fn layered_targets_read_and_blit_layer_0_and_clear_every_layer() {
+        let cx = egl_context();
+        let get = |n: &std::ffi::CStr| cx.display.platform().get_proc_address(n);
+        // SAFETY: the EGL context is current on this thread.
+        unsafe {
+            let fns = TargetFns::load(get).unwrap();
+            let more = More::load(get).unwrap();
+            let p = ProgramFns::load(get).unwrap();
+            let t = EyeTarget::create(&fns, W, H).unwrap();
+            (more.clear_color)(0.0, 0.0, 1.0, 1.0);
+            (more.clear)(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            assert_eq!(t.read(&fns, Eye::Left)[..4], [0, 0, 255, 255]);
+            assert_eq!(
+                t.read(&fns, Eye::Right)[..4],
+                [0, 0, 255, 255],
+                "one clear, both layers"
+            );
+            t.bind_eye(&fns, Eye::Right);
+            (more.clear_color)(1.0, 0.0, 0.0, 1.0);
+            (more.clear)(GL_COLOR_BUFFER_BIT);
+            t.bind_layered(&fns);
+            (fns.bind_framebuffer)(GL_READ_FRAMEBUFFER, t.framebuffer);
+            assert_eq!(
+                pixel(&fns),
+                [0, 0, 255, 255],
+                "glReadPixels of a layered framebuffer: layer 0"
+            );
+            // A blit from a green framebuffer into the layered one.
+            let src = EyeTarget::create(&fns, W, H).unwrap();
+            (more.clear_color)(0.0, 1.0, 0.0, 1.0);
+            (more.clear)(GL_COLOR_BUFFER_BIT);
+            (fns.bind_framebuffer)(GL_READ_FRAMEBUFFER, src.framebuffer);
+            (fns.bind_framebuffer)(GL_DRAW_FRAMEBUFFER, t.framebuffer);
+            (more.blit_framebuffer)(0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, 0x2600);
+            assert_eq!(t.read(&fns, Eye::Left)[..4], [0, 255, 0, 255]);
+            assert_eq!(
+                t.read(&fns, Eye::Right)[..4],
+                [255, 0, 0, 255],
+                "a blit writes layer 0 only"
+            );
+            // glUniform in a display list acts when the list is called.
+            let program = p.program(&[(
+                0x8B31,
+                "#version 330\nuniform vec4 u;\nvoid main() { gl_Position = u; }\n",
+            )]);
+            (p.use_program)(program);
+            let u = (p.get_uniform_location)(program, c"u".as_ptr());
+            (more.new_list)(1, 0x1300); // GL_COMPILE
+            (p.uniform4f)(u, 1.0, 2.0, 3.0, 4.0);
+            (more.end_list)();
+            let mut v = [0.0f32; 4];
+            (more.get_uniformfv)(program, u, v.as_mut_ptr());
+            assert_eq!(v, [0.0; 4], "compiled, not executed");
+            (more.call_list)(1);
+            (more.get_uniformfv)(program, u, v.as_mut_ptr());
+            assert_eq!(v, [1.0, 2.0, 3.0, 4.0], "executed by glCallList");
+            assert_eq!((p.get_error)(), 0);
+            src.destroy(&fns);
+            t.destroy(&fns);
+        }
+    }
+}
