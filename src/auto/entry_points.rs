@@ -32,6 +32,11 @@ pub enum Family {
     /// glClearNamedFramebuffer*): once, every layer of a layered target;
     /// per eye where the eye's layers are attached one at a time.
     Clear,
+    /// glRasterPos*: made with program 0 while the layer's fixed-function
+    /// stand-in is bound (with a vertex shader bound, Mesa 22.3 reports
+    /// the raster position's clip w as 1/w, and the eyes' raster positions
+    /// are computed from it: [`crate::auto::standin`]).
+    RasterPos,
     /// Pixel rectangles written at the raster position (glDrawPixels,
     /// glBitmap, glCopyPixels): once per eye at the eye's raster position.
     RasterPixels,
@@ -150,6 +155,7 @@ const PREFIXES: &[(&str, &[&str], Family)] = &[
         Family::Draw,
     ),
     ("glMultiDraw", &[], Family::Draw),
+    ("glRasterPos", &[], Family::RasterPos),
     ("glRect", &[], Family::Draw),
     (
         "glClearBuffer",
@@ -359,6 +365,7 @@ mod tests {
             (Family::Vertex, 638),
             (Family::DisplayList, 4),
             (Family::Clear, 9),
+            (Family::RasterPos, 30),
             (Family::RasterPixels, 4),
             (Family::Blit, 3),
             (Family::Read, 29),
@@ -369,7 +376,7 @@ mod tests {
             (Family::SideEffect, 25),
             (Family::Settings, 18),
         ];
-        assert_eq!(total, 878);
+        assert_eq!(total, 908);
         for (f, n) in want {
             assert_eq!(counts.get(&f).copied().unwrap_or(0), n, "{f:?}");
         }

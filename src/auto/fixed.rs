@@ -288,6 +288,10 @@ mod tests {
         fn draw(&mut self, f: &mut dyn FnMut());
         fn pixels(&mut self, f: &mut dyn FnMut());
         fn bitmap(&mut self, xmove: f32, ymove: f32, f: &mut dyn FnMut());
+        /// glRasterPos* (`f` makes the call).
+        fn raster_pos(&mut self, f: &mut dyn FnMut()) {
+            f()
+        }
     }
 
     unsafe fn load_projection(p: &ProgramFns, m: &DMat4) {
@@ -353,6 +357,54 @@ mod tests {
         }
     }
 
+    /// The mono program with the layer's stand-in vertex shader
+    /// ([`crate::auto::standin`]) bound in place of fixed-function vertex
+    /// processing: each draw made once per eye with the eye's uniform, the
+    /// neutral value between draws; pixel rectangles as [`UnderLayer`].
+    struct StandIn<'a> {
+        p: &'a ProgramFns,
+        program: u32,
+        location: i32,
+        pixels: FixedDraw<'a>,
+    }
+
+    impl Frame for StandIn<'_> {
+        fn projection(&mut self, p: &ProgramFns, mono: DMat4) {
+            // SAFETY: a context is current.
+            unsafe { load_projection(p, &mono) };
+        }
+        fn draw(&mut self, f: &mut dyn FnMut()) {
+            let s = self.pixels.settings.effective_separation() as f32;
+            let c = self.pixels.settings.convergence();
+            // SAFETY: a context is current, the stand-in in use.
+            unsafe {
+                (self.p.uniform4f)(self.location, -s, c, 0.0, 0.0);
+                f();
+                (self.p.uniform4f)(self.location, s, c, 1.0, 0.0);
+                f();
+                (self.p.uniform4f)(self.location, 0.0, c, -1.0, 0.0);
+            }
+        }
+        fn pixels(&mut self, f: &mut dyn FnMut()) {
+            // SAFETY: as above.
+            unsafe { self.pixels.pixels(|_| f()) };
+        }
+        fn bitmap(&mut self, xmove: f32, ymove: f32, f: &mut dyn FnMut()) {
+            // SAFETY: as above.
+            unsafe { self.pixels.bitmap(xmove, ymove, f) };
+        }
+        fn raster_pos(&mut self, f: &mut dyn FnMut()) {
+            // Fixed function computes the raster position (module docs of
+            // crate::auto::standin).
+            // SAFETY: as above.
+            unsafe {
+                (self.p.use_program)(0);
+                f();
+                (self.p.use_program)(self.program);
+            }
+        }
+    }
+
     unsafe fn quad(p: &ProgramFns, x0: f32, y0: f32, x1: f32, y1: f32, z0: f32, z1: f32) {
         // SAFETY: a context is current.
         unsafe {
@@ -396,12 +448,12 @@ mod tests {
             frame.draw(&mut || quad(p, -0.3, -0.2, 0.1, 0.3, -2.0, -2.0));
             (p.color3f)(1.0, 0.4, 0.0);
             frame.draw(&mut || quad(p, 0.2, -1.5, 3.0, -0.5, -2.5, -9.0));
-            (p.raster_pos3f)(0.3, -0.2, -3.0);
+            frame.raster_pos(&mut || (p.raster_pos3f)(0.3, -0.2, -3.0));
             frame.pixels(&mut || {
                 (p.draw_pixels)(8, 8, GL_RGBA, GL_UNSIGNED_BYTE, block.as_ptr().cast())
             });
             (p.color3f)(1.0, 1.0, 1.0);
-            (p.raster_pos3f)(-2.0, 1.0, -12.0);
+            frame.raster_pos(&mut || (p.raster_pos3f)(-2.0, 1.0, -12.0));
             frame.bitmap(10.0, 0.0, &mut || {
                 (p.bitmap)(8, 8, 0.0, 0.0, 10.0, 0.0, glyph.as_ptr())
             });
@@ -415,8 +467,14 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_mono_fixed_function_frame_in_both_eyes_equals_each_eye_drawn_by_hand() {
+    /// Runs a frame through the [`Frame`] it makes: the mono program
+    /// under one of the layer's paths, drawing into the layered target.
+    type UnderTest<'a> =
+        &'a dyn Fn(&ProgramFns, &FixedFns, &TargetFns, &EyeTarget, &mut dyn FnMut(&mut dyn Frame));
+
+    /// Draws [`scene`] mono through the frame `make` makes, and by hand
+    /// per eye; compares the eyes pixel by pixel.
+    fn compare_with_hand_drawn_eyes(make: UnderTest) {
         let cx = egl_context();
         let get = |n: &std::ffi::CStr| cx.display.platform().get_proc_address(n);
         // SAFETY: the EGL context is current on this thread for the test.
@@ -426,13 +484,8 @@ mod tests {
             let ff = FixedFns::load(get).unwrap();
             (p.viewport)(0, 0, W, H);
             let layered = EyeTarget::create(&tf, W, H).expect("a layered target");
-            let mut under = UnderLayer(FixedDraw {
-                fns: &ff,
-                target_fns: &tf,
-                target: &layered,
-                settings: settings(),
-            });
-            scene(&p, &mut under);
+            make(&p, &ff, &tf, &layered, &mut |frame| scene(&p, frame));
+            (p.use_program)(0);
             let got = [layered.read(&tf, Eye::Left), layered.read(&tf, Eye::Right)];
             let oracle = EyeTarget::create(&tf, W, H).unwrap();
             for (i, eye) in EYES.into_iter().enumerate() {
@@ -501,6 +554,46 @@ mod tests {
             layered.destroy(&tf);
             oracle.destroy(&tf);
         }
+    }
+
+    #[test]
+    fn a_mono_fixed_function_frame_in_both_eyes_equals_each_eye_drawn_by_hand() {
+        compare_with_hand_drawn_eyes(&|_, ff, tf, target, run| {
+            run(&mut UnderLayer(FixedDraw {
+                fns: ff,
+                target_fns: tf,
+                target,
+                settings: settings(),
+            }))
+        });
+    }
+
+    #[test]
+    fn the_stand_in_vertex_shader_draws_what_fixed_function_draws_by_hand() {
+        compare_with_hand_drawn_eyes(&|p, ff, tf, target, run| {
+            // SAFETY: the test's context is current.
+            unsafe {
+                let mut max = 0;
+                (p.get_integerv)(0x826E, &mut max); // GL_MAX_UNIFORM_LOCATIONS
+                let location = max - 1;
+                let src =
+                    crate::auto::standin::source(Default::default(), location as u32).unwrap();
+                let program = p.program(&[(0x8B31, &src)]);
+                (p.use_program)(program);
+                (p.uniform4f)(location, 0.0, CONVERGENCE, -1.0, 0.0);
+                run(&mut StandIn {
+                    p,
+                    program,
+                    location,
+                    pixels: FixedDraw {
+                        fns: ff,
+                        target_fns: tf,
+                        target,
+                        settings: settings(),
+                    },
+                });
+            }
+        });
     }
 
     #[test]

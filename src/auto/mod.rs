@@ -2,7 +2,8 @@
 //! (issue 23), NVIDIA 3D Vision Automatic for Linux. The design, and the
 //! parts of it that do not depend on how the preload library exports its
 //! functions: the vertex-stage rewrite ([`vertex`], [`link`], [`glsl`]),
-//! the fixed-function path ([`fixed`]), the eyes as layers ([`target`]) and
+//! the fixed-function paths ([`fixed`], [`standin`]), the eyes as layers
+//! ([`target`]) and
 //! the list of entry points to intercept ([`entry_points`]). Each is tested
 //! on llvmpipe against a program that draws each eye itself with the rule
 //! applied by hand, pixel by pixel. Wiring them into the preload library's
@@ -117,16 +118,21 @@
 //!   other vertex-stage programs get the neutral value (0, C, −1, 0) so no
 //!   position is shifted twice).
 //! - **Fixed function**: a vertex shader of the layer stands in for
-//!   fixed-function vertex processing (`ftransform()` keeps positions
-//!   invariant with fixed function; colours, texture coordinates through
-//!   the texture matrices, fog coordinate, gl_ClipVertex, point size, and
-//!   lighting and texgen generated from the fixed-function state the layer
-//!   tracks, as Mesa's own `ffvertex_prog` does), with the same rule and
-//!   uniform, bound in place of program 0 and the fragment stage left
-//!   fixed-function; measured as d (variant dff: 1.0–1.1x). State the
-//!   stand-in does not model (vertex blending, weighting, NV programs…)
-//!   takes the slow path of [`fixed`], proved here pixel for pixel: the
-//!   eye's projection loaded by the matrix form (row 0 + e·s·row 3 −
+//!   fixed-function vertex processing ([`standin`]: `ftransform()` keeps
+//!   positions invariant with fixed function; colours, texture coordinates
+//!   through the texture matrices, fog coordinate, gl_ClipVertex, point
+//!   size; lighting and texgen to be generated from the fixed-function
+//!   state the layer tracks, as Mesa's own `ffvertex_prog` does), with the
+//!   same rule and uniform, bound in place of program 0, the fragment
+//!   stage left fixed-function; measured as d (variant dff: 1.0–1.1x), and
+//!   proved here pixel for pixel against fixed function drawn by hand for
+//!   the state it models. glRasterPos* is made with program 0 meanwhile:
+//!   with a vertex shader bound, Mesa 22.3 reports the raster position's
+//!   clip w as 1/w (measured: 0.333 for w = 3), and the eyes' raster
+//!   positions are computed from it. State the stand-in does not model
+//!   (today lighting and texgen; vertex blending, NV programs…) takes the
+//!   slow path of [`fixed`], proved here pixel for pixel too: the eye's
+//!   projection loaded by the matrix form (row 0 + e·s·row 3 −
 //!   e·s·C·(0, 0, 0, 1); orthographic projections as they are) and the
 //!   eye's layers attached for the draw — two scene flushes per draw
 //!   (variant c2ff: 1.3x at 10 draws, 2.4x at 100).
@@ -248,6 +254,7 @@
 //! | Vertex | 638 | recorded between glBegin and glEnd |
 //! | DisplayList | 4 | compile draws per eye; glCallList as is |
 //! | Clear | 9 | once (layered), per eye on the slow path |
+//! | RasterPos | 30 | with program 0 while the fixed-function stand-in is bound |
 //! | RasterPixels | 4 | per eye at the eye's raster position |
 //! | Blit | 3 | per eye into the default framebuffer |
 //! | Read | 29 | left eye (layer 0); stereoized destinations per eye |
@@ -258,7 +265,7 @@
 //! | SideEffect | 25 | queries segmented, transform feedback paused |
 //! | Settings | 18 | GL_3DVISION_STEREO_NV and the STEREO_*_NV pnames |
 //!
-//! 878 in all (most are the per-vertex commands of immediate mode and
+//! 908 in all (most are the per-vertex commands of immediate mode and
 //! their extension forms); glStereoParameterfNV / glStereoParameteriNV are
 //! an OpenGL ES extension, not in gl.xml's desktop set: two hand-typed
 //! exports. Without `--auto` each wrapper is one thread-local test and the
@@ -268,6 +275,7 @@ pub mod entry_points;
 pub mod fixed;
 pub mod glsl;
 pub mod link;
+pub mod standin;
 pub mod target;
 pub mod vertex;
 
