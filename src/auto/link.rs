@@ -16,10 +16,10 @@
 //! neutral value (no shift, layer −1) to the others, so no position is
 //! shifted twice ([`crate::auto`], "Separate shader objects").
 //!
-//! The reserved uniform location is tried first; a compiler that refuses
-//! it (a GLSL version the location extension does not reach) gets the
-//! plain declaration, and the layer looks the location up after the link
-//! ([`Shifted::location`]). Anything else that fails — no source (SPIR-V,
+//! The reserved uniform location is tried first (every desktop GLSL
+//! version takes it on Mesa 22.3); a compiler that refuses it (ES 1.00
+//! and 3.00 shaders) gets the plain declaration, and the layer looks the
+//! location up after the link ([`Shifted::location`]). Anything else that fails — no source (SPIR-V,
 //! glProgramBinary), several objects of the stage defining `main`, a
 //! rewrite that does not compile or link — links the program again as the
 //! user linked it, and says why ([`LinkOutcome::Kept`]): that program
@@ -460,6 +460,13 @@ mod tests {
                 assert_eq!(s.layer, layer, "{name}: gl_Layer written");
                 assert!(f.p.linked(program), "{name}");
                 let at = uniform_location(&f.p, program);
+                // Every desktop version takes the reserved location (ES
+                // before 3.10 has no explicit uniform locations).
+                assert_eq!(
+                    s.location.is_some(),
+                    !name.ends_with(" es") || name == "310 es",
+                    "{name}"
+                );
                 match s.location {
                     Some(l) => assert_eq!(at, l as i32, "{name}: the reserved location"),
                     None => assert!(at >= 0, "{name}: the uniform is there"),

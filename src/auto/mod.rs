@@ -110,9 +110,13 @@
 //!   [`vertex`]): the rule after the user's `main` (early returns
 //!   included) or before each EmitVertex / EmitStreamVertex(0), and
 //!   gl_Layer from the uniform. The uniform has a reserved location, the
-//!   last the driver offers (GL_MAX_UNIFORM_LOCATIONS − 1), when the
-//!   language allows it (Mesa: GLSL 3.30 and newer, ES 3.10), else the
-//!   layer looks it up once after the link; per draw the layer calls
+//!   last the driver offers (GL_MAX_UNIFORM_LOCATIONS − 1; every desktop
+//!   GLSL version takes it, with GL_ARB_explicit_uniform_location and,
+//!   before 3.30, GL_ARB_explicit_attrib_location enabled; ES 3.10 too),
+//!   so one glUniform4f reaches whichever program is current, display
+//!   lists included; ES 1.00 and 3.00 shaders get a plain uniform the
+//!   layer looks up after the link. A uniform block was the alternative:
+//!   it would take a binding point from the program. Per draw the layer calls
 //!   glUniform4f twice on the current program (glProgramUniform4f on the
 //!   pipeline's last-stage program for separate shader objects, whose
 //!   other vertex-stage programs get the neutral value (0, C, −1, 0) so no
@@ -145,9 +149,9 @@
 //!   glEnd is compiled twice, each preceded by glUniform4f at the reserved
 //!   location (glUniform is compiled into lists; framebuffer calls are
 //!   not, which is why the eye is a uniform). glCallList then needs
-//!   nothing. A program whose shaders could not take the reserved location
-//!   (GLSL before 3.30) gets, in its lists, the location of the program
-//!   current when the list was compiled.
+//!   nothing. ES 1.00 and 3.00 shaders, which cannot take the reserved
+//!   location, get in lists the location of the program current when the
+//!   list was compiled.
 //! - **Client arrays, buffer objects, instanced, indirect, multi draws**:
 //!   one family ([`entry_points::Family::Draw`]): each call is made twice.
 //!   Indirect draws read their parameters twice, which is what they are

@@ -273,6 +273,12 @@ pub fn shift_position(source: &str, stage: Stage, options: Options) -> Result<Re
             _ => version.number < 430,
         };
     if needs_location_ext {
+        // Mesa: "uniform explicit location requires
+        // GL_ARB_explicit_uniform_location and either
+        // GL_ARB_explicit_attrib_location or GLSL 3.30".
+        if version.profile != Profile::Es && version.number < 330 {
+            head.push_str("#extension GL_ARB_explicit_attrib_location : enable\n");
+        }
         head.push_str("#extension GL_ARB_explicit_uniform_location : enable\n");
     }
     head.push_str(&format!("#define main {USER_MAIN}\n"));
@@ -410,7 +416,7 @@ mod tests {
             out.contains("#define main gls_auto_user_main\n#line 1\nattribute"),
             "{out}"
         );
-        assert!(out.contains("GL_ARB_explicit_uniform_location"));
+        assert!(out.contains("#extension GL_ARB_explicit_attrib_location : enable\n#extension GL_ARB_explicit_uniform_location : enable\n"));
         let out = shifted("#version 450\nvoid main(){}", Stage::Vertex, LAYERED);
         assert!(!out.contains("GL_ARB_explicit_uniform_location"));
         // No #version: no #line needed, the define goes first.
