@@ -21,6 +21,7 @@
  *   d      one layered object (2-layer colour and depth arrays), the eye's
  *          layer written to gl_Layer by the vertex shader from a uniform
  *          (ARB_shader_viewport_layer_array); no framebuffer change at all
+ *   dt     d with glFlush whenever 65536 vertices were drawn since the last
  *   e      one double-width object, glViewport + glScissor per draw
  *   e2     one double-width object, two viewports set once, the eye's
  *          written to gl_ViewportIndex by the vertex shader from a uniform
@@ -488,6 +489,28 @@ static void frame_df(void)
     }
 }
 
+/* d with glFlush once 65536 vertices were drawn since the last: a heavy
+ * scene's binning overlaps rasterization, a light one flushes rarely. */
+static void frame_dt(void)
+{
+    glUseProgram(programs[MODE_LAYER]);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb_layered);
+    glViewport(0, 0, W, H);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    long since = 0;
+    for (int d = 0; d < N; d++) {
+        for (int e = 0; e < 2; e++) {
+            eye_uniform(MODE_LAYER, e, (float)e);
+            draw_shader(MODE_LAYER, d);
+        }
+        since += 2L * count[d];
+        if (since >= 65536) {
+            glFlush();
+            since = 0;
+        }
+    }
+}
+
 static void frame_e(void)
 {
     glUseProgram(programs[MODE_PLAIN]);
@@ -686,7 +709,7 @@ static const struct variant {
 } VARIANTS[] = {
     {"a", frame_a, IN_TWO},       {"af", frame_af, IN_TWO},     {"df", frame_df, IN_LAYERED},
     {"b", frame_b, IN_EYE},       {"c", frame_c1, IN_TWO},
-    {"c2", frame_c2, IN_TWO},     {"d", frame_d, IN_LAYERED},   {"e", frame_e, IN_WIDE},
+    {"c2", frame_c2, IN_TWO},     {"d", frame_d, IN_LAYERED},   {"dt", frame_dt, IN_LAYERED},   {"e", frame_e, IN_WIDE},
     {"e2", frame_e2, IN_WIDE},    {"f1", frame_f1, IN_LAYERED}, {"f2", frame_f2, IN_LAYERED},
     {"aff", frame_aff, IN_TWO},   {"bff", frame_bff, IN_EYE},   {"c2ff", frame_c2ff, IN_LAYERED},
     {"dff", frame_dff, IN_LAYERED}, {"eff", frame_eff, IN_WIDE},

@@ -7,27 +7,36 @@
 # one run only.
 #
 #   benches/auto_mechanisms.sh [ROUNDS]    (default 3)
+#   VARIANTS="a d dff" SIZES=400x300 SCENES=light NS="10 100" benches/auto_mechanisms.sh
+#   (a subset; a first, the reference of the ratios)
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 ROUNDS=${1:-3}
+# Variants to run (all by default); the first is the reference of the ratios.
+VARIANTS=${VARIANTS:-}
+# Sizes (WxH), scenes and draw counts to run.
+SIZES=${SIZES:-"400x300 1280x1024"}
+SCENES=${SCENES:-"light heavy"}
+NS=${NS:-"1 10 100 1000"}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT INT TERM
 cc -O2 -std=c99 -Wall -Wextra -Wpedantic -Werror "$ROOT/benches/auto_mechanisms.c" -o "$TMP/am" -lEGL -lOpenGL -lm
 export LP_NUM_THREADS=${LP_NUM_THREADS:-2}
 "$TMP/am" probe | head -1
 "$TMP/am" verify 400 300
-for size in "400 300" "1280 1024"; do
-    for scene in light heavy; do
-        for n in 1 10 100 1000; do
-            case "$scene $size" in
-            "light 400 300") frames=40 ;;
-            "light 1280 1024") frames=15 ;;
-            "heavy 400 300") frames=5 ;;
+for wh in $SIZES; do
+    size="${wh%x*} ${wh#*x}"
+    for scene in $SCENES; do
+        for n in $NS; do
+            case "$scene $wh" in
+            "light 400x300") frames=40 ;;
+            "light 1280x1024") frames=15 ;;
+            "heavy 400x300") frames=5 ;;
             *) frames=2 ;;
             esac
             echo "# $(uptime)"
             # shellcheck disable=SC2086
-            "$TMP/am" run $size "$scene" "$n" "$frames" "$ROUNDS"
+            "$TMP/am" run $size "$scene" "$n" "$frames" "$ROUNDS" $VARIANTS
         done
     done
 done
