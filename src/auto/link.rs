@@ -805,4 +805,147 @@ mod tests {
             GL_PATCHES,
         );
     }
+
+    /// Separate shader objects: a pipeline of a vertex program and a
+    /// geometry program, each rewritten as its own last stage. The layer
+    /// gives the eye to the pipeline's last stage and the neutral value to
+    /// the other, so the position is shifted once: the eyes equal a plain
+    /// pipeline drawing each eye with the rule applied by hand.
+    #[test]
+    fn a_program_pipeline_shifts_once_in_its_last_stage() {
+        const W: i32 = 160;
+        const H: i32 = 120;
+        let (s, c) = (0.07f32, 4.0f32);
+        let vs = "#version 410 core\nout gl_PerVertex { vec4 gl_Position; };\nlayout(location = 0) in vec3 p;\nuniform mat4 m;\nvoid main() { gl_Position = m * vec4(p, 1.0); }\n";
+        let gs = "#version 410 core\nlayout(triangles) in;\nlayout(triangle_strip, max_vertices = 3) out;\nin gl_PerVertex { vec4 gl_Position; } gl_in[];\nout gl_PerVertex { vec4 gl_Position; };\nvoid main() {\n    for (int i = 0; i < 3; i++) {\n        gl_Position = gl_in[i].gl_Position;\n        EmitVertex();\n    }\n}\n";
+        let fs =
+            "#version 410 core\nuniform vec4 colour;\nout vec4 c;\nvoid main() { c = colour; }\n";
+        let f = fixture();
+        let p = &f.p;
+        let colours = [
+            [0.0f32, 0.0, 1.0, 1.0],
+            [0.0, 1.0, 0.0, 1.0],
+            [1.0, 0.0, 0.0, 1.0],
+            [1.0, 0.4, 0.0, 1.0],
+            [1.0, 1.0, 1.0, 1.0],
+        ];
+        // SAFETY: the fixture's context is current; strings NUL-terminated.
+        unsafe {
+            let separable = |ty: u32, src: &str, rewrite: bool| -> u32 {
+                let src = match rewrite {
+                    true => shift_separable(ty, &[src], Some(f.location))
+                        .unwrap()
+                        .unwrap_or(src.to_owned()),
+                    false => src.to_owned(),
+                };
+                let cs = CString::new(src).unwrap();
+                let prog = (p.create_shader_programv)(ty, 1, &cs.as_ptr());
+                assert!(p.linked(prog), "{}", p.program_log(prog));
+                prog
+            };
+            let pipeline = |rewrite: bool| -> (u32, u32, u32, u32) {
+                let (v, g, fr) = (
+                    separable(GL_VERTEX_SHADER, vs, rewrite),
+                    separable(GL_GEOMETRY_SHADER, gs, rewrite),
+                    separable(GL_FRAGMENT_SHADER, fs, false),
+                );
+                let mut pipe = 0;
+                (p.gen_program_pipelines)(1, &mut pipe);
+                (p.use_program_stages)(pipe, 0x1, v); // GL_VERTEX_SHADER_BIT
+                (p.use_program_stages)(pipe, 0x4, g); // GL_GEOMETRY_SHADER_BIT
+                (p.use_program_stages)(pipe, 0x2, fr); // GL_FRAGMENT_SHADER_BIT
+                (pipe, v, g, fr)
+            };
+            let mut vao = 0;
+            (p.gen_vertex_arrays)(1, &mut vao);
+            (p.bind_vertex_array)(vao);
+            let v = quads();
+            let mut vbo = 0;
+            (p.gen_buffers)(1, &mut vbo);
+            (p.bind_buffer)(GL_ARRAY_BUFFER, vbo);
+            (p.buffer_data)(
+                GL_ARRAY_BUFFER,
+                (v.len() * 4) as isize,
+                v.as_ptr().cast(),
+                GL_STATIC_DRAW,
+            );
+            (p.vertex_attrib_pointer)(0, 3, GL_FLOAT, 0, 0, std::ptr::null());
+            (p.enable_vertex_attrib_array)(0);
+            (p.viewport)(0, 0, W, H);
+            (p.clear_color)(0.2, 0.2, 0.2, 1.0);
+            (p.enable)(GL_DEPTH_TEST);
+            let (frustum, ortho) = matrices();
+            // The layer's way: one draw per eye, the eye in the last stage.
+            let (pipe, vp, gp, fp) = pipeline(true);
+            (p.bind_program_pipeline)(pipe);
+            let (lm, lc) = (
+                (p.get_uniform_location)(vp, c"m".as_ptr()),
+                (p.get_uniform_location)(fp, c"colour".as_ptr()),
+            );
+            assert_eq!(
+                uniform_location(p, vp),
+                f.location as i32,
+                "the vertex program is rewritten too"
+            );
+            (p.program_uniform4f)(vp, f.location as i32, 0.0, c, -1.0, 0.0);
+            let layered = EyeTarget::create(&f.tf, W, H).unwrap();
+            (p.clear)(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            for (i, colour) in colours.iter().enumerate() {
+                (p.program_uniform4fv)(fp, lc, 1, colour.as_ptr());
+                (p.program_uniform_matrix4fv)(
+                    vp,
+                    lm,
+                    1,
+                    0,
+                    if i == 4 {
+                        ortho.as_ptr()
+                    } else {
+                        frustum.as_ptr()
+                    },
+                );
+                for eye in [Eye::Left, Eye::Right] {
+                    (p.program_uniform4fv)(
+                        gp,
+                        f.location as i32,
+                        1,
+                        eye_values(eye, s, c).as_ptr(),
+                    );
+                    (p.draw_arrays)(GL_TRIANGLES, (i * 6) as i32, 6);
+                }
+            }
+            let got = [
+                layered.read(&f.tf, Eye::Left),
+                layered.read(&f.tf, Eye::Right),
+            ];
+            // By hand: a plain pipeline, each eye's matrices.
+            let (pipe, vp, _, fp) = pipeline(false);
+            (p.bind_program_pipeline)(pipe);
+            let (lm, lc) = (
+                (p.get_uniform_location)(vp, c"m".as_ptr()),
+                (p.get_uniform_location)(fp, c"colour".as_ptr()),
+            );
+            let oracle = EyeTarget::create(&f.tf, W, H).unwrap();
+            for (n, eye) in [Eye::Left, Eye::Right].into_iter().enumerate() {
+                oracle.bind_eye(&f.tf, eye);
+                (p.clear)(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+                for (i, colour) in colours.iter().enumerate() {
+                    (p.program_uniform4fv)(fp, lc, 1, colour.as_ptr());
+                    let m = by_hand(
+                        if i == 4 { ortho } else { frustum },
+                        eye.sign() as f32 * s,
+                        c,
+                    );
+                    (p.program_uniform_matrix4fv)(vp, lm, 1, 0, m.as_ptr());
+                    (p.draw_arrays)(GL_TRIANGLES, (i * 6) as i32, 6);
+                }
+                let differ = differing_pixels(&got[n], &oracle.read(&f.tf, eye));
+                assert!(
+                    differ <= 8,
+                    "{eye:?}: {differ} pixels differ from the eye drawn by hand"
+                );
+            }
+            assert!(differing_pixels(&got[0], &got[1]) > 500, "no stereo");
+            assert_eq!((p.get_error)(), 0);
+        }
+    }
 }

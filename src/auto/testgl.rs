@@ -63,6 +63,11 @@ gl_fns! {
         enable_vertex_attrib_array = c"glEnableVertexAttribArray": fn(u32);
         draw_arrays = c"glDrawArrays": fn(u32, i32, i32);
         patch_parameteri = c"glPatchParameteri": fn(u32, i32);
+        gen_program_pipelines = c"glGenProgramPipelines": fn(i32, *mut u32);
+        use_program_stages = c"glUseProgramStages": fn(u32, u32, u32);
+        bind_program_pipeline = c"glBindProgramPipeline": fn(u32);
+        program_uniform_matrix4fv = c"glProgramUniformMatrix4fv": fn(u32, i32, i32, u8, *const f32);
+        program_uniform4fv = c"glProgramUniform4fv": fn(u32, i32, i32, *const f32);
     }
 }
 
