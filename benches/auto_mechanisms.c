@@ -47,8 +47,10 @@
  * "verify" renders one frame of each variant and compares each eye with a
  * (max channel difference; c is expected to differ). "run" alternates the
  * variants in each round (every variant FRAMES frames, after one warm-up
- * frame) and prints per variant the median ms/frame over all rounds and the
- * ratio to a. Light scene: N draws of 2 triangles, each a tile of a
+ * frame) and prints per variant the median ms/frame over all rounds, the
+ * median over rounds of its ratio to the first variant in the same round,
+ * and the range of those ratios (on a shared machine the load moves
+ * between rounds; within a round the variants see about the same). Light scene: N draws of 2 triangles, each a tile of a
  * ceil(sqrt(N))^2 grid enlarged 1.5x (so tiles overlap and the depth test
  * decides); heavy: 524288 triangles per eye split over the N draws (the
  * heavy scene of glx_frame_loop.c). Same fill for every N.
@@ -845,14 +847,27 @@ int main(int argc, char **argv)
                 t[(size_t)v * frames * rounds + (size_t)r * frames + f] = now_ms() - t0;
             }
         }
-    double ref = 0;
+    /* Per round, each variant's median frame over the first variant's:
+     * variants alternate within a round, so a round's ratio is measured
+     * under one load; the median of the rounds' ratios and their range are
+     * printed beside the median frame time over all rounds. */
+    double *round_median = malloc(sizeof(double) * nv * rounds), *ratio = malloc(sizeof(double) * rounds);
+    double *sorted = malloc(sizeof(double) * frames);
+    if (!round_median || !ratio || !sorted) die("out of memory");
+    for (int v = 0; v < nv; v++)
+        for (int r = 0; r < rounds; r++) {
+            memcpy(sorted, t + (size_t)v * frames * rounds + (size_t)r * frames, sizeof(double) * frames);
+            qsort(sorted, (size_t)frames, sizeof(double), cmp);
+            round_median[v * rounds + r] = sorted[frames / 2];
+        }
     for (int v = 0; v < nv; v++) {
+        for (int r = 0; r < rounds; r++) ratio[r] = round_median[v * rounds + r] / round_median[r];
+        qsort(ratio, (size_t)rounds, sizeof(double), cmp);
         double *tv = t + (size_t)v * frames * rounds;
         qsort(tv, (size_t)frames * rounds, sizeof(double), cmp);
-        double med = tv[frames * rounds / 2];
-        if (v == 0) ref = med;
-        printf("%s %dx%d N=%d %s: median %.3f ms/frame (%.2fx %s)\n", argv[4], W, H, N, chosen[v]->name, med,
-               med / ref, chosen[0]->name);
+        printf("%s %dx%d N=%d %s: median %.3f ms/frame (%.2fx %s; rounds %.2f-%.2f)\n", argv[4], W, H, N,
+               chosen[v]->name, tv[frames * rounds / 2], ratio[rounds / 2], chosen[0]->name, ratio[0],
+               ratio[rounds - 1]);
     }
     return 0;
 }

@@ -2,16 +2,17 @@
 # Per-eye mechanisms for automatic stereo on llvmpipe (benches/auto_mechanisms.c,
 # issue 23): for the light and heavy scenes at 400x300 and 1280x1024, N = 1, 10,
 # 100 and 1000 draws per frame, every variant alternated in each of ROUNDS
-# rounds, on an EGL surfaceless context with LP_NUM_THREADS rasterizer
-# threads (default 2). Prints the load before each block; compare numbers of
-# one run only.
+# rounds (a few frames each), on an EGL surfaceless context with
+# LP_NUM_THREADS rasterizer threads (default 2). Prints the load before each
+# block, and per variant the median over rounds of its ratio to the first
+# variant in the same round; compare numbers of one run only.
 #
-#   benches/auto_mechanisms.sh [ROUNDS]    (default 3)
+#   benches/auto_mechanisms.sh [ROUNDS]    (default 6)
 #   VARIANTS="a d dff" SIZES=400x300 SCENES=light NS="10 100" benches/auto_mechanisms.sh
 #   (a subset; a first, the reference of the ratios)
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-ROUNDS=${1:-3}
+ROUNDS=${1:-6}
 # Variants to run (all by default); the first is the reference of the ratios.
 VARIANTS=${VARIANTS:-}
 # Sizes (WxH), scenes and draw counts to run.
@@ -29,10 +30,10 @@ for wh in $SIZES; do
     for scene in $SCENES; do
         for n in $NS; do
             case "$scene $wh" in
-            "light 400x300") frames=40 ;;
-            "light 1280x1024") frames=15 ;;
-            "heavy 400x300") frames=5 ;;
-            *) frames=2 ;;
+            "light 400x300") frames=10 ;;
+            "light 1280x1024") frames=4 ;;
+            "heavy 400x300") frames=2 ;;
+            *) frames=1 ;;
             esac
             echo "# $(uptime)"
             # shellcheck disable=SC2086
