@@ -14,7 +14,8 @@
 //! rewritten the same way, and at a draw the layer gives the eye's values
 //! only to the program that supplies the pipeline's last stage and the
 //! neutral value (no shift, layer −1) to the others, so no position is
-//! shifted twice ([`crate::auto`], "Separate shader objects").
+//! shifted twice ([`crate::auto`], "Each family of draws"; tested with a
+//! vertex and a geometry program in one pipeline).
 //!
 //! The reserved uniform location is tried first (every desktop GLSL
 //! version takes it on Mesa 22.3); a compiler that refuses it (ES 1.00
@@ -58,12 +59,12 @@ pub enum LinkOutcome {
     Kept(String),
 }
 
-/// The options a stage of `version` gets: gl_Layer where the language
-/// lets the stage write it, and the reserved location.
-fn options(stage: Stage, scan: &Scan, location: Option<u32>) -> Options {
+/// The options a stage gets: the eye's index written to `index` where
+/// the language lets the stage write it, and the reserved location.
+fn options(stage: Stage, scan: &Scan, index: LayerWrite, location: Option<u32>) -> Options {
     Options {
         layer: if vertex::can_write_layer(stage, scan.version) {
-            LayerWrite::FromUniform
+            index
         } else {
             LayerWrite::None
         },
@@ -72,13 +73,20 @@ fn options(stage: Stage, scan: &Scan, location: Option<u32>) -> Options {
 }
 
 /// Rewrites the last vertex-processing stage of the linked `program`
-/// (module docs). `location` is the reserved uniform location to try.
+/// (module docs). `index` is where the eye's index goes (gl_Layer or
+/// gl_ViewportIndex: the target's form), `location` the reserved uniform
+/// location to try.
 ///
 /// # Safety
 /// A GL context must be current on this thread and `program` one of its
 /// program objects. GL errors may be raised (by the user's misuse the link
 /// itself reports); callers keep the program's error state apart.
-pub unsafe fn shift_last_stage(fns: &LinkFns, program: u32, location: Option<u32>) -> LinkOutcome {
+pub unsafe fn shift_last_stage(
+    fns: &LinkFns,
+    program: u32,
+    index: LayerWrite,
+    location: Option<u32>,
+) -> LinkOutcome {
     // SAFETY: contract.
     unsafe {
         if fns.program_int(program, GL_LINK_STATUS) == 0 {
@@ -107,7 +115,7 @@ pub unsafe fn shift_last_stage(fns: &LinkFns, program: u32, location: Option<u32
                 ));
             };
             let scan = vertex::scan(&source);
-            match shift_position(&source, stage, options(stage, &scan, location)) {
+            match shift_position(&source, stage, options(stage, &scan, index, location)) {
                 Ok(Rewrite::NotNeeded(_)) => {}
                 Ok(Rewrite::Shifted(_)) if chosen.is_some() => {
                     return LinkOutcome::Kept(format!(
@@ -125,10 +133,10 @@ pub unsafe fn shift_last_stage(fns: &LinkFns, program: u32, location: Option<u32
                 stage.name()
             ));
         };
-        let mut used = options(stage, &scan, location);
+        let mut used = options(stage, &scan, index, location);
         let mut copy = fns.compile_as(stage.gl(), &text);
         if copy.is_none() && location.is_some() {
-            used = options(stage, &scan, None);
+            used = options(stage, &scan, index, None);
             copy = match shift_position(&source, stage, used) {
                 Ok(Rewrite::Shifted(text)) => fns.compile_as(stage.gl(), &text),
                 _ => None,
@@ -175,6 +183,7 @@ pub unsafe fn shift_last_stage(fns: &LinkFns, program: u32, location: Option<u32
 pub fn shift_separable(
     shader_type: u32,
     strings: &[&str],
+    index: LayerWrite,
     location: Option<u32>,
 ) -> Result<Option<String>, NotCovered> {
     let Some(stage) = Stage::from_gl(shader_type) else {
@@ -182,7 +191,7 @@ pub fn shift_separable(
     };
     let source = strings.concat();
     let scan = vertex::scan(&source);
-    match shift_position(&source, stage, options(stage, &scan, location))? {
+    match shift_position(&source, stage, options(stage, &scan, index, location))? {
         Rewrite::Shifted(text) => Ok(Some(text)),
         Rewrite::NotNeeded(_) => Ok(None),
     }
@@ -448,7 +457,8 @@ mod tests {
             for (name, stages, layer) in programs() {
                 let program = f.p.program(&stages);
                 let before = f.link.attached_shaders(program);
-                let outcome = shift_last_stage(&f.link, program, Some(f.location));
+                let outcome =
+                    shift_last_stage(&f.link, program, LayerWrite::FromUniform, Some(f.location));
                 let LinkOutcome::Shifted(s) = outcome else {
                     panic!("{name}: {outcome:?}");
                 };
@@ -484,6 +494,34 @@ mod tests {
     }
 
     #[test]
+    fn the_viewport_index_form_compiles_in_every_stage() {
+        let f = fixture();
+        let options = Options {
+            layer: LayerWrite::ViewportIndex,
+            location: Some(f.location),
+        };
+        for (name, stages, layer) in programs() {
+            if !layer {
+                continue;
+            }
+            for &(ty, src) in &stages {
+                let Some(stage) = Stage::from_gl(ty) else {
+                    continue;
+                };
+                if Some(stage) != vertex::last_stage(stages.iter().map(|&(t, _)| t)) {
+                    continue;
+                }
+                let Ok(Rewrite::Shifted(out)) = vertex::shift_position(src, stage, options) else {
+                    panic!("{name}: not rewritten");
+                };
+                // SAFETY: the fixture's context is current.
+                let compiled = unsafe { f.p.shader(ty, &out) };
+                assert!(compiled.is_ok(), "{name}: {compiled:?}\n{out}");
+            }
+        }
+    }
+
+    #[test]
     fn what_is_not_rewritten_is_linked_as_the_user_linked_it() {
         let f = fixture();
         // SAFETY: the fixture's context is current.
@@ -491,7 +529,7 @@ mod tests {
             // Fragment shader only: fixed-function vertices.
             let program = f.p.program(&[(GL_FRAGMENT_SHADER, FS_110)]);
             assert!(matches!(
-                shift_last_stage(&f.link, program, Some(f.location)),
+                shift_last_stage(&f.link, program, LayerWrite::FromUniform, Some(f.location)),
                 LinkOutcome::NotNeeded(_)
             ));
             // The program's own identifier in our namespace.
@@ -499,7 +537,8 @@ mod tests {
                 (GL_VERTEX_SHADER, "#version 330\nuniform vec4 gls_auto_eye;\nvoid main() { gl_Position = gls_auto_eye; }\n"),
                 (GL_FRAGMENT_SHADER, FS_110),
             ]);
-            let outcome = shift_last_stage(&f.link, program, Some(f.location));
+            let outcome =
+                shift_last_stage(&f.link, program, LayerWrite::FromUniform, Some(f.location));
             assert!(
                 matches!(&outcome, LinkOutcome::Kept(why) if why.contains("gls_auto_eye")),
                 "{outcome:?}"
@@ -546,12 +585,13 @@ mod tests {
         let out = shift_separable(
             GL_VERTEX_SHADER,
             &[&src[..20], &src[20..]],
+            LayerWrite::FromUniform,
             Some(f.location),
         )
         .unwrap()
         .expect("a vertex stage is shifted");
         assert_eq!(
-            shift_separable(GL_FRAGMENT_SHADER, &[FS_110], None),
+            shift_separable(GL_FRAGMENT_SHADER, &[FS_110], LayerWrite::FromUniform, None),
             Ok(None)
         );
         let c = CString::new(out).unwrap();
@@ -706,7 +746,8 @@ mod tests {
             };
             // Under the layer.
             let mono = p.program(stages);
-            let outcome = shift_last_stage(&f.link, mono, Some(f.location));
+            let outcome =
+                shift_last_stage(&f.link, mono, LayerWrite::FromUniform, Some(f.location));
             assert!(matches!(outcome, LinkOutcome::Shifted(_)), "{outcome:?}");
             (p.use_program)(mono);
             let lm = (p.get_uniform_location)(mono, c"m".as_ptr());
@@ -833,7 +874,7 @@ mod tests {
         unsafe {
             let separable = |ty: u32, src: &str, rewrite: bool| -> u32 {
                 let src = match rewrite {
-                    true => shift_separable(ty, &[src], Some(f.location))
+                    true => shift_separable(ty, &[src], LayerWrite::FromUniform, Some(f.location))
                         .unwrap()
                         .unwrap_or(src.to_owned()),
                     false => src.to_owned(),

@@ -38,7 +38,9 @@
 //! GL_ARB_shader_viewport_layer_array : enable` where a vertex or
 //! tessellation evaluation shader writes gl_Layer (geometry shaders have
 //! it built in), and `#extension GL_ARB_explicit_uniform_location :
-//! enable` where the uniform gets a reserved location before GLSL 4.30.
+//! enable` where the uniform gets a reserved location before GLSL 4.30
+//! (before 3.30 with `GL_ARB_explicit_attrib_location`, which Mesa wants
+//! for explicit uniform locations too).
 //! Each insertion is followed by a `#line` directive that gives the next
 //! user line the number it had, by the rule of the shader's version (GLSL
 //! 3.30 and ES 3.00 changed what `#line N` means), so compile errors name
@@ -129,9 +131,23 @@ pub fn last_stage(shader_types: impl IntoIterator<Item = u32>) -> Option<Stage> 
 pub enum LayerWrite {
     /// gl_Layer from the uniform (layered eye targets).
     FromUniform,
-    /// No gl_Layer write: the eye's target is chosen outside the shader
-    /// (ES shaders, which have no gl_Layer in these stages).
+    /// gl_ViewportIndex from the uniform (one double-width target, a
+    /// viewport per eye; [`crate::auto`], "How a draw reaches both eyes").
+    ViewportIndex,
+    /// No index written: the eye's target is chosen outside the shader
+    /// (ES shaders, which have neither output in these stages).
     None,
+}
+
+impl LayerWrite {
+    /// The built-in the index goes to, if any.
+    fn builtin(self) -> Option<&'static str> {
+        match self {
+            LayerWrite::FromUniform => Some("gl_Layer"),
+            LayerWrite::ViewportIndex => Some("gl_ViewportIndex"),
+            LayerWrite::None => None,
+        }
+    }
 }
 
 /// Choices of a rewrite.
@@ -201,9 +217,9 @@ fn rule(layer: LayerWrite) -> String {
     let mut s = format!(
         "    if (gl_Position.w != 1.0)\n        gl_Position.x += {EYE_UNIFORM}.x * (gl_Position.w - {EYE_UNIFORM}.y);\n"
     );
-    if layer == LayerWrite::FromUniform {
+    if let Some(builtin) = layer.builtin() {
         s.push_str(&format!(
-            "    if ({EYE_UNIFORM}.z >= 0.0)\n        gl_Layer = int({EYE_UNIFORM}.z);\n"
+            "    if ({EYE_UNIFORM}.z >= 0.0)\n        {builtin} = int({EYE_UNIFORM}.z);\n"
         ));
     }
     s
@@ -239,7 +255,7 @@ pub fn shift_position(source: &str, stage: Stage, options: Options) -> Result<Re
         )));
     }
     let layer = match options.layer {
-        LayerWrite::FromUniform if !can_write_layer(stage, version) => {
+        LayerWrite::FromUniform | LayerWrite::ViewportIndex if !can_write_layer(stage, version) => {
             return Err(NotCovered(format!(
                 "a {} shader of GLSL {} cannot write gl_Layer",
                 stage.name(),
@@ -254,17 +270,17 @@ pub fn shift_position(source: &str, stage: Stage, options: Options) -> Result<Re
     // that redeclares the block must list it to keep it.
     let with_layer;
     let mut source = source;
-    if layer == LayerWrite::FromUniform && stage != Stage::Geometry {
+    if let (Some(builtin), false) = (layer.builtin(), stage == Stage::Geometry) {
         if let Some((brace, members)) = glsl::out_per_vertex(&text) {
-            if !glsl::uses(&members, "gl_Layer") {
-                with_layer = format!("{} int gl_Layer;{}", &source[..brace], &source[brace..]);
+            if !glsl::uses(&members, builtin) {
+                with_layer = format!("{} int {builtin};{}", &source[..brace], &source[brace..]);
                 source = &with_layer;
             }
         }
     }
 
     let mut head = String::new();
-    if layer == LayerWrite::FromUniform && stage != Stage::Geometry {
+    if layer != LayerWrite::None && stage != Stage::Geometry {
         head.push_str("#extension GL_ARB_shader_viewport_layer_array : enable\n");
     }
     let needs_location_ext = location.is_some()
@@ -495,6 +511,23 @@ mod tests {
         assert!(err.0.contains("gls_auto_eye"), "{err:?}");
         let old_gs = "#version 120\n#extension GL_EXT_geometry_shader4 : enable\nvoid main(){}\n";
         assert!(shift_position(old_gs, Stage::Geometry, LAYERED).is_err());
+    }
+
+    #[test]
+    fn the_eye_can_choose_a_viewport_instead_of_a_layer() {
+        let src = "#version 410\nout gl_PerVertex { vec4 gl_Position; };\nvoid main(){ gl_Position = vec4(0.0); }\n";
+        let options = Options {
+            layer: LayerWrite::ViewportIndex,
+            location: Some(9),
+        };
+        let out = shifted(src, Stage::Vertex, options);
+        assert!(
+            out.contains("out gl_PerVertex { int gl_ViewportIndex; vec4 gl_Position; };"),
+            "{out}"
+        );
+        assert!(out.contains("gl_ViewportIndex = int(gls_auto_eye.z);"));
+        assert!(!out.contains("gl_Layer"));
+        assert!(out.contains("GL_ARB_shader_viewport_layer_array"));
     }
 
     #[test]
