@@ -57,50 +57,68 @@
 //!   whole picture flat behind the screen, never uncomfortable.
 //! - The change is applied between frames, said once on stderr.
 //!
-//! # How a draw reaches both eyes: layers, chosen by a uniform
+//! # How a draw reaches both eyes: chosen by a uniform, no switch
 //!
 //! Measured (BENCHMARKS.md, "Automatic stereo: per-eye mechanisms";
 //! `benches/auto_mechanisms.sh`): llvmpipe ends its scene (binning stops,
 //! the rasterizer threads are woken and waited for) at every change of
 //! framebuffer state — a glBindFramebuffer, a draw-buffer switch, a
-//! re-attachment, even a viewport or scissor change — for ≈ 12–25 µs
-//! each. Switching the eye's target per draw therefore costs 1.2–1.3x
-//! the program's own two passes at 10 draws a frame and 2–6x at 100–1000.
-//! Not switching anything costs nothing: the emulated default framebuffer
-//! becomes **one layered framebuffer object** — colour buffers and the
-//! depth/stencil buffer as 2-layer array textures, layer 0 the left eye,
-//! layer 1 the right ([`target`]) — and each draw is issued twice with a
-//! uniform `gls_auto_eye` = (e·s, C, layer, 0) changed between; the
-//! program's last vertex stage, rewritten at link time, writes the layer
-//! to gl_Layer (GL_ARB_shader_viewport_layer_array in vertex and
-//! tessellation evaluation shaders, built in for geometry shaders; llvmpipe
-//! 22.3 has it). Measured 1.0–1.1x of the program's two passes from 1 to
-//! 1000 draws a frame (light scenes, 400x300 and 1280x1024).
+//! re-attachment — for ≈ 12 µs, and a viewport + scissor change for
+//! ≈ 22 µs. Switching the eye's target per draw therefore costs
+//! 1.2–1.3x the program's own two passes at 10 draws a frame, 2–2.4x at
+//! 100 and 6x at 1000. Not switching anything costs nothing: one target
+//! holds both eyes, each draw is issued twice with a uniform
+//! `gls_auto_eye` = (e·s, C, eye index, 0) changed between, and the
+//! program's last vertex stage, rewritten at link time, writes the eye
+//! index to where the target keeps that eye. Measured 0.96–1.09x of the
+//! program's two passes from 1 to 1000 draws a frame (light scenes,
+//! 400x300, quiet machine).
 //!
-//! Each eye has its own depth and stencil (the depth array's layers), so
-//! draws interleaved eye by eye keep their depth tests (one shared depth
-//! buffer, as quad-buffer stereo has, would break them: variant c). One
-//! glClear clears both layers. glReadPixels, glCopyTex*Image* and blits
-//! from a layered framebuffer read layer 0: the left eye, as seed 004
-//! resolves for ReadPixels, with no work.
+//! The target as designed and tested here is **one layered framebuffer
+//! object** — colour buffers and the depth/stencil buffer as 2-layer array
+//! textures, layer 0 the left eye, layer 1 the right ([`target`]) — and
+//! the index goes to gl_Layer (GL_ARB_shader_viewport_layer_array in
+//! vertex and tessellation evaluation shaders, built in for geometry
+//! shaders; llvmpipe 22.3 has it). Each eye has its own depth and stencil
+//! (the depth array's layers), so draws interleaved eye by eye keep their
+//! depth tests (one shared depth buffer, as quad-buffer stereo has, would
+//! break them: variant c). One glClear clears both layers. glReadPixels,
+//! glCopyTex*Image* and blits from a layered framebuffer read layer 0: the
+//! left eye, as seed 004 resolves for ReadPixels, with no work. Nothing
+//! of the program's viewport, scissor or gl_FragCoord changes.
+//!
+//! The alternative the rewrite also produces ([`vertex::LayerWrite::ViewportIndex`])
+//! is **one double-width target** with a viewport per eye, the index
+//! written to gl_ViewportIndex (variant e2). It measured as d on light
+//! scenes, and better where d is weak: a vertex shader that writes
+//! gl_Layer makes one huge draw per eye 1.35–1.75x slower on llvmpipe
+//! (heavy scene, one draw per eye, every run), where e2 stayed at
+//! 0.92–0.99x. Its price is in the layer: every glViewport*, glScissor*,
+//! glDepthRange* and the scissor enable of the program translated into
+//! two indexed viewports and scissors (the scissor always on, so wide
+//! points and lines stay in their eye), gl_FragCoord.x corrected in the
+//! right eye (a fragment-shader macro, beside [`crate::stereo::outputs`]),
+//! glClear under a scissor made per eye, and raster positions and blits
+//! offset by the width. Which of the two: a run on a quiet machine
+//! (`VARIANTS="a d dt e2 f2 a"`) decides; both keep the one uniform and
+//! every other part of this design.
+//!
+//! Long scenes: llvmpipe bins a whole scene before rasterizing it, so a
+//! heavy frame in one scene loses the overlap of binning with the
+//! rasterizer threads that the program's own two passes get from their
+//! eye switch. The layer flushes after a draw once 64K vertices are in the
+//! scene (variant dt; never for light frames): at 100–1000 heavy draws a
+//! frame that ran at 0.57–1.04x of the program's two passes.
 //!
 //! Rejected, with their measurements: a framebuffer object per eye (b),
-//! draw-buffer or layer switching (c, c2), a viewport per eye in a
-//! double-width target (e: the most expensive, every glViewport flushes;
-//! e2, the viewport index from the shader, costs as d but makes
-//! gl_FragCoord.x wrong in the right eye and every glViewport/glScissor of
-//! the program need translating); one draw for both eyes by instancing
-//! (f1: as cheap, but the program's own instancing, gl_InstanceID and
-//! attribute divisors would need rewriting) or a duplicating geometry
-//! shader (f2: as cheap for light scenes, but Mesa refuses a geometry
-//! shader with GL_QUADS, GL_QUAD_STRIP and GL_POLYGON — the primitives of
-//! legacy immediate mode — and with fixed-function vertex processing:
-//! "Program lacks a vertex shader").
-//!
-//! Heavy scenes (half a million triangles a frame) cost what their
-//! geometry costs in every variant, within the run's noise; llvmpipe bins
-//! a whole scene before rasterizing it, so very long scenes gain from a
-//! glFlush every 64K vertices (variant dt), which the layer can add.
+//! draw-buffer or layer switching (c, c2), a viewport per eye set by
+//! glViewport (e: the most expensive); one draw for both eyes by
+//! instancing (f1: as cheap, but the program's own instancing,
+//! gl_InstanceID and attribute divisors would need rewriting) or a
+//! duplicating geometry shader (f2: as cheap, cheapest for one huge draw,
+//! but Mesa refuses a geometry shader with GL_QUADS, GL_QUAD_STRIP and
+//! GL_POLYGON — the primitives of legacy immediate mode — and with
+//! fixed-function vertex processing: "Program lacks a vertex shader").
 //!
 //! # Each family of draws
 //!
@@ -128,9 +146,9 @@
 //!   size; lighting and texgen to be generated from the fixed-function
 //!   state the layer tracks, as Mesa's own `ffvertex_prog` does), with the
 //!   same rule and uniform, bound in place of program 0, the fragment
-//!   stage left fixed-function; measured as d (variant dff: 1.0–1.1x), and
-//!   proved here pixel for pixel against fixed function drawn by hand for
-//!   the state it models. glRasterPos* is made with program 0 meanwhile:
+//!   stage left fixed-function; measured as d (variant dff: 1.00–1.06x at
+//!   400x300 under load 8), and proved here pixel for pixel against fixed
+//!   function drawn by hand for the state it models. glRasterPos* is made with program 0 meanwhile:
 //!   with a vertex shader bound, Mesa 22.3 reports the raster position's
 //!   clip w as 1/w (measured: 0.333 for w = 3), and the eyes' raster
 //!   positions are computed from it. State the stand-in does not model

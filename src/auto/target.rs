@@ -6,12 +6,13 @@
 //!
 //! Why layers (BENCHMARKS.md, "Automatic stereo: per-eye mechanisms"):
 //! llvmpipe ends its scene — binning stops, the rasterizer threads are
-//! woken, ≈ 12 µs — at every framebuffer change, and a draw-buffer switch,
-//! a re-attachment or even a viewport change costs as much; with the eyes
+//! woken, ≈ 12 µs — at every framebuffer change: a draw-buffer switch or
+//! a re-attachment costs as much (a viewport change twice); with the eyes
 //! as layers and the eye chosen by a uniform that the last vertex stage
 //! writes to gl_Layer, a draw reaches both eyes with no framebuffer state
-//! changing at all, for 1.0–1.1x of what the program pays drawing both
-//! eyes itself. Each eye has its own depth and stencil (the layers of the
+//! changing at all, for 0.96–1.09x of what the program pays drawing both
+//! eyes itself (light scenes, 400x300; [`crate::auto`] has the rest,
+//! and the double-width alternative). Each eye has its own depth and stencil (the layers of the
 //! depth array), so draws interleaved eye by eye keep their depth tests,
 //! and glClear clears every layer at once.
 //!
