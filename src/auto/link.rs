@@ -701,6 +701,14 @@ mod tests {
     /// that draws each eye itself with the rule applied to its matrices by
     /// hand; the eyes compared pixel by pixel.
     fn compare_with_hand_drawn_eyes(stages: &[(u32, &str)], mode: u32) {
+        compare_eyes(stages, mode, LayerWrite::FromUniform);
+    }
+
+    /// As [`compare_with_hand_drawn_eyes`], the eye's index written to
+    /// `index`: gl_Layer into a layered target, or gl_ViewportIndex into a
+    /// double-width one (viewport 0 the left half, 1 the right, each
+    /// scissored), whose halves are compared.
+    fn compare_eyes(stages: &[(u32, &str)], mode: u32, index: LayerWrite) {
         const W: i32 = 160;
         const H: i32 = 120;
         let (s, c) = (0.07f32, 4.0f32);
@@ -746,13 +754,28 @@ mod tests {
             };
             // Under the layer.
             let mono = p.program(stages);
-            let outcome =
-                shift_last_stage(&f.link, mono, LayerWrite::FromUniform, Some(f.location));
+            let outcome = shift_last_stage(&f.link, mono, index, Some(f.location));
             assert!(matches!(outcome, LinkOutcome::Shifted(_)), "{outcome:?}");
             (p.use_program)(mono);
             let lm = (p.get_uniform_location)(mono, c"m".as_ptr());
-            let layered = EyeTarget::create(&f.tf, W, H).unwrap();
+            let wide = index == LayerWrite::ViewportIndex;
+            // The double-width target: the left layer of a 2W-wide one.
+            let layered = EyeTarget::create(&f.tf, if wide { 2 * W } else { W }, H).unwrap();
+            if wide {
+                layered.bind_eye(&f.tf, Eye::Left);
+                for e in 0..2 {
+                    (p.viewport_indexedf)(e as u32, (e * W) as f32, 0.0, W as f32, H as f32);
+                    (p.scissor_indexed)(e as u32, e * W, 0, W, H);
+                }
+                (p.viewport)(0, 0, 2 * W, H);
+            }
             (p.clear)(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            if wide {
+                for e in 0..2 {
+                    (p.viewport_indexedf)(e as u32, (e * W) as f32, 0.0, W as f32, H as f32);
+                }
+                (p.enable)(GL_SCISSOR_TEST);
+            }
             draw_all(mono, &mut |i, draw| {
                 (p.uniform_matrix4fv)(
                     lm,
@@ -770,10 +793,24 @@ mod tests {
                     draw();
                 }
             });
-            let got = [
-                layered.read(&f.tf, Eye::Left),
-                layered.read(&f.tf, Eye::Right),
-            ];
+            let got = if wide {
+                (p.disable)(GL_SCISSOR_TEST);
+                (p.viewport)(0, 0, W, H);
+                let both = layered.read(&f.tf, Eye::Left);
+                let half = |e: usize| -> Vec<u8> {
+                    both.chunks((8 * W) as usize)
+                        .flat_map(|row| {
+                            row[e * (4 * W) as usize..(e + 1) * (4 * W) as usize].to_vec()
+                        })
+                        .collect()
+                };
+                [half(0), half(1)]
+            } else {
+                [
+                    layered.read(&f.tf, Eye::Left),
+                    layered.read(&f.tf, Eye::Right),
+                ]
+            };
             // By hand, one eye at a time.
             let own = p.program(stages);
             (p.use_program)(own);
@@ -816,6 +853,15 @@ mod tests {
         compare_with_hand_drawn_eyes(
             &[(GL_VERTEX_SHADER, VS), (GL_FRAGMENT_SHADER, FS)],
             GL_TRIANGLES,
+        );
+    }
+
+    #[test]
+    fn the_viewport_index_form_in_a_double_width_target_equals_each_eye_drawn_by_hand() {
+        compare_eyes(
+            &[(GL_VERTEX_SHADER, VS), (GL_FRAGMENT_SHADER, FS)],
+            GL_TRIANGLES,
+            LayerWrite::ViewportIndex,
         );
     }
 

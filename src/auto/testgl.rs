@@ -8,6 +8,7 @@ use crate::auto::gl_fns;
 pub const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
 pub const GL_DEPTH_BUFFER_BIT: u32 = 0x0100;
 pub const GL_DEPTH_TEST: u32 = 0x0B71;
+pub const GL_SCISSOR_TEST: u32 = 0x0C11;
 pub const GL_MODELVIEW: u32 = 0x1700;
 pub const GL_QUADS: u32 = 0x0007;
 pub const GL_TRIANGLES: u32 = 0x0004;
@@ -68,6 +69,8 @@ gl_fns! {
         bind_program_pipeline = c"glBindProgramPipeline": fn(u32);
         program_uniform_matrix4fv = c"glProgramUniformMatrix4fv": fn(u32, i32, i32, u8, *const f32);
         program_uniform4fv = c"glProgramUniform4fv": fn(u32, i32, i32, *const f32);
+        viewport_indexedf = c"glViewportIndexedf": fn(u32, f32, f32, f32, f32);
+        scissor_indexed = c"glScissorIndexed": fn(u32, i32, i32, i32, i32);
     }
 }
 
