@@ -491,8 +491,10 @@ static void frame_df(void)
     }
 }
 
-/* d with glFlush once 65536 vertices were drawn since the last: a heavy
- * scene's binning overlaps rasterization, a light one flushes rarely. */
+/* d with glFlush after a draw once 65536 vertices were drawn since the
+ * last: a heavy scene's binning overlaps rasterization (a single huge
+ * draw is flushed after each eye, as the program's own passes are), a
+ * light one flushes rarely. */
 static void frame_dt(void)
 {
     glUseProgram(programs[MODE_LAYER]);
@@ -500,17 +502,16 @@ static void frame_dt(void)
     glViewport(0, 0, W, H);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     long since = 0;
-    for (int d = 0; d < N; d++) {
+    for (int d = 0; d < N; d++)
         for (int e = 0; e < 2; e++) {
             eye_uniform(MODE_LAYER, e, (float)e);
             draw_shader(MODE_LAYER, d);
+            since += count[d];
+            if (since >= 65536) {
+                glFlush();
+                since = 0;
+            }
         }
-        since += 2L * count[d];
-        if (since >= 65536) {
-            glFlush();
-            since = 0;
-        }
-    }
 }
 
 static void frame_e(void)

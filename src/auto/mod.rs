@@ -87,11 +87,12 @@
 //! left eye, as seed 004 resolves for ReadPixels, with no work. Nothing
 //! of the program's viewport, scissor or gl_FragCoord changes.
 //!
-//! The alternative the rewrite also produces ([`vertex::LayerWrite::ViewportIndex`])
-//! is **one double-width target** with a viewport per eye, the index
-//! written to gl_ViewportIndex (variant e2; proved here too: a program's
-//! eyes in the two halves equal each eye drawn by hand). It measured as d on light
-//! scenes, and better where d is weak: a vertex shader that writes
+//! The alternative the rewrite also produces
+//! ([`vertex::LayerWrite::ViewportIndex`]) is **one double-width target**
+//! with a viewport per eye, the index written to gl_ViewportIndex
+//! (variant e2; proved here too: a program's eyes in the two halves equal
+//! each eye drawn by hand). It measured as d on light scenes, and better
+//! where d is weak: a vertex shader that writes
 //! gl_Layer makes one huge draw per eye 1.35–1.75x slower on llvmpipe
 //! (heavy scene, one draw per eye, every run), where e2 stayed at
 //! 0.92–0.99x. Its price is in the layer: every glViewport*, glScissor*,
