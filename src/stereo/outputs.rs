@@ -252,7 +252,7 @@ macro_rules! link_fns {
         /// up once through the backend's GetProcAddress.
         #[allow(non_snake_case)]
         pub struct LinkFns {
-            $( $field: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
+            $( pub(crate) $field: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
         }
 
         impl LinkFns {
@@ -517,14 +517,14 @@ impl LinkFns {
         }
     }
 
-    unsafe fn program_int(&self, program: u32, pname: u32) -> i32 {
+    pub(crate) unsafe fn program_int(&self, program: u32, pname: u32) -> i32 {
         let mut v = 0;
         // SAFETY: contract of the callers; one value.
         unsafe { (self.get_programiv)(program, pname, &mut v) };
         v
     }
 
-    unsafe fn shader_int(&self, shader: u32, pname: u32) -> i32 {
+    pub(crate) unsafe fn shader_int(&self, shader: u32, pname: u32) -> i32 {
         let mut v = 0;
         // SAFETY: contract of the callers; one value.
         unsafe { (self.get_shaderiv)(shader, pname, &mut v) };
@@ -594,7 +594,8 @@ impl LinkFns {
         }
     }
 
-    unsafe fn fragment_shader(&self, program: u32) -> Result<u32, String> {
+    /// The shader objects attached to `program`.
+    pub(crate) unsafe fn attached_shaders(&self, program: u32) -> Vec<u32> {
         // SAFETY: contract of the callers; the list is sized as GL is told.
         unsafe {
             let n = self.program_int(program, GL_ATTACHED_SHADERS).max(0);
@@ -602,7 +603,15 @@ impl LinkFns {
             let mut count = 0;
             (self.get_attached_shaders)(program, n, &mut count, list.as_mut_ptr());
             list.truncate(count.max(0) as usize);
-            let fragment: Vec<u32> = list
+            list
+        }
+    }
+
+    unsafe fn fragment_shader(&self, program: u32) -> Result<u32, String> {
+        // SAFETY: contract of the callers.
+        unsafe {
+            let fragment: Vec<u32> = self
+                .attached_shaders(program)
                 .into_iter()
                 .filter(|&s| self.shader_int(s, GL_SHADER_TYPE) == GL_FRAGMENT_SHADER as i32)
                 .collect();
@@ -614,7 +623,7 @@ impl LinkFns {
         }
     }
 
-    unsafe fn shader_source(&self, shader: u32) -> Option<String> {
+    pub(crate) unsafe fn shader_source(&self, shader: u32) -> Option<String> {
         // SAFETY: contract of the callers; the buffer is sized as GL is told.
         unsafe {
             let len = self.shader_int(shader, GL_SHADER_SOURCE_LENGTH);
@@ -631,9 +640,16 @@ impl LinkFns {
     /// A compiled fragment shader of `source`, or None (deleted) when it
     /// does not compile.
     unsafe fn compile(&self, source: &str) -> Option<u32> {
+        // SAFETY: contract of the callers.
+        unsafe { self.compile_as(GL_FRAGMENT_SHADER, source) }
+    }
+
+    /// A compiled shader of type `shader_type` from `source`, or None
+    /// (deleted) when it does not compile.
+    pub(crate) unsafe fn compile_as(&self, shader_type: u32, source: &str) -> Option<u32> {
         // SAFETY: contract of the callers; one string of the given length.
         unsafe {
-            let s = (self.create_shader)(GL_FRAGMENT_SHADER);
+            let s = (self.create_shader)(shader_type);
             if s == 0 {
                 return None;
             }
