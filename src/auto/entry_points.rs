@@ -17,12 +17,15 @@ pub enum Family {
     /// slow path).
     Draw,
     /// glBegin and glEnd: the draw happens at glEnd; the vertices between
-    /// are recorded ([`Family::Vertex`]) and replayed for the second eye.
+    /// are compiled into a display list of the layer's, called once per
+    /// eye (recorded instead, [`Family::Vertex`], while the program
+    /// compiles a list of its own).
     BeginEnd,
     /// Per-vertex commands allowed between glBegin and glEnd (glVertex*,
     /// glColor*, glNormal*, glTexCoord*, glMultiTexCoord*, glVertexAttrib*,
     /// glMaterial*, glArrayElement, glEvalCoord*, glEvalPoint*, …):
-    /// recorded while a glBegin is open, passed through otherwise.
+    /// recorded while a glBegin is open inside a list the program
+    /// compiles, passed through otherwise.
     Vertex,
     /// Display lists (glNewList, glEndList, glCallList, glCallLists):
     /// draws compiled into a list are compiled once per eye with the eye's

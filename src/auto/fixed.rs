@@ -405,6 +405,42 @@ mod tests {
         }
     }
 
+    /// As [`StandIn`], but each draw (here glBegin … glEnd) is compiled
+    /// into a display list of the layer's as it is made, then the list is
+    /// called once per eye: immediate mode in both eyes without recording
+    /// its per-vertex calls.
+    struct StandInList<'a> {
+        inner: StandIn<'a>,
+        list: u32,
+    }
+
+    impl Frame for StandInList<'_> {
+        fn projection(&mut self, p: &ProgramFns, mono: DMat4) {
+            self.inner.projection(p, mono)
+        }
+        fn draw(&mut self, f: &mut dyn FnMut()) {
+            let p = self.inner.p;
+            let list = self.list;
+            // SAFETY: a context is current, no list being compiled.
+            unsafe {
+                (p.new_list)(list, 0x1300); // GL_COMPILE
+                f();
+                (p.end_list)();
+            }
+            // SAFETY: as above.
+            self.inner.draw(&mut || unsafe { (p.call_list)(list) });
+        }
+        fn pixels(&mut self, f: &mut dyn FnMut()) {
+            self.inner.pixels(f)
+        }
+        fn bitmap(&mut self, xmove: f32, ymove: f32, f: &mut dyn FnMut()) {
+            self.inner.bitmap(xmove, ymove, f)
+        }
+        fn raster_pos(&mut self, f: &mut dyn FnMut()) {
+            self.inner.raster_pos(f)
+        }
+    }
+
     unsafe fn quad(p: &ProgramFns, x0: f32, y0: f32, x1: f32, y1: f32, z0: f32, z1: f32) {
         // SAFETY: a context is current.
         unsafe {
@@ -591,6 +627,37 @@ mod tests {
                         target,
                         settings: settings(),
                     },
+                });
+            }
+        });
+    }
+
+    #[test]
+    fn immediate_mode_compiled_into_a_list_and_called_per_eye_equals_each_eye_drawn_by_hand() {
+        compare_with_hand_drawn_eyes(&|p, ff, tf, target, run| {
+            // SAFETY: the test's context is current.
+            unsafe {
+                let mut max = 0;
+                (p.get_integerv)(0x826E, &mut max); // GL_MAX_UNIFORM_LOCATIONS
+                let location = max - 1;
+                let src =
+                    crate::auto::standin::source(Default::default(), location as u32).unwrap();
+                let program = p.program(&[(0x8B31, &src)]);
+                (p.use_program)(program);
+                (p.uniform4f)(location, 0.0, CONVERGENCE, -1.0, 0.0);
+                run(&mut StandInList {
+                    inner: StandIn {
+                        p,
+                        program,
+                        location,
+                        pixels: FixedDraw {
+                            fns: ff,
+                            target_fns: tf,
+                            target,
+                            settings: settings(),
+                        },
+                    },
+                    list: (p.gen_lists)(1),
                 });
             }
         });

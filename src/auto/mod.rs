@@ -160,11 +160,17 @@
 //!   e·s·C·(0, 0, 0, 1); orthographic projections as they are) and the
 //!   eye's layers attached for the draw — two scene flushes per draw
 //!   (variant c2ff: 1.3x at 10 draws, 2.4x at 100).
-//! - **Immediate mode**: the draw happens at glEnd. While a glBegin is
-//!   open the per-vertex commands ([`entry_points::Family::Vertex`]) are
-//!   recorded as they pass through; at glEnd the layer sets the right
-//!   eye's uniform and replays glBegin, the record and glEnd (a
-//!   geometry shader cannot duplicate GL_QUADS on Mesa, see above).
+//! - **Immediate mode**: the draw happens at glEnd, and the vertices
+//!   must reach the second eye too (a geometry shader cannot duplicate
+//!   GL_QUADS on Mesa, see above). At glBegin the layer starts a display
+//!   list of its own (glNewList(GL_COMPILE)), so the per-vertex calls go
+//!   straight to GL and are compiled; at glEnd it ends the list and calls
+//!   it once per eye with the eye's uniform (proved here pixel for pixel
+//!   with the fixed-function stand-in). Only glBegin and glEnd need
+//!   wrapping for that. While the program compiles a list of its own
+//!   (lists do not nest), the per-vertex commands
+//!   ([`entry_points::Family::Vertex`]) are recorded as they pass through
+//!   and emitted again for the second eye after glEnd.
 //! - **Display lists**: when the program compiles a list, each draw and
 //!   glEnd is compiled twice, each preceded by glUniform4f at the reserved
 //!   location (glUniform is compiled into lists; framebuffer calls are
@@ -274,8 +280,8 @@
 //! | family | commands | what the wrapper does |
 //! |---|---|---|
 //! | Draw | 68 | the call once per eye (uniform, or projection + layers) |
-//! | BeginEnd | 2 | glBegin opens a record, glEnd draws and replays it |
-//! | Vertex | 638 | recorded between glBegin and glEnd |
+//! | BeginEnd | 2 | glBegin starts the layer's list, glEnd calls it per eye |
+//! | Vertex | 638 | recorded between glBegin and glEnd while the program compiles a list |
 //! | DisplayList | 4 | compile draws per eye; glCallList as is |
 //! | Clear | 9 | once (layered), per eye on the slow path |
 //! | RasterPos | 30 | with program 0 while the fixed-function stand-in is bound |

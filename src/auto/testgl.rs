@@ -70,6 +70,10 @@ gl_fns! {
         program_uniform_matrix4fv = c"glProgramUniformMatrix4fv": fn(u32, i32, i32, u8, *const f32);
         program_uniform4fv = c"glProgramUniform4fv": fn(u32, i32, i32, *const f32);
         viewport_indexedf = c"glViewportIndexedf": fn(u32, f32, f32, f32, f32);
+        gen_lists = c"glGenLists": fn(i32) -> u32;
+        new_list = c"glNewList": fn(u32, u32);
+        end_list = c"glEndList": fn();
+        call_list = c"glCallList": fn(u32);
         scissor_indexed = c"glScissorIndexed": fn(u32, i32, i32, i32, i32);
     }
 }
