@@ -15,8 +15,9 @@
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
 use std::sync::atomic::{AtomicPtr, Ordering};
 
+use glstereo::auto::entry_points::Family;
 use glstereo::ffi::interpose as gls;
-
+use glstereo::interpose::draws::Call;
 use glstereo::interpose::next;
 
 /// Each export enters the layer ([`next::enter`]) and calls
@@ -257,7 +258,7 @@ unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAdd
     if !name.is_null() {
         // SAFETY: non-NULL, NUL-terminated (GLX's contract).
         let n = unsafe { std::ffi::CStr::from_ptr(name.cast()) };
-        if let Some(f) = own_export(n.to_bytes()) {
+        if let Some(f) = own_export(n.to_bytes()).or_else(|| generated::lookup(n.to_bytes())) {
             return as_proc(f);
         }
     }
@@ -350,4 +351,44 @@ forward! {
     glXQueryDrawable(dpy: *mut c_void, draw: c_ulong, attribute: c_int, value: *mut u32);
     glXSelectEvent(dpy: *mut c_void, draw: c_ulong, mask: c_ulong);
     glXGetSelectedEvent(dpy: *mut c_void, draw: c_ulong, mask: *mut c_ulong);
+}
+
+// The GL commands of the drawing families, generated from gl.xml by
+// build.rs: each is exported under its name and calls [`hooked`].
+include!(concat!(env!("OUT_DIR"), "/generated.rs"));
+
+/// The next definition of GL command `name` (cached in `slot`): the next
+/// glXGetProcAddress's function (a layer below, then libGL's dispatch),
+/// never this library's. A command no GL below has cannot have been
+/// reached but through a pointer to it: the process ends with a message.
+fn gl_next(slot: &AtomicPtr<c_void>, name: &std::ffi::CStr) -> *mut c_void {
+    let mut f = slot.load(Ordering::Acquire);
+    if f.is_null() {
+        // SAFETY: a NUL-terminated name.
+        f = unsafe { glstereo::interpose::real::get_proc_address(name.as_ptr()) }
+            .map_or(std::ptr::null_mut(), |f| f as *mut c_void);
+        if f.is_null() {
+            f = next::bottom_symbol(name);
+        }
+        if f.is_null() {
+            eprintln!(
+                "glstereo: {} was called and no GL library below has it; aborting",
+                name.to_string_lossy()
+            );
+            std::process::abort();
+        }
+        slot.store(f, Ordering::Release);
+    }
+    f
+}
+
+/// A generated export's call: straight through when the thread is inside
+/// the layer already (the layer's own draws), else through glstereo's
+/// hook for the family.
+fn hooked<R>(call: Call, f: impl Fn() -> R) -> R {
+    let (_inside, depth) = next::enter();
+    if depth > 0 {
+        return f();
+    }
+    glstereo::interpose::draws::around(call, f)
 }

@@ -896,6 +896,23 @@ impl StereoContext {
         self.bind(cur.draw, cur.read)
     }
 
+    /// The first draw after a present ([`super::draws`]): the drawable's
+    /// size, asked of the X server (one round trip, as Mesa's software
+    /// framebuffer asks at the first draw after each swap), and the buffers
+    /// resized before the program draws when the window changed size since
+    /// — the program resized it itself, or a window manager did.
+    pub fn follow_drawable_size(self: &Arc<Self>, cur: &Current) -> Result<()> {
+        let r = loaded()?;
+        let size = match self.lock().fbs.get(&cur.draw) {
+            Some(d) => d.fb.size(),
+            None => return Ok(()),
+        };
+        if drawable_size(r, self.display, cur.draw)? == size {
+            return Ok(());
+        }
+        self.bind(cur.draw, cur.read)
+    }
+
     /// Presents `drawable`'s front buffers: with `flip`, first its back
     /// buffers become the front ones (glXSwapBuffers); without, the fronts
     /// as they are (glFlush/glFinish after drawing to a front buffer).
@@ -940,6 +957,8 @@ impl StereoContext {
                     reattached?;
                 }
             }
+            // The window may change size before the program draws again.
+            super::draws::check_size_at_next_draw();
         }
         profile::frame_end();
         result

@@ -231,6 +231,7 @@ pub unsafe fn clear_buffer<T: ClearValue>(
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     let r = loaded()?;
     let real = need(T::clear(fns()), T::CLEAR)?;
     if value.is_null() {
@@ -281,6 +282,7 @@ pub unsafe fn clear_named_framebuffer<T: ClearValue>(
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     let r = loaded()?;
     let real = need(T::clear_named(fns()), T::CLEAR_NAMED)?;
     if value.is_null() {
@@ -316,6 +318,7 @@ pub fn clear_named_framebufferfi(
     depth: f32,
     stencil: i32,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     loaded()?;
     let real = need(fns().clear_named_fi, "glClearNamedFramebufferfi")?;
     let fbo = if framebuffer == 0 {
@@ -409,6 +412,7 @@ pub fn blit_named_framebuffer(
     mask: u32,
     filter: u32,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Blit);
     let r = loaded()?;
     let real = need(fns().blit_named, "glBlitNamedFramebuffer")?;
     let (mut read, mut draw) = (read, draw);

@@ -1166,6 +1166,7 @@ pub fn clear_color(color: ClearColor, fixed_oes: bool) -> Result<()> {
 /// clear the program masks nothing of stays the driver's fast full clear
 /// rather than a masked one (llvmpipe draws a quad for that).
 pub fn clear(mask: u32) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     let r = loaded()?;
     let gl = &r.gl;
     let cur = match current() {
@@ -1431,6 +1432,7 @@ pub unsafe fn get_indexed<T>(
 /// opaque emulated framebuffer has its alpha put back to 1.0.
 #[allow(clippy::too_many_arguments)]
 pub fn blit_framebuffer(src: [i32; 4], dst: [i32; 4], mask: u32, filter: u32) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Blit);
     let r = loaded()?;
     // SAFETY: forwarded call.
     unsafe {
