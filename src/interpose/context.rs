@@ -1024,8 +1024,8 @@ impl StereoContext {
         frame_index: u64,
     ) -> Result<()> {
         let gl = &r.gl;
-        let s = settings::get();
-        let mode = settings::window_mode();
+        let mode = super::live::mode();
+        let options = super::live::options();
         let CtxState {
             fbs, compositor, ..
         } = st;
@@ -1034,7 +1034,7 @@ impl StereoContext {
             &drawn.fb,
             InputFraming::QuadBuffer,
             mode,
-            s.options,
+            options,
             frame_index,
         );
         // A software renderer's frame goes to the window from memory when
@@ -1105,7 +1105,7 @@ impl StereoContext {
                 left,
                 right,
                 mode,
-                options: s.options,
+                options,
                 frame_index,
             });
         }

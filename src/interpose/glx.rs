@@ -448,7 +448,7 @@ fn adopt(
     let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
     settings::tell(&format!(
         "stereo is emulated: both eyes shown as {} in the program's window",
-        settings::window_mode().canonical_name()
+        super::live::mode().canonical_name()
     ));
     watch(r, dpy);
     registry::with(|reg| reg.add_context(ctx as usize, sc));

@@ -192,6 +192,7 @@ pub mod draws;
 pub mod dsa;
 pub mod gl;
 pub mod glx;
+pub mod live;
 pub mod next;
 pub mod real;
 pub mod registry;
