@@ -68,11 +68,16 @@ pub fn c_client(name: &str, libs: &[&str]) -> PathBuf {
     })
 }
 
-/// tests/clients/qt_stereo.cpp against Qt5Gui (pkg-config).
-pub fn qt_client() -> PathBuf {
-    build_once("qt_stereo", |out| {
-        let pc = super::run_ok(Command::new("pkg-config").args(["--cflags", "--libs", "Qt5Gui"]));
+/// tests/clients/NAME.cpp, strict C++17, against the pkg-config `modules`.
+fn cxx_client(name: &str, modules: &[&str]) -> PathBuf {
+    build_once(name, |out| {
+        let pc = super::run_ok(
+            Command::new("pkg-config")
+                .args(["--cflags", "--libs"])
+                .args(modules),
+        );
         let flags = String::from_utf8_lossy(&pc.stdout).into_owned();
+        let source = format!("{name}.cpp");
         compile(
             Command::new("g++")
                 .args([
@@ -84,45 +89,26 @@ pub fn qt_client() -> PathBuf {
                     "-g",
                     "-fPIC",
                 ])
-                .arg(clients().join("qt_stereo.cpp"))
+                .arg(clients().join(&source))
                 .arg("-o")
                 .arg(out)
                 .args(flags.split_whitespace()),
-            "qt_stereo.cpp",
+            &source,
         )
     })
 }
 
-/// tests/clients/qt6_stereo.cpp against Qt 6's widgets (pkg-config).
+/// tests/clients/qt_stereo.cpp against Qt5Gui.
+pub fn qt_client() -> PathBuf {
+    cxx_client("qt_stereo", &["Qt5Gui"])
+}
+
+/// tests/clients/qt6_stereo.cpp against Qt 6's widgets.
 pub fn qt6_client() -> PathBuf {
-    build_once("qt6_stereo", |out| {
-        let pc = super::run_ok(Command::new("pkg-config").args([
-            "--cflags",
-            "--libs",
-            "Qt6OpenGLWidgets",
-            "Qt6Widgets",
-            "Qt6OpenGL",
-            "Qt6Gui",
-        ]));
-        let flags = String::from_utf8_lossy(&pc.stdout).into_owned();
-        compile(
-            Command::new("g++")
-                .args([
-                    "-std=c++17",
-                    "-Wall",
-                    "-Wextra",
-                    "-Wpedantic",
-                    "-Werror",
-                    "-g",
-                    "-fPIC",
-                ])
-                .arg(clients().join("qt6_stereo.cpp"))
-                .arg("-o")
-                .arg(out)
-                .args(flags.split_whitespace()),
-            "qt6_stereo.cpp",
-        )
-    })
+    cxx_client(
+        "qt6_stereo",
+        &["Qt6OpenGLWidgets", "Qt6Widgets", "Qt6OpenGL", "Qt6Gui"],
+    )
 }
 
 /// tests/clients/forwarder.c as a shared library: linked as VirtualGL's
