@@ -6,9 +6,24 @@
 //! also serves programs rebuilt with `<glstereo/compat.h>`), which forwards
 //! everything that is not about stereo to the real libGL.
 //!
-//! Only these names are exported (the glstereo code linked in keeps its
-//! `gls_` symbols local, see build.rs), so a program that also links
-//! libglstereo.so still gets the library's own.
+//! Two kinds of exports:
+//! - by hand (`export!`, `forward!` below): the GLX functions and the GL
+//!   functions about the default framebuffer, each with its own
+//!   implementation;
+//! - generated from the Khronos registry (gl.xml) by build.rs: every
+//!   desktop GL command of the families that draw (draws, glBegin/glEnd,
+//!   display lists, clears, pixel rectangles, blits:
+//!   `glstereo::auto::entry_points`) that is not exported by hand, each
+//!   calling the next definition through one hook ([`hooked`],
+//!   `glstereo::interpose::draws`), which costs a thread-local test when
+//!   nothing watches the thread's draws.
+//!
+//! Every address glXGetProcAddress hands out is that of a function of this
+//! library's own, never an exported name's (which a layer preloaded above
+//! would resolve to its own function). Only these names are exported (the
+//! glstereo code linked in keeps its `gls_` symbols local, see build.rs),
+//! so a program that also links libglstereo.so still gets the library's
+//! own.
 #![warn(missing_docs)]
 #![allow(clippy::missing_safety_doc, non_snake_case)]
 
