@@ -14,7 +14,7 @@
 //!   desktop GL command of the families that draw (draws, glBegin/glEnd,
 //!   display lists, clears, pixel rectangles, blits:
 //!   `glstereo::auto::entry_points`) that is not exported by hand, each
-//!   calling the next definition through one hook ([`hooked`],
+//!   calling the next definition through one hook (`hooked`,
 //!   `glstereo::interpose::draws`), which costs a thread-local test when
 //!   nothing watches the thread's draws.
 //!
