@@ -7,6 +7,14 @@
 //! With GLSTEREO_MODE=quad on a server that has real stereo visuals, stereo
 //! requests get those and the layer does nothing (the driver's own quad
 //! buffer).
+//!
+//! Stereo is granted only where the layer can deliver it: its emulated
+//! framebuffer is a framebuffer object (GL 3.0) in the program's context,
+//! and indirect GLX (`LIBGL_ALWAYS_INDIRECT=1`, as some `ssh -X` set-ups
+//! use) offers GL 1.4. So on a display where GLX does not render directly
+//! (it asks once per display) stereo requests get the driver's own answer
+//! (no stereo visual on Mesa: the program's mono fallback runs), and a
+//! stereo context the program asks to be indirect is made direct.
 
 use std::ffi::{c_int, c_ulong};
 use std::sync::Arc;
@@ -120,6 +128,84 @@ fn live_share(share: GLXContext, what: &'static str) -> Result<()> {
     }
 }
 
+/// Whether stereo can be emulated for contexts on `dpy`: whether GLX
+/// renders directly there (the emulation needs GL 3.0 framebuffer objects;
+/// an indirect context has GL 1.4). Not where `LIBGL_ALWAYS_INDIRECT` makes
+/// every context indirect; else asked once per display, when `probe` is
+/// given: it makes a context (direct requested) that glXIsDirect answers
+/// for, destroyed at once, X errors trapped. Without a probe (a listing
+/// of every configuration, which mono programs make too) or when the probe
+/// makes no context (the program's own would fail the same way), nothing
+/// is decided. When stereo cannot be emulated, stderr says so once.
+fn emulation_possible(r: &Real, dpy: *mut Display, probe: Option<&dyn Fn() -> GLXContext>) -> bool {
+    let known = if indirect_forced() {
+        Some(false)
+    } else {
+        registry::with(|reg| reg.renders_directly(dpy as usize))
+    };
+    let direct = match (known, probe) {
+        (Some(known), _) => known,
+        (None, None) => return true,
+        (None, Some(probe)) => {
+            let (direct, err) = trap_x_errors(&r.xlib, dpy, || {
+                let ctx = probe();
+                // SAFETY: a context just made on this display, destroyed once.
+                (!ctx.is_null()).then(|| unsafe {
+                    let direct = (r.glx.glXIsDirect)(dpy, ctx) != 0;
+                    (r.glx.glXDestroyContext)(dpy, ctx);
+                    direct
+                })
+            });
+            let Some(direct) = direct.filter(|_| err == 0) else {
+                return true;
+            };
+            watch(r, dpy);
+            registry::with(|reg| reg.set_renders_directly(dpy as usize, direct));
+            direct
+        }
+    };
+    if !direct {
+        warn_indirect();
+    }
+    direct
+}
+
+fn warn_indirect() {
+    super::warn(
+        "GL rendering on this X display is indirect (LIBGL_ALWAYS_INDIRECT, or a server this \
+         client cannot render to directly), which has no framebuffer objects: stereo cannot be \
+         emulated, so stereo requests get the driver's own answer (no stereo visual) and the \
+         program's mono fallback runs; unset LIBGL_ALWAYS_INDIRECT for stereo",
+    );
+}
+
+/// Whether the program's new context `ctx` of a stereo visual or
+/// configuration (created direct) renders directly. One that does not
+/// (the display could not be asked before stereo was promised: a
+/// configuration picked from glXGetFBConfigs' whole list) runs in mono,
+/// stderr says why, and the display is known from then on.
+fn direct_context(r: &Real, dpy: *mut Display, ctx: GLXContext) -> bool {
+    // SAFETY: a context the real GLX just made on this display.
+    if unsafe { (r.glx.glXIsDirect)(dpy, ctx) } != 0 {
+        return true;
+    }
+    watch(r, dpy);
+    registry::with(|reg| reg.set_renders_directly(dpy as usize, false));
+    warn_indirect();
+    false
+}
+
+/// Whether `LIBGL_ALWAYS_INDIRECT` makes every GLX context indirect, as
+/// libGL reads it (1, true, y or yes, in any case).
+fn indirect_forced() -> bool {
+    std::env::var("LIBGL_ALWAYS_INDIRECT").is_ok_and(|v| {
+        let v = v.trim();
+        ["1", "true", "y", "yes"]
+            .iter()
+            .any(|t| v.eq_ignore_ascii_case(t))
+    })
+}
+
 /// glXChooseVisual. Refused: a NULL display or attribute list.
 ///
 /// # Safety
@@ -143,12 +229,25 @@ pub unsafe fn choose_visual(
             return Ok(v);
         }
     }
-    let v = if stereo {
+    let mut v = if stereo {
         // SAFETY: a None-terminated list.
         unsafe { (r.glx.glXChooseVisual)(dpy, screen, stripped.as_mut_ptr()) }
     } else {
         // SAFETY: forwarded call.
         unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) }
+    };
+    // SAFETY: a visual the real GLX returned, for a probe context.
+    let probe = || unsafe { (r.glx.glXCreateContext)(dpy, v, std::ptr::null_mut(), 1) };
+    let stereo = if stereo && !v.is_null() && !emulation_possible(r, dpy, Some(&probe)) {
+        // The driver's own answer to the stereo request.
+        // SAFETY: the visual list is ours to free; then a forwarded call.
+        unsafe {
+            (r.xlib.XFree)(v.cast());
+            v = (r.glx.glXChooseVisual)(dpy, screen, attribs);
+        }
+        false
+    } else {
+        stereo
     };
     if !v.is_null() {
         // SAFETY: a visual the real GLX returned.
@@ -242,6 +341,18 @@ pub unsafe fn choose_fbconfig(
     }
     // SAFETY: the real call wrote the count of the list it returned.
     let n = unsafe { *nelements }.max(0) as usize;
+    if n > 0 {
+        // SAFETY: the list holds n > 0 configurations; a probe context.
+        let probe = || unsafe {
+            (r.glx.glXCreateNewContext)(dpy, *configs, GLX_RGBA_TYPE, std::ptr::null_mut(), 1)
+        };
+        if !emulation_possible(r, dpy, Some(&probe)) {
+            // The driver's own answer to the stereo request.
+            // SAFETY: the list is ours to free; then a forwarded call.
+            unsafe { (r.xlib.XFree)(configs.cast()) };
+            return Ok(choose(attribs));
+        }
+    }
     watch(r, dpy);
     registry::with(|reg| {
         for i in 0..n {
@@ -261,7 +372,10 @@ pub unsafe fn choose_fbconfig(
 /// real list, in its order — but for the stereo configurations the driver
 /// or a layer below offers (VirtualGL has 144), which are left out when
 /// the user chose a format ([`settings::native_allowed`]): the program
-/// then picks one of the layer's, emulated and shown in that format.
+/// then picks one of the layer's, emulated and shown in that format. No
+/// twins where stereo is known not to be possible (`LIBGL_ALWAYS_INDIRECT`,
+/// or a display found to render indirectly; no probe context here: mono
+/// programs list too).
 ///
 /// Refused: a NULL display or `nelements`.
 ///
@@ -288,6 +402,10 @@ pub unsafe fn get_fbconfigs(
         unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
         v
     };
+    // Mono programs list every configuration too: no probe context here.
+    if !emulation_possible(r, dpy, None) {
+        return Ok(configs);
+    }
     // SAFETY: n entries.
     let reals: Vec<GLXFBConfig> = unsafe { std::slice::from_raw_parts(configs, n) }
         .iter()
@@ -295,15 +413,19 @@ pub unsafe fn get_fbconfigs(
         .filter(|&c| settings::native_allowed() || attr(c, GLX_STEREO) == 0)
         .collect();
     let n = reals.len();
+    let twinned: Vec<GLXFBConfig> = reals
+        .iter()
+        .copied()
+        .filter(|&c| {
+            attr(c, GLX_RENDER_TYPE) & GLX_RGBA_BIT != 0
+                && attr(c, GLX_DRAWABLE_TYPE) & GLX_WINDOW_BIT != 0
+                && attr(c, GLX_STEREO) == 0
+        })
+        .collect();
     watch(r, dpy);
     let twins: Vec<GLXFBConfig> = registry::with(|reg| {
-        reals
+        twinned
             .iter()
-            .filter(|&&c| {
-                attr(c, GLX_RENDER_TYPE) & GLX_RGBA_BIT != 0
-                    && attr(c, GLX_DRAWABLE_TYPE) & GLX_WINDOW_BIT != 0
-                    && attr(c, GLX_STEREO) == 0
-            })
             .map(|&c| reg.fake_config(dpy as usize, c as usize) as GLXFBConfig)
             .collect()
     });
@@ -467,7 +589,8 @@ fn forget(ctx: GLXContext, share: GLXContext) {
 }
 
 /// glXCreateContext. Refused: a NULL display or visual, a share list the
-/// program destroyed.
+/// program destroyed. A context of a stereo visual is created direct
+/// whatever `direct` says (stereo is emulated only in direct contexts).
 ///
 /// # Safety
 /// As glXCreateContext.
@@ -481,16 +604,18 @@ pub unsafe fn create_context(
     display(dpy)?;
     required(vis, "vis (the XVisualInfo*)")?;
     live_share(share, "shareList (destroyed by glXDestroyContext)")?;
+    // SAFETY: the program's visual.
+    let id = unsafe { (*vis).visualid };
+    let stereo = registry::with(|reg| reg.is_stereo_visual(vis as usize, id));
+    // A stereo context is direct: an indirect one could not be emulated.
+    let direct = if stereo { 1 } else { direct };
     // SAFETY: forwarded call.
     let ctx = unsafe { (r.glx.glXCreateContext)(dpy, vis, share, direct) };
     forget(ctx, share);
     if ctx.is_null() {
         return Ok(ctx);
     }
-    // SAFETY: the program's visual.
-    let id = unsafe { (*vis).visualid };
-    let emulated = registry::with(|reg| reg.is_stereo_visual(vis as usize, id));
-    if !emulated && settings::verbose() {
+    if !stereo && settings::verbose() {
         let mut native = 0;
         // SAFETY: a valid visual.
         unsafe { (r.glx.glXGetConfig)(dpy, vis, GLX_STEREO, &mut native) };
@@ -498,7 +623,7 @@ pub unsafe fn create_context(
             tell_native();
         }
     }
-    if emulated {
+    if stereo && direct_context(r, dpy, ctx) {
         adopt(
             r,
             dpy,
@@ -526,7 +651,8 @@ pub enum NewContext {
 
 /// glXCreateNewContext, glXCreateContextWithConfigSGIX and
 /// glXCreateContextAttribsARB. Refused: a NULL display, a share context
-/// the program destroyed.
+/// the program destroyed. A context of a stereo configuration is created
+/// direct whatever `direct` says.
 ///
 /// # Safety
 /// As those functions.
@@ -542,6 +668,8 @@ pub unsafe fn create_config_context(
     live_share(share, "the share context (destroyed by glXDestroyContext)")?;
     let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
     let c = real_config as GLXFBConfig;
+    // A stereo context is direct: an indirect one could not be emulated.
+    let direct = if stereo { 1 } else { direct };
     let ctx = match how {
         // SAFETY: forwarded calls.
         NewContext::RenderType(t, Flavour::Glx13) => unsafe {
@@ -567,7 +695,7 @@ pub unsafe fn create_config_context(
             tell_native();
         }
     }
-    if stereo && !ctx.is_null() {
+    if stereo && !ctx.is_null() && direct_context(r, dpy, ctx) {
         adopt(
             r,
             dpy,

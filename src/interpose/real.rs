@@ -208,6 +208,7 @@ glx_table! {
     glXGetFBConfigs(*mut xlib::Display, c_int, *mut c_int) -> *mut GLXFBConfig;
     glXGetProcAddressARB(*const c_uchar) -> Option<unsafe extern "C" fn()>;
     glXGetVisualFromFBConfig(*mut xlib::Display, GLXFBConfig) -> *mut xlib::XVisualInfo;
+    glXIsDirect(*mut xlib::Display, GLXContext) -> c_int;
     glXMakeContextCurrent(*mut xlib::Display, c_ulong, c_ulong, GLXContext) -> c_int;
     glXMakeCurrent(*mut xlib::Display, c_ulong, GLXContext) -> c_int;
     glXQueryDrawable(*mut xlib::Display, c_ulong, c_int, *mut c_uint);

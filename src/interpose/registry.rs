@@ -70,6 +70,9 @@ pub struct Registry {
     stereo_groups: HashSet<u64>,
     /// The last share group number handed out.
     last_group: u64,
+    /// Display → whether GLX renders directly there (asked once: stereo
+    /// is emulated only where it does).
+    direct: HashMap<usize, bool>,
 }
 
 /// What [`Registry::forget_display`] removed, to be dropped after the
@@ -239,6 +242,16 @@ impl Registry {
         self.glx_windows.remove(&(display, glx_window));
     }
 
+    /// Whether GLX renders directly on `display`, if known.
+    pub fn renders_directly(&self, display: usize) -> Option<bool> {
+        self.direct.get(&display).copied()
+    }
+
+    /// Records whether GLX renders directly on `display`.
+    pub fn set_renders_directly(&mut self, display: usize, direct: bool) {
+        self.direct.insert(display, direct);
+    }
+
     /// Marks `display` as watched; true the first time (install the hook).
     pub fn watch(&mut self, display: usize) -> bool {
         self.watched.insert(display)
@@ -249,6 +262,7 @@ impl Registry {
     /// real ones too), contexts and GLX windows.
     pub fn forget_display(&mut self, display: usize) -> Forgotten {
         self.watched.remove(&display);
+        self.direct.remove(&display);
         self.stereo_visuals.retain(|_, &mut (_, d)| d != display);
         self.fakes.retain(|_, f| f.display != display);
         self.fake_of.retain(|&(d, _), _| d != display);
@@ -274,6 +288,7 @@ impl Registry {
             + self.doomed.len()
             + self.glx_windows.len()
             + self.watched.len()
+            + self.direct.len()
     }
 
     /// Whether the registry holds nothing.
@@ -341,6 +356,7 @@ mod tests {
             r.mark_visual(d, 0x100 * d, 33, true);
             r.fake_config(d, 0x1000);
             r.add_glx_window(d, 0x400001, 0x200001);
+            r.set_renders_directly(d, d == 2);
         }
         let a2 = r.fake_config(2, 0x1000);
         let before = r.len();
@@ -351,6 +367,8 @@ mod tests {
         assert_eq!(r.real_config(a2), (0x1000, true));
         assert_eq!(r.x_drawable(1, 0x400001), 0x400001);
         assert_eq!(r.x_drawable(2, 0x400001), 0x200001);
+        assert_eq!(r.renders_directly(1), None);
+        assert_eq!(r.renders_directly(2), Some(true));
         assert!(
             r.watch(1),
             "a new display at the same address is watched again"

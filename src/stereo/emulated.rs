@@ -9,6 +9,17 @@
 //! each eye and re-issues glDrawBuffers/glReadBuffer, so presenting a frame
 //! copies nothing.
 //!
+//! The draw-buffer table of that framebuffer object is sparse where GL
+//! says outputs go nowhere: under glDrawBuffer(GL_BACK) on stereo it is
+//! {back-left, NONE ×4, back-right} (the copies of output 0 are at
+//! [`COPY_LOCATIONS`]). Mesa 22.3's zink crashes on a table with two or
+//! more GL_NONE entries below its last buffer (inside its Vulkan driver,
+//! at the first clear or draw; its own GL programs can trigger it too), so
+//! on zink ([`fills_draw_buffer_gaps`]) the gaps are filled with
+//! one-channel textures nothing reads, attached at
+//! `GL_COLOR_ATTACHMENT4…7`: outputs 1…4 still reach no colour buffer the
+//! program can see, and every query answers as before.
+//!
 //! Where the driver allows (llvmpipe) and the formats ask for it
 //! ([`BufferFormats::in_place`]), the colour textures' storage is memory
 //! the CPU maps too ([`crate::stereo::eye_memory`]), so a composite reads
@@ -37,8 +48,23 @@ pub const MAX_DRAW_BUFFERS: usize = 8;
 /// and fourth buffer a glDrawBuffer name selects: the top three of
 /// [`MAX_DRAW_BUFFERS`], which programs drawing into a default framebuffer
 /// leave unused (only output 0 reaches a default framebuffer under
-/// glDrawBuffer).
-pub const COPY_LOCATIONS: [u32; 3] = [7, 6, 5];
+/// glDrawBuffer). In that order: the second buffer at 5 leaves four gaps
+/// below it (slots 1…4), as many as there are filler attachments where a
+/// driver needs the gaps filled ([`fills_draw_buffer_gaps`]).
+pub const COPY_LOCATIONS: [u32; 3] = [5, 6, 7];
+
+/// Filler attachments at most (`GL_COLOR_ATTACHMENT4…7`; GL 3.0 has 8).
+const FILLERS: usize = MAX_DRAW_BUFFERS - 4;
+
+/// Whether the renderer named `renderer` (GL_RENDERER) gets the gaps of
+/// its draw-buffer tables filled (see the module documentation): zink,
+/// whose Mesa 22.3 crashes on two GL_NONE entries below the last buffer
+/// (checked with and without glstereo; zink on Mesa 25 does not, and
+/// llvmpipe never did). The cost is four one-channel textures the size of
+/// the eyes and their writes; other drivers take the sparse table.
+pub fn fills_draw_buffer_gaps(renderer: &str) -> bool {
+    renderer.starts_with("zink")
+}
 
 /// Up to four draw-buffer indices ([`EmulatedFramebuffer::draw_buffer_slots`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -63,6 +89,17 @@ impl DrawSlots {
     /// The indices.
     pub fn as_slice(&self) -> &[i32] {
         &self.slots[..self.n]
+    }
+}
+
+/// Puts the filler attachments (`GL_COLOR_ATTACHMENT4…7`, in order) in
+/// the GL_NONE entries of a draw-buffer table below its last buffer, as
+/// many as there are fillers; entries after the last buffer stay GL_NONE.
+fn fill_gaps(table: &mut [u32]) {
+    let last = table.iter().rposition(|&a| a != GL_NONE).unwrap_or(0);
+    let gaps = table[..last].iter_mut().filter(|a| **a == GL_NONE);
+    for (a, k) in gaps.zip(0..FILLERS) {
+        *a = GL_COLOR_ATTACHMENT0 + (4 + k) as u32;
     }
 }
 
@@ -215,6 +252,10 @@ pub struct EmulatedFramebuffer {
     textures: [u32; 4],
     /// Depth/stencil renderbuffer (0 when the config has neither).
     depth_stencil: u32,
+    /// One-channel textures that fill the gaps of the draw-buffer table
+    /// at `GL_COLOR_ATTACHMENT4…7` (all 0 where the driver takes gaps:
+    /// [`fills_draw_buffer_gaps`]).
+    fillers: [u32; FILLERS],
     /// Storage formats.
     formats: BufferFormats,
     /// Slot of each colour buffer, by [`ColorBuffer::index`].
@@ -275,6 +316,7 @@ impl EmulatedFramebuffer {
             height,
             textures: [0; 4],
             depth_stencil: 0,
+            fillers: [0; FILLERS],
             formats,
             slot_of: [0, 1, 2, 3],
             app_fbo: 0,
@@ -306,6 +348,11 @@ impl EmulatedFramebuffer {
             }
             if formats.depth != 0 {
                 fb.depth_stencil = gl.gen_renderbuffer();
+            }
+            if fills_draw_buffer_gaps(&gl.string(GL_RENDERER)) {
+                for f in &mut fb.fillers {
+                    *f = gl.gen_texture();
+                }
             }
             let mut stored = fb.allocate_storage(gl);
             if stored.is_ok() && formats.color != GL_RGBA8 && !fb.color_renderable(gl) {
@@ -374,6 +421,22 @@ impl EmulatedFramebuffer {
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST as i32);
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE as i32);
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+            }
+            // The fillers' contents are never read: no clear.
+            for &tex in self.fillers.iter().filter(|&&t| t != 0) {
+                gl.BindTexture(GL_TEXTURE_2D, tex);
+                gl.TexImage2D(
+                    GL_TEXTURE_2D,
+                    0,
+                    GL_R8 as i32,
+                    w,
+                    h,
+                    0,
+                    GL_RED,
+                    GL_UNSIGNED_BYTE,
+                    std::ptr::null(),
+                );
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
             }
             gl.BindTexture(GL_TEXTURE_2D, 0);
@@ -567,6 +630,7 @@ impl EmulatedFramebuffer {
         // SAFETY: a context is current (contract of the callers).
         unsafe {
             gl.delete_textures(&self.textures);
+            gl.delete_textures(&self.fillers);
             if self.memory.iter().any(Option::is_some) || !self.retired.is_empty() {
                 // Memory goes with its memory object: nothing may render
                 // into it any more.
@@ -582,6 +646,7 @@ impl EmulatedFramebuffer {
             gl.delete_framebuffers(&[self.read_fbo]);
         }
         self.textures = [0; 4];
+        self.fillers = [0; FILLERS];
         self.depth_stencil = 0;
         self.read_fbo = 0;
     }
@@ -689,6 +754,17 @@ impl EmulatedFramebuffer {
                     0,
                 );
             }
+            for (k, &tex) in self.fillers.iter().enumerate() {
+                if tex != 0 {
+                    gl.FramebufferTexture2D(
+                        GL_FRAMEBUFFER,
+                        GL_COLOR_ATTACHMENT0 + (4 + k) as u32,
+                        GL_TEXTURE_2D,
+                        tex,
+                        0,
+                    );
+                }
+            }
             if self.depth_stencil != 0 {
                 gl.FramebufferRenderbuffer(
                     GL_FRAMEBUFFER,
@@ -721,11 +797,13 @@ impl EmulatedFramebuffer {
     /// gl_FragColor reach every enabled slot, and a shader's user-defined
     /// output 0 reaches them through the copies
     /// [`crate::stereo::outputs`] adds at link time. Slots 1…4 stay
-    /// GL_NONE, so outputs 1…4 go nowhere, as GL says for glDrawBuffer.
+    /// GL_NONE, so outputs 1…4 go nowhere, as GL says for glDrawBuffer;
+    /// where the driver needs them filled, the fillers take the GL_NONE
+    /// entries below the last buffer (as many as there are fillers).
     fn draw_attachments(&self) -> ([u32; MAX_DRAW_BUFFERS], usize) {
         let mut out = [GL_NONE; MAX_DRAW_BUFFERS];
-        match self.draw {
-            DrawState::Single { set, .. } if set.is_empty() => (out, 1),
+        let n = match self.draw {
+            DrawState::Single { set, .. } if set.is_empty() => 1,
             DrawState::Single { set, .. } => {
                 let mut buffers = set.iter();
                 if let Some(first) = buffers.next() {
@@ -734,17 +812,21 @@ impl EmulatedFramebuffer {
                 let mut n = 1;
                 for (b, &slot) in buffers.zip(COPY_LOCATIONS.iter()) {
                     out[slot as usize] = self.attachment(Some(b));
-                    n = MAX_DRAW_BUFFERS;
+                    n = slot as usize + 1;
                 }
-                (out, n)
+                n
             }
             DrawState::Multi { n, bufs, .. } => {
                 for i in 0..n {
                     out[i] = self.attachment(bufs[i]);
                 }
-                (out, n.max(1))
+                n.max(1)
             }
+        };
+        if self.fillers[0] != 0 {
+            fill_gaps(&mut out[..n]);
         }
+        (out, n)
     }
 
     /// The draw-buffer indices of the framebuffer object that stand for
@@ -1073,5 +1155,55 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
             gl.check("reading the depth buffer")
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const A: u32 = GL_COLOR_ATTACHMENT0 + 1;
+    const B: u32 = GL_COLOR_ATTACHMENT0 + 3;
+    const F: [u32; 4] = [
+        GL_COLOR_ATTACHMENT0 + 4,
+        GL_COLOR_ATTACHMENT0 + 5,
+        GL_COLOR_ATTACHMENT0 + 6,
+        GL_COLOR_ATTACHMENT0 + 7,
+    ];
+
+    #[test]
+    fn the_second_selected_buffer_leaves_no_more_gaps_than_there_are_fillers() {
+        // GL_BACK on stereo: back-left in slot 0, back-right at the first
+        // copy location, the gaps below it filled.
+        assert_eq!(COPY_LOCATIONS[0] as usize - 1, FILLERS);
+        let mut t = [A, GL_NONE, GL_NONE, GL_NONE, GL_NONE, B];
+        fill_gaps(&mut t);
+        assert_eq!(t, [A, F[0], F[1], F[2], F[3], B]);
+    }
+
+    #[test]
+    fn gaps_are_filled_below_the_last_buffer_only_and_at_most_four() {
+        let mut t = [GL_NONE, A, GL_NONE, B, GL_NONE];
+        fill_gaps(&mut t);
+        assert_eq!(t, [F[0], A, F[1], B, GL_NONE], "trailing NONE stays");
+        let mut t = [A, GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_NONE, B];
+        fill_gaps(&mut t);
+        assert_eq!(t, [A, F[0], F[1], F[2], F[3], GL_NONE, GL_NONE, B]);
+        for mut t in [[GL_NONE; 1], [A; 1]] {
+            let before = t;
+            fill_gaps(&mut t);
+            assert_eq!(t, before, "nothing to fill");
+        }
+    }
+
+    #[test]
+    fn only_zink_gets_its_gaps_filled() {
+        assert!(fills_draw_buffer_gaps(
+            "zink (llvmpipe (LLVM 15.0.6, 256 bits))"
+        ));
+        assert!(!fills_draw_buffer_gaps("llvmpipe (LLVM 15.0.6, 256 bits)"));
+        assert!(!fills_draw_buffer_gaps(
+            "AMD Radeon RX 6600 (navi23, LLVM 15.0.6, DRM 3.49)"
+        ));
     }
 }
