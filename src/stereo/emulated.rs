@@ -18,10 +18,12 @@
 //! ([`EmulatedFramebuffer::reattach_app`]) and the old memory is freed
 //! once nothing renders into it ([`EmulatedFramebuffer::release_retired`]).
 
+use crate::auto::eyes::{LayeredApi, LayeredEyes};
 use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::flip_rows;
+use crate::math::Eye;
 use crate::stereo::buffers::{
     BufferSet, ColorBuffer, FramebufferShape, resolve_draw_buffer, resolve_draw_buffers,
     resolve_read_buffer,
@@ -161,6 +163,12 @@ pub struct BufferFormats {
     /// replaces the textures, and the program's framebuffer object needs
     /// [`EmulatedFramebuffer::reattach_app`].
     pub in_place: Option<MemoryObjectApi>,
+    /// Automatic stereo ([`crate::auto::eyes`]): the program draws into
+    /// both eyes at once, a layered colour array and a depth array of two
+    /// layers (made through this API) standing for its one (mono) colour
+    /// buffer; each present copies the layers into the eye buffers it
+    /// shows.
+    pub layered: Option<LayeredApi>,
 }
 
 impl BufferFormats {
@@ -176,6 +184,7 @@ impl BufferFormats {
                 0
             },
             in_place: None,
+            layered: None,
         }
     }
 
@@ -193,6 +202,7 @@ impl BufferFormats {
                 _ => GL_DEPTH24_STENCIL8,
             },
             in_place: None,
+            layered: None,
         }
     }
 
@@ -234,6 +244,8 @@ pub struct EmulatedFramebuffer {
     draw: DrawState,
     read_name: u32,
     read: Option<ColorBuffer>,
+    /// Automatic stereo's layered eyes ([`BufferFormats::layered`]).
+    layered: Option<LayeredEyes>,
 }
 
 impl EmulatedFramebuffer {
@@ -288,6 +300,7 @@ impl EmulatedFramebuffer {
             },
             read_name: initial,
             read: resolve_read_buffer(shape, initial).expect("the initial buffer exists"),
+            layered: None,
         };
         // SAFETY: a context is current (contract).
         unsafe {
@@ -304,7 +317,8 @@ impl EmulatedFramebuffer {
             for b in shape.allocated().iter() {
                 fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }
-            if formats.depth != 0 {
+            // Layered eyes keep depth and stencil in their own array.
+            if formats.depth != 0 && formats.layered.is_none() {
                 fb.depth_stencil = gl.gen_renderbuffer();
             }
             let mut stored = fb.allocate_storage(gl);
@@ -402,8 +416,51 @@ impl EmulatedFramebuffer {
             }
             gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
             gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-            gl.check("clearing the stereo buffers")
+            gl.check("clearing the stereo buffers")?;
+            if let Some(api) = self.formats.layered {
+                if let Some(old) = self.layered.take() {
+                    old.release(gl);
+                }
+                self.layered = Some(LayeredEyes::allocate(
+                    gl,
+                    api,
+                    (self.width, self.height),
+                    (GL_RGBA8, self.formats.depth),
+                    self.formats.opaque,
+                    self.read_fbo,
+                )?);
+                self.attachments_stale = self.app_fbo != 0;
+            }
+            Ok(())
         }
+    }
+
+    /// Copies the layered eyes (automatic stereo) into the colour buffers
+    /// a present shows: the back buffers before a swap (`front` false),
+    /// the front buffers of a single-buffered framebuffer. Nothing without
+    /// layered eyes.
+    ///
+    /// # Safety
+    /// A context sharing the framebuffer's objects must be current.
+    pub unsafe fn resolve_layers(&self, front: bool) {
+        let Some(eyes) = &self.layered else {
+            return;
+        };
+        let (left, right) = if front || !self.shape.double_buffered {
+            (ColorBuffer::FrontLeft, ColorBuffer::FrontRight)
+        } else {
+            (ColorBuffer::BackLeft, ColorBuffer::BackRight)
+        };
+        // SAFETY: contract.
+        unsafe {
+            eyes.copy_eye(Eye::Left, self.texture(left));
+            eyes.copy_eye(Eye::Right, self.texture(right));
+        }
+    }
+
+    /// The layered eyes of automatic stereo, if this framebuffer has them.
+    pub fn layered(&self) -> Option<&LayeredEyes> {
+        self.layered.as_ref()
     }
 
     /// Gives every colour texture storage the CPU reads in place
@@ -579,6 +636,9 @@ impl EmulatedFramebuffer {
             if self.depth_stencil != 0 {
                 gl.delete_renderbuffers(&[self.depth_stencil]);
             }
+            if let Some(eyes) = self.layered.take() {
+                eyes.release(gl);
+            }
             gl.delete_framebuffers(&[self.read_fbo]);
         }
         self.textures = [0; 4];
@@ -680,6 +740,16 @@ impl EmulatedFramebuffer {
     unsafe fn attach_storage(&self, gl: &Gl) -> Result<()> {
         // SAFETY: the application context is current with app_fbo bound.
         unsafe {
+            if let Some(eyes) = &self.layered {
+                eyes.attach(GL_FRAMEBUFFER);
+                let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+                if status != GL_FRAMEBUFFER_COMPLETE {
+                    return Err(Error::Gl(format!(
+                        "the layered eyes are incomplete (status {status:#06x})"
+                    )));
+                }
+                return Ok(());
+            }
             for slot in 0..4 {
                 gl.FramebufferTexture2D(
                     GL_FRAMEBUFFER,
@@ -753,6 +823,9 @@ impl EmulatedFramebuffer {
     /// and draw buffers 1… are none (GL_NONE); otherwise `i` itself. For
     /// glClearBuffer, which clears one draw buffer by index.
     pub fn draw_buffer_slots(&self, i: i32) -> DrawSlots {
+        if self.layered.is_some() {
+            return DrawSlots::one(i);
+        }
         match self.draw {
             DrawState::Single { set, .. } if set.len() > 1 => {
                 if i == 0 {
@@ -790,7 +863,13 @@ impl EmulatedFramebuffer {
     }
 
     unsafe fn apply_draw(&self, gl: &Gl) {
-        let (atts, n) = self.draw_attachments();
+        let (mut atts, mut n) = self.draw_attachments();
+        if self.layered.is_some() {
+            // One colour buffer, both eyes: whatever the program selects
+            // (but none) is it.
+            let none = self.draw_set().is_empty();
+            (atts[0], n) = (if none { GL_NONE } else { GL_COLOR_ATTACHMENT0 }, 1);
+        }
         // SAFETY: the application context is current (contract of the callers).
         unsafe {
             self.with_bound(gl, GL_DRAW_FRAMEBUFFER, GL_DRAW_FRAMEBUFFER_BINDING, || {
@@ -800,7 +879,10 @@ impl EmulatedFramebuffer {
     }
 
     unsafe fn apply_read(&self, gl: &Gl) {
-        let att = self.attachment(self.read);
+        let mut att = self.attachment(self.read);
+        if self.layered.is_some() && att != GL_NONE {
+            att = GL_COLOR_ATTACHMENT0;
+        }
         // SAFETY: the application context is current (contract of the callers).
         unsafe {
             self.with_bound(gl, GL_READ_FRAMEBUFFER, GL_READ_FRAMEBUFFER_BINDING, || {
@@ -1033,6 +1115,29 @@ impl EmulatedFramebuffer {
     /// The surface's compositor context must be current on this thread and
     /// `out` must hold width × height values.
     pub unsafe fn read_depth(&self, gl: &Gl, out: &mut [f32]) -> Result<()> {
+        if let Some(eyes) = self.layered.as_ref().filter(|e| e.depth != 0) {
+            assert_eq!(out.len(), (self.width * self.height) as usize);
+            // SAFETY: as below; the left eye's depth.
+            return unsafe {
+                gl.take_error();
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
+                eyes.attach_left_depth(GL_READ_FRAMEBUFFER, true);
+                gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+                gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+                gl.ReadPixels(
+                    0,
+                    0,
+                    self.width as i32,
+                    self.height as i32,
+                    GL_DEPTH_COMPONENT,
+                    GL_FLOAT,
+                    out.as_mut_ptr().cast(),
+                );
+                eyes.attach_left_depth(GL_READ_FRAMEBUFFER, false);
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+                gl.check("reading the depth buffer")
+            };
+        }
         if self.depth_stencil == 0 {
             return Err(Error::invalid_operation(
                 "this framebuffer has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
