@@ -37,10 +37,12 @@ fn oracle() -> PathBuf {
 }
 
 /// The eyes glstereo-run --auto makes of the mono program (its captures),
-/// and its stdout.
-fn under_auto(x: &Xvfb, profile: &str, dir: &Path) -> ([Image; 2], String) {
+/// and its stdout. `in_place`: the eyes' layers share their memory with
+/// the textures presentation reads (llvmpipe), else they are copied.
+fn under_auto(x: &Xvfb, profile: &str, dir: &Path, in_place: bool) -> ([Image; 2], String) {
     let o = common::run_ok(
         Command::new(&built().run)
+            .env("GLSTEREO_EYE_MEMORY", if in_place { "1" } else { "0" })
             .args([
                 "--auto",
                 "--separation",
@@ -139,17 +141,21 @@ fn compare_with_the_oracle(profile: &str, objects: &[([u8; 3], Option<f64>)]) {
     let _one = common::clients::one_renderer_at_a_time();
     let x = Xvfb::start(W + 40, H + 40);
     let dir = common::scratch(&format!("auto-{profile}"));
-    let (eyes, stdout) = under_auto(&x, profile, &dir);
+    let hand = ["left", "right"].map(|eye| by_hand(&x, profile, eye, &dir));
+    let copied = common::scratch(&format!("auto-{profile}-copied"));
+    let (eyes, stdout) = under_auto(&x, profile, &dir, true);
+    let (eyes_copied, _) = under_auto(&x, profile, &copied, false);
     for (n, eye) in ["left", "right"].into_iter().enumerate() {
-        let want = by_hand(&x, profile, eye, &dir);
-        let d = differing(&eyes[n], &want);
-        assert!(
-            d.is_empty(),
-            "{profile}, {eye} eye: {} pixels differ from the eye drawn by hand, e.g. \
-             (x, y, --auto, by hand) {:?}",
-            d.len(),
-            &d[..d.len().min(8)]
-        );
+        for (how, got) in [("in place", &eyes[n]), ("copied", &eyes_copied[n])] {
+            let d = differing(got, &hand[n]);
+            assert!(
+                d.is_empty(),
+                "{profile}, {eye} eye ({how}): {} pixels differ from the eye drawn by hand, \
+                 e.g. (x, y, --auto, by hand) {:?}",
+                d.len(),
+                &d[..d.len().min(8)]
+            );
+        }
     }
     assert!(
         differing(&eyes[0], &eyes[1]).len() > 500,

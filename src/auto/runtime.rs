@@ -45,7 +45,7 @@ use std::sync::{Mutex, OnceLock};
 use glam::DMat4;
 
 use crate::auto::entry_points::Family;
-use crate::auto::eyes::{LayeredEyes, layer};
+use crate::auto::eyes::{Attachments, layer};
 use crate::auto::fixed;
 use crate::auto::gl_fns;
 use crate::auto::link::{self, LinkOutcome};
@@ -471,7 +471,7 @@ unsafe fn eyes(
     t: &Tables,
     path: Path,
     settings: &StereoSettings,
-    layered: &LayeredEyes,
+    layered: &Attachments,
     restore: bool,
     draw: &mut dyn FnMut(),
 ) {
@@ -508,7 +508,7 @@ unsafe fn eyes(
                         (f.load_matrixd)(m.modelview.as_ptr());
                         load_projection(f, &m.projection, m.mode);
                     }
-                    layered.attach_eye(GL_DRAW_FRAMEBUFFER, Some(eye));
+                    layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
                     if let Some(m) = saved.as_ref().filter(|_| fixed) {
                         let mono = DMat4::from_cols_array(&m.projection);
                         if let Some(p) = fixed::eye_projection(settings, &mono, eye) {
@@ -520,7 +520,7 @@ unsafe fn eyes(
                     }
                     draw();
                 }
-                layered.attach_eye(GL_DRAW_FRAMEBUFFER, None);
+                layered.attach(GL_DRAW_FRAMEBUFFER, None);
                 if let Some(target) = target {
                     set_uniform(f, target, eye_value(settings, None, false));
                 }
@@ -650,10 +650,10 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                         return draw();
                     }
                     for eye in EYES {
-                        layered.attach_eye(GL_DRAW_FRAMEBUFFER, Some(eye));
+                        layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
                         draw();
                     }
-                    layered.attach_eye(GL_DRAW_FRAMEBUFFER, None);
+                    layered.attach(GL_DRAW_FRAMEBUFFER, None);
                     return;
                 }
                 _ => {}
@@ -672,7 +672,7 @@ unsafe fn pixels(
     t: &Tables,
     settings: &StereoSettings,
     app_fbo: u32,
-    layered: &LayeredEyes,
+    layered: &Attachments,
     name: &str,
     call: Call,
     draw: &mut dyn FnMut(),
@@ -709,9 +709,9 @@ unsafe fn pixels(
             (0.0, 0.0)
         };
         for (i, eye) in EYES.into_iter().enumerate() {
-            layered.attach_eye(GL_DRAW_FRAMEBUFFER, Some(eye));
+            layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
             if read_too {
-                layered.attach_eye(GL_READ_FRAMEBUFFER, Some(eye));
+                layered.attach(GL_READ_FRAMEBUFFER, Some(eye));
             }
             nudge(shifts[i], 0.0);
             draw();
@@ -723,9 +723,9 @@ unsafe fn pixels(
                 nudge(-shifts[i], 0.0);
             }
         }
-        layered.attach_eye(GL_DRAW_FRAMEBUFFER, None);
+        layered.attach(GL_DRAW_FRAMEBUFFER, None);
         if read_too {
-            layered.attach_eye(GL_READ_FRAMEBUFFER, None);
+            layered.attach(GL_READ_FRAMEBUFFER, None);
         }
     }
 }

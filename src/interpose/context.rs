@@ -482,14 +482,14 @@ impl StereoContext {
         drawable: u64,
         f: impl FnOnce(
             &mut crate::auto::runtime::AutoState,
-            Option<(u32, crate::auto::eyes::LayeredEyes)>,
+            Option<(u32, crate::auto::eyes::Attachments)>,
         ) -> T,
     ) -> T {
         let mut st = self.lock();
         let eyes = st
             .fbs
             .get(&drawable)
-            .and_then(|d| d.fb.layered().map(|e| (d.fb.app_fbo(), *e)));
+            .and_then(|d| d.fb.layered().map(|e| (d.fb.app_fbo(), e.attachments())));
         f(&mut st.auto, eyes)
     }
 
@@ -535,9 +535,19 @@ impl StereoContext {
     /// Marks it as belonging to a display the program closed (XCloseDisplay
     /// frees the connection: the layer must never use it again).
     pub fn mark_closed(&self) {
+        self.end_of_share_group();
         // XCloseDisplay's hooks run before it disconnects.
         self.release_images(Connection::Closing);
         self.closed.store(true, Ordering::SeqCst);
+    }
+
+    /// Before the share group may go (its objects freed by the driver, not
+    /// by the layer): readies the layered eyes' shared memory for that
+    /// ([`EmulatedFramebuffer::prepare_unmap`]).
+    fn end_of_share_group(&self) {
+        for drawn in self.lock().fbs.values() {
+            drawn.fb.prepare_unmap();
+        }
     }
 
     /// Frees the MIT-SHM images of its drawables.
@@ -599,6 +609,7 @@ impl StereoContext {
         if self.is_closed() {
             return;
         }
+        self.end_of_share_group();
         self.release_images(Connection::Open);
         if let Ok(r) = real() {
             // SAFETY: our own context, current nowhere (it is only made
@@ -1044,6 +1055,8 @@ impl StereoContext {
         profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
+        // The layer's own calls below keep the program's errors apart.
+        st.save_driver_errors(gl);
         let drawn = st
             .fbs
             .get_mut(&drawable)
@@ -1056,6 +1069,7 @@ impl StereoContext {
             if flip {
                 profile::span(Stage::Flip, || drawn.fb.swap(gl));
             }
+            gl.take_error();
             // The layer's context reads what the program drew: finish it.
             profile::span(Stage::Finish, || gl.Finish());
             // Nothing renders into replaced textures now: free their memory.

@@ -23,7 +23,6 @@ use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::flip_rows;
-use crate::math::Eye;
 use crate::stereo::buffers::{
     BufferSet, ColorBuffer, FramebufferShape, resolve_draw_buffer, resolve_draw_buffers,
     resolve_read_buffer,
@@ -163,11 +162,10 @@ pub struct BufferFormats {
     /// replaces the textures, and the program's framebuffer object needs
     /// [`EmulatedFramebuffer::reattach_app`].
     pub in_place: Option<MemoryObjectApi>,
-    /// Automatic stereo ([`crate::auto::eyes`]): the program draws into
-    /// both eyes at once, a layered colour array and a depth array of two
-    /// layers (made through this API) standing for its one (mono) colour
-    /// buffer; each present copies the layers into the eye buffers it
-    /// shows.
+    /// Automatic stereo ([`crate::auto::eyes`]): the colour buffers are
+    /// the layers of two arrays (a front and a back pair), depth and
+    /// stencil one array, all made through this API and attached layered,
+    /// so one draw reaches both eyes by its layer.
     pub layered: Option<LayeredApi>,
 }
 
@@ -246,6 +244,9 @@ pub struct EmulatedFramebuffer {
     read: Option<ColorBuffer>,
     /// Automatic stereo's layered eyes ([`BufferFormats::layered`]).
     layered: Option<LayeredEyes>,
+    /// Layered eyes replaced by a resize, released by
+    /// [`EmulatedFramebuffer::release_retired`].
+    retired_layers: Vec<LayeredEyes>,
 }
 
 impl EmulatedFramebuffer {
@@ -301,6 +302,7 @@ impl EmulatedFramebuffer {
             read_name: initial,
             read: resolve_read_buffer(shape, initial).expect("the initial buffer exists"),
             layered: None,
+            retired_layers: Vec::new(),
         };
         // SAFETY: a context is current (contract).
         unsafe {
@@ -314,7 +316,12 @@ impl EmulatedFramebuffer {
             }
             gl.take_error();
             fb.read_fbo = gl.gen_framebuffer();
-            for b in shape.allocated().iter() {
+            // Layered eyes make their own textures.
+            for b in shape
+                .allocated()
+                .iter()
+                .filter(|_| formats.layered.is_none())
+            {
                 fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }
             // Layered eyes keep depth and stencil in their own array.
@@ -360,6 +367,10 @@ impl EmulatedFramebuffer {
 
     /// (Re)allocates texture and renderbuffer storage at the current size and clears it.
     unsafe fn allocate_storage(&mut self, gl: &Gl) -> Result<()> {
+        if let Some(api) = self.formats.layered {
+            // SAFETY: contract.
+            return unsafe { self.allocate_layered(gl, api) };
+        }
         let (w, h) = (self.width as i32, self.height as i32);
         // SAFETY: a context is current (contract of the callers).
         unsafe {
@@ -416,23 +427,36 @@ impl EmulatedFramebuffer {
             }
             gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
             gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-            gl.check("clearing the stereo buffers")?;
-            if let Some(api) = self.formats.layered {
-                if let Some(old) = self.layered.take() {
-                    old.release(gl);
-                }
-                self.layered = Some(LayeredEyes::allocate(
-                    gl,
-                    api,
-                    (self.width, self.height),
-                    (GL_RGBA8, self.formats.depth),
-                    self.formats.opaque,
-                    self.read_fbo,
-                )?);
-                self.attachments_stale = self.app_fbo != 0;
-            }
-            Ok(())
+            gl.check("clearing the stereo buffers")
         }
+    }
+
+    /// [`Self::allocate_storage`] of layered eyes: new ones (the old go
+    /// once nothing renders into them), their textures in the slots.
+    unsafe fn allocate_layered(&mut self, gl: &Gl, api: LayeredApi) -> Result<()> {
+        if let Some(old) = self.layered.take() {
+            self.retired_layers.push(old);
+        }
+        let pairs = [true, self.shape.double_buffered];
+        // SAFETY: contract.
+        let eyes = unsafe {
+            LayeredEyes::allocate(
+                gl,
+                api,
+                self.formats.in_place,
+                (self.width, self.height),
+                self.formats.depth,
+                self.formats.opaque,
+                pairs,
+                self.read_fbo,
+            )?
+        };
+        for slot in 0..4 {
+            self.textures[slot] = eyes.texture(slot);
+        }
+        self.layered = Some(eyes);
+        self.attachments_stale = self.app_fbo != 0;
+        Ok(())
     }
 
     /// Copies the layered eyes (automatic stereo) into the colour buffers
@@ -446,15 +470,21 @@ impl EmulatedFramebuffer {
         let Some(eyes) = &self.layered else {
             return;
         };
-        let (left, right) = if front || !self.shape.double_buffered {
-            (ColorBuffer::FrontLeft, ColorBuffer::FrontRight)
+        let left = if front || !self.shape.double_buffered {
+            ColorBuffer::FrontLeft
         } else {
-            (ColorBuffer::BackLeft, ColorBuffer::BackRight)
+            ColorBuffer::BackLeft
         };
         // SAFETY: contract.
-        unsafe {
-            eyes.copy_eye(Eye::Left, self.texture(left));
-            eyes.copy_eye(Eye::Right, self.texture(right));
+        unsafe { eyes.resolve(crate::auto::eyes::pair(self.slot_of[left.index()])) };
+    }
+
+    /// Readies layered eyes' shared memory to be freed by the driver
+    /// rather than by [`Self::release`] (their share group ends): nothing
+    /// may render into them afterwards.
+    pub fn prepare_unmap(&self) {
+        for eyes in self.layered.iter().chain(&self.retired_layers) {
+            eyes.prepare_unmap();
         }
     }
 
@@ -547,7 +577,11 @@ impl EmulatedFramebuffer {
     ///
     /// # Safety
     /// A context sharing the framebuffer's objects must be current.
-    pub unsafe fn release_retired(&mut self, _gl: &Gl) {
+    pub unsafe fn release_retired(&mut self, gl: &Gl) {
+        for mut eyes in self.retired_layers.drain(..) {
+            // SAFETY: contract.
+            unsafe { eyes.release(gl) };
+        }
         if self.retired.is_empty() {
             return;
         }
@@ -592,7 +626,10 @@ impl EmulatedFramebuffer {
     /// Whether any colour texture's storage (or a replaced one's, not yet
     /// freed) is memory from [`crate::stereo::eye_memory`].
     pub fn holds_memory(&self) -> bool {
-        self.memory.iter().any(Option::is_some) || !self.retired.is_empty()
+        self.memory.iter().any(Option::is_some)
+            || !self.retired.is_empty()
+            || self.layered.as_ref().is_some_and(|e| e.pixels(0).is_some())
+            || !self.retired_layers.is_empty()
     }
 
     /// Where the CPU reads `buffer` in place, when its storage is memory
@@ -602,6 +639,9 @@ impl EmulatedFramebuffer {
             return None;
         }
         let slot = self.slot_of[buffer.index()];
+        if let Some(eyes) = &self.layered {
+            return eyes.pixels(slot);
+        }
         self.memory[slot]
             .as_ref()
             .map(|m| m.pixels(self.textures[slot]))
@@ -636,7 +676,12 @@ impl EmulatedFramebuffer {
             if self.depth_stencil != 0 {
                 gl.delete_renderbuffers(&[self.depth_stencil]);
             }
-            if let Some(eyes) = self.layered.take() {
+            for mut eyes in self
+                .layered
+                .take()
+                .into_iter()
+                .chain(self.retired_layers.drain(..))
+            {
                 eyes.release(gl);
             }
             gl.delete_framebuffers(&[self.read_fbo]);
@@ -741,7 +786,7 @@ impl EmulatedFramebuffer {
         // SAFETY: the application context is current with app_fbo bound.
         unsafe {
             if let Some(eyes) = &self.layered {
-                eyes.attach(GL_FRAMEBUFFER);
+                eyes.attachments().attach(GL_FRAMEBUFFER, None);
                 let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
                 if status != GL_FRAMEBUFFER_COMPLETE {
                     return Err(Error::Gl(format!(
@@ -780,7 +825,14 @@ impl EmulatedFramebuffer {
 
     fn attachment(&self, b: Option<ColorBuffer>) -> u32 {
         b.map_or(GL_NONE, |b| {
-            GL_COLOR_ATTACHMENT0 + self.slot_of[b.index()] as u32
+            let slot = self.slot_of[b.index()];
+            // Layered eyes: a pair's two buffers are one attachment.
+            let slot = if self.layered.is_some() {
+                crate::auto::eyes::pair(slot)
+            } else {
+                slot
+            };
+            GL_COLOR_ATTACHMENT0 + slot as u32
         })
     }
 
@@ -802,8 +854,15 @@ impl EmulatedFramebuffer {
                     out[0] = self.attachment(Some(first));
                 }
                 let mut n = 1;
-                for (b, &slot) in buffers.zip(COPY_LOCATIONS.iter()) {
-                    out[slot as usize] = self.attachment(Some(b));
+                let mut copies = COPY_LOCATIONS.iter();
+                for b in buffers {
+                    let att = self.attachment(Some(b));
+                    // Layered eyes: both buffers of a pair are one attachment.
+                    if out.contains(&att) {
+                        continue;
+                    }
+                    let Some(&slot) = copies.next() else { break };
+                    out[slot as usize] = att;
                     n = MAX_DRAW_BUFFERS;
                 }
                 (out, n)
@@ -823,10 +882,21 @@ impl EmulatedFramebuffer {
     /// and draw buffers 1… are none (GL_NONE); otherwise `i` itself. For
     /// glClearBuffer, which clears one draw buffer by index.
     pub fn draw_buffer_slots(&self, i: i32) -> DrawSlots {
-        if self.layered.is_some() {
-            return DrawSlots::one(i);
-        }
         match self.draw {
+            DrawState::Single { set, .. } if set.len() > 1 && self.layered.is_some() => {
+                let (atts, _) = self.draw_attachments();
+                let mut v = DrawSlots::default();
+                if i == 0 {
+                    for (k, &a) in atts.iter().enumerate() {
+                        if a != GL_NONE {
+                            v.push(k as i32);
+                        }
+                    }
+                } else if !(1..MAX_DRAW_BUFFERS as i32).contains(&i) {
+                    v.push(i);
+                }
+                v
+            }
             DrawState::Single { set, .. } if set.len() > 1 => {
                 if i == 0 {
                     let mut v = DrawSlots::default();
@@ -863,13 +933,7 @@ impl EmulatedFramebuffer {
     }
 
     unsafe fn apply_draw(&self, gl: &Gl) {
-        let (mut atts, mut n) = self.draw_attachments();
-        if self.layered.is_some() {
-            // One colour buffer, both eyes: whatever the program selects
-            // (but none) is it.
-            let none = self.draw_set().is_empty();
-            (atts[0], n) = (if none { GL_NONE } else { GL_COLOR_ATTACHMENT0 }, 1);
-        }
+        let (atts, n) = self.draw_attachments();
         // SAFETY: the application context is current (contract of the callers).
         unsafe {
             self.with_bound(gl, GL_DRAW_FRAMEBUFFER, GL_DRAW_FRAMEBUFFER_BINDING, || {
@@ -879,10 +943,7 @@ impl EmulatedFramebuffer {
     }
 
     unsafe fn apply_read(&self, gl: &Gl) {
-        let mut att = self.attachment(self.read);
-        if self.layered.is_some() && att != GL_NONE {
-            att = GL_COLOR_ATTACHMENT0;
-        }
+        let att = self.attachment(self.read);
         // SAFETY: the application context is current (contract of the callers).
         unsafe {
             self.with_bound(gl, GL_READ_FRAMEBUFFER, GL_READ_FRAMEBUFFER_BINDING, || {
@@ -1115,13 +1176,18 @@ impl EmulatedFramebuffer {
     /// The surface's compositor context must be current on this thread and
     /// `out` must hold width × height values.
     pub unsafe fn read_depth(&self, gl: &Gl, out: &mut [f32]) -> Result<()> {
-        if let Some(eyes) = self.layered.as_ref().filter(|e| e.depth != 0) {
+        if let Some(eyes) = self.layered.as_ref() {
             assert_eq!(out.len(), (self.width * self.height) as usize);
             // SAFETY: as below; the left eye's depth.
             return unsafe {
                 gl.take_error();
                 gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
-                eyes.attach_left_depth(GL_READ_FRAMEBUFFER, true);
+                if !eyes.attach_left_depth(GL_READ_FRAMEBUFFER, true) {
+                    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+                    return Err(Error::invalid_operation(
+                        "this framebuffer has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
+                    ));
+                }
                 gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
                 gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
                 gl.ReadPixels(
