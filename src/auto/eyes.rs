@@ -292,8 +292,7 @@ impl LayeredEyes {
         api: LayeredApi,
         memory: Option<MemoryObjectApi>,
         (width, height): (u32, u32),
-        depth_format: u32,
-        opaque: bool,
+        (depth_format, opaque): (u32, bool),
         pairs: [bool; 2],
         fbo: u32,
     ) -> Result<LayeredEyes> {
@@ -317,10 +316,7 @@ impl LayeredEyes {
             let uuid = memory
                 .filter(|_| eye_memory::wanted())
                 .and_then(|m| eye_memory::llvmpipe_identity(gl).map(|u| (m, u)));
-            for p in 0..2 {
-                if !pairs[p] {
-                    continue;
-                }
+            for p in (0..2).filter(|&p| pairs[p]) {
                 eyes.colour[p] = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
                 eyes.textures[p] = gl.gen_texture();
                 eyes.textures[p + 2] = gl.gen_texture();
@@ -411,8 +407,7 @@ impl LayeredEyes {
                     api,
                     None,
                     (width, height),
-                    depth_format,
-                    opaque,
+                    (depth_format, opaque),
                     pairs,
                     fbo,
                 );

@@ -445,8 +445,7 @@ impl EmulatedFramebuffer {
                 api,
                 self.formats.in_place,
                 (self.width, self.height),
-                self.formats.depth,
-                self.formats.opaque,
+                (self.formats.depth, self.formats.opaque),
                 pairs,
                 self.read_fbo,
             )?
