@@ -632,7 +632,7 @@ impl LayeredEyes {
     }
 
     /// Readies the shared memory to be freed by the driver with the share
-    /// group (module docs of [`PairMemory`]): nothing may render into
+    /// group (the module docs): nothing may render into
     /// these eyes afterwards.
     pub fn prepare_unmap(&self) {
         for m in self.memory.iter().flatten() {
