@@ -17,7 +17,8 @@ use entry_points::Family;
 
 /// The families whose commands get generated wrappers calling glstereo's
 /// hook (`glstereo::interpose::draws`): everything that draws into the
-/// default framebuffer.
+/// default framebuffer, and the capabilities automatic stereo answers
+/// (glEnable/glDisable/glIsEnabled of GL_3DVISION_STEREO_NV).
 const GENERATED: &[Family] = &[
     Family::Draw,
     Family::BeginEnd,
@@ -25,6 +26,7 @@ const GENERATED: &[Family] = &[
     Family::Clear,
     Family::RasterPixels,
     Family::Blit,
+    Family::Settings,
 ];
 
 /// Each stub's file name (also its soname) and the library it stands for.
@@ -97,6 +99,18 @@ fn wrappers() {
         let types = types.join(", ");
         let args: Vec<&str> = cmd.params.iter().map(|(n, _)| n.as_str()).collect();
         let args = args.join(", ");
+        // Each argument as 64 bits, for the hook (draws::Call::args).
+        let bits: Vec<String> = cmd
+            .params
+            .iter()
+            .map(|(n, t)| match t.as_str() {
+                "f32" => format!("{n}.to_bits() as u64"),
+                "f64" => format!("{n}.to_bits()"),
+                t if t.starts_with('*') => format!("{n} as usize as u64"),
+                _ => format!("{n} as u64"),
+            })
+            .collect();
+        let bits = bits.join(", ");
         let ret = cmd
             .ret
             .as_ref()
@@ -116,7 +130,7 @@ fn wrappers() {
              \x20       let f = gl_next(&NEXT, c\"{name}\");\n\
              \x20       // SAFETY: the next {name}, with its gl.xml signature, and the caller's arguments.\n\
              \x20       let call = || unsafe {{ std::mem::transmute::<*mut c_void, unsafe extern \"system\" fn({types}){ret}>(f)({args}) }};\n\
-             \x20       hooked(Call {{ family: Family::{family:?}, name: \"{name}\" }}, call)\n\
+             \x20       hooked(Call {{ family: Family::{family:?}, name: \"{name}\", args: &[{bits}] }}, call)\n\
              \x20   }}\n\n"
         ));
         lookup.push_str(&format!(

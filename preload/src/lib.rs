@@ -400,7 +400,7 @@ fn gl_next(slot: &AtomicPtr<c_void>, name: &std::ffi::CStr) -> *mut c_void {
 /// A generated export's call: straight through when the thread is inside
 /// the layer already (the layer's own draws), else through glstereo's
 /// hook for the family.
-fn hooked<R>(call: Call, f: impl Fn() -> R) -> R {
+fn hooked<R: glstereo::interpose::draws::Returned>(call: Call, f: impl Fn() -> R) -> R {
     let (_inside, depth) = next::enter();
     if depth > 0 {
         return f();

@@ -302,9 +302,11 @@
 //! call passed on, as the layer's interposed calls are today.
 
 pub mod entry_points;
+pub mod eyes;
 pub mod fixed;
 pub mod glsl;
 pub mod link;
+pub mod runtime;
 pub mod standin;
 pub mod target;
 pub mod vertex;

@@ -258,9 +258,20 @@ impl Gl {
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_texture(&self) -> u32 {
+        // SAFETY: contract.
+        unsafe { self.gen_texture_of(enums::GL_TEXTURE_2D) }
+    }
+
+    /// One new texture name of `target` (GL_TEXTURE_2D_ARRAY…), created
+    /// by binding it there (the binding is left at 0). See
+    /// [`Gl::own_names`].
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn gen_texture_of(&self, target: u32) -> u32 {
         // SAFETY: contract; one name written or read at a time.
         unsafe {
-            let bind = |n| self.BindTexture(enums::GL_TEXTURE_2D, n);
+            let bind = |n| self.BindTexture(target, n);
             let name = self.reserved_or_generated(
                 names::Kind::Texture,
                 || {

@@ -113,6 +113,8 @@ pub(super) struct CtxState {
     /// How the programs linked here reach the selected buffers (what
     /// their binaries are tagged with, [`super::binaries`]).
     pub(super) programs: super::binaries::Linked,
+    /// Automatic stereo's state ([`crate::auto::runtime`]).
+    pub(super) auto: crate::auto::runtime::AutoState,
 }
 
 /// The draw buffer indices whose colour masks the layer shadows
@@ -184,6 +186,11 @@ pub struct StereoContext {
     ours: usize,
     shape: FramebufferShape,
     formats: BufferFormats,
+    /// A mono context given automatic stereo (glstereo-run --auto): its
+    /// buffers are stereo, its program sees a mono visual.
+    auto: bool,
+    /// Its share group ([`registry::Registry::group`]).
+    group: u64,
     state: Mutex<CtxState>,
     /// Its display was closed: nothing may be done with it any more (it
     /// may still sit in another thread's current slot).
@@ -236,6 +243,7 @@ pub fn current() -> Option<Current> {
 /// it (its display is closing: nothing may be done with it any more).
 pub fn forget_current() {
     let old = CURRENT.with(|c| c.replace(std::ptr::null_mut()));
+    super::draws::watch_auto(false);
     if !old.is_null() {
         // SAFETY: the Box set_current leaked; reclaimed once.
         drop(unsafe { Box::from_raw(old) });
@@ -268,6 +276,7 @@ pub fn set_current(new: Option<Current>) {
             }
         }
     }
+    super::draws::watch_auto(new.as_ref().is_some_and(|n| n.sc.auto()));
     if let Some(n) = new {
         n.sc.lock().owner = Some(me);
     }
@@ -396,6 +405,7 @@ impl StereoContext {
         ours: usize,
         shape: FramebufferShape,
         formats: BufferFormats,
+        group: u64,
     ) -> Arc<StereoContext> {
         Arc::new(StereoContext {
             display,
@@ -403,6 +413,8 @@ impl StereoContext {
             ours,
             shape,
             formats,
+            auto: formats.layered.is_some(),
+            group,
             closed: AtomicBool::new(false),
             binding: Mutex::new(()),
             state: Mutex::new(CtxState {
@@ -416,6 +428,7 @@ impl StereoContext {
                 color_mask: [[true; 4]; MASKED_BUFFERS],
                 clear_color: super::gl::ClearColor::Float([0.0; 4]),
                 programs: Default::default(),
+                auto: Default::default(),
             }),
         })
     }
@@ -435,9 +448,49 @@ impl StereoContext {
         self.formats
     }
 
-    /// The framebuffer shape of its visual.
+    /// The framebuffer shape of its buffers.
     pub fn shape(&self) -> FramebufferShape {
         self.shape
+    }
+
+    /// The framebuffer shape the program's visual has: mono for a context
+    /// given automatic stereo ([`Self::auto`]), else [`Self::shape`].
+    pub fn program_shape(&self) -> FramebufferShape {
+        FramebufferShape {
+            stereo: self.shape.stereo && !self.auto,
+            ..self.shape
+        }
+    }
+
+    /// Whether this is a mono context given automatic stereo
+    /// (glstereo-run --auto; [`crate::auto`]).
+    pub fn auto(&self) -> bool {
+        self.auto
+    }
+
+    /// Its share group: programs linked in one context of it are used in
+    /// every other.
+    pub fn group(&self) -> u64 {
+        self.group
+    }
+
+    /// Runs `f` with the context's automatic-stereo state and the layered
+    /// eyes of `drawable`'s emulated framebuffer (None: it has none) with
+    /// the name of the framebuffer object the program draws into for it.
+    pub fn with_auto<T>(
+        &self,
+        drawable: u64,
+        f: impl FnOnce(
+            &mut crate::auto::runtime::AutoState,
+            Option<(u32, crate::auto::eyes::Attachments)>,
+        ) -> T,
+    ) -> T {
+        let mut st = self.lock();
+        let eyes = st
+            .fbs
+            .get(&drawable)
+            .and_then(|d| d.fb.layered().map(|e| (d.fb.app_fbo(), e.attachments())));
+        f(&mut st.auto, eyes)
     }
 
     /// Held around the program's glXMakeCurrent of this context and
@@ -482,9 +535,19 @@ impl StereoContext {
     /// Marks it as belonging to a display the program closed (XCloseDisplay
     /// frees the connection: the layer must never use it again).
     pub fn mark_closed(&self) {
+        self.end_of_share_group();
         // XCloseDisplay's hooks run before it disconnects.
         self.release_images(Connection::Closing);
         self.closed.store(true, Ordering::SeqCst);
+    }
+
+    /// Before the share group may go (its objects freed by the driver, not
+    /// by the layer): readies the layered eyes' shared memory for that
+    /// ([`EmulatedFramebuffer::prepare_unmap`]).
+    fn end_of_share_group(&self) {
+        for drawn in self.lock().fbs.values() {
+            drawn.fb.prepare_unmap();
+        }
     }
 
     /// Frees the MIT-SHM images of its drawables.
@@ -546,6 +609,7 @@ impl StereoContext {
         if self.is_closed() {
             return;
         }
+        self.end_of_share_group();
         self.release_images(Connection::Open);
         if let Ok(r) = real() {
             // SAFETY: our own context, current nowhere (it is only made
@@ -991,15 +1055,21 @@ impl StereoContext {
         profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
+        // The layer's own calls below keep the program's errors apart.
+        st.save_driver_errors(gl);
         let drawn = st
             .fbs
             .get_mut(&drawable)
             .ok_or_else(|| Error::invalid_operation("no stereo buffers for this drawable"))?;
         // SAFETY: the program's context is current on this thread.
         unsafe {
+            // Automatic stereo draws both eyes into layers: the buffers
+            // shown get them.
+            drawn.fb.resolve_layers(!flip);
             if flip {
                 profile::span(Stage::Flip, || drawn.fb.swap(gl));
             }
+            gl.take_error();
             // The layer's context reads what the program drew: finish it.
             profile::span(Stage::Finish, || gl.Finish());
             // Nothing renders into replaced textures now: free their memory.

@@ -660,7 +660,7 @@ pub unsafe fn get_named_framebuffer_attachment_parameteriv(
 /// GL_STEREO and GL_DOUBLEBUFFER of the emulated framebuffer, written over
 /// the window's answer.
 fn stereo_parameter(cur: &Current, pname: u32, params: *mut i32) {
-    let shape = cur.sc.shape();
+    let shape = cur.sc.program_shape();
     let v = match pname {
         GL_STEREO => shape.stereo,
         GL_DOUBLEBUFFER => shape.double_buffered,
@@ -782,10 +782,25 @@ pub fn link_program(program: u32) -> Result<()> {
     let r = loaded()?;
     // SAFETY: forwarded call.
     unsafe { r.gl.LinkProgram(program) };
-    if let Some(cur) = current() {
-        duplicate(r, &cur, program, None);
+    match current() {
+        Some(cur) if cur.sc.auto() => shift(r, &cur, program),
+        Some(cur) => duplicate(r, &cur, program, None),
+        None => {}
     }
     Ok(())
+}
+
+/// In a context given automatic stereo: `program`'s last vertex stage
+/// relinked with the eye's shift ([`crate::auto::runtime::linked`]; its
+/// one relink: the eyes are layers of one colour buffer, so output 0
+/// needs no copies), its GL errors kept apart as [`duplicate`] keeps them.
+fn shift(r: &Real, cur: &Current, program: u32) {
+    cur.sc.lock().save_driver_errors(&r.gl);
+    // SAFETY: the program's context is current.
+    unsafe {
+        crate::auto::runtime::linked(cur.sc.group(), program);
+        while r.gl.GetError() != GL_NO_ERROR {}
+    }
 }
 
 /// glCreateShaderProgramv: as [`link_program`] for a fragment program.
@@ -802,6 +817,39 @@ pub unsafe fn create_shader_programv(
     let real = need(fns().create_shader_programv, "glCreateShaderProgramv")?;
     if missing(count, strings) {
         return Err(refuse_null(r, "strings"));
+    }
+    if let Some(cur) = current().filter(|c| c.sc.auto()) {
+        // SAFETY: GL's contract: `count` NUL-terminated strings.
+        let parts: Vec<String> = (0..count.max(0) as usize)
+            .map(|i| unsafe { *strings.add(i) })
+            .filter(|s| !s.is_null())
+            .map(|s| unsafe { CStr::from_ptr(s) }.to_string_lossy().into_owned())
+            .collect();
+        let refs: Vec<&str> = parts.iter().map(String::as_str).collect();
+        let mut program = 0;
+        if let Some(text) = crate::auto::runtime::separable_source(kind, &refs) {
+            let c = std::ffi::CString::new(text).unwrap_or_default();
+            cur.sc.lock().save_driver_errors(&r.gl);
+            // SAFETY: one NUL-terminated string.
+            program = unsafe { real(kind, 1, &c.as_ptr()) };
+            let mut linked = 0;
+            // SAFETY: as above; drops the rewrite's own errors.
+            unsafe {
+                r.gl.GetProgramiv(program, GL_LINK_STATUS, &mut linked);
+                if program != 0 && linked == 0 {
+                    r.gl.DeleteProgram(program);
+                    program = 0;
+                }
+                while r.gl.GetError() != GL_NO_ERROR {}
+            }
+        }
+        if program == 0 {
+            // SAFETY: forwarded call.
+            program = unsafe { real(kind, count, strings) };
+        }
+        // SAFETY: the program's context is current.
+        unsafe { crate::auto::runtime::created(cur.sc.group(), program) };
+        return Ok(program);
     }
     // SAFETY: forwarded call.
     let program = unsafe { real(kind, count, strings) };

@@ -296,7 +296,7 @@ fn emulated_value(gl: &Gl, pname: u32) -> Option<i32> {
         let v = with_window_framebuffer(gl, || unsafe { gl.integer(pname) });
         return Some(v);
     }
-    default_framebuffer_query(pname, cur.sc.shape(), draw, read)
+    default_framebuffer_query(pname, cur.sc.program_shape(), draw, read)
 }
 
 /// glGetIntegerv / Booleanv / Floatv / Doublev: the driver's answer
@@ -710,7 +710,7 @@ pub(super) unsafe fn emulated_attachment(
         _ => return cur.sc.lock().push_error(gl, GL_INVALID_ENUM),
     };
     match color {
-        Some(b) if !cur.sc.shape().allocated().contains(b) => match pname {
+        Some(b) if !cur.sc.program_shape().allocated().contains(b) => match pname {
             // SAFETY: not NULL (contract), one value (GL's contract).
             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE => unsafe { *params = GL_NONE as i32 },
             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => cur.sc.lock().push_error(gl, GL_INVALID_ENUM),

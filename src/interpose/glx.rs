@@ -533,7 +533,15 @@ fn adopt(
     ctx: GLXContext,
     make_ours: &[&dyn Fn(GLXContext) -> GLXContext],
     attrib: impl Fn(c_int) -> c_int,
+    auto: bool,
 ) {
+    if auto && r.extra.layered.is_none() {
+        super::warn(
+            "automatic stereo needs GL 4.3 (layered framebuffers, glCopyImageSubData): \
+             this context stays mono",
+        );
+        return;
+    }
     // The first way that works (each tried with its own X errors trapped).
     let mut ours = std::ptr::null_mut();
     let mut err = 0;
@@ -561,15 +569,29 @@ fn adopt(
         // below (RenderDoc, apitrace) must see plain GL it can record and
         // replay, and frames go through GL there anyway.
         in_place: r.extra.memory_objects.filter(|_| !r.swap_layered),
+        layered: r.extra.layered.filter(|_| auto),
         ..BufferFormats::matching(
             bits(GLX_ALPHA_SIZE),
             bits(GLX_DEPTH_SIZE),
             bits(GLX_STENCIL_SIZE),
         )
     };
-    let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
+    let group = registry::with(|reg| reg.group(ctx as usize));
+    let sc = StereoContext::new(
+        dpy as usize,
+        ctx as usize,
+        ours as usize,
+        shape,
+        formats,
+        group,
+    );
     settings::tell(&format!(
-        "stereo is emulated: both eyes shown as {} in the program's window",
+        "{}: both eyes shown as {} in the program's window",
+        if auto {
+            "automatic stereo for a mono context"
+        } else {
+            "stereo is emulated"
+        },
         super::live::mode().canonical_name()
     ));
     watch(r, dpy);
@@ -615,15 +637,17 @@ pub unsafe fn create_context(
     if ctx.is_null() {
         return Ok(ctx);
     }
-    if !stereo && settings::verbose() {
-        let mut native = 0;
+    let mut native = 0;
+    if !stereo && (settings::verbose() || super::live::auto_requested()) {
         // SAFETY: a valid visual.
         unsafe { (r.glx.glXGetConfig)(dpy, vis, GLX_STEREO, &mut native) };
         if native != 0 {
             tell_native();
         }
     }
-    if stereo && direct_context(r, dpy, ctx) {
+    // Under --auto a mono visual's context gets automatic stereo.
+    let auto = !stereo && native == 0 && super::live::auto_requested();
+    if (stereo || auto) && direct_context(r, dpy, ctx) {
         adopt(
             r,
             dpy,
@@ -636,6 +660,7 @@ pub unsafe fn create_context(
                 unsafe { (r.glx.glXGetConfig)(dpy, vis, a, &mut v) };
                 v
             },
+            auto,
         );
     }
     Ok(ctx)
@@ -687,15 +712,17 @@ pub unsafe fn create_config_context(
         },
     };
     forget(ctx, share);
-    if !stereo && !ctx.is_null() && settings::verbose() {
-        let mut native = 0;
+    let mut native = 0;
+    if !stereo && !ctx.is_null() && (settings::verbose() || super::live::auto_requested()) {
         // SAFETY: a real configuration.
         unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, GLX_STEREO, &mut native) };
         if native != 0 {
             tell_native();
         }
     }
-    if stereo && !ctx.is_null() && direct_context(r, dpy, ctx) {
+    // Under --auto a mono configuration's context gets automatic stereo.
+    let auto = !stereo && native == 0 && super::live::auto_requested();
+    if (stereo || auto) && !ctx.is_null() && direct_context(r, dpy, ctx) {
         adopt(
             r,
             dpy,
@@ -720,6 +747,7 @@ pub unsafe fn create_config_context(
                 unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
                 v
             },
+            auto,
         );
     }
     Ok(ctx)

@@ -103,6 +103,9 @@ pub struct Extra {
     /// GL_EXT_memory_object(_fd): eye textures read in place
     /// ([`crate::stereo::eye_memory`]).
     pub memory_objects: Option<crate::stereo::eye_memory::MemoryObjectApi>,
+    /// GL 3.2–4.3's layered attachments and image copies: automatic
+    /// stereo's eyes ([`crate::auto::eyes`]).
+    pub layered: Option<crate::auto::eyes::LayeredApi>,
     /// The SGIX FBConfig functions (GLX_SGIX_fbconfig), which take configs too.
     pub sgix: Sgix,
 }
@@ -303,6 +306,8 @@ fn load() -> Result<Real, String> {
         clear_colorx_oes: lookup!(c"glClearColorxOES"),
         // SAFETY: `get` returns the named GL function or NULL.
         memory_objects: unsafe { crate::stereo::eye_memory::MemoryObjectApi::load(get) },
+        // SAFETY: as above.
+        layered: unsafe { crate::auto::eyes::LayeredApi::load(get) },
         sgix: Sgix {
             choose: lookup!(c"glXChooseFBConfigSGIX"),
             get_attrib: lookup!(c"glXGetFBConfigAttribSGIX"),

@@ -180,6 +180,11 @@ impl Registry {
         self.groups.insert(ctx, group);
     }
 
+    /// The share group of context `ctx` (0: unknown).
+    pub fn group(&self, ctx: usize) -> u64 {
+        self.groups.get(&ctx).copied().unwrap_or(0)
+    }
+
     /// Whether context `ctx` shares objects with a stereo context (and so
     /// with the layer's objects).
     pub fn in_stereo_group(&self, ctx: usize) -> bool {

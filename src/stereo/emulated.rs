@@ -29,6 +29,7 @@
 //! ([`EmulatedFramebuffer::reattach_app`]) and the old memory is freed
 //! once nothing renders into it ([`EmulatedFramebuffer::release_retired`]).
 
+use crate::auto::eyes::{LayeredApi, LayeredEyes};
 use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
@@ -198,6 +199,11 @@ pub struct BufferFormats {
     /// replaces the textures, and the program's framebuffer object needs
     /// [`EmulatedFramebuffer::reattach_app`].
     pub in_place: Option<MemoryObjectApi>,
+    /// Automatic stereo ([`crate::auto::eyes`]): the colour buffers are
+    /// the layers of two arrays (a front and a back pair), depth and
+    /// stencil one array, all made through this API and attached layered,
+    /// so one draw reaches both eyes by its layer.
+    pub layered: Option<LayeredApi>,
 }
 
 impl BufferFormats {
@@ -213,6 +219,7 @@ impl BufferFormats {
                 0
             },
             in_place: None,
+            layered: None,
         }
     }
 
@@ -230,6 +237,7 @@ impl BufferFormats {
                 _ => GL_DEPTH24_STENCIL8,
             },
             in_place: None,
+            layered: None,
         }
     }
 
@@ -275,6 +283,11 @@ pub struct EmulatedFramebuffer {
     draw: DrawState,
     read_name: u32,
     read: Option<ColorBuffer>,
+    /// Automatic stereo's layered eyes ([`BufferFormats::layered`]).
+    layered: Option<LayeredEyes>,
+    /// Layered eyes replaced by a resize, released by
+    /// [`EmulatedFramebuffer::release_retired`].
+    retired_layers: Vec<LayeredEyes>,
 }
 
 impl EmulatedFramebuffer {
@@ -330,6 +343,8 @@ impl EmulatedFramebuffer {
             },
             read_name: initial,
             read: resolve_read_buffer(shape, initial).expect("the initial buffer exists"),
+            layered: None,
+            retired_layers: Vec::new(),
         };
         // SAFETY: a context is current (contract).
         unsafe {
@@ -343,10 +358,16 @@ impl EmulatedFramebuffer {
             }
             gl.take_error();
             fb.read_fbo = gl.gen_framebuffer();
-            for b in shape.allocated().iter() {
+            // Layered eyes make their own textures.
+            for b in shape
+                .allocated()
+                .iter()
+                .filter(|_| formats.layered.is_none())
+            {
                 fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }
-            if formats.depth != 0 {
+            // Layered eyes keep depth and stencil in their own array.
+            if formats.depth != 0 && formats.layered.is_none() {
                 fb.depth_stencil = gl.gen_renderbuffer();
             }
             if fills_draw_buffer_gaps(&gl.string(GL_RENDERER)) {
@@ -393,6 +414,10 @@ impl EmulatedFramebuffer {
 
     /// (Re)allocates texture and renderbuffer storage at the current size and clears it.
     unsafe fn allocate_storage(&mut self, gl: &Gl) -> Result<()> {
+        if let Some(api) = self.formats.layered {
+            // SAFETY: contract.
+            return unsafe { self.allocate_layered(gl, api) };
+        }
         let (w, h) = (self.width as i32, self.height as i32);
         // SAFETY: a context is current (contract of the callers).
         unsafe {
@@ -467,6 +492,67 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
             gl.check("clearing the stereo buffers")
         }
+    }
+
+    /// [`Self::allocate_storage`] of layered eyes: new ones (the old go
+    /// once nothing renders into them), their textures in the slots.
+    unsafe fn allocate_layered(&mut self, gl: &Gl, api: LayeredApi) -> Result<()> {
+        if let Some(old) = self.layered.take() {
+            self.retired_layers.push(old);
+        }
+        let pairs = [true, self.shape.double_buffered];
+        // SAFETY: contract.
+        let eyes = unsafe {
+            LayeredEyes::allocate(
+                gl,
+                api,
+                self.formats.in_place,
+                (self.width, self.height),
+                (self.formats.depth, self.formats.opaque),
+                pairs,
+                self.read_fbo,
+            )?
+        };
+        for slot in 0..4 {
+            self.textures[slot] = eyes.texture(slot);
+        }
+        self.layered = Some(eyes);
+        self.attachments_stale = self.app_fbo != 0;
+        Ok(())
+    }
+
+    /// Copies the layered eyes (automatic stereo) into the colour buffers
+    /// a present shows: the back buffers before a swap (`front` false),
+    /// the front buffers of a single-buffered framebuffer. Nothing without
+    /// layered eyes.
+    ///
+    /// # Safety
+    /// A context sharing the framebuffer's objects must be current.
+    pub unsafe fn resolve_layers(&self, front: bool) {
+        let Some(eyes) = &self.layered else {
+            return;
+        };
+        let left = if front || !self.shape.double_buffered {
+            ColorBuffer::FrontLeft
+        } else {
+            ColorBuffer::BackLeft
+        };
+        // SAFETY: contract.
+        unsafe { eyes.resolve(crate::auto::eyes::pair(self.slot_of[left.index()])) };
+    }
+
+    /// Readies layered eyes' shared memory to be freed by the driver
+    /// rather than by [`Self::release`] (their share group ends): nothing
+    /// may render into them afterwards.
+    pub fn prepare_unmap(&self) {
+        for eyes in self.layered.iter().chain(&self.retired_layers) {
+            eyes.prepare_unmap();
+        }
+    }
+
+    /// The layered eyes of automatic stereo, if this framebuffer has them.
+    pub fn layered(&self) -> Option<&LayeredEyes> {
+        self.layered.as_ref()
     }
 
     /// Gives every colour texture storage the CPU reads in place
@@ -553,7 +639,11 @@ impl EmulatedFramebuffer {
     ///
     /// # Safety
     /// A context sharing the framebuffer's objects must be current.
-    pub unsafe fn release_retired(&mut self, _gl: &Gl) {
+    pub unsafe fn release_retired(&mut self, gl: &Gl) {
+        for mut eyes in self.retired_layers.drain(..) {
+            // SAFETY: contract.
+            unsafe { eyes.release(gl) };
+        }
         if self.retired.is_empty() {
             return;
         }
@@ -598,7 +688,10 @@ impl EmulatedFramebuffer {
     /// Whether any colour texture's storage (or a replaced one's, not yet
     /// freed) is memory from [`crate::stereo::eye_memory`].
     pub fn holds_memory(&self) -> bool {
-        self.memory.iter().any(Option::is_some) || !self.retired.is_empty()
+        self.memory.iter().any(Option::is_some)
+            || !self.retired.is_empty()
+            || self.layered.as_ref().is_some_and(|e| e.pixels(0).is_some())
+            || !self.retired_layers.is_empty()
     }
 
     /// Where the CPU reads `buffer` in place, when its storage is memory
@@ -608,6 +701,9 @@ impl EmulatedFramebuffer {
             return None;
         }
         let slot = self.slot_of[buffer.index()];
+        if let Some(eyes) = &self.layered {
+            return eyes.pixels(slot);
+        }
         self.memory[slot]
             .as_ref()
             .map(|m| m.pixels(self.textures[slot]))
@@ -642,6 +738,14 @@ impl EmulatedFramebuffer {
             }
             if self.depth_stencil != 0 {
                 gl.delete_renderbuffers(&[self.depth_stencil]);
+            }
+            for mut eyes in self
+                .layered
+                .take()
+                .into_iter()
+                .chain(self.retired_layers.drain(..))
+            {
+                eyes.release(gl);
             }
             gl.delete_framebuffers(&[self.read_fbo]);
         }
@@ -745,6 +849,16 @@ impl EmulatedFramebuffer {
     unsafe fn attach_storage(&self, gl: &Gl) -> Result<()> {
         // SAFETY: the application context is current with app_fbo bound.
         unsafe {
+            if let Some(eyes) = &self.layered {
+                eyes.attachments().attach(GL_FRAMEBUFFER, None);
+                let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+                if status != GL_FRAMEBUFFER_COMPLETE {
+                    return Err(Error::Gl(format!(
+                        "the layered eyes are incomplete (status {status:#06x})"
+                    )));
+                }
+                return Ok(());
+            }
             for slot in 0..4 {
                 gl.FramebufferTexture2D(
                     GL_FRAMEBUFFER,
@@ -786,7 +900,14 @@ impl EmulatedFramebuffer {
 
     fn attachment(&self, b: Option<ColorBuffer>) -> u32 {
         b.map_or(GL_NONE, |b| {
-            GL_COLOR_ATTACHMENT0 + self.slot_of[b.index()] as u32
+            let slot = self.slot_of[b.index()];
+            // Layered eyes: a pair's two buffers are one attachment.
+            let slot = if self.layered.is_some() {
+                crate::auto::eyes::pair(slot)
+            } else {
+                slot
+            };
+            GL_COLOR_ATTACHMENT0 + slot as u32
         })
     }
 
@@ -810,8 +931,15 @@ impl EmulatedFramebuffer {
                     out[0] = self.attachment(Some(first));
                 }
                 let mut n = 1;
-                for (b, &slot) in buffers.zip(COPY_LOCATIONS.iter()) {
-                    out[slot as usize] = self.attachment(Some(b));
+                let mut copies = COPY_LOCATIONS.iter();
+                for b in buffers {
+                    let att = self.attachment(Some(b));
+                    // Layered eyes: both buffers of a pair are one attachment.
+                    if out.contains(&att) {
+                        continue;
+                    }
+                    let Some(&slot) = copies.next() else { break };
+                    out[slot as usize] = att;
                     n = slot as usize + 1;
                 }
                 n
@@ -836,6 +964,20 @@ impl EmulatedFramebuffer {
     /// glClearBuffer, which clears one draw buffer by index.
     pub fn draw_buffer_slots(&self, i: i32) -> DrawSlots {
         match self.draw {
+            DrawState::Single { set, .. } if set.len() > 1 && self.layered.is_some() => {
+                let (atts, _) = self.draw_attachments();
+                let mut v = DrawSlots::default();
+                if i == 0 {
+                    for (k, &a) in atts.iter().enumerate() {
+                        if a != GL_NONE {
+                            v.push(k as i32);
+                        }
+                    }
+                } else if !(1..MAX_DRAW_BUFFERS as i32).contains(&i) {
+                    v.push(i);
+                }
+                v
+            }
             DrawState::Single { set, .. } if set.len() > 1 => {
                 if i == 0 {
                     let mut v = DrawSlots::default();
@@ -1115,6 +1257,34 @@ impl EmulatedFramebuffer {
     /// The surface's compositor context must be current on this thread and
     /// `out` must hold width × height values.
     pub unsafe fn read_depth(&self, gl: &Gl, out: &mut [f32]) -> Result<()> {
+        if let Some(eyes) = self.layered.as_ref() {
+            assert_eq!(out.len(), (self.width * self.height) as usize);
+            // SAFETY: as below; the left eye's depth.
+            return unsafe {
+                gl.take_error();
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
+                if !eyes.attach_left_depth(GL_READ_FRAMEBUFFER, true) {
+                    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+                    return Err(Error::invalid_operation(
+                        "this framebuffer has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
+                    ));
+                }
+                gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+                gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+                gl.ReadPixels(
+                    0,
+                    0,
+                    self.width as i32,
+                    self.height as i32,
+                    GL_DEPTH_COMPONENT,
+                    GL_FLOAT,
+                    out.as_mut_ptr().cast(),
+                );
+                eyes.attach_left_depth(GL_READ_FRAMEBUFFER, false);
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+                gl.check("reading the depth buffer")
+            };
+        }
         if self.depth_stencil == 0 {
             return Err(Error::invalid_operation(
                 "this framebuffer has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
