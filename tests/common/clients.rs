@@ -70,7 +70,12 @@ pub fn c_client(name: &str, libs: &[&str]) -> PathBuf {
 
 /// tests/clients/qt_stereo.cpp against Qt5Gui (pkg-config).
 pub fn qt_client() -> PathBuf {
-    build_once("qt_stereo", |out| {
+    qt5_client("qt_stereo")
+}
+
+/// tests/clients/NAME.cpp against Qt5Gui (pkg-config).
+pub fn qt5_client(name: &str) -> PathBuf {
+    build_once(name, |out| {
         let pc = super::run_ok(Command::new("pkg-config").args(["--cflags", "--libs", "Qt5Gui"]));
         let flags = String::from_utf8_lossy(&pc.stdout).into_owned();
         compile(
@@ -84,11 +89,11 @@ pub fn qt_client() -> PathBuf {
                     "-g",
                     "-fPIC",
                 ])
-                .arg(clients().join("qt_stereo.cpp"))
+                .arg(clients().join(format!("{name}.cpp")))
                 .arg("-o")
                 .arg(out)
                 .args(flags.split_whitespace()),
-            "qt_stereo.cpp",
+            name,
         )
     })
 }
