@@ -59,15 +59,18 @@
 //!   next other event, the XCheck* functions and XPending /
 //!   XEventsQueued count and return only other events. Exact, not
 //!   approximate, because the keys are removed before Xlib queues them.
+//! - Core KeyPress / KeyRelease events (Qt 5/6, SDL2, GLFW, freeglut and
+//!   plain Xlib programs take their keys so) and XInput 2 XI_KeyPress /
+//!   XI_KeyRelease GenericEvents (GTK 3's) are both recognised; raw
+//!   XInput 2 key events (XI_RawKeyPress, sent to the root window beside
+//!   the ordinary ones) are left alone.
 //! - What is approximate: a program that waits on the connection's file
 //!   descriptor itself (select/poll) and then calls a blocking function
 //!   without asking XPending first wakes for a control key and then
 //!   blocks until the next other event. Programs that read their own
 //!   events with XCB from a libxcb they opened with dlopen and looked up
-//!   with dlsym on that handle, or that select XInput 2 key events
-//!   (GenericEvent XI_KeyPress: GTK 3; Qt 5/6, SDL2, GLFW, freeglut and
-//!   plain Xlib programs take core key events), do not see the keys
-//!   taken: the keys reach them and change nothing.
+//!   with dlsym on that handle do not see the keys taken: the keys reach
+//!   them and change nothing.
 //!
 //! The keys are taken from every window of the process, not just the
 //! stereo ones: toolkits put the focus on a top-level window that need
@@ -94,6 +97,7 @@
 //! same server (with libxcb, which every X program has loaded), and
 //! everything the controls ask of the server goes through it:
 //!
+//! - XInput's major opcode (to know its GenericEvents), asked once;
 //! - the keyboard map, read when the controls are armed and again when
 //!   a control's key is pressed after the server said the map changed
 //!   (xmodmap, setxkbmap): a MappingNotify on this connection, which never
@@ -241,19 +245,68 @@ enum Seen {
 /// Core event codes (the response type without the send-event bit).
 const KEY_PRESS: u8 = 2;
 const KEY_RELEASE: u8 = 3;
+const GENERIC_EVENT: u8 = 35;
+/// XInput 2's event types (a GenericEvent's `evtype`).
+const XI_KEY_PRESS: u16 = 2;
+const XI_KEY_RELEASE: u16 = 3;
+/// Bytes of an XInput 2 key event as libxcb returns it up to its
+/// effective modifiers (wire bytes 72..76, moved 4 on by libxcb's full
+/// sequence number after byte 32).
+const XI_KEY_EVENT_BYTES: usize = 80;
 
 /// Reads an event as libxcb returns it: 32 bytes of the X protocol's
-/// event (a key event's detail is its keycode, its state a 16-bit field
-/// at byte 28), then the full sequence number.
-fn parse(ev: &[u8; 32]) -> Seen {
+/// event, then the full sequence number, then (a GenericEvent) the rest
+/// of the protocol's event. A core key event's detail is its keycode, its
+/// state a 16-bit field at byte 28; an XInput 2 key event (a
+/// GenericEvent of extension `xi_opcode`, 0 when the server has none)
+/// has its type at byte 8, its keycode at 16 and its effective modifiers
+/// (the core state's bits) at 76.
+fn parse(ev: &[u8], xi_opcode: u8) -> Seen {
+    let u16_at = |i: usize| u16::from_ne_bytes([ev[i], ev[i + 1]]);
+    let u32_at = |i: usize| u32::from_ne_bytes([ev[i], ev[i + 1], ev[i + 2], ev[i + 3]]);
+    if ev.len() < 32 {
+        return Seen::Other;
+    }
     match ev[0] & 0x7f {
         t @ (KEY_PRESS | KEY_RELEASE) => Seen::Key(KeyEvent {
             press: t == KEY_PRESS,
             keycode: ev[1],
-            state: u32::from(u16::from_ne_bytes([ev[28], ev[29]])),
+            state: u32::from(u16_at(28)),
         }),
+        GENERIC_EVENT if xi_opcode != 0 && ev[1] == xi_opcode && ev.len() >= XI_KEY_EVENT_BYTES => {
+            let t = u16_at(8);
+            match u8::try_from(u32_at(16)) {
+                Ok(keycode) if t == XI_KEY_PRESS || t == XI_KEY_RELEASE => Seen::Key(KeyEvent {
+                    press: t == XI_KEY_PRESS,
+                    keycode,
+                    state: u32_at(76),
+                }),
+                _ => Seen::Other,
+            }
+        }
         _ => Seen::Other,
     }
+}
+
+/// The bytes of an event libxcb returned: 32, or for a GenericEvent
+/// 36 + 4 × its length field (libxcb adds the full sequence number after
+/// byte 32). A GenericEvent claiming more than 1 MiB is read as its first
+/// 32 bytes.
+///
+/// # Safety
+/// `ev` must be an event as libxcb returns it.
+unsafe fn event_bytes<'a>(ev: *const u8) -> &'a [u8] {
+    // SAFETY: every libxcb event has at least 32 bytes.
+    let head = unsafe { std::slice::from_raw_parts(ev, 32) };
+    if head[0] & 0x7f != GENERIC_EVENT {
+        return head;
+    }
+    let words = u32::from_ne_bytes([head[4], head[5], head[6], head[7]]) as usize;
+    if words > (1 << 18) {
+        return head;
+    }
+    // SAFETY: libxcb allocated 32 + 4 + 4 × length bytes for it.
+    unsafe { std::slice::from_raw_parts(ev, 36 + 4 * words) }
 }
 
 /// What becomes of a key event.
@@ -516,6 +569,10 @@ pub fn armed() -> bool {
 /// The layer's own X connection, opened when the controls are armed.
 static OWN: Mutex<Option<own::Own>> = Mutex::new(None);
 
+/// XInput's major opcode on the server (0: none), the `extension` of its
+/// GenericEvents.
+static XI_OPCODE: AtomicU8 = AtomicU8::new(0);
+
 /// Arms the controls for a process that has a stereo context on `dpy`
 /// (or an automatic one): opens the layer's own connection to the same
 /// X server and reads the keyboard map. Called by the GLX layer in the
@@ -536,7 +593,7 @@ pub(crate) fn arm(xlib: &Xlib, dpy: *mut Display) {
     }
     // SAFETY: as above.
     let name = unsafe { std::ffi::CStr::from_ptr(name) };
-    let Some(own) = own::Own::open(name) else {
+    let Some(own) = own::Own::open(dpy as usize, name) else {
         super::warn(&format!(
             "no X connection of the layer's own could be opened to {}: the live keys are off",
             name.to_string_lossy()
@@ -544,6 +601,7 @@ pub(crate) fn arm(xlib: &Xlib, dpy: *mut Display) {
         return;
     };
     own.read_keyboard();
+    XI_OPCODE.store(own.extension_opcode(c"XInputExtension"), Ordering::Relaxed);
     *slot = Some(own);
     KEYS.armed.store(true, Ordering::Release);
 }
@@ -562,8 +620,8 @@ fn follow_keyboard() {
 
 /// Looks at one event of an armed process: true when it is taken (a
 /// control's key press, whose change is made here, or its release).
-fn take(ev: &[u8; 32]) -> bool {
-    let Seen::Key(k) = parse(ev) else {
+fn take(ev: &[u8]) -> bool {
+    let Seen::Key(k) = parse(ev, XI_OPCODE.load(Ordering::Relaxed)) else {
         return false;
     };
     // Only a press with Control held can be a control: only then is the
@@ -628,10 +686,8 @@ pub unsafe fn filtered(c: *mut c_void, next: NextEvent) -> *mut c_void {
         if ev.is_null() {
             return ev;
         }
-        // SAFETY: libxcb returns events of at least 32 bytes (an
-        // xcb_generic_event_t: the protocol's 32 bytes and the full
-        // sequence number).
-        let bytes = unsafe { &*(ev as *const [u8; 32]) };
+        // SAFETY: an event as libxcb returns it.
+        let bytes = unsafe { event_bytes(ev.cast()) };
         let taken = std::panic::catch_unwind(|| take(bytes)).unwrap_or(false);
         if !taken {
             return ev;
@@ -700,6 +756,9 @@ mod own {
     type GetKeyboardMapping = unsafe extern "C" fn(*mut c_void, u8, u8) -> c_uint;
     type GetKeyboardMappingReply =
         unsafe extern "C" fn(*mut c_void, c_uint, *mut *mut c_void) -> *mut u8;
+    type QueryExtension = unsafe extern "C" fn(*mut c_void, u16, *const c_char) -> c_uint;
+    type QueryExtensionReply =
+        unsafe extern "C" fn(*mut c_void, c_uint, *mut *mut c_void) -> *mut u8;
     type Keysyms = unsafe extern "C" fn(*const u8) -> *const u32;
     type KeysymsLength = unsafe extern "C" fn(*const u8) -> c_int;
 
@@ -712,6 +771,9 @@ mod own {
     const MAPPING_KEYBOARD: u8 = 1;
 
     pub(super) struct Own {
+        /// The program's `Display*` the connection was opened beside: its
+        /// windows are on this connection's server.
+        display: usize,
         conn: *mut c_void,
         get_setup: GetSetup,
         send_event: SendEvent,
@@ -721,6 +783,8 @@ mod own {
         get_keyboard_mapping_reply: GetKeyboardMappingReply,
         keysyms: Keysyms,
         keysyms_length: KeysymsLength,
+        query_extension: QueryExtension,
+        query_extension_reply: QueryExtensionReply,
     }
 
     // SAFETY: an xcb connection may be used from any thread (libxcb locks
@@ -732,9 +796,10 @@ mod own {
     }
 
     impl Own {
-        /// Connects to display `name`; None when libxcb lacks a function
-        /// (it cannot: it is libxcb's core) or the server refuses.
-        pub(super) fn open(name: &CStr) -> Option<Own> {
+        /// Connects to display `name`, the name of the program's
+        /// `display`; None when libxcb lacks a function (it cannot: they
+        /// are libxcb's core) or the server refuses.
+        pub(super) fn open(display: usize, name: &CStr) -> Option<Own> {
             let names = [
                 c"xcb_connect",
                 c"xcb_connection_has_error",
@@ -746,6 +811,8 @@ mod own {
                 c"xcb_get_keyboard_mapping_reply",
                 c"xcb_get_keyboard_mapping_keysyms",
                 c"xcb_get_keyboard_mapping_keysyms_length",
+                c"xcb_query_extension",
+                c"xcb_query_extension_reply",
             ];
             let f: Vec<*mut c_void> = names.iter().map(|n| libxcb(n)).collect();
             if f.iter().any(|p| p.is_null()) {
@@ -765,6 +832,7 @@ mod own {
                     return None;
                 }
                 Some(Own {
+                    display,
                     conn,
                     get_setup: t::<*mut c_void, GetSetup>(f[2]),
                     send_event: t::<*mut c_void, SendEvent>(f[3]),
@@ -774,6 +842,8 @@ mod own {
                     get_keyboard_mapping_reply: t::<*mut c_void, GetKeyboardMappingReply>(f[7]),
                     keysyms: t::<*mut c_void, Keysyms>(f[8]),
                     keysyms_length: t::<*mut c_void, KeysymsLength>(f[9]),
+                    query_extension: t::<*mut c_void, QueryExtension>(f[10]),
+                    query_extension_reply: t::<*mut c_void, QueryExtensionReply>(f[11]),
                 })
             }
         }
@@ -841,16 +911,30 @@ mod own {
             }
         }
 
-        /// Sends each window an Expose event of its whole area.
+        /// The major opcode of extension `name` on the server, 0 when it
+        /// has none (one round trip).
+        pub(super) fn extension_opcode(&self, name: &CStr) -> u8 {
+            let bytes = name.to_bytes();
+            // SAFETY: a request and its reply on the layer's connection; the
+            // reply's `present` and `major_opcode` are bytes 8 and 9; freed.
+            unsafe {
+                let cookie = (self.query_extension)(self.conn, bytes.len() as u16, name.as_ptr());
+                let reply = (self.query_extension_reply)(self.conn, cookie, std::ptr::null_mut());
+                if reply.is_null() {
+                    return 0;
+                }
+                let opcode = if *reply.add(8) != 0 { *reply.add(9) } else { 0 };
+                libc::free(reply.cast());
+                opcode
+            }
+        }
+
+        /// Sends each window of the display the connection was opened
+        /// beside an Expose event of its whole area (windows of another
+        /// display may be on another server).
         pub(super) fn expose(&self, windows: &[Shown]) {
-            // Events must go to windows of the server this connection is
-            // to: the first display armed (one server per process is what
-            // programs have).
-            let Some(&(first, ..)) = windows.first() else {
-                return;
-            };
             for &(display, window, width, height) in windows {
-                if display != first {
+                if display != self.display {
                     continue;
                 }
                 let mut ev = [0u8; 32];
@@ -966,7 +1050,7 @@ mod tests {
         ev[1] = 75;
         ev[28..30].copy_from_slice(&(CONTROL as u16 | 0x2000).to_ne_bytes());
         assert_eq!(
-            parse(&ev),
+            parse(&ev, 0),
             Seen::Key(KeyEvent {
                 press: true,
                 keycode: 75,
@@ -975,13 +1059,53 @@ mod tests {
         );
         ev[0] = KEY_RELEASE;
         assert!(matches!(
-            parse(&ev),
+            parse(&ev, 0),
             Seen::Key(KeyEvent { press: false, .. })
         ));
         for t in [0u8, 1, 4, 12, 34, 35, 127, 255] {
             ev[0] = t;
-            assert_eq!(parse(&ev), Seen::Other, "type {t}");
+            assert_eq!(parse(&ev, 0), Seen::Other, "type {t}");
         }
+        assert_eq!(parse(&ev[..31], 0), Seen::Other, "too short");
+    }
+
+    #[test]
+    fn xinput2_key_events_are_read_as_libxcb_returns_them() {
+        // An XI_KeyPress of 80 wire bytes (no buttons or valuators):
+        // libxcb's copy has the full sequence number at 32..36.
+        const XI: u8 = 131;
+        let mut ev = vec![0u8; 36 + 48];
+        ev[0] = GENERIC_EVENT;
+        ev[1] = XI;
+        ev[4..8].copy_from_slice(&12u32.to_ne_bytes());
+        ev[8..10].copy_from_slice(&XI_KEY_PRESS.to_ne_bytes());
+        ev[16..20].copy_from_slice(&73u32.to_ne_bytes());
+        ev[76..80].copy_from_slice(&(CONTROL | 0x10).to_ne_bytes());
+        let key = Seen::Key(KeyEvent {
+            press: true,
+            keycode: 73,
+            state: CONTROL | 0x10,
+        });
+        assert_eq!(parse(&ev, XI), key);
+        assert_eq!(parse(&ev, 0), Seen::Other, "the server has no XInput");
+        assert_eq!(parse(&ev, XI + 1), Seen::Other, "another extension's");
+        assert_eq!(parse(&ev[..79], XI), Seen::Other, "too short");
+        ev[8..10].copy_from_slice(&XI_KEY_RELEASE.to_ne_bytes());
+        assert!(matches!(
+            parse(&ev, XI),
+            Seen::Key(KeyEvent { press: false, .. })
+        ));
+        ev[8..10].copy_from_slice(&13u16.to_ne_bytes()); // XI_RawKeyPress
+        assert_eq!(parse(&ev, XI), Seen::Other);
+        ev[8..10].copy_from_slice(&XI_KEY_PRESS.to_ne_bytes());
+        ev[16..20].copy_from_slice(&300u32.to_ne_bytes());
+        assert_eq!(parse(&ev, XI), Seen::Other, "no such keycode");
+        // As the filter sees it in libxcb's memory.
+        // SAFETY: a buffer of 36 + 4 × 12 bytes, as the length says.
+        assert_eq!(unsafe { event_bytes(ev.as_ptr()) }.len(), ev.len());
+        ev[4..8].copy_from_slice(&u32::MAX.to_ne_bytes());
+        // SAFETY: the length is refused before it is used.
+        assert_eq!(unsafe { event_bytes(ev.as_ptr()) }.len(), 32);
     }
 
     #[test]
