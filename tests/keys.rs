@@ -4,7 +4,8 @@
 //!
 //! - tests/c/keys_stereo.c, a legacy Xlib stereo program that draws only
 //!   on Expose and prints every key it gets, reading its events with
-//!   XNextEvent (blocking) or XPending + XCheck*Event;
+//!   XNextEvent (blocking) or XPending + XCheck*Event, its keys as core
+//!   or as XInput 2 events;
 //! - tests/clients/glfw_keys.c, a GLFW 3.3 core-profile stereo program
 //!   drawing continuously (Xlib under GLFW);
 //! - tests/clients/qt_keys.cpp, a Qt 5 stereo QWindow (Qt reads libxcb
@@ -34,7 +35,7 @@ const CTRL: &[u32] = &[XK_Control_L];
 const CTRL_SHIFT: &[u32] = &[XK_Control_L, XK_Shift_L];
 const NONE: &[u32] = &[];
 
-/// tests/c/keys_stereo.c (links -lGL -lX11).
+/// tests/c/keys_stereo.c (links -lGL -lX11 -lXi).
 fn keys_stereo() -> std::path::PathBuf {
     build_once("keys_stereo", |out| {
         compile(
@@ -43,7 +44,7 @@ fn keys_stereo() -> std::path::PathBuf {
                 .arg(common::root().join("tests/c/keys_stereo.c"))
                 .arg("-o")
                 .arg(out)
-                .args(["-lGL", "-lX11"]),
+                .args(["-lGL", "-lX11", "-lXi"]),
             "keys_stereo.c",
         )
     })
@@ -164,9 +165,11 @@ fn start(x: &Xvfb, pargs: &[&str], env: &[(&str, &str)]) -> (Running, u64, Scree
     (p, window, Screen::open(&x.display))
 }
 
-fn keys_in_an_event_driven_xlib_program(loop_kind: &str) {
+/// keys_stereo with its event loop `loop_kind` (next, check) and its keys
+/// as `input` events (core, xi2).
+fn keys_in_an_event_driven_xlib_program(loop_kind: &str, input: &str) {
     let x = Xvfb::start(320, 240);
-    let (p, w, screen) = start(&x, &["stereo", loop_kind], &[]);
+    let (p, w, screen) = start(&x, &["stereo", loop_kind, input], &[]);
     wait_for(&screen, w, &keys_anaglyph(false), "the default anaglyph");
     screen.type_keys(w, &[(CTRL, XK_F7)]);
     wait_for(
@@ -231,12 +234,17 @@ fn keys_in_an_event_driven_xlib_program(loop_kind: &str) {
 
 #[test]
 fn keys_change_the_format_and_eye_order_of_an_xlib_program_blocked_in_xnextevent() {
-    keys_in_an_event_driven_xlib_program("next");
+    keys_in_an_event_driven_xlib_program("next", "core");
 }
 
 #[test]
 fn keys_change_the_format_and_eye_order_of_an_xlib_program_polling_with_xpending() {
-    keys_in_an_event_driven_xlib_program("check");
+    keys_in_an_event_driven_xlib_program("check", "core");
+}
+
+#[test]
+fn keys_are_taken_from_xinput2_key_events_too() {
+    keys_in_an_event_driven_xlib_program("next", "xi2");
 }
 
 #[test]
