@@ -37,17 +37,7 @@ const NONE: &[u32] = &[];
 
 /// tests/c/keys_stereo.c (links -lGL -lX11 -lXi).
 fn keys_stereo() -> std::path::PathBuf {
-    build_once("keys_stereo", |out| {
-        compile(
-            Command::new("cc")
-                .args(common::C_FLAGS)
-                .arg(common::root().join("tests/c/keys_stereo.c"))
-                .arg("-o")
-                .arg(out)
-                .args(["-lGL", "-lX11", "-lXi"]),
-            "keys_stereo.c",
-        )
-    })
+    c_program("keys_stereo", &["-lGL", "-lX11", "-lXi"])
 }
 
 /// `glstereo-run [args] program pargs` on `x`.
