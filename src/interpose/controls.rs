@@ -78,10 +78,10 @@
 //!
 //! # When the keys are controls
 //!
-//! Only in a process that has a stereo context the layer presents (the
-//! GLX layer arms the keys when it makes the first one) or, under
-//! `--auto`, any GL context (all of them become automatic-stereo
-//! contexts). Until then — and in every program without stereo — each
+//! Only in a process that has made a stereo context the layer presents
+//! (the GLX layer arms the keys when it makes the first one, for the
+//! rest of the process) or, under `--auto`, any GL context (all of them
+//! become automatic-stereo contexts). Until then — and in every program without stereo — each
 //! event function costs one atomic load and a branch more than libxcb's
 //! own, and every key reaches the program. `GLSTEREO_KEYS=0` turns the
 //! controls off altogether. Stereo the layer does not present (a
