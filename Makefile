@@ -16,13 +16,16 @@ CARGO_PROFILE_FLAG := $(if $(filter release,$(PROFILE)),--release,)
 # Pillow and exiftool, the independent readers of the MPO/JPS stereo photos;
 # lavapipe (Mesa's CPU Vulkan driver) for zink, the GL-over-Vulkan driver of
 # tests/zink.rs.
+# libXtst, with which tests/keys.rs types the live keys (XTEST), and libXi's
+# headers for its XInput 2 client.
 DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosmesa6 \
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind \
                 libx11-xcb-dev libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev \
                 qtbase5-dev qt6-base-dev g++ \
                 openscenegraph mesa-utils apitrace mangohud renderdoccmd librenderdoc-dev \
-                python3-pil libimage-exiftool-perl mesa-vulkan-drivers
+                python3-pil libimage-exiftool-perl mesa-vulkan-drivers \
+                libxtst6 libxi-dev
 
 .PHONY: all deps build header examples demo test check-sanitize lint bench clean install uninstall
 

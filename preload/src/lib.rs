@@ -32,6 +32,7 @@ use std::sync::atomic::{AtomicPtr, Ordering};
 
 use glstereo::auto::entry_points::Family;
 use glstereo::ffi::interpose as gls;
+use glstereo::interpose::controls;
 use glstereo::interpose::draws::Call;
 use glstereo::interpose::next;
 
@@ -366,6 +367,104 @@ forward! {
     glXQueryDrawable(dpy: *mut c_void, draw: c_ulong, attribute: c_int, value: *mut u32);
     glXSelectEvent(dpy: *mut c_void, draw: c_ulong, mask: c_ulong);
     glXGetSelectedEvent(dpy: *mut c_void, draw: c_ulong, mask: *mut c_ulong);
+}
+
+/// libxcb's event functions, through which every X event reaches a
+/// program (an XCB program's own calls, and libX11's to fill its queue):
+/// in a process with a stereo context each passes its events through
+/// [`glstereo::interpose::controls::filtered`], which takes out the live
+/// controls' keys; in any other process it is the next definition's call
+/// after one load and a branch. Each forwards to the next definition of
+/// its name (a layer below such as VirtualGL's faker, then libxcb; libxcb
+/// as loaded when no global scope has it), found once; nested
+/// [`next::NESTING_LIMIT`] deep it takes the call for a loop and goes
+/// straight to libxcb's own function. The exported name only calls a
+/// function of this library's own, as [`export!`]'s do.
+macro_rules! xcb_events {
+    ($( $name:ident ; )*) => {
+        /// The bodies of the event exports, at addresses of this library's own.
+        mod xcb_local {
+            use super::*;
+            $(
+                pub(super) unsafe extern "C" fn $name(c: *mut c_void) -> *mut c_void {
+                    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                    let name = concat!(stringify!($name), "\0");
+                    let f = xcb_next(&NEXT, name);
+                    if !controls::armed() {
+                        // SAFETY: the next definition of this libxcb
+                        // function, with its signature, and the caller's
+                        // connection.
+                        return unsafe { f(c) };
+                    }
+                    let (_inside, depth) = next::enter();
+                    let f = if depth >= next::NESTING_LIMIT {
+                        xcb_bottom(&NEXT, name)
+                    } else {
+                        f
+                    };
+                    // SAFETY: as above; the events are the caller's to free.
+                    unsafe { controls::filtered(c, f) }
+                }
+            )*
+        }
+
+        $(
+            #[doc = concat!("`", stringify!($name), "`: libxcb's, without the live controls' keys (see `xcb_events!`).")]
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn $name(c: *mut c_void) -> *mut c_void {
+                // SAFETY: the caller's connection, forwarded.
+                unsafe { xcb_local::$name(c) }
+            }
+        )*
+    };
+}
+
+xcb_events! {
+    xcb_wait_for_event;
+    xcb_poll_for_event;
+    xcb_poll_for_queued_event;
+}
+
+/// The next definition of libxcb function `name` (NUL-terminated; cached
+/// in `slot`). A process without libxcb cannot have called it through
+/// the dynamic linker: its absence ends the process with a message.
+fn xcb_next(slot: &AtomicPtr<c_void>, name: &'static str) -> controls::NextEvent {
+    let mut f = slot.load(Ordering::Acquire);
+    if f.is_null() {
+        let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+        f = next::next_symbol_in(cname, LIBXCB);
+        if f.is_null() {
+            no_libxcb(cname);
+        }
+        slot.store(f, Ordering::Release);
+    }
+    // SAFETY: libxcb's event function (or a layer's standing for it).
+    unsafe { std::mem::transmute::<*mut c_void, controls::NextEvent>(f) }
+}
+
+/// libxcb's own `name` for a call found looping through a layer below
+/// ([`pass_down`]'s rule): said once, and used from now on.
+fn xcb_bottom(slot: &AtomicPtr<c_void>, name: &'static str) -> controls::NextEvent {
+    next::loop_detected(name.trim_end_matches('\0'));
+    let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+    let f = next::own_symbol_in(cname, LIBXCB);
+    if f.is_null() {
+        no_libxcb(cname);
+    }
+    slot.store(f, Ordering::Release);
+    // SAFETY: libxcb's own event function.
+    unsafe { std::mem::transmute::<*mut c_void, controls::NextEvent>(f) }
+}
+
+/// libxcb's soname.
+const LIBXCB: &std::ffi::CStr = c"libxcb.so.1";
+
+fn no_libxcb(name: &std::ffi::CStr) -> ! {
+    eprintln!(
+        "glstereo: {} was called and libxcb.so.1 is not loaded; aborting",
+        name.to_string_lossy()
+    );
+    std::process::abort();
 }
 
 // The GL commands of the drawing families, generated from gl.xml by

@@ -1096,6 +1096,7 @@ impl StereoContext {
         let gl = &r.gl;
         let mode = super::live::mode();
         let options = super::live::options();
+        super::controls::presented(self.display, x_window, width, height);
         let CtxState {
             fbs, compositor, ..
         } = st;

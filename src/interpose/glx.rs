@@ -596,6 +596,15 @@ fn adopt(
     ));
     watch(r, dpy);
     registry::with(|reg| reg.add_context(ctx as usize, sc));
+    super::controls::arm(&r.xlib, dpy);
+}
+
+/// Under `--auto` every context the program makes is an automatic-stereo
+/// context: the live keys work from the first one on.
+fn arm_automatic(r: &Real, dpy: *mut Display, ctx: GLXContext) {
+    if !ctx.is_null() && super::live::auto_requested() {
+        super::controls::arm(&r.xlib, dpy);
+    }
 }
 
 /// Forgets whatever was known about a context at this address (a new
@@ -662,6 +671,8 @@ pub unsafe fn create_context(
             },
             auto,
         );
+    } else {
+        arm_automatic(r, dpy, ctx);
     }
     Ok(ctx)
 }
@@ -749,6 +760,8 @@ pub unsafe fn create_config_context(
             },
             auto,
         );
+    } else {
+        arm_automatic(r, dpy, ctx);
     }
     Ok(ctx)
 }

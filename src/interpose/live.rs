@@ -51,6 +51,8 @@ struct Live {
     separation: AtomicU32,
     /// f32 bits; NaN: automatic.
     convergence: AtomicU32,
+    /// f32 bits: the value automatic convergence chose last; NaN: none yet.
+    automatic: AtomicU32,
 }
 
 fn live() -> &'static Live {
@@ -88,6 +90,7 @@ fn live() -> &'static Live {
             auto_on: AtomicBool::new(auto),
             separation: AtomicU32::new(separation.to_bits()),
             convergence: AtomicU32::new(convergence.unwrap_or(f32::NAN).to_bits()),
+            automatic: AtomicU32::new(f32::NAN.to_bits()),
         }
     })
 }
@@ -199,6 +202,23 @@ pub fn set_convergence(c: Option<f32>) {
         v => live()
             .convergence
             .store(v.unwrap_or(f32::NAN).to_bits(), Ordering::Relaxed),
+    }
+}
+
+/// The convergence automatic convergence chose last (what the scene is
+/// converged at while [`convergence`] is None), None before it chose one.
+/// The live keys step from it when the user first takes convergence over
+/// ([`super::controls`]).
+pub fn automatic_convergence() -> Option<f32> {
+    let c = f32::from_bits(live().automatic.load(Ordering::Relaxed));
+    (!c.is_nan()).then_some(c)
+}
+
+/// Automatic stereo says which convergence it chose (a value ≤ 0 or not
+/// finite is ignored).
+pub fn set_automatic_convergence(c: f32) {
+    if c.is_finite() && c > 0.0 {
+        live().automatic.store(c.to_bits(), Ordering::Relaxed);
     }
 }
 

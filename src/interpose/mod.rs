@@ -188,6 +188,7 @@ pub mod attribs;
 pub mod binaries;
 pub mod capture;
 pub mod context;
+pub mod controls;
 pub mod draws;
 pub mod dsa;
 pub mod gl;

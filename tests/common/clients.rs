@@ -100,7 +100,12 @@ fn cxx_client(name: &str, modules: &[&str]) -> PathBuf {
 
 /// tests/clients/qt_stereo.cpp against Qt5Gui.
 pub fn qt_client() -> PathBuf {
-    cxx_client("qt_stereo", &["Qt5Gui"])
+    qt5_client("qt_stereo")
+}
+
+/// tests/clients/NAME.cpp against Qt5Gui.
+pub fn qt5_client(name: &str) -> PathBuf {
+    cxx_client(name, &["Qt5Gui"])
 }
 
 /// tests/clients/qt6_stereo.cpp against Qt 6's widgets.
@@ -139,15 +144,21 @@ pub fn forwarder(local: bool) -> PathBuf {
 
 /// The legacy GLX stereo program of tests/c (links -lGL -lX11).
 pub fn legacy_stereo() -> PathBuf {
-    build_once("legacy_stereo", |out| {
+    c_program("legacy_stereo", &["-lGL", "-lX11"])
+}
+
+/// tests/c/NAME.c, a plain program (no glstereo), strict C99, linked
+/// with `libs` only.
+pub fn c_program(name: &str, libs: &[&str]) -> PathBuf {
+    build_once(name, |out| {
         compile(
             Command::new("cc")
                 .args(super::C_FLAGS)
-                .arg(super::root().join("tests/c/legacy_stereo.c"))
+                .arg(super::root().join(format!("tests/c/{name}.c")))
                 .arg("-o")
                 .arg(out)
-                .args(["-lGL", "-lX11"]),
-            "legacy_stereo.c",
+                .args(libs),
+            name,
         )
     })
 }

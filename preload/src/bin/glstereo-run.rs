@@ -144,10 +144,15 @@ fn help() -> String {
         ));
     }
     s.push_str(
+        "\nKeys in the program's window (never passed to it; GLSTEREO_KEYS=0: off):\n\
+         \x20 Ctrl+F7, Ctrl+Shift+F7  next, previous format      Ctrl+F8  exchange the eyes\n\
+         \x20 automatic stereo: Ctrl+F3/F4 separation, Ctrl+F5/F6 convergence, Ctrl+T on/off\n",
+    );
+    s.push_str(
         "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_AUTO, GLSTEREO_SEPARATION,\n\
          GLSTEREO_CONVERGENCE, GLSTEREO_VERBOSE, GLSTEREO_CROSSTALK (0..1),\n\
          GLSTEREO_SATURATION (0..1), GLSTEREO_CAPTURE_DIR, GLSTEREO_CAPTURE_FORMAT,\n\
-         GLSTEREO_JPEG_QUALITY (1..100); GLSTEREO_PRELOAD_LIB names\n\
+         GLSTEREO_JPEG_QUALITY (1..100), GLSTEREO_KEYS; GLSTEREO_PRELOAD_LIB names\n\
          the preload library when it is not installed beside glstereo-run.\n\
          \n\
          Exit status: PROGRAM's; 2 for a usage error; 126/127 when PROGRAM cannot be run.\n",
