@@ -10,7 +10,7 @@
  *   open NAME OPENED                    dlopen(NAME) for each GL library name,
  *                                       and libGL.so.1 by its absolute path
  *                                       (NAME "by-path")
- *   known NAME FOUND                    dlsym(handle, "glEnable") (a GL name the
+ *   known NAME FOUND                    dlsym(handle, "glGetString") (a GL name the
  *                                       layer does not replace: the stub of a
  *                                       GL library answers the layer's
  *                                       replacements on every handle)
@@ -42,7 +42,7 @@ static const char *libgl_path(void)
     static char path[4096];
     Dl_info info;
     void *h = dlopen("libGL.so.1", RTLD_NOW | RTLD_LOCAL);
-    void *known = h != NULL ? dlsym(h, "glEnable") : NULL;
+    void *known = h != NULL ? dlsym(h, "glGetString") : NULL;
     if (known != NULL && dladdr(known, &info) != 0 && info.dli_fname != NULL && info.dli_fname[0] == '/') {
         snprintf(path, sizeof path, "%s", info.dli_fname);
     }
@@ -78,7 +78,7 @@ int main(void)
         if (h == NULL) {
             continue;
         }
-        printf("known %s %d\n", name, dlsym(h, "glEnable") != NULL);
+        printf("known %s %d\n", name, dlsym(h, "glGetString") != NULL);
         dlerror();
         p = dlsym(h, "glNoSuchFunctionGLS");
         printf("unknown %s %d %d\n", name, p == NULL, dlerror() != NULL);
