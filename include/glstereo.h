@@ -2537,6 +2537,20 @@ void gls_gl_get_double_indexedv_ext(uint32_t target, uint32_t index, double *dat
 void gls_gl_get_integer64v(uint32_t pname, int64_t *data);
 
 /**
+ * `glStereoParameterfNV` (NV_3dvision_settings): automatic stereo's
+ * separation (percent), convergence, cutoff or projection method in a
+ * context under `glstereo-run --auto`; GL_INVALID_ENUM / GL_INVALID_VALUE
+ * as the extension says; no effect on rendering in other contexts.
+ */
+void gls_gl_stereo_parameterf_nv(uint32_t pname, float param);
+
+/**
+ * `glStereoParameteriNV`: as gls_gl_stereo_parameterf_nv(), the integer
+ * taken as a float but for GL_STEREO_PROJECTION_NV's enumerant.
+ */
+void gls_gl_stereo_parameteri_nv(uint32_t pname, int32_t param);
+
+/**
  * `glBlitFramebuffer`: a blit into the emulated framebuffer of a visual
  * without alpha leaves its alpha 1.0, as on that visual.
  */

@@ -40,20 +40,33 @@ fn oracle() -> PathBuf {
 /// and its stdout. `in_place`: the eyes' layers share their memory with
 /// the textures presentation reads (llvmpipe), else they are copied.
 fn under_auto(x: &Xvfb, profile: &str, dir: &Path, in_place: bool) -> ([Image; 2], String) {
+    run_auto(
+        x,
+        &["--separation", SEPARATION, "--convergence", CONVERGENCE],
+        &[profile, "mono"],
+        dir,
+        in_place,
+    )
+}
+
+/// The eyes and stdout of the oracle run with `args` under
+/// `glstereo-run --auto FLAGS --capture DIR`.
+fn run_auto(
+    x: &Xvfb,
+    flags: &[&str],
+    args: &[&str],
+    dir: &Path,
+    in_place: bool,
+) -> ([Image; 2], String) {
     let o = common::run_ok(
         Command::new(&built().run)
             .env("GLSTEREO_EYE_MEMORY", if in_place { "1" } else { "0" })
-            .args([
-                "--auto",
-                "--separation",
-                SEPARATION,
-                "--convergence",
-                CONVERGENCE,
-            ])
+            .arg("--auto")
+            .args(flags)
             .arg("--capture")
             .arg(dir)
             .arg(oracle())
-            .args([profile, "mono"])
+            .args(args)
             .env("DISPLAY", &x.display),
     );
     let stderr = String::from_utf8_lossy(&o.stderr);
@@ -188,6 +201,55 @@ fn a_mono_core_profile_program_under_auto_equals_each_eye_drawn_by_hand() {
             ([255, 255, 255], None),
         ],
     );
+}
+
+/// A program that knows 3D Vision tunes itself (NV_3dvision_settings,
+/// seed 004): its glStereoParameterfNV separation and convergence give
+/// the eyes the rule gives by hand, glGetFloatv and glIsEnabled answer
+/// what it set, bad values raise the extension's errors, and
+/// glDisable(GL_3DVISION_STEREO_NV) makes both eyes the mono picture.
+#[test]
+fn a_program_sets_separation_and_convergence_itself_and_turns_stereo_off() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let x = Xvfb::start(W + 40, H + 40);
+    for profile in ["legacy", "core"] {
+        let dir = common::scratch(&format!("auto-nv-{profile}"));
+        let hand = ["left", "right"].map(|eye| by_hand(&x, profile, eye, &dir));
+        let tuned = common::scratch(&format!("auto-nv-{profile}-tuned"));
+        // The user's defaults (separation 15) are what the program changes.
+        let (eyes, stdout) = run_auto(
+            &x,
+            &[],
+            &[profile, "tuned", SEPARATION, CONVERGENCE],
+            &tuned,
+            true,
+        );
+        assert!(
+            stdout.contains(&format!("nv {SEPARATION} {CONVERGENCE} 1 0x501 0x500\n")),
+            "{profile}: the settings read back as {stdout:?}"
+        );
+        for (n, eye) in ["left", "right"].into_iter().enumerate() {
+            let d = differing(&eyes[n], &hand[n]);
+            assert!(
+                d.is_empty(),
+                "{profile}, {eye} eye: {} pixels differ from the eye drawn by hand with the \
+                 program's settings, e.g. {:?}",
+                d.len(),
+                &d[..d.len().min(8)]
+            );
+        }
+        let off = common::scratch(&format!("auto-nv-{profile}-off"));
+        let (eyes, stdout) = run_auto(&x, &[], &[profile, "off"], &off, true);
+        assert!(stdout.contains("nv-off 0\n"), "{profile}: {stdout:?}");
+        assert!(
+            differing(&eyes[0], &eyes[1]).is_empty(),
+            "{profile}: with GL_3DVISION_STEREO_NV disabled the eyes differ"
+        );
+        assert!(
+            differing(&eyes[0], &hand[0]).len() > 100,
+            "{profile}: the disabled eyes are the shifted ones"
+        );
+    }
 }
 
 /// Without --auto the mono program's window holds exactly what it holds

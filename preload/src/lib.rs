@@ -206,6 +206,8 @@ export! {
     glGetDoublei_vEXT => gls_gl_get_doublei_v_ext(target: u32, index: u32, data: *mut f64);
     glGetDoubleIndexedvEXT => gls_gl_get_double_indexedv_ext(target: u32, index: u32, data: *mut f64);
     glGetInteger64v => gls_gl_get_integer64v(pname: u32, data: *mut i64);
+    glStereoParameterfNV => gls_gl_stereo_parameterf_nv(pname: u32, param: f32);
+    glStereoParameteriNV => gls_gl_stereo_parameteri_nv(pname: u32, param: i32);
     glColorMaskIndexedEXT => gls_gl_color_mask_indexed_ext(index: u32, red: u8, green: u8, blue: u8, alpha: u8);
     glColorMaskiEXT => gls_gl_color_maski_ext(index: u32, red: u8, green: u8, blue: u8, alpha: u8);
     glColorMaskiOES => gls_gl_color_maski_oes(index: u32, red: u8, green: u8, blue: u8, alpha: u8);

@@ -811,6 +811,28 @@ pub unsafe fn created(group: u64, program: u32) {
     record(group, program, at);
 }
 
+/// glStereoParameterfNV / glStereoParameteriNV (`Ok(f)` / `Err(i)` as
+/// the program passed it) in a context given automatic stereo. Separation
+/// and convergence are the live settings (the keys step from the
+/// program's values, and stderr says the keys' changes); the cutoff and
+/// projection method are the context's. On an error nothing changes: seed
+/// 004's INVALID_ENUM for an unknown pname or projection method,
+/// INVALID_VALUE for a separation outside 0…100 (and a value that is not
+/// finite).
+pub fn set_parameter(st: &mut AutoState, pname: u32, value: Result<f32, i32>) -> crate::Result<()> {
+    let mut s = st.settings();
+    match value {
+        Ok(f) => s.parameter_f(pname, f)?,
+        Err(i) => s.parameter_i(pname, i)?,
+    }
+    match pname {
+        GL_STEREO_SEPARATION_NV => live::set_separation(s.separation()),
+        GL_STEREO_CONVERGENCE_NV => live::set_convergence(Some(s.convergence())),
+        _ => *st.nv_settings() = s,
+    }
+    Ok(())
+}
+
 /// GL_3DVISION_STEREO_NV and the STEREO_*_NV values of a context given
 /// automatic stereo, for glGet* (None: not one of them).
 pub fn query(st: &mut AutoState, pname: u32) -> Option<crate::shims::nv3dvision::StateValue> {

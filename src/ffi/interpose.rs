@@ -947,6 +947,26 @@ pub unsafe extern "C" fn gls_gl_get_integer64v(pname: u32, data: *mut i64) {
     })
 }
 
+/// `glStereoParameterfNV` (NV_3dvision_settings): automatic stereo's
+/// separation (percent), convergence, cutoff or projection method in a
+/// context under `glstereo-run --auto`; GL_INVALID_ENUM / GL_INVALID_VALUE
+/// as the extension says; no effect on rendering in other contexts.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_stereo_parameterf_nv(pname: u32, param: f32) {
+    ffi_boundary!("gls_gl_stereo_parameterf_nv" for "glStereoParameterfNV", () => {
+        igl::stereo_parameter(pname, Ok(param))
+    })
+}
+
+/// `glStereoParameteriNV`: as gls_gl_stereo_parameterf_nv(), the integer
+/// taken as a float but for GL_STEREO_PROJECTION_NV's enumerant.
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_stereo_parameteri_nv(pname: u32, param: i32) {
+    ffi_boundary!("gls_gl_stereo_parameteri_nv" for "glStereoParameteriNV", () => {
+        igl::stereo_parameter(pname, Err(param))
+    })
+}
+
 /// `glBlitFramebuffer`: a blit into the emulated framebuffer of a visual
 /// without alpha leaves its alpha 1.0, as on that visual.
 #[unsafe(no_mangle)]
@@ -1098,6 +1118,8 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glGetDoublei_vEXT" => gls_gl_get_doublei_v_ext as *mut c_void,
         b"glGetDoubleIndexedvEXT" => gls_gl_get_double_indexedv_ext as *mut c_void,
         b"glGetInteger64v" => gls_gl_get_integer64v as *mut c_void,
+        b"glStereoParameterfNV" => gls_gl_stereo_parameterf_nv as *mut c_void,
+        b"glStereoParameteriNV" => gls_gl_stereo_parameteri_nv as *mut c_void,
         b"glColorMaskIndexedEXT" => gls_gl_color_mask_indexed_ext as *mut c_void,
         b"glColorMaskiEXT" => gls_gl_color_maski_ext as *mut c_void,
         b"glColorMaskiOES" => gls_gl_color_maski_oes as *mut c_void,

@@ -374,9 +374,11 @@ enum StepFrom {
 /// distance > 0 keeps the value.
 fn step_convergence(set: Option<f32>, automatic: Option<f32>, up: bool) -> (f32, StepFrom) {
     let (from, how) = match (set, automatic) {
-        (Some(c), _) => (c, StepFrom::Set),
-        (None, Some(a)) => (a, StepFrom::Automatic(a)),
-        (None, None) => (1.0, StepFrom::Unknown),
+        // A program may have set 0 or less (glStereoParameterfNV), which
+        // no factor moves: the keys step from automatic's value or 1.
+        (Some(c), _) if c > 0.0 => (c, StepFrom::Set),
+        (_, Some(a)) => (a, StepFrom::Automatic(a)),
+        (_, None) => (1.0, StepFrom::Unknown),
     };
     let to = if up {
         from * CONVERGENCE_STEP

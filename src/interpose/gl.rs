@@ -57,6 +57,9 @@ use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::gl::names::Kind;
+use crate::shims::nv3dvision::{
+    GL_3DVISION_STEREO_NV, GL_STEREO_PROJECTION_NV, StateValue, StereoSettings,
+};
 use crate::stereo::buffers::{ColorBuffer, gl_error_code};
 use crate::stereo::emulated::{
     BufferFormats, DrawSelection, EmulatedFramebuffer, MAX_DRAW_BUFFERS, ReadSelection,
@@ -361,6 +364,10 @@ pub(super) fn driver_accepts(gl: &Gl, cur: &Current, query: impl FnOnce()) -> bo
 /// `data` must be valid for the values `pname` returns (GL's contract).
 pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
     let r = loaded()?;
+    // SAFETY: `data` holds the one value the pname returns (GL's contract).
+    if unsafe { nv_answer(r, pname, data, StateValue::as_integer)? } {
+        return Ok(());
+    }
     // SAFETY: forwarded contract; the forwarded call gets it.
     unsafe { get_v(r, pname, data, |p, d| r.gl.GetIntegerv(p, d), |v| v) }
 }
@@ -371,6 +378,10 @@ pub unsafe fn get_integerv(pname: u32, data: *mut i32) -> Result<()> {
 /// As [`get_integerv`].
 pub unsafe fn get_booleanv(pname: u32, data: *mut u8) -> Result<()> {
     let r = loaded()?;
+    // SAFETY: `data` holds the one value the pname returns (GL's contract).
+    if unsafe { nv_answer(r, pname, data, |v| v.as_boolean() as u8)? } {
+        return Ok(());
+    }
     // SAFETY: forwarded contract; the forwarded call gets it.
     unsafe {
         get_v(
@@ -389,6 +400,10 @@ pub unsafe fn get_booleanv(pname: u32, data: *mut u8) -> Result<()> {
 /// As [`get_integerv`].
 pub unsafe fn get_floatv(pname: u32, data: *mut f32) -> Result<()> {
     let r = loaded()?;
+    // SAFETY: `data` holds the one value the pname returns (GL's contract).
+    if unsafe { nv_answer(r, pname, data, StateValue::as_float)? } {
+        return Ok(());
+    }
     // SAFETY: forwarded contract; the forwarded call gets it.
     unsafe { get_v(r, pname, data, |p, d| r.gl.GetFloatv(p, d), |v| v as f32) }
 }
@@ -399,6 +414,10 @@ pub unsafe fn get_floatv(pname: u32, data: *mut f32) -> Result<()> {
 /// As [`get_integerv`].
 pub unsafe fn get_doublev(pname: u32, data: *mut f64) -> Result<()> {
     let r = loaded()?;
+    // SAFETY: `data` holds the one value the pname returns (GL's contract).
+    if unsafe { nv_answer(r, pname, data, |v| f64::from(v.as_float()))? } {
+        return Ok(());
+    }
     // SAFETY: forwarded contract; the forwarded call gets it.
     unsafe { get_v(r, pname, data, |p, d| r.gl.GetDoublev(p, d), f64::from) }
 }
@@ -409,12 +428,96 @@ pub unsafe fn get_doublev(pname: u32, data: *mut f64) -> Result<()> {
 /// As [`get_integerv`].
 pub unsafe fn get_integer64v(pname: u32, data: *mut i64) -> Result<()> {
     let r = loaded()?;
+    // SAFETY: `data` holds the one value the pname returns (GL's contract).
+    if unsafe { nv_answer(r, pname, data, |v| i64::from(v.as_integer()))? } {
+        return Ok(());
+    }
     let f = r
         .extra
         .get_integer64v
         .ok_or_else(|| lacks("glGetInteger64v", "GL 3.2"))?;
     // SAFETY: forwarded contract; the forwarded call gets it.
     unsafe { get_v(r, pname, data, |p, d| f(p, d), i64::from) }
+}
+
+/// The NV_3dvision_settings values (GL_3DVISION_STEREO_NV and the
+/// STEREO_*_NV pnames, seed 004) in a context given automatic stereo,
+/// written to `data` as `convert` makes them the query's type; true when
+/// answered. Elsewhere the driver answers (GL_INVALID_ENUM on Mesa: the
+/// extension is automatic stereo's). Refused: `data` NULL.
+///
+/// # Safety
+/// `data` is NULL or valid for one value.
+unsafe fn nv_answer<T>(
+    r: &Real,
+    pname: u32,
+    data: *mut T,
+    convert: fn(StateValue) -> T,
+) -> Result<bool> {
+    if !(GL_3DVISION_STEREO_NV..=GL_STEREO_PROJECTION_NV).contains(&pname) {
+        return Ok(false);
+    }
+    let Some(cur) = current().filter(|c| c.sc.auto()) else {
+        return Ok(false);
+    };
+    if data.is_null() {
+        return Err(refuse_null(r, "data"));
+    }
+    let Some(v) = cur
+        .sc
+        .with_auto(cur.draw, |st, _| crate::auto::runtime::query(st, pname))
+    else {
+        return Ok(false);
+    };
+    // SAFETY: non-NULL, one value (contract).
+    unsafe { *data = convert(v) };
+    Ok(true)
+}
+
+/// glStereoParameterfNV (`Ok(value)`) and glStereoParameteriNV
+/// (`Err(value)`), NV_3dvision_settings (seed 004). In a context given
+/// automatic stereo (glstereo-run --auto) they set separation,
+/// convergence, cutoff and projection method
+/// ([`crate::auto::runtime::set_parameter`]); a bad pname or value raises
+/// the extension's GL error and changes nothing. Elsewhere, as the
+/// extension says of a context without 3D Vision, they have no effect on
+/// rendering (the same errors, and stderr says once that automatic
+/// stereo is off); with no context current, nothing, as GL.
+pub fn stereo_parameter(pname: u32, value: std::result::Result<f32, i32>) -> Result<()> {
+    let r = loaded()?;
+    let Some(cur) = current() else {
+        if !super::live::auto_requested() {
+            note_no_auto();
+        }
+        return Ok(());
+    };
+    let outcome = if cur.sc.auto() {
+        cur.sc.with_auto(cur.draw, |st, _| {
+            crate::auto::runtime::set_parameter(st, pname, value)
+        })
+    } else {
+        note_no_auto();
+        let mut s = StereoSettings::new(false);
+        match value {
+            Ok(f) => s.parameter_f(pname, f),
+            Err(i) => s.parameter_i(pname, i),
+        }
+    };
+    if let Err(e) = outcome {
+        cur.sc.lock().push_error(&r.gl, gl_error_code(&e));
+    }
+    Ok(())
+}
+
+/// Says once that glStereoParameter*NV has no effect without --auto.
+fn note_no_auto() {
+    static SAID: std::sync::Once = std::sync::Once::new();
+    SAID.call_once(|| {
+        super::warn(
+            "glStereoParameterNV has no effect: automatic stereo is off for this \
+             context (run the program with glstereo-run --auto, or GLSTEREO_AUTO=1)",
+        )
+    });
 }
 
 /// Writes the program's colour mask of draw buffer `index` (what

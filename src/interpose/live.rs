@@ -194,11 +194,13 @@ pub fn convergence() -> Option<f32> {
     (!c.is_nan()).then_some(c)
 }
 
-/// Sets the convergence (None: automatic; a value ≤ 0 or not finite is
-/// ignored).
+/// Sets the convergence (None: automatic; a value that is not finite is
+/// ignored). The user's values are > 0 ([`parse_convergence`]); a
+/// program's own glStereoParameterfNV may set any finite one, 0 (the
+/// extension's initial value) included.
 pub fn set_convergence(c: Option<f32>) {
     match c {
-        Some(v) if !(v.is_finite() && v > 0.0) => {}
+        Some(v) if !v.is_finite() => {}
         v => live()
             .convergence
             .store(v.unwrap_or(f32::NAN).to_bits(), Ordering::Relaxed),

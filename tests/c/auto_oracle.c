@@ -13,6 +13,17 @@
  *                                             of glReadPixels at (50, 75);
  *                                             with wait, then "ready 0xWIN"
  *                                             and waits for a line on stdin
+ *   auto_oracle legacy|core tuned S C [wait]  as mono, the program setting
+ *                                             separation S and convergence C
+ *                                             itself (NV_3dvision_settings,
+ *                                             seed 004) and printing "nv S C
+ *                                             ENABLED BAD_VALUE BAD_ENUM": what
+ *                                             glGetFloatv and glIsEnabled
+ *                                             answer and the errors of a
+ *                                             separation of 101 and a bad pname
+ *   auto_oracle legacy|core off [wait]        as mono, with
+ *                                             glDisable(GL_3DVISION_STEREO_NV)
+ *                                             first; prints "nv-off ENABLED"
  *   auto_oracle legacy|core left|right S C OUT  draws that eye by hand and
  *                                             writes its pixels to OUT
  *                                             (RGBA, rows top first)
@@ -35,6 +46,12 @@
 
 #define W 200
 #define H 150
+
+/* NV_3dvision_settings (seed 004), an OpenGL ES extension: not in glext.h. */
+#define GL_3DVISION_STEREO_NV 0x90F4
+#define GL_STEREO_SEPARATION_NV 0x90F5
+#define GL_STEREO_CONVERGENCE_NV 0x90F6
+typedef void (*stereo_parameter_fn)(GLenum, GLfloat);
 
 typedef GLXContext (*create_context_fn)(Display *, GLXFBConfig, GLXContext, Bool, const int *);
 
@@ -260,9 +277,12 @@ int main(int argc, char **argv)
         return 2;
     }
     int core = strcmp(argv[1], "core") == 0;
-    int mono = strcmp(argv[2], "mono") == 0;
+    int tuned = strcmp(argv[2], "tuned") == 0;
+    int off = strcmp(argv[2], "off") == 0;
+    int mono = strcmp(argv[2], "mono") == 0 || tuned || off;
     double k = 0.0, c = 0.0;
     const char *out = NULL;
+    if (tuned && argc < 5) return 2;
     if (!mono) {
         if (argc < 6) return 2;
         double s = 0.07 * atof(argv[3]) / 100.0;
@@ -298,6 +318,25 @@ int main(int argc, char **argv)
         ctx = glXCreateNewContext(dpy, configs[0], GLX_RGBA_TYPE, NULL, True);
     }
     if (!ctx || !glXMakeCurrent(dpy, win, ctx)) return 1;
+    if (tuned) {
+        stereo_parameter_fn set = (stereo_parameter_fn)glXGetProcAddressARB(
+            (const GLubyte *)"glStereoParameterfNV");
+        set(GL_STEREO_SEPARATION_NV, 101.0f);
+        GLenum bad_value = glGetError();
+        set(0x7777, 1.0f);
+        GLenum bad_enum = glGetError();
+        set(GL_STEREO_SEPARATION_NV, (GLfloat)atof(argv[3]));
+        set(GL_STEREO_CONVERGENCE_NV, (GLfloat)atof(argv[4]));
+        GLfloat got_s = -1.0f, got_c = -1.0f;
+        glGetFloatv(GL_STEREO_SEPARATION_NV, &got_s);
+        glGetFloatv(GL_STEREO_CONVERGENCE_NV, &got_c);
+        printf("nv %g %g %d 0x%x 0x%x\n", got_s, got_c, glIsEnabled(GL_3DVISION_STEREO_NV),
+               bad_value, bad_enum);
+    }
+    if (off) {
+        glDisable(GL_3DVISION_STEREO_NV);
+        printf("nv-off %d\n", glIsEnabled(GL_3DVISION_STEREO_NV));
+    }
     if (core)
         core_scene(k, c);
     else

@@ -53,6 +53,9 @@
 #define GL_FRAMEBUFFER_COMPLETE_ 0x8CD5u
 #define GL_DRAW_FRAMEBUFFER_BINDING_ 0x8CA6u
 #define GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_ 0x8CD0u
+#define GL_STEREO_SEPARATION_NV 0x90F5u
+#define GL_STEREO_CONVERGENCE_NV 0x90F6u
+#define GL_STEREO_PROJECTION_NV 0x90F8u
 #define GL_COLOR_ 0x1800u
 #define GL_FRAGMENT_SHADER_ 0x8B30u
 #define GLX_CONTEXT_MAJOR_VERSION_ARB_ 0x2091
@@ -98,6 +101,8 @@ typedef void (*get_booleani_fn)(GLenum, GLuint, GLboolean *);
 typedef void (*get_integeri_fn)(GLenum, GLuint, GLint *);
 typedef void (*get_integer64i_fn)(GLenum, GLuint, int64_t *);
 typedef void (*get_integer64_fn)(GLenum, int64_t *);
+typedef void (*stereo_parameterf_fn)(GLenum, GLfloat);
+typedef void (*stereo_parameteri_fn)(GLenum, GLint);
 typedef void (*get_floati_fn)(GLenum, GLuint, GLfloat *);
 typedef void (*get_doublei_fn)(GLenum, GLuint, GLdouble *);
 typedef void (*clear_color_i_fn)(GLint, GLint, GLint, GLint);
@@ -146,6 +151,8 @@ static get_booleani_fn p_get_boolean_indexed_ext;
 static get_integeri_fn p_get_integeri, p_get_integer_indexed_ext;
 static get_integer64i_fn p_get_integer64i;
 static get_integer64_fn p_get_integer64;
+static stereo_parameterf_fn p_stereo_parameterf;
+static stereo_parameteri_fn p_stereo_parameteri;
 static get_floati_fn p_get_floati, p_get_floati_ext, p_get_floati_oes, p_get_float_indexed_ext;
 static get_doublei_fn p_get_doublei, p_get_doublei_ext, p_get_double_indexed_ext;
 static clear_color_i_fn p_clear_color_ii, p_clear_colorx, p_clear_colorx_oes;
@@ -218,6 +225,8 @@ static void load_procs(void) {
     LOOKUP(p_get_integer_indexed_ext, "glGetIntegerIndexedvEXT");
     LOOKUP(p_get_integer64i, "glGetInteger64i_v");
     LOOKUP(p_get_integer64, "glGetInteger64v");
+    LOOKUP(p_stereo_parameterf, "glStereoParameterfNV");
+    LOOKUP(p_stereo_parameteri, "glStereoParameteriNV");
     LOOKUP(p_get_floati, "glGetFloati_v");
     LOOKUP(p_get_floati_ext, "glGetFloati_vEXT");
     LOOKUP(p_get_floati_oes, "glGetFloati_vOES");
@@ -326,6 +335,8 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_get_integer_indexedv_ext(p, i, d) p_get_integer_indexed_ext((p), (i), (d))
 #define gls_gl_get_integer64i_v(p, i, d) p_get_integer64i((p), (i), (d))
 #define gls_gl_get_integer64v(p, d) p_get_integer64((p), (d))
+#define gls_gl_stereo_parameterf_nv(p, v) p_stereo_parameterf((p), (v))
+#define gls_gl_stereo_parameteri_nv(p, v) p_stereo_parameteri((p), (v))
 #define gls_gl_get_floati_v(p, i, d) p_get_floati((p), (i), (d))
 #define gls_gl_get_floati_v_ext(p, i, d) p_get_floati_ext((p), (i), (d))
 #define gls_gl_get_floati_v_oes(p, i, d) p_get_floati_oes((p), (i), (d))
@@ -411,7 +422,7 @@ static void check_message(const char *fn, int reports, int line) {
 
 /* ---- the harness ------------------------------------------------------ */
 
-static const char *covered[128], *refused[128];
+static const char *covered[256], *refused[256];
 static int n_covered, n_refused;
 
 /* Prints `line` once per name (for tests/misuse.rs). */
@@ -865,6 +876,9 @@ static void no_context_cases(void) {
                 GL_NEAREST);
     EXPECT_VOID0(0, gls_gl_flush);
     EXPECT_VOID0(0, gls_gl_finish);
+    /* NV_3dvision_settings with no context: nothing, as GL. */
+    EXPECT_VOID(0, gls_gl_stereo_parameterf_nv, GL_STEREO_SEPARATION_NV, 500.0f);
+    EXPECT_VOID(0, gls_gl_stereo_parameteri_nv, 0x7777, 1);
     /* NULL pointers: refused; no context, so no GL error either. */
     EXPECT_VOID(1, gls_gl_get_integerv, GL_STEREO, NULL);
     EXPECT_VOID(1, gls_gl_draw_buffers, 1, NULL);
@@ -993,6 +1007,24 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_RET(ok == True, 0, ok, gls_glx_make_current, dpy, win, ctx);
     EXPECT_GL_ERROR(GL_NO_ERROR);
     null_gl_pointers("stereo");
+    /* NV_3dvision_settings in a stereo context without --auto: the
+     * extension's errors, and no effect (the pnames stay the driver's). */
+    EXPECT_VOID(0, gls_gl_stereo_parameterf_nv, GL_STEREO_SEPARATION_NV, 101.0f);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_stereo_parameterf_nv, GL_STEREO_SEPARATION_NV, -1.0f);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(0, gls_gl_stereo_parameteri_nv, 0x7777, 1);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_stereo_parameteri_nv, GL_STEREO_PROJECTION_NV, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_stereo_parameterf_nv, GL_STEREO_CONVERGENCE_NV, 2.5f);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
+    {
+        GLfloat f = -5;
+        gls_gl_get_floatv(GL_STEREO_SEPARATION_NV, &f);
+        CHECK(f == -5, "GL_STEREO_SEPARATION_NV answered (%g) without --auto", f);
+        EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    }
 
     /* Bad enums and values: GL's errors, nothing changed. */
     EXPECT_VOID(0, gls_gl_draw_buffer, GL_BACK);
