@@ -17,8 +17,9 @@ use entry_points::Family;
 
 /// The families whose commands get generated wrappers calling glstereo's
 /// hook (`glstereo::interpose::draws`): everything that draws into the
-/// default framebuffer, and the capabilities automatic stereo answers
-/// (glEnable/glDisable/glIsEnabled of GL_3DVISION_STEREO_NV).
+/// default framebuffer, the capabilities automatic stereo answers
+/// (glEnable/glDisable/glIsEnabled of GL_3DVISION_STEREO_NV), and the
+/// matrix uploads automatic convergence learns projections from.
 const GENERATED: &[Family] = &[
     Family::Draw,
     Family::BeginEnd,
@@ -27,6 +28,7 @@ const GENERATED: &[Family] = &[
     Family::RasterPixels,
     Family::Blit,
     Family::Settings,
+    Family::Projection,
 ];
 
 /// Each stub's file name (also its soname) and the library it stands for.

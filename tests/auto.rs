@@ -134,14 +134,26 @@ const OBJECTS_LEGACY: [([u8; 3], Option<f64>); 5] = [
 /// minus left), negative for near objects (w < C), zero at the
 /// convergence and for the HUD, positive for far ones.
 fn check_parallax(eyes: &[Image; 2], objects: &[([u8; 3], Option<f64>)], what: &str) {
+    check_parallax_at(eyes, objects, CONVERGENCE.parse().unwrap(), 0.5, what);
+}
+
+/// [`check_parallax`] with convergence `c`, the centres' rows within
+/// `dy` (an object the HUD covers in part moves its centre when it
+/// moves).
+fn check_parallax_at(
+    eyes: &[Image; 2],
+    objects: &[([u8; 3], Option<f64>)],
+    c: f64,
+    dy: f64,
+    what: &str,
+) {
     let s = 0.07 * SEPARATION.parse::<f64>().unwrap() / 100.0;
-    let c: f64 = CONVERGENCE.parse().unwrap();
     for &(colour, w) in objects {
         let l = centre(&eyes[0], colour).unwrap_or_else(|| panic!("{what}: no {colour:?} left"));
         let r = centre(&eyes[1], colour).unwrap_or_else(|| panic!("{what}: no {colour:?} right"));
         let want = w.map_or(0.0, |w| s * (1.0 - c / w) * W as f64);
         assert!(
-            (r.0 - l.0 - want).abs() < 1.0 && (r.1 - l.1).abs() < 0.5,
+            (r.0 - l.0 - want).abs() < 1.0 && (r.1 - l.1).abs() < dy,
             "{what}: the {colour:?} object (w {w:?}) moved by ({:.2}, {:.2}) from the left eye \
              to the right, want ({want:.2}, 0)",
             r.0 - l.0,
@@ -190,17 +202,74 @@ fn a_mono_fixed_function_program_under_auto_equals_each_eye_drawn_by_hand() {
     compare_with_the_oracle("legacy", &OBJECTS_LEGACY);
 }
 
+/// The core scene's objects, as [`OBJECTS_LEGACY`].
+const OBJECTS_CORE: [([u8; 3], Option<f64>); 5] = [
+    ([255, 0, 0], Some(2.0)),
+    ([255, 255, 0], Some(4.0)),
+    ([0, 255, 0], Some(8.0)),
+    ([0, 0, 255], Some(6.0)),
+    ([255, 255, 255], None),
+];
+
 #[test]
 fn a_mono_core_profile_program_under_auto_equals_each_eye_drawn_by_hand() {
-    compare_with_the_oracle(
-        "core",
-        &[
-            ([255, 0, 0], Some(2.0)),
-            ([255, 255, 0], Some(4.0)),
-            ([0, 0, 255], Some(6.0)),
-            ([255, 255, 255], None),
-        ],
-    );
+    compare_with_the_oracle("core", &OBJECTS_CORE);
+}
+
+/// With no convergence given, automatic stereo converges where the
+/// viewer looks: at the first present it measures the left eye's depth in
+/// the middle of the view and puts the screen at the median distance
+/// there. The first frame is drawn at convergence 0 (every object shifted
+/// alike, as NV_3dvision_settings starts); the next ones have the object
+/// in the middle at the screen, nearer ones in front of it and farther
+/// ones behind, each by the parallax the rule gives its depth.
+#[test]
+fn automatic_convergence_puts_the_middle_of_the_view_at_the_screen() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let x = Xvfb::start(W + 40, H + 40);
+    for profile in ["legacy", "core"] {
+        let dir = common::scratch(&format!("auto-converge-{profile}"));
+        let o = common::run_ok(
+            Command::new(&built().run)
+                .args(["--auto", "-v", "--separation", SEPARATION, "--capture"])
+                .arg(&dir)
+                .arg(oracle())
+                .args([profile, "mono", "frames", "3"])
+                .env("DISPLAY", &x.display),
+        );
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        let c: f64 = stderr
+            .lines()
+            .find_map(|l| l.strip_prefix("glstereo: automatic convergence at "))
+            .and_then(|l| l.split_whitespace().next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("{profile}: no automatic convergence said: {stderr}"));
+        let objects: &[([u8; 3], Option<f64>)] = if profile == "legacy" {
+            &OBJECTS_LEGACY
+        } else {
+            &OBJECTS_CORE
+        };
+        // The median distance in the middle is a distance the scene has
+        // there: one of its flat objects'.
+        assert!(
+            objects
+                .iter()
+                .any(|&(_, w)| w.is_some_and(|w| (w - c).abs() < 1e-2)),
+            "{profile}: converged at {c}, no object is at that distance"
+        );
+        let eyes =
+            |n: u32| ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-{n:06}.png"))));
+        // Frame 1, at convergence 0, is the whole picture shifted (its
+        // objects partly out of the window): not the frames after.
+        let first = eyes(1);
+        assert!(
+            differing(&first[1], &eyes(2)[1]).len() > 100,
+            "{profile}: the first frame's right eye is the converged one's"
+        );
+        for n in [2, 3] {
+            check_parallax_at(&eyes(n), objects, c, 1.0, &format!("{profile}, frame {n}"));
+        }
+    }
 }
 
 /// A program that knows 3D Vision tunes itself (NV_3dvision_settings,

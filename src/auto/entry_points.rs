@@ -78,6 +78,11 @@ pub enum Family {
     /// NV_3dvision_settings' state (glEnable, glDisable, glIsEnabled, the
     /// glGet*v families): GL_3DVISION_STEREO_NV and the STEREO_*_NV pnames.
     Settings,
+    /// 4x4 float matrices a program uploads (glUniformMatrix4fv,
+    /// glProgramUniformMatrix4fv and their ARB/EXT names): automatic
+    /// convergence learns a shader program's perspective projection from
+    /// them ([`crate::auto::converge`]).
+    Projection,
 }
 
 /// The names of `family`'s commands that no prefix rule below catches.
@@ -131,6 +136,10 @@ const EXACT: &[(&str, Family)] = &[
     ("glBindImageTextureEXT", Family::Texture),
     ("glBindImageTextures", Family::Texture),
     ("glQueryCounter", Family::SideEffect),
+    ("glUniformMatrix4fv", Family::Projection),
+    ("glUniformMatrix4fvARB", Family::Projection),
+    ("glProgramUniformMatrix4fv", Family::Projection),
+    ("glProgramUniformMatrix4fvEXT", Family::Projection),
     ("glEnable", Family::Settings),
     ("glDisable", Family::Settings),
     ("glIsEnabled", Family::Settings),
@@ -378,8 +387,9 @@ mod tests {
             (Family::Texture, 8),
             (Family::SideEffect, 25),
             (Family::Settings, 18),
+            (Family::Projection, 4),
         ];
-        assert_eq!(total, 908);
+        assert_eq!(total, 912);
         for (f, n) in want {
             assert_eq!(counts.get(&f).copied().unwrap_or(0), n, "{f:?}");
         }

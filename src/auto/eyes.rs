@@ -470,6 +470,67 @@ impl LayeredEyes {
         }
     }
 
+    /// The eyes' width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The eyes' height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The left eye's depth (layer 0 of the depth array) in `(x, y, w, h)`
+    /// as window depths, rows bottom first, read through `fbo`, a
+    /// framebuffer object of the current context (its depth attachment
+    /// is left empty and GL_READ_FRAMEBUFFER at 0). None without depth.
+    ///
+    /// # Safety
+    /// A context sharing the arrays is current; the rectangle is inside
+    /// the eyes; the context's pixel-pack state is the layer's own.
+    pub unsafe fn read_left_depth(
+        &self,
+        gl: &Gl,
+        fbo: u32,
+        (x, y, w, h): (i32, i32, i32, i32),
+    ) -> Option<Vec<f32>> {
+        if self.depth == 0 || w <= 0 || h <= 0 {
+            return None;
+        }
+        let mut out = vec![0.0f32; w as usize * h as usize];
+        // SAFETY: contract; `out` holds w × h floats at alignment 4.
+        unsafe {
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+            (self.api.framebuffer_texture_layer)(
+                GL_READ_FRAMEBUFFER,
+                self.depth_attachment,
+                self.depth,
+                0,
+                0,
+            );
+            gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+            gl.ReadPixels(
+                x,
+                y,
+                w,
+                h,
+                GL_DEPTH_COMPONENT,
+                GL_FLOAT,
+                out.as_mut_ptr().cast(),
+            );
+            (self.api.framebuffer_texture_layer)(
+                GL_READ_FRAMEBUFFER,
+                self.depth_attachment,
+                0,
+                0,
+                0,
+            );
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        }
+        Some(out)
+    }
+
     /// Whether the shared storage is where it is predicted: a marker
     /// cleared into each corner of each layer of each array is read back
     /// through the layer's 2D texture and found at its address.

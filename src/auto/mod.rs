@@ -6,9 +6,11 @@
 //! ([`target`]) and
 //! the list of entry points to intercept ([`entry_points`]). Each is tested
 //! on llvmpipe against a program that draws each eye itself with the rule
-//! applied by hand, pixel by pixel. Wiring them into the preload library's
-//! generated wrappers is the next step (not here: the exports are being
-//! rebuilt from gl.xml).
+//! applied by hand, pixel by pixel. [`runtime`] wires them to the preload
+//! library's generated wrappers and says which parts of this design run
+//! today; the rest below is design (render targets of the program's own
+//! stay mono, and side effects of the second eye's draws are not kept
+//! single yet: README, "Automatic stereo").
 //!
 //! # The rule
 //!
@@ -40,21 +42,20 @@
 //! - **Convergence `auto`** (`GLSTEREO_CONVERGENCE=auto|<w>`,
 //!   `--convergence`): C is a distance in the program's own units, which
 //!   differ by orders of magnitude between programs, so no number is a
-//!   good default. Every 30 frames the layer puts C at the centre of
-//!   interest of the left eye's depth layer —
-//!   [`centre_of_interest`](crate::analysis::centre_of_interest), the median
-//!   distance in the middle quarter of the view, what
-//!   `gls_stereo_auto_converge` computes for programs that ask — and sets
-//!   the cutoff ([`StereoSettings::effective_separation`](crate::shims::nv3dvision::StereoSettings::effective_separation))
-//!   to the nearest covered distance, so pop-out stays within s (and so
-//!   within the 3 % budget for S ≤ 43 %). Depth maps back to distance
-//!   with the projection's near and far planes: the fixed-function
-//!   projection in effect at the last perspective draw, or, for shader
-//!   programs, the last perspective matrix (row 3 = (0, 0, −1, 0)) the
-//!   program uploaded with glUniformMatrix4fv. Until one is known, or when
-//!   the program sets it (glStereoParameterfNV), C stays what it is; the
-//!   first value is 0, NV_3dvision_settings' initial convergence: the
-//!   whole picture flat behind the screen, never uncomfortable.
+//!   good default. Every 30 frames (the first at the first present) the
+//!   layer puts C at the centre of interest of the left eye's depth layer
+//!   ([`converge`]: the median distance in the middle half of the view's
+//!   width and height, what `gls_stereo_auto_converge` computes for
+//!   programs that ask, [`crate::analysis::centre_of_interest`]). Depth
+//!   maps back to distance with the projection's near and far planes: the
+//!   fixed-function projection of the measured frame's last perspective
+//!   draw, or, for shader programs, the last perspective matrix (row 3 =
+//!   (0, 0, −1, 0)) the program uploaded with glUniformMatrix4fv or
+//!   glProgramUniformMatrix4fv. Until one is known, or when the program
+//!   sets it (glStereoParameterfNV), C stays what it is; the first value
+//!   is 0, NV_3dvision_settings' initial convergence: the whole picture
+//!   behind the screen. Pop-out is not limited beyond the rule (the
+//!   extension's cutoff stays the program's, 0 unless it sets one).
 //! - The change is applied between frames, said once on stderr.
 //!
 //! # How a draw reaches both eyes: chosen by a uniform, no switch
@@ -294,13 +295,15 @@
 //! | Texture | 8 | a stereoized texture's twin in the right eye |
 //! | SideEffect | 25 | queries segmented, transform feedback paused |
 //! | Settings | 18 | GL_3DVISION_STEREO_NV and the STEREO_*_NV pnames |
+//! | Projection | 4 | glUniformMatrix4fv & co.: automatic convergence's projection |
 //!
-//! 908 in all (most are the per-vertex commands of immediate mode and
+//! 912 in all (most are the per-vertex commands of immediate mode and
 //! their extension forms); glStereoParameterfNV / glStereoParameteriNV are
 //! an OpenGL ES extension, not in gl.xml's desktop set: two hand-typed
 //! exports. Without `--auto` each wrapper is one thread-local test and the
 //! call passed on, as the layer's interposed calls are today.
 
+pub mod converge;
 pub mod entry_points;
 pub mod eyes;
 pub mod fixed;

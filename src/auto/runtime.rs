@@ -44,6 +44,7 @@ use std::sync::{Mutex, OnceLock};
 
 use glam::DMat4;
 
+use crate::auto::converge::{self, Perspective};
 use crate::auto::entry_points::Family;
 use crate::auto::eyes::{Attachments, layer};
 use crate::auto::fixed;
@@ -89,6 +90,8 @@ const GL_COMPILE_AND_EXECUTE: u32 = 0x1301;
 const GL_CURRENT_RASTER_POSITION: u32 = 0x0B07;
 const GL_CURRENT_RASTER_POSITION_VALID: u32 = 0x0B08;
 const GL_VIEWPORT: u32 = 0x0BA2;
+const GL_DEPTH_RANGE: u32 = 0x0B70;
+const GL_DEPTH_CLEAR_VALUE: u32 = 0x0B73;
 const GL_LINK_STATUS: u32 = 0x8B82;
 
 gl_fns! {
@@ -193,6 +196,15 @@ pub struct AutoState {
     /// The program compiles a display list: (list, convert to execute at
     /// glEndList).
     compiling: Option<(u32, bool)>,
+    /// The last perspective projection the program uploaded as a uniform
+    /// matrix ([`crate::auto::converge`]).
+    uploaded: Option<Perspective>,
+    /// The last perspective fixed-function projection a draw of a
+    /// measured frame used.
+    fixed: Option<Perspective>,
+    /// This frame is not measured: fixed-function draws leave the
+    /// projection unread.
+    unmeasured: bool,
 }
 
 impl AutoState {
@@ -208,7 +220,10 @@ impl AutoState {
             0.0
         };
         let _ = s.parameter_f(GL_STEREO_SEPARATION_NV, separation);
-        let _ = s.parameter_f(GL_STEREO_CONVERGENCE_NV, live::convergence().unwrap_or(0.0));
+        let convergence = live::convergence()
+            .or_else(live::automatic_convergence)
+            .unwrap_or(0.0);
+        let _ = s.parameter_f(GL_STEREO_CONVERGENCE_NV, convergence);
         s
     }
 
@@ -382,6 +397,15 @@ unsafe fn choose(t: &Tables, cur: &Current, st: &mut AutoState, app_fbo: u32, li
     // SAFETY: the program's context is current (callers).
     unsafe {
         let program = vertex_program(f);
+        if program.is_none() && !st.unmeasured && live::convergence().is_none() {
+            // Automatic convergence measures this frame: the projection
+            // its fixed-function draws use.
+            let mut m = [0.0f64; 16];
+            (f.get_doublev)(GL_PROJECTION_MATRIX, m.as_mut_ptr());
+            if let Some(p) = Perspective::from_matrix(&m) {
+                st.fixed = Some(p);
+            }
+        }
         let target = program.and_then(|(p, separate)| {
             let location = location_of(cur.sc.group(), p)?;
             Some(Target {
@@ -548,6 +572,10 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
     };
     match call.family {
         Family::Settings => settings_call(call, draw),
+        Family::Projection => {
+            learn_projection(cur, &call);
+            draw()
+        }
         Family::Draw
         | Family::BeginEnd
         | Family::DisplayList
@@ -558,6 +586,71 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
             out.unwrap_or_else(|| R::from_bits(0))
         }
         _ => draw(),
+    }
+}
+
+/// glUniformMatrix4fv / glProgramUniformMatrix4fv (and their ARB/EXT
+/// names): a perspective projection among the matrices is remembered for
+/// automatic convergence, while the convergence is automatic.
+fn learn_projection(cur: &Current, call: &Call) {
+    if live::convergence().is_some() {
+        return;
+    }
+    // glProgramUniform* take the program first.
+    let at = usize::from(call.name.starts_with("glProgramUniform"));
+    let count = call.u32(at + 1) as i32;
+    let transpose = call.u32(at + 2) as u8 != 0;
+    let value: *const f32 = call.ptr(at + 3);
+    // A projection comes alone or with a few others; more is an array of
+    // bones or instances, not looked through.
+    if value.is_null() || !(1..=8).contains(&count) {
+        return;
+    }
+    // SAFETY: GL's contract: `count` matrices of 16 floats at `value`.
+    let value = unsafe { std::slice::from_raw_parts(value, 16 * count as usize) };
+    if let Some(p) = Perspective::from_upload(value, transpose) {
+        cur.sc.with_auto(cur.draw, |st, _| st.uploaded = Some(p));
+    }
+}
+
+/// What automatic convergence reads of a frame at its present, in the
+/// program's context; None when this frame is not measured (the user set
+/// the convergence, automatic stereo is off, it is not a
+/// [`converge::PERIOD`]th frame, or no perspective projection is known).
+///
+/// # Safety
+/// The program's context is current on this thread.
+pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge::Frame> {
+    // The next frame's draws read the fixed-function projection if it is
+    // measured.
+    st.unmeasured = (frame + 1) % converge::PERIOD != 0;
+    let fixed = st.fixed.take();
+    if live::convergence().is_some() || !live::auto_on() || frame % converge::PERIOD != 0 {
+        return None;
+    }
+    let t = tables()?;
+    let f = &t.gl;
+    // SAFETY: contract. A core context raises GL_INVALID_ENUM for the
+    // projection matrix and writes nothing: the caller keeps the
+    // program's errors apart.
+    unsafe {
+        let mut m = [0.0f64; 16];
+        (f.get_doublev)(GL_PROJECTION_MATRIX, m.as_mut_ptr());
+        let perspective = fixed
+            .or_else(|| Perspective::from_matrix(&m))
+            .or(st.uploaded)?;
+        let mut vp = [0i32; 4];
+        (f.get_integerv)(GL_VIEWPORT, vp.as_mut_ptr());
+        let mut range = [0.0f64; 2];
+        (f.get_doublev)(GL_DEPTH_RANGE, range.as_mut_ptr());
+        let mut clear = 1.0f64;
+        (f.get_doublev)(GL_DEPTH_CLEAR_VALUE, &mut clear);
+        Some(converge::Frame {
+            perspective,
+            viewport: (vp[0], vp[1], vp[2], vp[3]),
+            depth_range: (range[0], range[1]),
+            clear_depth: clear,
+        })
     }
 }
 

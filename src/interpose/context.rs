@@ -1054,13 +1054,22 @@ impl StereoContext {
         };
         profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
-        let mut st = self.lock();
+        let mut guard = self.lock();
+        let st = &mut *guard;
         // The layer's own calls below keep the program's errors apart.
         st.save_driver_errors(gl);
         let drawn = st
             .fbs
             .get_mut(&drawable)
             .ok_or_else(|| Error::invalid_operation("no stereo buffers for this drawable"))?;
+        // Automatic convergence measures some frames: what the program's
+        // context says of this one.
+        let measured = if self.auto {
+            // SAFETY: the program's context is current on this thread.
+            unsafe { crate::auto::runtime::frame_geometry(&mut st.auto, drawn.frames) }
+        } else {
+            None
+        };
         // SAFETY: the program's context is current on this thread.
         unsafe {
             // Automatic stereo draws both eyes into layers: the buffers
@@ -1079,7 +1088,15 @@ impl StereoContext {
         drawn.viewport_checked = false;
         let frame_index = drawn.frames - 1;
         profile::span(Stage::SwitchIn, || self.make_ours_current(r, drawable))?;
-        self.compose_and_swap(r, &mut st, (drawable, x_window), window, frame_index)
+        if let Some(frame) = measured {
+            let fb = &drawn.fb;
+            if let Some(eyes) = fb.layered() {
+                // SAFETY: the layer's context, sharing the program's
+                // objects, is current; `read_fbo` is of that context.
+                unsafe { crate::auto::converge::measure(gl, eyes, fb.read_fbo(), &frame) };
+            }
+        }
+        self.compose_and_swap(r, st, (drawable, x_window), window, frame_index)
     }
 
     /// In the layer's context, current on `drawable` (of the given size;

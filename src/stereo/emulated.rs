@@ -765,6 +765,12 @@ impl EmulatedFramebuffer {
         (self.width, self.height)
     }
 
+    /// The framebuffer object of the layer's context for reading the
+    /// textures.
+    pub fn read_fbo(&self) -> u32 {
+        self.read_fbo
+    }
+
     /// The framebuffer object the application renders into (0 before attach).
     pub fn app_fbo(&self) -> u32 {
         self.app_fbo

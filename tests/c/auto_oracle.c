@@ -13,6 +13,8 @@
  *                                             of glReadPixels at (50, 75);
  *                                             with wait, then "ready 0xWIN"
  *                                             and waits for a line on stdin
+ *   auto_oracle legacy|core mono frames N     as mono, drawing and swapping
+ *                                             the frame N times
  *   auto_oracle legacy|core tuned S C [wait]  as mono, the program setting
  *                                             separation S and convergence C
  *                                             itself (NV_3dvision_settings,
@@ -336,6 +338,15 @@ int main(int argc, char **argv)
     if (off) {
         glDisable(GL_3DVISION_STEREO_NV);
         printf("nv-off %d\n", glIsEnabled(GL_3DVISION_STEREO_NV));
+    }
+    /* mono frames N: N - 1 frames drawn and swapped before the last. */
+    int frames = mono && argc > 4 && strcmp(argv[3], "frames") == 0 ? atoi(argv[4]) : 1;
+    for (int i = 1; i < frames; i++) {
+        if (core)
+            core_scene(k, c);
+        else
+            legacy_scene(k, c);
+        glXSwapBuffers(dpy, win);
     }
     if (core)
         core_scene(k, c);
