@@ -18,8 +18,9 @@ use entry_points::Family;
 /// The families whose commands get generated wrappers calling glstereo's
 /// hook (`glstereo::interpose::draws`): everything that draws into the
 /// default framebuffer, the capabilities automatic stereo answers
-/// (glEnable/glDisable/glIsEnabled of GL_3DVISION_STEREO_NV), and the
-/// matrix uploads automatic convergence learns projections from.
+/// (glEnable/glDisable/glIsEnabled of GL_3DVISION_STEREO_NV), the
+/// matrix uploads automatic convergence learns projections from, and the
+/// queries and transform feedback whose capture stays single.
 const GENERATED: &[Family] = &[
     Family::Draw,
     Family::BeginEnd,
@@ -29,6 +30,7 @@ const GENERATED: &[Family] = &[
     Family::Blit,
     Family::Settings,
     Family::Projection,
+    Family::SideEffect,
 ];
 
 /// Each stub's file name (also its soname) and the library it stands for.

@@ -272,6 +272,52 @@ fn automatic_convergence_puts_the_middle_of_the_view_at_the_screen() {
     }
 }
 
+/// Transform feedback captures what the mono program captures: each
+/// vertex once and unshifted (the draw once with rasterizer discard, then
+/// both eyes with the capture paused), a draw under rasterizer discard
+/// once; the primitives-written query counts the mono draws; the window
+/// still shows the triangle in stereo.
+#[test]
+fn transform_feedback_captures_the_mono_draws_once() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = build_once("auto_feedback", |out| {
+        compile_plain(
+            &common::root().join("tests/c/auto_feedback.c"),
+            out,
+            &["-lGL", "-lX11"],
+        )
+    });
+    let x = Xvfb::start(W + 40, H + 40);
+    let plain = common::run_ok(Command::new(&exe).env("DISPLAY", &x.display));
+    let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
+    assert!(plain.contains("written 2\n"), "without the layer: {plain}");
+    let dir = common::scratch("auto-feedback");
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .args([
+                "--auto",
+                "--separation",
+                SEPARATION,
+                "--convergence",
+                CONVERGENCE,
+            ])
+            .arg("--capture")
+            .arg(&dir)
+            .arg(&exe)
+            .env("DISPLAY", &x.display),
+    );
+    let auto = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        auto, plain,
+        "the capture under --auto is not the mono program's"
+    );
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+    assert!(
+        differing(&eyes[0], &eyes[1]).len() > 100,
+        "the triangle is not in stereo while captured"
+    );
+}
+
 /// A program that knows 3D Vision tunes itself (NV_3dvision_settings,
 /// seed 004): its glStereoParameterfNV separation and convergence give
 /// the eyes the rule gives by hand, glGetFloatv and glIsEnabled answer

@@ -31,6 +31,10 @@
 //! - **Blits** into the default framebuffer: once per eye into that eye's
 //!   layers (from the default framebuffer: eye to eye).
 //! - **glClear**, **glClearBuffer***: once (a clear clears every layer).
+//! - **Transform feedback**: once the program has begun it, a draw while
+//!   it captures is made once with the neutral eye under rasterizer
+//!   discard (the mono capture), then for both eyes with the capture
+//!   paused; a draw under rasterizer discard is made once.
 //! - **NV_3dvision_settings**: glEnable / glDisable / glIsEnabled of
 //!   GL_3DVISION_STEREO_NV turn automatic stereo on and off (both eyes
 //!   then drawn alike).
@@ -91,6 +95,9 @@ const GL_CURRENT_RASTER_POSITION: u32 = 0x0B07;
 const GL_CURRENT_RASTER_POSITION_VALID: u32 = 0x0B08;
 const GL_VIEWPORT: u32 = 0x0BA2;
 const GL_DEPTH_RANGE: u32 = 0x0B70;
+const GL_RASTERIZER_DISCARD: u32 = 0x8C89;
+const GL_TRANSFORM_FEEDBACK_PAUSED: u32 = 0x8E23;
+const GL_TRANSFORM_FEEDBACK_ACTIVE: u32 = 0x8E24;
 const GL_DEPTH_CLEAR_VALUE: u32 = 0x0B73;
 const GL_LINK_STATUS: u32 = 0x8B82;
 
@@ -113,6 +120,10 @@ gl_fns! {
         matrix_mode = c"glMatrixMode": fn(u32);
         load_matrixd = c"glLoadMatrixd": fn(*const f64);
         bitmap = c"glBitmap": fn(i32, i32, f32, f32, f32, f32, *const u8);
+        enable = c"glEnable": fn(u32);
+        disable = c"glDisable": fn(u32);
+        pause_transform_feedback = c"glPauseTransformFeedback": fn();
+        resume_transform_feedback = c"glResumeTransformFeedback": fn();
     }
 }
 
@@ -205,6 +216,9 @@ pub struct AutoState {
     /// This frame is not measured: fixed-function draws leave the
     /// projection unread.
     unmeasured: bool,
+    /// The program has begun transform feedback: draws check whether it
+    /// is capturing.
+    feedback: bool,
 }
 
 impl AutoState {
@@ -576,6 +590,12 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
             learn_projection(cur, &call);
             draw()
         }
+        Family::SideEffect => {
+            if call.name.starts_with("glBeginTransformFeedback") {
+                cur.sc.with_auto(cur.draw, |st, _| st.feedback = true);
+            }
+            draw()
+        }
         Family::Draw
         | Family::BeginEnd
         | Family::DisplayList
@@ -754,6 +774,33 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
             let lists = call.family == Family::DisplayList;
             let settings = st.settings();
             let path = choose(t, cur, st, app_fbo, lists);
+            if st.feedback && call.family == Family::Draw {
+                // Transform feedback captures what the mono program would:
+                // the draw once, unshifted and not rasterized, then both
+                // eyes with the capture paused. With rasterizer discard
+                // on nothing reaches the eyes: the draw once.
+                let mono = Path::Mono(match path {
+                    Path::Uniform {
+                        target,
+                        standin: false,
+                    } => Some(target),
+                    _ => None,
+                });
+                if (f.is_enabled)(GL_RASTERIZER_DISCARD) != 0 {
+                    return eyes(t, mono, &settings, &layered, false, draw);
+                }
+                if integer(f, GL_TRANSFORM_FEEDBACK_ACTIVE) != 0
+                    && integer(f, GL_TRANSFORM_FEEDBACK_PAUSED) == 0
+                {
+                    (f.enable)(GL_RASTERIZER_DISCARD);
+                    eyes(t, mono, &settings, &layered, false, draw);
+                    (f.disable)(GL_RASTERIZER_DISCARD);
+                    (f.pause_transform_feedback)();
+                    eyes(t, path, &settings, &layered, false, draw);
+                    (f.resume_transform_feedback)();
+                    return;
+                }
+            }
             eyes(t, path, &settings, &layered, lists, draw);
         }
     })
