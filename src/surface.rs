@@ -178,6 +178,12 @@ pub struct Surface {
     platform: Box<dyn PlatformSurface>,
     gl: Arc<Gl>,
     owner: Mutex<Option<ThreadId>>,
+    /// Held by the thread whose call has the compositor context current
+    /// ([`Surface::with_compositor`]): from the make-current to the
+    /// release, one thread at a time. Without it a second thread composing
+    /// or reading the surface meanwhile made the same context current too:
+    /// EGL refused it (the call failed), OSMesa allowed it.
+    compositing: Mutex<()>,
     state: Mutex<SurfaceState>,
     /// The capture encoder and writer threads, started by the first queued capture.
     captures: Mutex<Option<crate::capture::queue::CaptureQueue>>,
@@ -312,6 +318,7 @@ impl Surface {
             platform,
             gl,
             owner: Mutex::new(None),
+            compositing: Mutex::new(()),
             state: Mutex::new(SurfaceState {
                 fb,
                 framing: InputFraming::QuadBuffer,
@@ -412,6 +419,8 @@ impl Surface {
             // to are only guaranteed visible to another context after Finish.
             profile::span(Stage::Finish, || unsafe { self.gl.Finish() });
         }
+        // One thread at a time has the compositor context current.
+        let _compositing = self.compositing.recover();
         with_compositor_of(&self.display, &*self.platform, || {
             let mut st = self.state.recover();
             st.eyes_finished = here || finished;

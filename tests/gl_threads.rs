@@ -5,6 +5,9 @@
 //! the modes whose kernels are the heaviest (Dubois, squeezed, interleaved)
 //! and checks every pixel against the CPU reference, then destroys them.
 //!
+//! And one surface composed from two threads at once (EGL and OSMesa), as
+//! the API allows ("Any thread" for captures and read-backs).
+//!
 //! `stress_surfaces_on_threads_compose_at_once` (ignored) is the same at
 //! length, for `tests/stress_gl_threads.sh`: `GLSTEREO_STRESS_THREADS`
 //! threads (default 4) of `GLSTEREO_STRESS_ROUNDS` surfaces (default 20).
@@ -85,4 +88,47 @@ fn stress_surfaces_on_threads_compose_at_once() {
         env_or("GLSTEREO_STRESS_THREADS", 4),
         env_or("GLSTEREO_STRESS_ROUNDS", 20),
     );
+}
+
+/// One surface composed from two threads at once (a program capturing it
+/// on a thread of its own while another presents, or two capture threads):
+/// each call gets the composite. Before, both threads made the surface's
+/// compositor context current at once: EGL refused the second (the call
+/// failed), OSMesa let the context be current on both.
+fn one_surface_composed_on_two_threads(backend: BackendKind) {
+    let (w, h) = (40, 24);
+    let s = stereo_surface(backend, w, h);
+    let (l, r) = (gradient(w, h, 3), noise(w, h, 9));
+    show(&s, &l, &r);
+    let mode = OutputMode::from_name("anaglyph-red-cyan-dubois").unwrap();
+    s.set_output(mode).unwrap();
+    let want = compose(mode, &OutputOptions::default(), &l, &r, s.frames() - 1).unwrap();
+    // Current on no thread: every call makes the compositor context current itself.
+    surface::make_current(None).unwrap();
+    let threads: Vec<_> = (0..2)
+        .map(|t| {
+            let (s, want) = (s.clone(), want.clone());
+            std::thread::spawn(move || {
+                for round in 0..200 {
+                    let got = s
+                        .composite_image_via(ComposePath::Gl)
+                        .unwrap_or_else(|e| panic!("thread {t}, round {round}: {e}"));
+                    assert_within(&got, &want, 1, &format!("thread {t}, round {round}"));
+                }
+            })
+        })
+        .collect();
+    for t in threads {
+        t.join().expect("a composing thread failed");
+    }
+}
+
+#[test]
+fn one_surface_composes_on_two_threads_at_once_egl() {
+    one_surface_composed_on_two_threads(BackendKind::Egl);
+}
+
+#[test]
+fn one_surface_composes_on_two_threads_at_once_osmesa() {
+    one_surface_composed_on_two_threads(BackendKind::OsMesa);
 }
