@@ -90,31 +90,33 @@ pub fn make_current(surface: Option<&Arc<Surface>>) -> Result<()> {
         }
     }
     {
-        let owner = s.owner.recover();
+        // Checked and taken under one lock: another thread checking meanwhile
+        // waits, then finds the surface taken.
+        let mut owner = s.owner.recover();
         if owner.is_some_and(|t| t != me) {
             return Err(Error::invalid_operation(
                 "this surface is current on another thread: release it there first (gls_make_current(NULL))",
             ));
         }
-    }
-    if let Some((p, _)) = &prev {
-        if !Arc::ptr_eq(&p.display, &s.display) {
-            // A different backend (or display): leave nothing of it current here.
-            let _ = p.platform.release_current();
+        if let Some((p, _)) = &prev {
+            if !Arc::ptr_eq(&p.display, &s.display) {
+                // A different backend (or display): leave nothing of it current here.
+                let _ = p.platform.release_current();
+            }
         }
-    }
-    if let Err(e) = s.platform.make_current(ContextRole::App) {
-        if let Some((p, role)) = &prev {
-            let _ = p.platform.make_current(*role);
+        if let Err(e) = s.platform.make_current(ContextRole::App) {
+            if let Some((p, role)) = &prev {
+                let _ = p.platform.make_current(*role);
+            }
+            return Err(e);
         }
-        return Err(e);
+        *owner = Some(me);
     }
     if let Some((p, _)) = &prev {
         if !Arc::ptr_eq(p, s) {
             *p.owner.recover() = None;
         }
     }
-    *s.owner.recover() = Some(me);
     CURRENT.with(|c| *c.borrow_mut() = Some((s.clone(), ContextRole::App)));
     let mut st = s.state.recover();
     // SAFETY (both): the application context was just made current.
@@ -177,7 +179,17 @@ pub struct Surface {
     config: Config,
     platform: Box<dyn PlatformSurface>,
     gl: Arc<Gl>,
+    /// The thread the application context is current on. Held while that
+    /// context is made current, so that two threads cannot both find the
+    /// surface free and both make it current (OSMesa lets a context be
+    /// current on two threads at once; Mesa's GL state is not made for it).
     owner: Mutex<Option<ThreadId>>,
+    /// Held by the thread whose call has the compositor context current
+    /// ([`Surface::with_compositor`]): from the make-current to the
+    /// release, one thread at a time. Without it a second thread composing
+    /// or reading the surface meanwhile made the same context current too:
+    /// EGL refused it (the call failed), OSMesa allowed it.
+    compositing: Mutex<()>,
     state: Mutex<SurfaceState>,
     /// The capture encoder and writer threads, started by the first queued capture.
     captures: Mutex<Option<crate::capture::queue::CaptureQueue>>,
@@ -312,6 +324,7 @@ impl Surface {
             platform,
             gl,
             owner: Mutex::new(None),
+            compositing: Mutex::new(()),
             state: Mutex::new(SurfaceState {
                 fb,
                 framing: InputFraming::QuadBuffer,
@@ -412,6 +425,8 @@ impl Surface {
             // to are only guaranteed visible to another context after Finish.
             profile::span(Stage::Finish, || unsafe { self.gl.Finish() });
         }
+        // One thread at a time has the compositor context current.
+        let _compositing = self.compositing.recover();
         with_compositor_of(&self.display, &*self.platform, || {
             let mut st = self.state.recover();
             st.eyes_finished = here || finished;
