@@ -62,13 +62,15 @@ struct Object<'a> {
 }
 
 /// How far each object moved from the left eye to the right (window
-/// pixels, x), after checking that it moved along its rows only: the
-/// same number of its pixels in every row of both eyes (±`row_slack`,
-/// for shading that a shift resamples), the same vertical centre.
+/// pixels, x), after checking that it moved along its rows only: its
+/// vertical centre is the same, and so is, with `rows` Some(slack), the
+/// number of its pixels in every row (±slack: flat objects), with None
+/// its top and bottom row (±1: solids, whose sides at other depths move
+/// by other amounts and change the counts).
 fn horizontal_shifts(
     eyes: &[Image; 2],
     objects: &[Object],
-    row_slack: u32,
+    rows: Option<u32>,
     what: &str,
 ) -> Vec<f64> {
     let mut shifts = Vec::new();
@@ -80,16 +82,37 @@ fn horizontal_shifts(
             "{what}: the {} object is missing from an eye ({nl} pixels left, {nr} right)",
             o.name
         );
-        for y in 0..eyes[0].height() {
-            let row =
-                |img: &Image| (0..img.width()).filter(|&x| (o.is)(img.get(x, y))).count() as u32;
-            let (l, r) = (row(&eyes[0]), row(&eyes[1]));
-            assert!(
-                l.abs_diff(r) <= row_slack,
-                "{what}: row {y} holds {l} pixels of the {} object in the left eye and {r} in \
-                 the right: the eyes differ by more than a horizontal shift",
-                o.name
-            );
+        let counts = |img: &Image| -> Vec<u32> {
+            (0..img.height())
+                .map(|y| (0..img.width()).filter(|&x| (o.is)(img.get(x, y))).count() as u32)
+                .collect()
+        };
+        let (l, r) = (counts(&eyes[0]), counts(&eyes[1]));
+        match rows {
+            Some(slack) => {
+                for (y, (l, r)) in l.iter().zip(&r).enumerate() {
+                    assert!(
+                        l.abs_diff(*r) <= slack,
+                        "{what}: row {y} holds {l} pixels of the {} object in the left eye and \
+                         {r} in the right: the eyes differ by more than a horizontal shift",
+                        o.name
+                    );
+                }
+            }
+            None => {
+                let extent = |c: &[u32]| {
+                    let first = c.iter().position(|&n| n > 0).unwrap_or(0) as i64;
+                    let last = c.iter().rposition(|&n| n > 0).unwrap_or(0) as i64;
+                    (first, last)
+                };
+                let (el, er) = (extent(&l), extent(&r));
+                assert!(
+                    (el.0 - er.0).abs() <= 1 && (el.1 - er.1).abs() <= 1,
+                    "{what}: the {} object spans rows {el:?} in the left eye and {er:?} in \
+                     the right: the eyes differ by more than a horizontal shift",
+                    o.name
+                );
+            }
         }
         assert!(
             (yr - yl).abs() < 0.5,
@@ -185,7 +208,7 @@ fn depths_program(program: &Path, args: &[&str], title: &str, allowed: &[&str], 
             shift: want(None),
         },
     ];
-    let shifts = horizontal_shifts(&eyes, &objects, 1, what);
+    let shifts = horizontal_shifts(&eyes, &objects, Some(1), what);
     assert!(
         shifts[0] < -4.0 && shifts[2] > 2.0,
         "{what}: near and far do not move apart: {shifts:?}"
@@ -300,8 +323,7 @@ fn glxgears_without_stereo_under_auto_moves_its_gears_by_their_depth() {
                 shift: near,
             },
         ];
-        // Lit faces: a shift resamples their shading at the edges.
-        let shifts = horizontal_shifts(&eyes, &objects, 3, &what);
+        let shifts = horizontal_shifts(&eyes, &objects, None, &what);
         eprintln!("{what}: shifts (red, green, blue) {shifts:?} window pixels");
     }
     let mut gears = Renderer::start(
@@ -432,7 +454,7 @@ fn osgviewer_in_mono_under_auto_moves_near_and_far_apart_and_keeps_its_hud() {
             shift: 0.5..=6.0,
         },
     ];
-    let shifts = horizontal_shifts(&eyes, &objects, 2, "osgviewer");
+    let shifts = horizontal_shifts(&eyes, &objects, None, "osgviewer");
     eprintln!("osgviewer: shifts (red, green, blue) {shifts:?} window pixels");
     // The HUD: its rows are the same picture in both eyes.
     for y in 0..20 {
