@@ -262,13 +262,10 @@ fn a_mono_pyopengl_freeglut_program_under_auto_shows_each_depth_with_its_paralla
     );
 }
 
-/// QOpenGLWidget draws into a framebuffer object of Qt's and Qt draws its
-/// texture into the window: the design's render-to-texture stereo
-/// (src/auto/mod.rs, "Render to texture") is not in the runtime yet, whose
-/// draws into a program's own framebuffer objects are mono: both eyes
-/// come out flat (every object moves by 0 pixels).
+/// QOpenGLWidget draws into a framebuffer object of Qt's, in a context of
+/// its own, and the window's context draws its texture into the window:
+/// render to texture, stereoized (src/auto/render_targets.rs).
 #[test]
-#[ignore = "render to texture is not stereoized by the runtime yet: both eyes flat"]
 fn a_mono_qt5_opengl_widget_under_auto_shows_each_depth_with_its_parallax() {
     let exe = cxx_client("qt5_depths", &["Qt5Widgets"]);
     depths_program(

@@ -306,6 +306,7 @@ pub mod eyes;
 pub mod fixed;
 pub mod glsl;
 pub mod link;
+pub mod render_targets;
 pub mod runtime;
 pub mod standin;
 pub mod target;
