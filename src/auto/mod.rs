@@ -37,7 +37,9 @@
 //!   geometry is then 1.05 % of the viewport width apart, a third of HP's
 //!   3 % comfort budget (seed 000; [`crate::analysis::parallax`]), which
 //!   leaves the rest of the budget to what comes out of the screen.
-//! - **Convergence `auto`** (`GLSTEREO_CONVERGENCE=auto|<w>`,
+//! - **Convergence `auto`** (not applied at run time yet: C stays 0 until
+//!   `--convergence`, the keys or the program set it; what follows is the
+//!   design) (`GLSTEREO_CONVERGENCE=auto|<w>`,
 //!   `--convergence`): C is a distance in the program's own units, which
 //!   differ by orders of magnitude between programs, so no number is a
 //!   good default. Every 30 frames the layer puts C at the centre of
@@ -199,18 +201,19 @@
 //! (a textured quad, a blit: Qt, VTK, many engines) must be in stereo too.
 //! As 3D Vision did, render targets the size of the window (or larger)
 //! are stereoized; smaller ones (shadow maps, reflection maps, picking)
-//! stay mono: they are not pictures of the screen. A stereoized target's
-//! colour attachment gets a layered twin: while the program draws into
-//! that framebuffer, the layer attaches a 2-layer array in place of the
-//! program's texture (the draws then reach both eyes as above, with no
-//! switch); when the program next uses the texture (binds it for sampling,
-//! reads or copies it), the layer copies layer 0 into the program's
-//! texture and layer 1 into a right-eye twin texture (glCopyImageSubData:
-//! ≈ 0.1 ms each at 1280x1024). In the right eye's draws, texture units
-//! holding a stereoized texture are bound to its twin (a texture binding
-//! does not end llvmpipe's scene). A blit from a stereoized target to the
-//! default framebuffer copies eye to eye. The program's own reads of its
-//! texture (glGetTexImage) see the left eye, as a mono program's would.
+//! stay mono: they are not pictures of the screen. Built as
+//! [`render_targets`] (the share group's targets: Qt's QOpenGLWidget
+//! draws in a context of its own and the window's context shows it): at
+//! the first draw into such a framebuffer the layer attaches a 2-layer
+//! colour array and depth array in place of the program's attachments
+//! (the draws then reach both eyes as above, with no switch); before any
+//! draw elsewhere it copies layer 0 into the program's texture
+//! (glCopyImageSubData: ≈ 0.1 ms at 1280x1024), and in the right eye's
+//! draws texture units holding the program's texture are bound to a
+//! texture view of layer 1 (a texture binding does not end llvmpipe's
+//! scene). The program's own reads of its texture see the left eye, as a
+//! mono program's would. Not yet: a blit from a stereoized target to the
+//! default framebuffer reads its left eye into both eyes.
 //! Not covered: targets the program sizes differently from the window and
 //! then scales (they stay mono), and textures sampled through bindless
 //! handles or image units.
