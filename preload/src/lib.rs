@@ -279,8 +279,7 @@ unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAdd
         // A generated wrapper stands for a function of the GL below: with
         // no libGL to call, the name is refused as every other libGL name.
         let generated = || {
-            generated::lookup(n.to_bytes())
-                .filter(|_| glstereo::interpose::real::loaded().is_ok())
+            generated::lookup(n.to_bytes()).filter(|_| glstereo::interpose::real::loaded().is_ok())
         };
         if let Some(f) = own_export(n.to_bytes()).or_else(generated) {
             return as_proc(f);

@@ -733,6 +733,24 @@ impl LayeredEyes {
 }
 
 impl Attachments {
+    /// The attachments of a program's framebuffer object stereoized by
+    /// the layer ([`crate::auto::render_targets`]): its colour array at
+    /// GL_COLOR_ATTACHMENT0, its depth array (0: none) at
+    /// `depth_attachment`, with the API of the context's own eyes.
+    pub fn of_target(&self, colour: u32, depth: u32, depth_attachment: u32) -> Attachments {
+        Attachments {
+            api: self.api,
+            colour: [colour, 0],
+            depth,
+            depth_attachment,
+        }
+    }
+
+    /// The first pair's colour array (the eyes' size is its size).
+    pub fn colour(&self) -> u32 {
+        self.colour[0]
+    }
+
     /// Attaches both pairs' arrays, every layer (pair `p` at
     /// GL_COLOR_ATTACHMENT0 + p), and the depth array, to the framebuffer
     /// object bound at `target`; with `eye`, that eye's layers only (the

@@ -8,9 +8,9 @@
 //! on llvmpipe against a program that draws each eye itself with the rule
 //! applied by hand, pixel by pixel. [`runtime`] wires them to the preload
 //! library's generated wrappers and says which parts of this design run
-//! today; the rest below is design (render targets of the program's own
-//! stay mono, and side effects of the second eye's draws are not kept
-//! single yet: README, "Automatic stereo").
+//! today; the rest below is design (queries and shader stores of the
+//! second eye's draws are not kept single yet, README, "Automatic
+//! stereo"; render targets are [`render_targets`]).
 //!
 //! # The rule
 //!
@@ -200,18 +200,19 @@
 //! (a textured quad, a blit: Qt, VTK, many engines) must be in stereo too.
 //! As 3D Vision did, render targets the size of the window (or larger)
 //! are stereoized; smaller ones (shadow maps, reflection maps, picking)
-//! stay mono: they are not pictures of the screen. A stereoized target's
-//! colour attachment gets a layered twin: while the program draws into
-//! that framebuffer, the layer attaches a 2-layer array in place of the
-//! program's texture (the draws then reach both eyes as above, with no
-//! switch); when the program next uses the texture (binds it for sampling,
-//! reads or copies it), the layer copies layer 0 into the program's
-//! texture and layer 1 into a right-eye twin texture (glCopyImageSubData:
-//! ≈ 0.1 ms each at 1280x1024). In the right eye's draws, texture units
-//! holding a stereoized texture are bound to its twin (a texture binding
-//! does not end llvmpipe's scene). A blit from a stereoized target to the
-//! default framebuffer copies eye to eye. The program's own reads of its
-//! texture (glGetTexImage) see the left eye, as a mono program's would.
+//! stay mono: they are not pictures of the screen. Built as
+//! [`render_targets`] (the share group's targets: Qt's QOpenGLWidget
+//! draws in a context of its own and the window's context shows it): at
+//! the first draw into such a framebuffer the layer attaches a 2-layer
+//! colour array and depth array in place of the program's attachments
+//! (the draws then reach both eyes as above, with no switch); before any
+//! draw elsewhere it copies layer 0 into the program's texture
+//! (glCopyImageSubData: ≈ 0.1 ms at 1280x1024), and in the right eye's
+//! draws texture units holding the program's texture are bound to a
+//! texture view of layer 1 (a texture binding does not end llvmpipe's
+//! scene). The program's own reads of its texture see the left eye, as a
+//! mono program's would. Not yet: a blit from a stereoized target to the
+//! default framebuffer reads its left eye into both eyes.
 //! Not covered: targets the program sizes differently from the window and
 //! then scales (they stay mono), and textures sampled through bindless
 //! handles or image units.
@@ -309,6 +310,7 @@ pub mod eyes;
 pub mod fixed;
 pub mod glsl;
 pub mod link;
+pub mod render_targets;
 pub mod runtime;
 pub mod standin;
 pub mod target;

@@ -40,7 +40,9 @@
 //!   then drawn alike).
 //!
 //! Draws into the program's own framebuffer objects are made once, mono,
-//! with the neutral uniform.
+//! with the neutral uniform, except into render targets of the window's
+//! size, which are drawn in stereo as the window is
+//! ([`crate::auto::render_targets`]).
 
 use std::collections::HashMap;
 use std::ffi::{CStr, c_void};
@@ -54,6 +56,7 @@ use crate::auto::eyes::{Attachments, layer};
 use crate::auto::fixed;
 use crate::auto::gl_fns;
 use crate::auto::link::{self, LinkOutcome};
+use crate::auto::render_targets::{self, Targets};
 use crate::auto::standin::{self, FixedVertexState};
 use crate::auto::vertex::LayerWrite;
 use crate::interpose::context::Current;
@@ -510,6 +513,7 @@ unsafe fn eyes(
     path: Path,
     settings: &StereoSettings,
     layered: &Attachments,
+    targets: &Targets,
     restore: bool,
     draw: &mut dyn FnMut(),
 ) {
@@ -530,7 +534,9 @@ unsafe fn eyes(
                 }
                 for eye in EYES {
                     set_uniform(f, target, eye_value(settings, Some(eye), true));
+                    let bound = render_targets::bind_eye(targets, eye);
                     draw();
+                    bound.restore();
                 }
                 set_uniform(f, target, eye_value(settings, None, false));
                 if standin {
@@ -556,7 +562,9 @@ unsafe fn eyes(
                     if let Some(target) = target {
                         set_uniform(f, target, eye_value(settings, Some(eye), false));
                     }
+                    let bound = render_targets::bind_eye(targets, eye);
                     draw();
+                    bound.restore();
                 }
                 layered.attach(GL_DRAW_FRAMEBUFFER, None);
                 if let Some(target) = target {
@@ -691,118 +699,135 @@ fn settings_call<R: Returned>(call: Call, draw: impl Fn() -> R) -> R {
 /// A call of the drawing families (module docs).
 fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
     let f = &t.gl;
+    let group = cur.sc.group();
     cur.sc.with_auto(cur.draw, |st, eyes_of| {
-        let Some((app_fbo, layered)) = eyes_of else {
+        let Some((mut app_fbo, mut layered)) = eyes_of else {
             return draw();
         };
-        // SAFETY: the program's context is current on this thread.
-        unsafe {
-            match (call.family, call.name) {
-                (Family::DisplayList, "glNewList") => {
-                    let (list, mode) = (call.u32(0), call.u32(1));
-                    if mode == GL_COMPILE_AND_EXECUTE && st.compiling.is_none() {
-                        (f.new_list)(list, GL_COMPILE);
-                        st.compiling = Some((list, true));
-                    } else {
-                        draw();
-                        st.compiling = Some((list, false));
+        render_targets::with_group(group, |targets| {
+            // SAFETY: the program's context is current on this thread.
+            unsafe {
+                // A render target of the program's drawn in stereo takes the
+                // place of the window's eyes; the others' textures are given
+                // their left eye before anything may sample them.
+                let context = std::sync::Arc::as_ptr(&cur.sc) as usize;
+                if st.compiling.is_none() {
+                    let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+                    if fbo != app_fbo {
+                        if let Some(a) = render_targets::eyes_of(targets, context, fbo, &layered) {
+                            (app_fbo, layered) = (fbo, a);
+                        }
                     }
-                    return;
+                    render_targets::resolve(targets, context, fbo);
                 }
-                (Family::DisplayList, "glEndList") => {
-                    draw();
-                    let Some((list, execute)) = st.compiling.take() else {
+                match (call.family, call.name) {
+                    (Family::DisplayList, "glNewList") => {
+                        let (list, mode) = (call.u32(0), call.u32(1));
+                        if mode == GL_COMPILE_AND_EXECUTE && st.compiling.is_none() {
+                            (f.new_list)(list, GL_COMPILE);
+                            st.compiling = Some((list, true));
+                        } else {
+                            draw();
+                            st.compiling = Some((list, false));
+                        }
                         return;
-                    };
-                    if execute {
+                    }
+                    (Family::DisplayList, "glEndList") => {
+                        draw();
+                        let Some((list, execute)) = st.compiling.take() else {
+                            return;
+                        };
+                        if execute {
+                            let settings = st.settings();
+                            let path = choose(t, cur, st, app_fbo, true);
+                            eyes(t, path, &settings, &layered, targets, true, &mut || {
+                                (f.call_list)(list)
+                            });
+                        }
+                        return;
+                    }
+                    _ if st.compiling.is_some() => return draw(),
+                    (Family::BeginEnd, "glBegin") => {
+                        if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+                            return draw();
+                        }
+                        if st.list == 0 {
+                            st.list = (f.gen_lists)(1);
+                        }
+                        if st.list == 0 {
+                            return draw();
+                        }
+                        (f.new_list)(st.list, GL_COMPILE);
+                        st.in_begin = true;
+                        return draw();
+                    }
+                    (Family::BeginEnd, "glEnd") => {
+                        if !st.in_begin {
+                            return draw();
+                        }
+                        draw();
+                        (f.end_list)();
+                        st.in_begin = false;
                         let settings = st.settings();
-                        let path = choose(t, cur, st, app_fbo, true);
-                        eyes(t, path, &settings, &layered, true, &mut || {
+                        let path = choose(t, cur, st, app_fbo, false);
+                        let list = st.list;
+                        eyes(t, path, &settings, &layered, targets, false, &mut || {
                             (f.call_list)(list)
                         });
+                        return;
                     }
-                    return;
+                    _ if st.in_begin => return draw(),
+                    (Family::RasterPixels, name) => {
+                        let settings = st.settings();
+                        return pixels(t, &settings, app_fbo, &layered, name, call, draw);
+                    }
+                    (Family::Blit, _) => {
+                        if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+                            return draw();
+                        }
+                        for eye in EYES {
+                            layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
+                            draw();
+                        }
+                        layered.attach(GL_DRAW_FRAMEBUFFER, None);
+                        return;
+                    }
+                    _ => {}
                 }
-                _ if st.compiling.is_some() => return draw(),
-                (Family::BeginEnd, "glBegin") => {
-                    if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
-                        return draw();
-                    }
-                    if st.list == 0 {
-                        st.list = (f.gen_lists)(1);
-                    }
-                    if st.list == 0 {
-                        return draw();
-                    }
-                    (f.new_list)(st.list, GL_COMPILE);
-                    st.in_begin = true;
-                    return draw();
-                }
-                (Family::BeginEnd, "glEnd") => {
-                    if !st.in_begin {
-                        return draw();
-                    }
-                    draw();
-                    (f.end_list)();
-                    st.in_begin = false;
-                    let settings = st.settings();
-                    let path = choose(t, cur, st, app_fbo, false);
-                    let list = st.list;
-                    eyes(t, path, &settings, &layered, false, &mut || {
-                        (f.call_list)(list)
+                let lists = call.family == Family::DisplayList;
+                let settings = st.settings();
+                let path = choose(t, cur, st, app_fbo, lists);
+                if st.feedback && call.family == Family::Draw {
+                    // Transform feedback captures what the mono program
+                    // would: the draw once, unshifted and not rasterized,
+                    // then both eyes with the capture paused. With
+                    // rasterizer discard on nothing reaches the eyes: the
+                    // draw once.
+                    let mono = Path::Mono(match path {
+                        Path::Uniform {
+                            target,
+                            standin: false,
+                        } => Some(target),
+                        _ => None,
                     });
-                    return;
-                }
-                _ if st.in_begin => return draw(),
-                (Family::RasterPixels, name) => {
-                    let settings = st.settings();
-                    return pixels(t, &settings, app_fbo, &layered, name, call, draw);
-                }
-                (Family::Blit, _) => {
-                    if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
-                        return draw();
+                    if (f.is_enabled)(GL_RASTERIZER_DISCARD) != 0 {
+                        return eyes(t, mono, &settings, &layered, targets, false, draw);
                     }
-                    for eye in EYES {
-                        layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
-                        draw();
+                    if integer(f, GL_TRANSFORM_FEEDBACK_ACTIVE) != 0
+                        && integer(f, GL_TRANSFORM_FEEDBACK_PAUSED) == 0
+                    {
+                        (f.enable)(GL_RASTERIZER_DISCARD);
+                        eyes(t, mono, &settings, &layered, targets, false, draw);
+                        (f.disable)(GL_RASTERIZER_DISCARD);
+                        (f.pause_transform_feedback)();
+                        eyes(t, path, &settings, &layered, targets, false, draw);
+                        (f.resume_transform_feedback)();
+                        return;
                     }
-                    layered.attach(GL_DRAW_FRAMEBUFFER, None);
-                    return;
                 }
-                _ => {}
+                eyes(t, path, &settings, &layered, targets, lists, draw);
             }
-            let lists = call.family == Family::DisplayList;
-            let settings = st.settings();
-            let path = choose(t, cur, st, app_fbo, lists);
-            if st.feedback && call.family == Family::Draw {
-                // Transform feedback captures what the mono program would:
-                // the draw once, unshifted and not rasterized, then both
-                // eyes with the capture paused. With rasterizer discard
-                // on nothing reaches the eyes: the draw once.
-                let mono = Path::Mono(match path {
-                    Path::Uniform {
-                        target,
-                        standin: false,
-                    } => Some(target),
-                    _ => None,
-                });
-                if (f.is_enabled)(GL_RASTERIZER_DISCARD) != 0 {
-                    return eyes(t, mono, &settings, &layered, false, draw);
-                }
-                if integer(f, GL_TRANSFORM_FEEDBACK_ACTIVE) != 0
-                    && integer(f, GL_TRANSFORM_FEEDBACK_PAUSED) == 0
-                {
-                    (f.enable)(GL_RASTERIZER_DISCARD);
-                    eyes(t, mono, &settings, &layered, false, draw);
-                    (f.disable)(GL_RASTERIZER_DISCARD);
-                    (f.pause_transform_feedback)();
-                    eyes(t, path, &settings, &layered, false, draw);
-                    (f.resume_transform_feedback)();
-                    return;
-                }
-            }
-            eyes(t, path, &settings, &layered, lists, draw);
-        }
+        })
     })
 }
 

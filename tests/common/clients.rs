@@ -69,7 +69,7 @@ pub fn c_client(name: &str, libs: &[&str]) -> PathBuf {
 }
 
 /// tests/clients/NAME.cpp, strict C++17, against the pkg-config `modules`.
-fn cxx_client(name: &str, modules: &[&str]) -> PathBuf {
+pub fn cxx_client(name: &str, modules: &[&str]) -> PathBuf {
     build_once(name, |out| {
         let pc = super::run_ok(
             Command::new("pkg-config")
@@ -173,6 +173,12 @@ pub fn one_renderer_at_a_time() -> MutexGuard<'static, ()> {
 /// `glstereo-run -m side-by-side PROGRAM ARGS` on `x`, with the
 /// environment a desktop session would give (Qt wants XDG_RUNTIME_DIR).
 pub fn under_layer(x: &Xvfb, program: &Path, args: &[&str]) -> Command {
+    under_layer_with(x, &["-m", "side-by-side"], program, args)
+}
+
+/// `glstereo-run OPTIONS PROGRAM ARGS` on `x`, in the environment of
+/// [`under_layer`].
+pub fn under_layer_with(x: &Xvfb, options: &[&str], program: &Path, args: &[&str]) -> Command {
     // One private runtime directory for every client of this test binary
     // (made once: tests run in parallel).
     static RUNTIME: OnceLock<PathBuf> = OnceLock::new();
@@ -183,7 +189,7 @@ pub fn under_layer(x: &Xvfb, program: &Path, args: &[&str]) -> Command {
         dir
     });
     let mut cmd = Command::new(&built().run);
-    cmd.args(["-m", "side-by-side"])
+    cmd.args(options)
         .arg(program)
         .args(args)
         .env("DISPLAY", &x.display)
