@@ -1,0 +1,76 @@
+#!/bin/sh
+# Every output format's frame rate under glstereo-run, as a ratio to
+# anaglyph-red-cyan's (the cheapest composite) measured in alternation:
+# each round runs benches/glx_frame_loop.c in stereo under glstereo-run
+# with anaglyph-red-cyan, then with the format, on a private Xvfb, and
+# takes the ratio of their median frame times. Prints, per scene and size,
+# one line per format: the medians over the rounds of both frame times and
+# the range and median of the per-round ratios (fps of the format / fps of
+# anaglyph-red-cyan: 1 = as fast, 0.5 = half the frame rate).
+#
+#   benches/glx_formats.sh [ROUNDS [FORMAT...]]       (default 3, every format)
+#
+# SCENES="light:1280x1024:200 light:400x300:800 heavy:1280x1024:6" (the
+# default) chooses the scenes, sizes and frames per run. RUN=/path/to/
+# glstereo-run measures another build (default: this tree's release build,
+# `cargo build --release -p glstereo-preload` first). The environment
+# reaches the layer: GLSTEREO_CROSSTALK=0.1, GLSTEREO_SATURATION=0.6,
+# GALLIUM_DRIVER=softpipe, or LIBGL_ALWAYS_SOFTWARE=1
+# MESA_LOADER_DRIVER_OVERRIDE=zink (Vulkan: lavapipe) measure those.
+set -eu
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+ROUNDS=${1:-3}
+[ $# -gt 0 ] && shift
+RUN=${RUN:-"$ROOT/target/release/glstereo-run"}
+SCENES=${SCENES:-"light:1280x1024:200 light:400x300:800 heavy:1280x1024:6"}
+[ -x "$RUN" ] || { echo "build first: cargo build --release -p glstereo-preload" >&2; exit 1; }
+if [ $# -gt 0 ]; then
+    FORMATS="$*"
+else
+    # Every mode glstereo-run lists (quad falls back to anaglyph-red-cyan).
+    FORMATS=$("$RUN" --help | sed -n '/^Modes:/,/^$/p' | awk 'NR > 1 && NF { print $1 }')
+fi
+TMP=$(mktemp -d)
+XVFB=
+trap '[ -n "$XVFB" ] && kill "$XVFB" 2>/dev/null; rm -rf "$TMP"' EXIT INT TERM
+cc -O2 -std=c99 -Wall -Wextra -Wpedantic -Werror "$ROOT/benches/glx_frame_loop.c" -o "$TMP/loop" -lGL -lX11
+Xvfb -displayfd 3 -screen 0 1344x1088x24 -nolisten tcp 3>"$TMP/display" >/dev/null 2>&1 &
+XVFB=$!
+while [ ! -s "$TMP/display" ]; do sleep 0.05; done
+export DISPLAY=":$(cat "$TMP/display")"
+
+# The median frame time (ms) of one run in MODE: run MODE SCENE W H FRAMES.
+run() {
+    "$RUN" -m "$1" "$TMP/loop" stereo "$3" "$4" "$5" "$2" | sed 's/.*median \([0-9.]*\) ms.*/\1/'
+}
+med() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+
+echo "# $(uptime)"
+echo "# $RUN, $ROUNDS rounds, ${GALLIUM_DRIVER:-}${MESA_LOADER_DRIVER_OVERRIDE:-} ${GLSTEREO_CROSSTALK:+crosstalk $GLSTEREO_CROSSTALK} ${GLSTEREO_SATURATION:+saturation $GLSTEREO_SATURATION}"
+for s in $SCENES; do
+    scene=${s%%:*}
+    rest=${s#*:}
+    size=${rest%%:*}
+    frames=${rest#*:}
+    w=${size%x*}
+    h=${size#*x}
+    echo "## $scene $size, $frames frames a run"
+    printf '%-30s %10s %10s %8s %14s\n' format "ref ms" "fmt ms" ratio "ratio range"
+    for f in $FORMATS; do
+        : >"$TMP/r"
+        : >"$TMP/f"
+        : >"$TMP/q"
+        i=1
+        while [ "$i" -le "$ROUNDS" ]; do
+            a=$(run anaglyph-red-cyan "$scene" "$w" "$h" "$frames")
+            b=$(run "$f" "$scene" "$w" "$h" "$frames")
+            echo "$a" >>"$TMP/r"
+            echo "$b" >>"$TMP/f"
+            echo "$a $b" | awk '{ printf "%.3f\n", $1 / $2 }' >>"$TMP/q"
+            i=$((i + 1))
+        done
+        printf '%-30s %10s %10s %8s %14s\n' "$f" "$(med <"$TMP/r")" "$(med <"$TMP/f")" \
+            "$(med <"$TMP/q")" "$(sort -g "$TMP/q" | sed -n '1p;$p' | paste -sd-)"
+    done
+done
+echo "# $(uptime)"
