@@ -10,14 +10,22 @@ CARGO_PROFILE_FLAG := $(if $(filter release,$(PROFILE)),--release,)
 # Runtime: Mesa's EGL/GL/OSMesa (llvmpipe), Xvfb for the GLX tests.
 # Build: the GL/EGL/OSMesa/GLUT headers for the C examples, pkg-config, a C compiler.
 # Tests: valgrind (leak attribution through Mesa; gcc brings ASan/UBSan/LSan);
-# the real clients of tests/clients.rs: GLFW, SDL2, PyOpenGL, libepoxy, Qt 5 (g++),
-# OpenSceneGraph's osgshape, glxgears, apitrace; Pillow and exiftool, the
-# independent readers of the MPO/JPS stereo photos.
+# the real clients of tests/clients.rs: GLFW, SDL2, PyOpenGL, libepoxy, Qt 5 and 6 (g++),
+# OpenSceneGraph's osgshape, glxgears; the GL layers glstereo stacks with
+# (apitrace, MangoHud, RenderDoc's renderdoccmd and in-app API header);
+# Pillow and exiftool, the independent readers of the MPO/JPS stereo photos;
+# lavapipe (Mesa's CPU Vulkan driver) for zink, the GL-over-Vulkan driver of
+# tests/zink.rs.
+# libXtst, with which tests/keys.rs types the live keys (XTEST), and libXi's
+# headers for its XInput 2 client.
 DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosmesa6 \
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind \
-                libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev qtbase5-dev g++ \
-                openscenegraph mesa-utils apitrace python3-pil libimage-exiftool-perl
+                libx11-xcb-dev libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev \
+                qtbase5-dev qt6-base-dev g++ \
+                openscenegraph mesa-utils apitrace mangohud renderdoccmd librenderdoc-dev \
+                python3-pil libimage-exiftool-perl mesa-vulkan-drivers \
+                libxtst6 libxi-dev
 
 .PHONY: all deps build header examples demo test check-sanitize lint bench clean install uninstall
 

@@ -2034,7 +2034,9 @@ gls_result gls_parallax_report_describe(const struct gls_parallax_report *report
  * glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
  * with n > 0, glGet(Named)FramebufferParameteriv and
  * glGetNamedFramebufferAttachmentParameteriv params, glCreateShaderProgramv
- * strings with count > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
+ * strings with count > 0, glGetProgramiv params, glGetProgramBinary's
+ * format and, with bufSize > 0, binary, glProgramBinary's binary with
+ * length > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
  * current context (none with no context current). A pointer that is not
  * NULL but wrong (freed, too short, not terminated) cannot be detected.
  * An internal failure (a bug) is caught and reported as a refusal.
@@ -2165,9 +2167,31 @@ unsigned long gls_glx_create_window(void *dpy,
                                     const int *attrib_list);
 
 /**
- * `glXDestroyWindow`.
+ * `glXDestroyWindow`: the stereo buffers of the window go with it, in
+ * every stereo context it was bound to (where it is current, when it is
+ * released, as GLX keeps a current drawable until then).
  */
 void gls_glx_destroy_window(void *dpy, unsigned long window);
+
+/**
+ * `glXDestroyPbuffer`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_pbuffer(void *dpy, unsigned long pbuf);
+
+/**
+ * `glXDestroyGLXPbufferSGIX`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_glx_pbuffer_sgix(void *dpy, unsigned long pbuf);
+
+/**
+ * `glXDestroyPixmap`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_pixmap(void *dpy, unsigned long pixmap);
+
+/**
+ * `glXDestroyGLXPixmap`: as gls_glx_destroy_window().
+ */
+void gls_glx_destroy_glx_pixmap(void *dpy, unsigned long pixmap);
 
 /**
  * `glXCreatePixmap` (mono: the real configuration of a stereo one).
@@ -2273,6 +2297,30 @@ void gls_gl_delete_framebuffers(int32_t n, const uint32_t *framebuffers);
  * `glDeleteFramebuffersEXT`: as gls_gl_delete_framebuffers().
  */
 void gls_gl_delete_framebuffers_ext(int32_t n, const uint32_t *framebuffers);
+
+/**
+ * `glDeleteTextures`: the layer's own textures (in the program's share
+ * group, under names from the top of the non-negative range) are left
+ * alone, as names the program never made are; every other name is
+ * deleted.
+ */
+void gls_gl_delete_textures(int32_t n, const uint32_t *textures);
+
+/**
+ * `glDeleteTexturesEXT`: as gls_gl_delete_textures().
+ */
+void gls_gl_delete_textures_ext(int32_t n, const uint32_t *textures);
+
+/**
+ * `glDeleteRenderbuffers`: as gls_gl_delete_textures(), for the layer's
+ * depth/stencil renderbuffers.
+ */
+void gls_gl_delete_renderbuffers(int32_t n, const uint32_t *renderbuffers);
+
+/**
+ * `glDeleteRenderbuffersEXT`: as gls_gl_delete_renderbuffers().
+ */
+void gls_gl_delete_renderbuffers_ext(int32_t n, const uint32_t *renderbuffers);
 
 /**
  * `glGetFramebufferAttachmentParameteriv`: on the emulated default
@@ -2642,6 +2690,41 @@ void gls_gl_invalidate_sub_framebuffer(uint32_t target,
                                        int32_t height);
 
 /**
+ * `glInvalidateNamedFramebufferData`: on framebuffer 0, as
+ * gls_gl_invalidate_framebuffer() with framebuffer 0 bound. Refused:
+ * `attachments` NULL with n > 0.
+ */
+void gls_gl_invalidate_named_framebuffer_data(uint32_t framebuffer,
+                                              int32_t num_attachments,
+                                              const uint32_t *attachments);
+
+/**
+ * `glInvalidateNamedFramebufferSubData`: as
+ * gls_gl_invalidate_named_framebuffer_data().
+ */
+void gls_gl_invalidate_named_framebuffer_sub_data(uint32_t framebuffer,
+                                                  int32_t num_attachments,
+                                                  const uint32_t *attachments,
+                                                  int32_t x,
+                                                  int32_t y,
+                                                  int32_t width,
+                                                  int32_t height);
+
+/**
+ * `glCheckNamedFramebufferStatus`: framebuffer 0 is the emulated default
+ * framebuffer, complete as a window is (whatever a layer below has as its
+ * framebuffer 0); `target` is checked as GL checks it (GL_INVALID_ENUM
+ * and 0).
+ */
+uint32_t gls_gl_check_named_framebuffer_status(uint32_t framebuffer, uint32_t target);
+
+/**
+ * `glCheckNamedFramebufferStatusEXT` (GL_EXT_direct_state_access): as
+ * gls_gl_check_named_framebuffer_status().
+ */
+uint32_t gls_gl_check_named_framebuffer_status_ext(uint32_t framebuffer, uint32_t target);
+
+/**
  * `glGetNamedFramebufferAttachmentParameteriv`: on framebuffer 0, as
  * gls_gl_get_framebuffer_attachment_parameteriv() with framebuffer 0
  * bound (GL_FRAMEBUFFER_DEFAULT, the window's component sizes; the right
@@ -2690,6 +2773,60 @@ void gls_gl_link_program(uint32_t program);
  * (returns 0).
  */
 uint32_t gls_gl_create_shader_programv(uint32_t kind, int32_t count, const char *const *strings);
+
+/**
+ * `glGetProgramiv`: in a stereo context GL_PROGRAM_BINARY_LENGTH counts
+ * the 12-byte tag gls_gl_get_program_binary() puts before the driver's
+ * binary; everything else is the driver's answer. Refused: `params` NULL
+ * (GL_INVALID_VALUE, nothing written).
+ */
+void gls_gl_get_programiv(uint32_t program, uint32_t pname, int32_t *params);
+
+/**
+ * `glGetProgramBinary`: in a stereo context, the driver's binary of the
+ * program as linked there (with the copies of output 0 that
+ * gls_gl_link_program() adds) behind a 12-byte tag of glstereo's, in the
+ * driver's binary format; a program whose copies glstereo cannot vouch
+ * for gets the driver's binary as it is. Refused: `binary_format` NULL,
+ * or `binary` NULL with `buf_size` > 0 (GL_INVALID_VALUE).
+ */
+void gls_gl_get_program_binary(uint32_t program,
+                               int32_t buf_size,
+                               int32_t *length,
+                               uint32_t *binary_format,
+                               void *binary);
+
+/**
+ * `glGetProgramBinaryOES`: as gls_gl_get_program_binary().
+ */
+void gls_gl_get_program_binary_oes(uint32_t program,
+                                   int32_t buf_size,
+                                   int32_t *length,
+                                   uint32_t *binary_format,
+                                   void *binary);
+
+/**
+ * `glProgramBinary`: a binary gls_gl_get_program_binary() tagged loads
+ * the driver's binary behind the tag. In a stereo context a binary
+ * without the tag (made without glstereo, or by a mono context) is kept
+ * only when its fragment output 0 needs no copies; otherwise its load
+ * fails as GL lets a load fail (GL_LINK_STATUS false, no GL error; a
+ * shader cache then compiles the source, which glLinkProgram links with
+ * the copies) and stderr says so once. Refused: `binary` NULL with
+ * `length` > 0 (GL_INVALID_VALUE).
+ */
+void gls_gl_program_binary(uint32_t program,
+                           uint32_t binary_format,
+                           const void *binary,
+                           int32_t length);
+
+/**
+ * `glProgramBinaryOES`: as gls_gl_program_binary().
+ */
+void gls_gl_program_binary_oes(uint32_t program,
+                               uint32_t binary_format,
+                               const void *binary,
+                               int32_t length);
 
 /**
  * Like gls_surface_save_png, but returns as soon as the pixels are read

@@ -2,13 +2,23 @@
 //! ([`stereo_photo`]): atomically (a temporary file in the same directory,
 //! renamed into place), so a failed or interrupted capture never leaves a
 //! half-written file under the requested name.
+//!
+//! The directory may be shared with other users (`glstereo-run --capture
+//! /tmp/frames`): whoever can write it can plant a file or a symbolic link
+//! under any name there. So the temporary file is made under a name
+//! nobody can predict (64 random bits), created exclusively and never
+//! through a symbolic link (`O_CREAT | O_EXCL | O_NOFOLLOW`: a name
+//! already taken, by anything, is skipped for another), and renamed over
+//! the requested name, which replaces whatever is there (a link itself,
+//! not its target). Nothing the library or the layer creates elsewhere is
+//! named in a shared place: eye memory is an anonymous memfd, MIT-SHM
+//! segments are `IPC_PRIVATE` with mode 0600.
 
 pub mod queue;
 pub mod stereo_photo;
 
 use std::io::{BufWriter, Write};
 use std::path::Path;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Result};
 use crate::image::Image;
@@ -43,13 +53,13 @@ pub fn encode_png(image: &Image, path: &Path, out: &mut dyn Write) -> Result<()>
 }
 
 /// Writes a file atomically: `write` fills a temporary file in the same
-/// directory, which is flushed to disk and renamed to `path`; on any
+/// directory (made exclusively, under a random name: see the module
+/// documentation), which is flushed to disk and renamed to `path`; on any
 /// failure the temporary file is removed and `path` is untouched.
 pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> Result<()>,
 ) -> Result<()> {
-    static SEQ: AtomicU64 = AtomicU64::new(0);
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -57,15 +67,10 @@ pub fn write_atomically(
     let name = path
         .file_name()
         .ok_or_else(|| Error::invalid_value(format!("{} names no file", path.display())))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}-{}",
-        name.to_string_lossy(),
-        std::process::id(),
-        SEQ.fetch_add(1, Ordering::Relaxed)
-    ));
     let io = |what: &str, e: std::io::Error| Error::Io(format!("{what} {}: {e}", path.display()));
+    let (tmp, file) =
+        create_temporary(dir, name, random_u64).map_err(|e| io("cannot create", e))?;
     let result = (|| {
-        let file = std::fs::File::create(&tmp).map_err(|e| io("cannot create", e))?;
         let mut w = BufWriter::new(file);
         write(&mut w)?;
         let file = w
@@ -81,6 +86,70 @@ pub fn write_atomically(
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+/// Names tried before [`create_temporary`] gives up (each taken name is
+/// 1 in 2^64 by chance: only a directory filling up, or someone planting
+/// names it cannot guess, makes it try twice).
+const TEMPORARY_TRIES: usize = 64;
+
+/// Creates a new, empty temporary file for `name` in `dir`, named
+/// `.NAME.tmp-RANDOM` with `random` giving the 64 bits: exclusively, never
+/// through a symbolic link (`O_CREAT | O_EXCL | O_NOFOLLOW`), and a name
+/// that exists in any form is left as it is and another drawn. The file's
+/// mode is 0666 less the umask, as `File::create` gives.
+///
+/// # Errors
+/// The error of the last attempt (`AlreadyExists` after
+/// [`TEMPORARY_TRIES`] taken names).
+fn create_temporary(
+    dir: &Path,
+    name: &std::ffi::OsStr,
+    mut random: impl FnMut() -> u64,
+) -> std::io::Result<(std::path::PathBuf, std::fs::File)> {
+    use std::os::unix::fs::OpenOptionsExt;
+    // At most 255 bytes in a name (NAME_MAX): a long name is cut, at a
+    // character boundary, to leave room for the suffix.
+    let shown = name.to_string_lossy();
+    let mut end = shown.len().min(200);
+    while !shown.is_char_boundary(end) {
+        end -= 1;
+    }
+    let mut last = std::io::Error::from(std::io::ErrorKind::AlreadyExists);
+    for _ in 0..TEMPORARY_TRIES {
+        let tmp = dir.join(format!(".{}.tmp-{:016x}", &shown[..end], random()));
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .mode(0o666)
+            .custom_flags(libc::O_NOFOLLOW)
+            .open(&tmp)
+        {
+            Ok(file) => return Ok((tmp, file)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = e,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last)
+}
+
+/// 64 bits nobody else can predict: from the kernel (getrandom), or if
+/// that fails, from the standard library's randomly keyed hasher.
+fn random_u64() -> u64 {
+    let mut bytes = [0u8; 8];
+    // SAFETY: writes at most 8 bytes into the array.
+    let n = unsafe { libc::getrandom(bytes.as_mut_ptr().cast(), bytes.len(), 0) };
+    if n == bytes.len() as isize {
+        return u64::from_ne_bytes(bytes);
+    }
+    use std::hash::{BuildHasher, Hasher};
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    h.write_u128(
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos()),
+    );
+    h.finish()
 }
 
 /// Reads an 8-bit RGB or RGBA PNG into an [`Image`] (for tests and tools).
@@ -130,6 +199,92 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("a.png")]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A fresh directory of this test's own under the system's temporary one.
+    fn scratch(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("glstereo-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn symlinks_planted_in_a_shared_directory_are_never_followed() {
+        // Another user who can write the capture directory plants links
+        // to a file of ours: at the temporary names the writer used to use
+        // (.NAME.tmp-PID-SEQ, predictable) and at the capture's own name.
+        let dir = scratch("planted");
+        let theirs = scratch("planted-victims");
+        let victim = theirs.join("precious");
+        std::fs::write(&victim, b"precious").unwrap();
+        let name = "left-000001.png";
+        for seq in 0..512 {
+            let planted = dir.join(format!(".{name}.tmp-{}-{seq}", std::process::id()));
+            std::os::unix::fs::symlink(&victim, planted).unwrap();
+        }
+        let final_victim = theirs.join("precious-too");
+        std::fs::write(&final_victim, b"precious too").unwrap();
+        std::os::unix::fs::symlink(&final_victim, dir.join(name)).unwrap();
+
+        let img = Image::from_fn(6, 4, |x, y| [x as u8 * 40, y as u8 * 60, 7, 255]);
+        write_png(&img, &dir.join(name)).unwrap();
+
+        assert_eq!(
+            std::fs::read(&victim).unwrap(),
+            b"precious",
+            "a link's target was written"
+        );
+        assert_eq!(std::fs::read(&final_victim).unwrap(), b"precious too");
+        let meta = std::fs::symlink_metadata(dir.join(name)).unwrap();
+        assert!(
+            meta.is_file(),
+            "the capture replaced the planted link: {meta:?}"
+        );
+        assert_eq!(read_png(&dir.join(name)).unwrap(), img);
+        // The planted links are left alone, and no temporary file is left.
+        let mut links = 0;
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let e = e.unwrap();
+            if e.file_name() != name {
+                assert!(
+                    e.file_type().unwrap().is_symlink(),
+                    "{:?} left",
+                    e.file_name()
+                );
+                links += 1;
+            }
+        }
+        assert_eq!(links, 512);
+        std::fs::remove_dir_all(&dir).unwrap();
+        std::fs::remove_dir_all(&theirs).unwrap();
+    }
+
+    #[test]
+    fn a_taken_temporary_name_is_left_alone_and_another_drawn() {
+        let dir = scratch("taken");
+        let victim = dir.join("victim");
+        std::fs::write(&victim, b"keep").unwrap();
+        let taken = |n: u64| dir.join(format!(".b.png.tmp-{n:016x}"));
+        std::os::unix::fs::symlink(&victim, taken(7)).unwrap();
+        std::fs::write(taken(8), b"someone's").unwrap();
+        let mut draws = [7u64, 8, 9].into_iter();
+        let (tmp, _file) =
+            create_temporary(&dir, "b.png".as_ref(), || draws.next().unwrap()).unwrap();
+        assert_eq!(tmp, taken(9));
+        assert_eq!(std::fs::read(&victim).unwrap(), b"keep");
+        assert!(std::fs::symlink_metadata(taken(7)).unwrap().is_symlink());
+        assert_eq!(std::fs::read(taken(8)).unwrap(), b"someone's");
+        // Every name taken: an error, not a file written through a link.
+        let e = create_temporary(&dir, "b.png".as_ref(), || 7).unwrap_err();
+        assert_eq!(e.kind(), std::io::ErrorKind::AlreadyExists);
+        assert_eq!(std::fs::read(&victim).unwrap(), b"keep");
+        // A name too long for a temporary one is cut, not refused.
+        let long = "x".repeat(250);
+        let (tmp, _file) = create_temporary(&dir, long.as_ref(), random_u64).unwrap();
+        assert!(tmp.file_name().unwrap().len() <= 255, "{tmp:?}");
+        assert_ne!(random_u64(), random_u64());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -19,6 +19,7 @@
 //! - [`display`], [`surface`]: the objects a program uses;
 //! - [`capture`]: PNG files;
 //! - [`analysis`]: measured parallax and auto-convergence from the depth buffer;
+//! - [`auto`]: automatic stereo of unmodified mono programs (draws in both eyes);
 //! - [`image`]: RGBA8 images, rows top first;
 //! - [`framing`]: input framings (quad buffer, sync-doubled, STR_RECT, side-by-side);
 //! - [`output`]: output formats (mode names, geometry, CPU reference, GL compositor);
@@ -28,6 +29,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod auto;
 pub mod backend;
 pub mod capture;
 pub mod config;

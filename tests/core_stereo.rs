@@ -58,6 +58,25 @@ fn passes(what: &str, cmd: &mut Command, at_least: u32) -> String {
     stdout
 }
 
+/// glx_core_stereo.c `binary`: a binary made by a mono context (as by a
+/// run without the layer) is refused in the stereo context when its
+/// output 0 needs the copies, and stderr says so; binaries made there
+/// round-trip with them (core and OES names), and load in the mono one.
+fn program_binaries_keep_output_zero_in_every_buffer(mut cmd: Command) {
+    let out = common::run_ok(&mut cmd);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let (summary, passed) = common::summary(&stdout);
+    assert!(
+        summary.ends_with(" passed, 0 failed") && passed >= 60,
+        "binary: {summary}\n{stderr}"
+    );
+    assert!(
+        stderr.contains("glstereo: a program binary made without glstereo's copies"),
+        "the refused binary is not said on stderr: {stderr}"
+    );
+}
+
 fn probes(stdout: &str) -> Vec<&str> {
     stdout.lines().filter(|l| l.starts_with("probe ")).collect()
 }
@@ -93,6 +112,8 @@ fn shaders_clears_and_dsa_reach_both_eyes_under_glstereo_run() {
         "{stderr}"
     );
 
+    program_binaries_keep_output_zero_in_every_buffer(run("binary"));
+
     // The probes' answers are Mesa's own for a default framebuffer.
     let mono = common::run_ok(
         Command::new(&exe)
@@ -126,6 +147,7 @@ fn shaders_clears_and_dsa_reach_both_eyes_rebuilt_with_compat_h() {
     passes("core33", &mut run("core33"), 100);
     passes("compat", &mut run("compat"), 10);
     let stereo = passes("core45", &mut run("core45"), 190);
+    program_binaries_keep_output_zero_in_every_buffer(run("binary"));
     let mono = common::run_ok(&mut run("mono45"));
     let mono = String::from_utf8_lossy(&mono.stdout);
     assert_eq!(probes(&stereo), probes(&mono));

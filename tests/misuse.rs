@@ -216,6 +216,18 @@ fn legacy_name(gls: &str) -> &'static str {
             "glXCreateGLXPixmapWithConfigSGIX",
         ),
         ("gls_glx_create_glx_pbuffer_sgix", "glXCreateGLXPbufferSGIX"),
+        ("gls_gl_get_programiv", "glGetProgramiv"),
+        ("gls_gl_get_program_binary", "glGetProgramBinary"),
+        ("gls_gl_get_program_binary_oes", "glGetProgramBinaryOES"),
+        ("gls_gl_program_binary", "glProgramBinary"),
+        ("gls_gl_program_binary_oes", "glProgramBinaryOES"),
+        ("gls_glx_destroy_pbuffer", "glXDestroyPbuffer"),
+        (
+            "gls_glx_destroy_glx_pbuffer_sgix",
+            "glXDestroyGLXPbufferSGIX",
+        ),
+        ("gls_glx_destroy_pixmap", "glXDestroyPixmap"),
+        ("gls_glx_destroy_glx_pixmap", "glXDestroyGLXPixmap"),
         ("gls_glx_get_proc_address", "glXGetProcAddress"),
         ("gls_gl_draw_buffers", "glDrawBuffers"),
         ("gls_gl_draw_buffers_arb", "glDrawBuffersARB"),
@@ -225,6 +237,13 @@ fn legacy_name(gls: &str) -> &'static str {
         ("gls_gl_get_doublev", "glGetDoublev"),
         ("gls_gl_delete_framebuffers", "glDeleteFramebuffers"),
         ("gls_gl_delete_framebuffers_ext", "glDeleteFramebuffersEXT"),
+        ("gls_gl_delete_textures", "glDeleteTextures"),
+        ("gls_gl_delete_textures_ext", "glDeleteTexturesEXT"),
+        ("gls_gl_delete_renderbuffers", "glDeleteRenderbuffers"),
+        (
+            "gls_gl_delete_renderbuffers_ext",
+            "glDeleteRenderbuffersEXT",
+        ),
         (
             "gls_gl_get_framebuffer_attachment_parameteriv",
             "glGetFramebufferAttachmentParameteriv",
@@ -253,6 +272,22 @@ fn legacy_name(gls: &str) -> &'static str {
             "glNamedFramebufferDrawBuffers",
         ),
         ("gls_gl_invalidate_framebuffer", "glInvalidateFramebuffer"),
+        (
+            "gls_gl_invalidate_named_framebuffer_data",
+            "glInvalidateNamedFramebufferData",
+        ),
+        (
+            "gls_gl_invalidate_named_framebuffer_sub_data",
+            "glInvalidateNamedFramebufferSubData",
+        ),
+        (
+            "gls_gl_check_named_framebuffer_status",
+            "glCheckNamedFramebufferStatus",
+        ),
+        (
+            "gls_gl_check_named_framebuffer_status_ext",
+            "glCheckNamedFramebufferStatusEXT",
+        ),
         (
             "gls_gl_invalidate_sub_framebuffer",
             "glInvalidateSubFramebuffer",

@@ -552,6 +552,28 @@ fn the_stereo_buffers_follow_a_window_resized_behind_the_programs_back() {
     assert_eq!(right.get(120, 9), [255, 0, 0, 255], "right eye");
 }
 
+/// A program that resizes its own window and draws without a glViewport
+/// (a fixed viewport; its clear ignores the viewport) gets its very next
+/// frame at the new size, as Mesa's own software framebuffer gives it (the
+/// size is taken at the first draw after a swap): the frame presented
+/// right after the resize is the window's size, cleared all over.
+#[test]
+fn a_window_resized_before_the_next_draw_gets_that_frame_at_its_new_size() {
+    let (left, right) = resized_legacy(
+        "legacy_wm_resize_once",
+        &["wmresize 200 90"],
+        1,
+        "the frame drawn right after the resize",
+    );
+    // glClear covered the whole new window (grey 0.2), beyond the old
+    // 160x120 viewport at the bottom left: top right corner.
+    for (eye, img) in [("left", &left), ("right", &right)] {
+        assert_eq!(img.get(195, 3), [51, 51, 51, 255], "{eye} eye's clear");
+    }
+    assert_eq!(left.get(50, 49), [0, 0, 255, 255], "left eye");
+    assert_eq!(right.get(120, 9), [255, 0, 0, 255], "right eye");
+}
+
 /// Swapping a window the program destroyed: the layer warns, and no X
 /// error of its requests reaches the program's default (fatal) handler.
 #[test]

@@ -147,6 +147,18 @@ static inline GLXPbuffer gls_compat_glXCreatePbuffer(Display *dpy, GLXFBConfig c
 {
     return gls_glx_create_pbuffer(dpy, (void *)config, attribs);
 }
+static inline void gls_compat_glXDestroyPbuffer(Display *dpy, GLXPbuffer pbuf)
+{
+    gls_glx_destroy_pbuffer(dpy, pbuf);
+}
+static inline void gls_compat_glXDestroyPixmap(Display *dpy, GLXPixmap pixmap)
+{
+    gls_glx_destroy_pixmap(dpy, pixmap);
+}
+static inline void gls_compat_glXDestroyGLXPixmap(Display *dpy, GLXPixmap pixmap)
+{
+    gls_glx_destroy_glx_pixmap(dpy, pixmap);
+}
 static inline gls_compat_proc gls_compat_glXGetProcAddress(const GLubyte *name)
 {
     /* An object pointer to a function pointer, as POSIX dlsym() allows. */
@@ -195,6 +207,14 @@ static inline void gls_compat_glBindFramebuffer(GLenum target, GLuint framebuffe
 static inline void gls_compat_glDeleteFramebuffers(GLsizei n, const GLuint *framebuffers)
 {
     gls_gl_delete_framebuffers(n, framebuffers);
+}
+static inline void gls_compat_glDeleteTextures(GLsizei n, const GLuint *textures)
+{
+    gls_gl_delete_textures(n, textures);
+}
+static inline void gls_compat_glDeleteRenderbuffers(GLsizei n, const GLuint *renderbuffers)
+{
+    gls_gl_delete_renderbuffers(n, renderbuffers);
 }
 static inline void gls_compat_glGetFramebufferAttachmentParameteriv(GLenum target,
                                                                    GLenum attachment,
@@ -397,6 +417,22 @@ static inline void gls_compat_glInvalidateSubFramebuffer(GLenum target, GLsizei 
 {
     gls_gl_invalidate_sub_framebuffer(target, n, attachments, x, y, width, height);
 }
+static inline void gls_compat_glInvalidateNamedFramebufferData(GLuint framebuffer, GLsizei n,
+                                                               const GLenum *attachments)
+{
+    gls_gl_invalidate_named_framebuffer_data(framebuffer, n, attachments);
+}
+static inline void gls_compat_glInvalidateNamedFramebufferSubData(GLuint framebuffer, GLsizei n,
+                                                                  const GLenum *attachments,
+                                                                  GLint x, GLint y, GLsizei width,
+                                                                  GLsizei height)
+{
+    gls_gl_invalidate_named_framebuffer_sub_data(framebuffer, n, attachments, x, y, width, height);
+}
+static inline GLenum gls_compat_glCheckNamedFramebufferStatus(GLuint framebuffer, GLenum target)
+{
+    return gls_gl_check_named_framebuffer_status(framebuffer, target);
+}
 static inline void gls_compat_glGetNamedFramebufferAttachmentParameteriv(GLuint framebuffer,
                                                                          GLenum attachment,
                                                                          GLenum pname,
@@ -423,6 +459,20 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 {
     return gls_gl_create_shader_programv(type, count, strings);
 }
+static inline void gls_compat_glGetProgramiv(GLuint program, GLenum pname, GLint *params)
+{
+    gls_gl_get_programiv(program, pname, params);
+}
+static inline void gls_compat_glGetProgramBinary(GLuint program, GLsizei bufSize, GLsizei *length,
+                                                 GLenum *binaryFormat, void *binary)
+{
+    gls_gl_get_program_binary(program, bufSize, length, binaryFormat, binary);
+}
+static inline void gls_compat_glProgramBinary(GLuint program, GLenum binaryFormat,
+                                              const void *binary, GLsizei length)
+{
+    gls_gl_program_binary(program, binaryFormat, binary, length);
+}
 
 #ifdef __cplusplus
 }
@@ -445,6 +495,9 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glXDestroyWindow gls_compat_glXDestroyWindow
 #define glXCreatePixmap gls_compat_glXCreatePixmap
 #define glXCreatePbuffer gls_compat_glXCreatePbuffer
+#define glXDestroyPbuffer gls_compat_glXDestroyPbuffer
+#define glXDestroyPixmap gls_compat_glXDestroyPixmap
+#define glXDestroyGLXPixmap gls_compat_glXDestroyGLXPixmap
 #define glXGetProcAddress gls_compat_glXGetProcAddress
 #define glXGetProcAddressARB gls_compat_glXGetProcAddress
 
@@ -458,6 +511,8 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glGetDoublev gls_compat_glGetDoublev
 #define glBindFramebuffer gls_compat_glBindFramebuffer
 #define glDeleteFramebuffers gls_compat_glDeleteFramebuffers
+#define glDeleteTextures gls_compat_glDeleteTextures
+#define glDeleteRenderbuffers gls_compat_glDeleteRenderbuffers
 #define glGetFramebufferAttachmentParameteriv gls_compat_glGetFramebufferAttachmentParameteriv
 #define glPushAttrib gls_compat_glPushAttrib
 #define glPopAttrib gls_compat_glPopAttrib
@@ -502,10 +557,16 @@ static inline GLuint gls_compat_glCreateShaderProgramv(GLenum type, GLsizei coun
 #define glBlitNamedFramebuffer gls_compat_glBlitNamedFramebuffer
 #define glInvalidateFramebuffer gls_compat_glInvalidateFramebuffer
 #define glInvalidateSubFramebuffer gls_compat_glInvalidateSubFramebuffer
+#define glInvalidateNamedFramebufferData gls_compat_glInvalidateNamedFramebufferData
+#define glInvalidateNamedFramebufferSubData gls_compat_glInvalidateNamedFramebufferSubData
+#define glCheckNamedFramebufferStatus gls_compat_glCheckNamedFramebufferStatus
 #define glGetNamedFramebufferAttachmentParameteriv gls_compat_glGetNamedFramebufferAttachmentParameteriv
 #define glGetNamedFramebufferParameteriv gls_compat_glGetNamedFramebufferParameteriv
 #define glGetFramebufferParameteriv gls_compat_glGetFramebufferParameteriv
 #define glLinkProgram gls_compat_glLinkProgram
 #define glCreateShaderProgramv gls_compat_glCreateShaderProgramv
+#define glGetProgramiv gls_compat_glGetProgramiv
+#define glGetProgramBinary gls_compat_glGetProgramBinary
+#define glProgramBinary gls_compat_glProgramBinary
 
 #endif /* GLSTEREO_COMPAT_H */

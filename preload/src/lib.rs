@@ -6,52 +6,91 @@
 //! also serves programs rebuilt with `<glstereo/compat.h>`), which forwards
 //! everything that is not about stereo to the real libGL.
 //!
-//! Only these names are exported (the glstereo code linked in keeps its
-//! `gls_` symbols local, see build.rs), so a program that also links
-//! libglstereo.so still gets the library's own.
+//! Two kinds of exports:
+//! - by hand (`export!`, `forward!` below): the GLX functions and the GL
+//!   functions about the default framebuffer, each with its own
+//!   implementation;
+//! - generated from the Khronos registry (gl.xml) by build.rs: every
+//!   desktop GL command of the families that draw (draws, glBegin/glEnd,
+//!   display lists, clears, pixel rectangles, blits:
+//!   `glstereo::auto::entry_points`) that is not exported by hand, each
+//!   calling the next definition through one hook (`hooked`,
+//!   `glstereo::interpose::draws`), which costs a thread-local test when
+//!   nothing watches the thread's draws.
+//!
+//! Every address glXGetProcAddress hands out is that of a function of this
+//! library's own, never an exported name's (which a layer preloaded above
+//! would resolve to its own function). Only these names are exported (the
+//! glstereo code linked in keeps its `gls_` symbols local, see build.rs),
+//! so a program that also links libglstereo.so still gets the library's
+//! own.
 #![warn(missing_docs)]
 #![allow(clippy::missing_safety_doc, non_snake_case)]
 
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
 use std::sync::atomic::{AtomicPtr, Ordering};
 
+use glstereo::auto::entry_points::Family;
 use glstereo::ffi::interpose as gls;
-
+use glstereo::interpose::controls;
+use glstereo::interpose::draws::Call;
 use glstereo::interpose::next;
 
 /// Each export enters the layer ([`next::enter`]) and calls
 /// glstereo's implementation. Entered again while the thread is inside the
 /// layer — libGL's own code, or a layer below, calling the name back while
 /// the layer calls down — it is not the program calling: it forwards to the
-/// next definition of the name ([`pass_down`]). `own_export` maps each name
-/// to its export for glXGetProcAddress.
+/// next definition of the name ([`pass_down`]).
+///
+/// The body lives in a function of this library's own (`local::NAME`,
+/// not exported); the exported `NAME` only calls it, and `own_export` hands
+/// out the local function's address for glXGetProcAddress. The exported
+/// name's address would not do: taken in code, it is read through the
+/// global symbol table, which yields the *first* definition in the process
+/// — a layer preloaded above this one (VirtualGL's faker, apitrace's
+/// glxtrace) would be handed its own function back as "the real one".
 macro_rules! export {
     ($( $name:ident => $target:ident ( $($arg:ident : $ty:ty),* ) $(-> $ret:ty)? ; )*) => {
+        /// The bodies of the exports, at addresses of this library's own.
+        mod local {
+            use super::*;
+            $(
+                #[allow(unused_unsafe)]
+                pub(super) unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+                    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                    let (_inside, depth) = next::enter();
+                    if depth > 0 {
+                        let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
+                        // SAFETY: the next definition of this function, with its
+                        // signature, and the caller's arguments.
+                        return unsafe {
+                            std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
+                        };
+                    }
+                    // SAFETY: the caller's arguments, under the contract of the
+                    // GLX/GL function this replaces, which the target shares.
+                    unsafe { gls::$target($($arg),*) }
+                }
+            )*
+        }
+
         $(
             #[doc = concat!("`", stringify!($name), "`: see `", stringify!($target), "` in glstereo.h.")]
             #[unsafe(no_mangle)]
-            #[allow(unused_unsafe)]
             pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
-                static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
-                let (_inside, depth) = next::enter();
-                if depth > 0 {
-                    let f = pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
-                    // SAFETY: the next definition of this function, with its
-                    // signature, and the caller's arguments.
-                    return unsafe {
-                        std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) $(-> $ret)?>(f)($($arg),*)
-                    };
-                }
-                // SAFETY: the caller's arguments, under the contract of the
-                // GLX/GL function this replaces, which the target shares.
-                unsafe { gls::$target($($arg),*) }
+                // SAFETY: the caller's arguments, forwarded.
+                unsafe { local::$name($($arg),*) }
             }
         )*
 
-        /// The export standing for `name`, for glXGetProcAddress.
+        /// This library's own function standing for `name`, for
+        /// glXGetProcAddress (see the macro's doc: never the exported
+        /// name's address).
         fn own_export(name: &[u8]) -> Option<*mut c_void> {
             match name {
-                $( n if n == stringify!($name).as_bytes() => Some($name as *mut c_void), )*
+                $( n if n == stringify!($name).as_bytes() => Some(local::$name as *mut c_void), )*
+                b"glXGetProcAddress" => Some(local_get_proc_address as *mut c_void),
+                b"glXGetProcAddressARB" => Some(local_get_proc_address_arb as *mut c_void),
                 _ => None,
             }
         }
@@ -120,6 +159,10 @@ export! {
     glXSwapBuffers => gls_glx_swap_buffers(dpy: *mut c_void, drawable: c_ulong);
     glXCreateWindow => gls_glx_create_window(dpy: *mut c_void, config: *mut c_void, win: c_ulong, attribs: *const c_int) -> c_ulong;
     glXDestroyWindow => gls_glx_destroy_window(dpy: *mut c_void, win: c_ulong);
+    glXDestroyPbuffer => gls_glx_destroy_pbuffer(dpy: *mut c_void, pbuf: c_ulong);
+    glXDestroyGLXPbufferSGIX => gls_glx_destroy_glx_pbuffer_sgix(dpy: *mut c_void, pbuf: c_ulong);
+    glXDestroyPixmap => gls_glx_destroy_pixmap(dpy: *mut c_void, pixmap: c_ulong);
+    glXDestroyGLXPixmap => gls_glx_destroy_glx_pixmap(dpy: *mut c_void, pixmap: c_ulong);
     glXCreatePixmap => gls_glx_create_pixmap(dpy: *mut c_void, config: *mut c_void, pixmap: c_ulong, attribs: *const c_int) -> c_ulong;
     glXCreatePbuffer => gls_glx_create_pbuffer(dpy: *mut c_void, config: *mut c_void, attribs: *const c_int) -> c_ulong;
     glXCreateGLXPixmapWithConfigSGIX => gls_glx_create_glx_pixmap_with_config_sgix(dpy: *mut c_void, config: *mut c_void, pixmap: c_ulong) -> c_ulong;
@@ -137,6 +180,10 @@ export! {
     glBindFramebufferEXT => gls_gl_bind_framebuffer_ext(target: u32, framebuffer: u32);
     glDeleteFramebuffers => gls_gl_delete_framebuffers(n: i32, framebuffers: *const u32);
     glDeleteFramebuffersEXT => gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *const u32);
+    glDeleteTextures => gls_gl_delete_textures(n: i32, textures: *const u32);
+    glDeleteTexturesEXT => gls_gl_delete_textures_ext(n: i32, textures: *const u32);
+    glDeleteRenderbuffers => gls_gl_delete_renderbuffers(n: i32, renderbuffers: *const u32);
+    glDeleteRenderbuffersEXT => gls_gl_delete_renderbuffers_ext(n: i32, renderbuffers: *const u32);
     glGetFramebufferAttachmentParameteriv => gls_gl_get_framebuffer_attachment_parameteriv(target: u32, attachment: u32, pname: u32, params: *mut i32);
     glGetFramebufferAttachmentParameterivEXT => gls_gl_get_framebuffer_attachment_parameteriv_ext(target: u32, attachment: u32, pname: u32, params: *mut i32);
     glPushAttrib => gls_gl_push_attrib(mask: u32);
@@ -182,12 +229,21 @@ export! {
     glBlitNamedFramebuffer => gls_gl_blit_named_framebuffer(read: u32, draw: u32, sx0: i32, sy0: i32, sx1: i32, sy1: i32, dx0: i32, dy0: i32, dx1: i32, dy1: i32, mask: u32, filter: u32);
     glInvalidateFramebuffer => gls_gl_invalidate_framebuffer(target: u32, n: i32, attachments: *const u32);
     glInvalidateSubFramebuffer => gls_gl_invalidate_sub_framebuffer(target: u32, n: i32, attachments: *const u32, x: i32, y: i32, width: i32, height: i32);
+    glInvalidateNamedFramebufferData => gls_gl_invalidate_named_framebuffer_data(framebuffer: u32, n: i32, attachments: *const u32);
+    glInvalidateNamedFramebufferSubData => gls_gl_invalidate_named_framebuffer_sub_data(framebuffer: u32, n: i32, attachments: *const u32, x: i32, y: i32, width: i32, height: i32);
+    glCheckNamedFramebufferStatus => gls_gl_check_named_framebuffer_status(framebuffer: u32, target: u32) -> u32;
+    glCheckNamedFramebufferStatusEXT => gls_gl_check_named_framebuffer_status_ext(framebuffer: u32, target: u32) -> u32;
     glGetNamedFramebufferAttachmentParameteriv => gls_gl_get_named_framebuffer_attachment_parameteriv(framebuffer: u32, attachment: u32, pname: u32, params: *mut i32);
     glGetNamedFramebufferParameteriv => gls_gl_get_named_framebuffer_parameteriv(framebuffer: u32, pname: u32, params: *mut i32);
     glGetFramebufferParameteriv => gls_gl_get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut i32);
     glLinkProgram => gls_gl_link_program(program: u32);
     glLinkProgramARB => gls_gl_link_program(program: u32);
     glCreateShaderProgramv => gls_gl_create_shader_programv(kind: u32, count: i32, strings: *const *const std::ffi::c_char) -> u32;
+    glGetProgramiv => gls_gl_get_programiv(program: u32, pname: u32, params: *mut i32);
+    glGetProgramBinary => gls_gl_get_program_binary(program: u32, buf_size: i32, length: *mut i32, binary_format: *mut u32, binary: *mut c_void);
+    glGetProgramBinaryOES => gls_gl_get_program_binary_oes(program: u32, buf_size: i32, length: *mut i32, binary_format: *mut u32, binary: *mut c_void);
+    glProgramBinary => gls_gl_program_binary(program: u32, binary_format: u32, binary: *const c_void, length: i32);
+    glProgramBinaryOES => gls_gl_program_binary_oes(program: u32, binary_format: u32, binary: *const c_void, length: i32);
 }
 
 /// A function as `glXGetProcAddress` returns it.
@@ -218,7 +274,7 @@ unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAdd
     if !name.is_null() {
         // SAFETY: non-NULL, NUL-terminated (GLX's contract).
         let n = unsafe { std::ffi::CStr::from_ptr(name.cast()) };
-        if let Some(f) = own_export(n.to_bytes()) {
+        if let Some(f) = own_export(n.to_bytes()).or_else(|| generated::lookup(n.to_bytes())) {
             return as_proc(f);
         }
     }
@@ -226,20 +282,33 @@ unsafe fn get_proc_address(name: *const c_uchar, which: &'static str) -> ProcAdd
     as_proc(unsafe { gls::gls_glx_get_proc_address(name) })
 }
 
-/// `glXGetProcAddressARB`: this library's exports for their names (so a
-/// function found this way is guarded as a direct link is), the layer's
-/// other replacements, the function below the layer for every other name.
+/// glXGetProcAddressARB's body, at an address of this library's own.
+unsafe extern "C" fn local_get_proc_address_arb(name: *const c_uchar) -> ProcAddress {
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddressARB\0") }
+}
+
+/// glXGetProcAddress's body, at an address of this library's own.
+unsafe extern "C" fn local_get_proc_address(name: *const c_uchar) -> ProcAddress {
+    // SAFETY: GLX's contract.
+    unsafe { get_proc_address(name, "glXGetProcAddress\0") }
+}
+
+/// `glXGetProcAddressARB`: this library's own functions for the names it
+/// replaces (so a function found this way is guarded as the direct link
+/// is), the layer's other replacements, the function below the layer for
+/// every other name.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddressARB(name: *const c_uchar) -> ProcAddress {
     // SAFETY: GLX's contract.
-    unsafe { get_proc_address(name, "glXGetProcAddressARB\0") }
+    unsafe { local_get_proc_address_arb(name) }
 }
 
 /// `glXGetProcAddress`: as [`glXGetProcAddressARB`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddress(name: *const c_uchar) -> ProcAddress {
     // SAFETY: GLX's contract.
-    unsafe { get_proc_address(name, "glXGetProcAddress\0") }
+    unsafe { local_get_proc_address(name) }
 }
 
 /// `dlopen`: libGL.so(.1), libGLX.so(.0) and libOpenGL.so(.0) opened by a
@@ -287,9 +356,6 @@ forward! {
     glXIsDirect(dpy: *mut c_void, ctx: *mut c_void) -> c_int;
     glXCopyContext(dpy: *mut c_void, src: *mut c_void, dst: *mut c_void, mask: c_ulong);
     glXCreateGLXPixmap(dpy: *mut c_void, vis: *mut c_void, pixmap: c_ulong) -> c_ulong;
-    glXDestroyGLXPixmap(dpy: *mut c_void, pixmap: c_ulong);
-    glXDestroyPixmap(dpy: *mut c_void, pixmap: c_ulong);
-    glXDestroyPbuffer(dpy: *mut c_void, pbuffer: c_ulong);
     glXWaitGL();
     glXWaitX();
     glXUseXFont(font: c_ulong, first: c_int, count: c_int, list_base: c_int);
@@ -301,4 +367,142 @@ forward! {
     glXQueryDrawable(dpy: *mut c_void, draw: c_ulong, attribute: c_int, value: *mut u32);
     glXSelectEvent(dpy: *mut c_void, draw: c_ulong, mask: c_ulong);
     glXGetSelectedEvent(dpy: *mut c_void, draw: c_ulong, mask: *mut c_ulong);
+}
+
+/// libxcb's event functions, through which every X event reaches a
+/// program (an XCB program's own calls, and libX11's to fill its queue):
+/// in a process with a stereo context each passes its events through
+/// [`glstereo::interpose::controls::filtered`], which takes out the live
+/// controls' keys; in any other process it is the next definition's call
+/// after one load and a branch. Each forwards to the next definition of
+/// its name (a layer below such as VirtualGL's faker, then libxcb; libxcb
+/// as loaded when no global scope has it), found once; nested
+/// [`next::NESTING_LIMIT`] deep it takes the call for a loop and goes
+/// straight to libxcb's own function. The exported name only calls a
+/// function of this library's own, as [`export!`]'s do.
+macro_rules! xcb_events {
+    ($( $name:ident ; )*) => {
+        /// The bodies of the event exports, at addresses of this library's own.
+        mod xcb_local {
+            use super::*;
+            $(
+                pub(super) unsafe extern "C" fn $name(c: *mut c_void) -> *mut c_void {
+                    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                    let name = concat!(stringify!($name), "\0");
+                    let f = xcb_next(&NEXT, name);
+                    if !controls::armed() {
+                        // SAFETY: the next definition of this libxcb
+                        // function, with its signature, and the caller's
+                        // connection.
+                        return unsafe { f(c) };
+                    }
+                    let (_inside, depth) = next::enter();
+                    let f = if depth >= next::NESTING_LIMIT {
+                        xcb_bottom(&NEXT, name)
+                    } else {
+                        f
+                    };
+                    // SAFETY: as above; the events are the caller's to free.
+                    unsafe { controls::filtered(c, f) }
+                }
+            )*
+        }
+
+        $(
+            #[doc = concat!("`", stringify!($name), "`: libxcb's, without the live controls' keys (see `xcb_events!`).")]
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn $name(c: *mut c_void) -> *mut c_void {
+                // SAFETY: the caller's connection, forwarded.
+                unsafe { xcb_local::$name(c) }
+            }
+        )*
+    };
+}
+
+xcb_events! {
+    xcb_wait_for_event;
+    xcb_poll_for_event;
+    xcb_poll_for_queued_event;
+}
+
+/// The next definition of libxcb function `name` (NUL-terminated; cached
+/// in `slot`). A process without libxcb cannot have called it through
+/// the dynamic linker: its absence ends the process with a message.
+fn xcb_next(slot: &AtomicPtr<c_void>, name: &'static str) -> controls::NextEvent {
+    let mut f = slot.load(Ordering::Acquire);
+    if f.is_null() {
+        let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+        f = next::next_symbol_in(cname, LIBXCB);
+        if f.is_null() {
+            no_libxcb(cname);
+        }
+        slot.store(f, Ordering::Release);
+    }
+    // SAFETY: libxcb's event function (or a layer's standing for it).
+    unsafe { std::mem::transmute::<*mut c_void, controls::NextEvent>(f) }
+}
+
+/// libxcb's own `name` for a call found looping through a layer below
+/// ([`pass_down`]'s rule): said once, and used from now on.
+fn xcb_bottom(slot: &AtomicPtr<c_void>, name: &'static str) -> controls::NextEvent {
+    next::loop_detected(name.trim_end_matches('\0'));
+    let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+    let f = next::own_symbol_in(cname, LIBXCB);
+    if f.is_null() {
+        no_libxcb(cname);
+    }
+    slot.store(f, Ordering::Release);
+    // SAFETY: libxcb's own event function.
+    unsafe { std::mem::transmute::<*mut c_void, controls::NextEvent>(f) }
+}
+
+/// libxcb's soname.
+const LIBXCB: &std::ffi::CStr = c"libxcb.so.1";
+
+fn no_libxcb(name: &std::ffi::CStr) -> ! {
+    eprintln!(
+        "glstereo: {} was called and libxcb.so.1 is not loaded; aborting",
+        name.to_string_lossy()
+    );
+    std::process::abort();
+}
+
+// The GL commands of the drawing families, generated from gl.xml by
+// build.rs: each is exported under its name and calls [`hooked`].
+include!(concat!(env!("OUT_DIR"), "/generated.rs"));
+
+/// The next definition of GL command `name` (cached in `slot`): the next
+/// glXGetProcAddress's function (a layer below, then libGL's dispatch),
+/// never this library's. A command no GL below has cannot have been
+/// reached but through a pointer to it: the process ends with a message.
+fn gl_next(slot: &AtomicPtr<c_void>, name: &std::ffi::CStr) -> *mut c_void {
+    let mut f = slot.load(Ordering::Acquire);
+    if f.is_null() {
+        // SAFETY: a NUL-terminated name.
+        f = unsafe { glstereo::interpose::real::get_proc_address(name.as_ptr()) }
+            .map_or(std::ptr::null_mut(), |f| f as *mut c_void);
+        if f.is_null() {
+            f = next::bottom_symbol(name);
+        }
+        if f.is_null() {
+            eprintln!(
+                "glstereo: {} was called and no GL library below has it; aborting",
+                name.to_string_lossy()
+            );
+            std::process::abort();
+        }
+        slot.store(f, Ordering::Release);
+    }
+    f
+}
+
+/// A generated export's call: straight through when the thread is inside
+/// the layer already (the layer's own draws), else through glstereo's
+/// hook for the family.
+fn hooked<R: glstereo::interpose::draws::Returned>(call: Call, f: impl Fn() -> R) -> R {
+    let (_inside, depth) = next::enter();
+    if depth > 0 {
+        return f();
+    }
+    glstereo::interpose::draws::around(call, f)
 }

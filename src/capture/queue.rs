@@ -18,6 +18,10 @@
 //! A failed write is kept and returned by the next [`CaptureQueue::submit`] or
 //! [`CaptureQueue::flush`] (the first one since the last report); later
 //! captures still go ahead.
+//!
+//! A child made with fork() inherits the queue but not its threads: there
+//! it takes no capture ([`CaptureQueue::submit`] fails), waits for none
+//! (the parent writes what was queued) and, dropped, joins no thread.
 
 use crate::sync::LockRecover;
 use std::path::PathBuf;
@@ -96,6 +100,8 @@ struct State {
 
 /// Capture writer threads with a bounded queue (see the module documentation).
 pub struct CaptureQueue {
+    /// The process whose threads these are (a forked child has another id).
+    pid: u32,
     sender: Option<SyncSender<(Capture, PathBuf)>>,
     shared: Arc<Shared>,
     workers: Vec<JoinHandle<()>>,
@@ -146,6 +152,7 @@ impl CaptureQueue {
             )?
         };
         Ok(CaptureQueue {
+            pid: std::process::id(),
             sender: Some(sender),
             shared,
             workers: vec![encoder, writer],
@@ -180,8 +187,16 @@ impl CaptureQueue {
     /// # Errors
     /// The first write of an earlier capture that failed since the last
     /// report (this capture is queued all the same; its own failure is
-    /// reported by the next call); [`Error::Io`] if the writer thread is gone.
+    /// reported by the next call); [`Error::Io`] if the writer thread is
+    /// gone, or in a child made with fork() (nothing queued).
     pub fn submit(&self, capture: Capture, path: PathBuf) -> Result<()> {
+        if !self.owned_here() {
+            return Err(Error::Io(format!(
+                "cannot queue {}: the capture threads belong to the process this one was \
+                 forked from; capture from the parent, or write the file directly",
+                path.display()
+            )));
+        }
         // What failed before this capture, taken before it is sent: this
         // capture's own failure is always the next call's to report, never
         // this one's, however fast the writer fails it.
@@ -205,11 +220,15 @@ impl CaptureQueue {
         }
     }
 
-    /// Waits until every queued image is written.
+    /// Waits until every queued image is written (in a forked child: at
+    /// once; what was queued before the fork is the parent's to write).
     ///
     /// # Errors
     /// The first write that failed since the last report.
     pub fn flush(&self) -> Result<()> {
+        if !self.owned_here() {
+            return Ok(());
+        }
         let mut st = self.shared.state.recover();
         while st.pending > 0 {
             st = self.shared.done.wait(st).unwrap();
@@ -221,9 +240,25 @@ impl CaptureQueue {
     }
 }
 
+impl CaptureQueue {
+    /// Whether this process started the threads (false in a forked child).
+    fn owned_here(&self) -> bool {
+        self.pid == std::process::id()
+    }
+}
+
 impl Drop for CaptureQueue {
-    /// Writes what is queued, then stops the thread.
+    /// Writes what is queued, then stops the thread; in a forked child,
+    /// where the threads do not exist, only forgets them.
     fn drop(&mut self) {
+        if !self.owned_here() {
+            // Neither joined nor detached: they are another process's.
+            // The channel and state stay too (a worker of the parent may
+            // have held their locks at the fork).
+            std::mem::forget(self.sender.take());
+            std::mem::forget(std::mem::take(&mut self.workers));
+            return;
+        }
         self.sender = None;
         for w in self.workers.drain(..) {
             let _ = w.join();
@@ -342,6 +377,66 @@ mod tests {
             .unwrap();
         q.flush().unwrap();
         assert!(d.join("b.png").exists());
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn a_forked_child_neither_queues_nor_waits_nor_joins() {
+        let d = dir("fork");
+        let q = CaptureQueue::new(2).unwrap();
+        // Captures in flight at the fork: the parent's to write.
+        for i in 0..3 {
+            q.submit(
+                Capture::Png(Image::new(256, 256)),
+                d.join(format!("p{i}.png")),
+            )
+            .unwrap();
+        }
+        // SAFETY: the child runs only the queue's code, then _exit; a
+        // panic there is caught, never unwinds into the test harness.
+        let child = unsafe { libc::fork() };
+        assert!(child >= 0, "fork failed");
+        if child == 0 {
+            let code = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                let child_png = d.join("child.png");
+                if q.submit(Capture::Png(Image::new(2, 2)), child_png).is_ok() {
+                    return 3; // queued where no thread will write it
+                }
+                if q.flush().is_err() {
+                    return 4;
+                }
+                drop(q); // no join of the parent's threads
+                0
+            }))
+            .unwrap_or(5);
+            // SAFETY: ends the child without the harness's exit handlers.
+            unsafe { libc::_exit(code) };
+        }
+        let mut status = 0;
+        let mut waited = 0;
+        // SAFETY: our own child; a plain status out-pointer.
+        while unsafe { libc::waitpid(child, &mut status, libc::WNOHANG) } == 0 {
+            if waited == 200 {
+                // SAFETY: our own child.
+                unsafe { libc::kill(child, libc::SIGKILL) };
+                panic!("the forked child hung (in flush or in joining the parent's threads)");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(100));
+            waited += 1;
+        }
+        assert!(
+            libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+            "the child ended with status {status:#x} (3: a capture queued, 4: flush failed, \
+             5: a panic, signal: an abort)"
+        );
+        q.flush().unwrap();
+        for i in 0..3 {
+            assert!(
+                d.join(format!("p{i}.png")).exists(),
+                "p{i}.png written by the parent"
+            );
+        }
+        assert!(!d.join("child.png").exists());
         std::fs::remove_dir_all(&d).unwrap();
     }
 

@@ -31,9 +31,10 @@ use x11_dl::glx::{GLXContext, GLXFBConfig};
 use x11_dl::xlib::XVisualInfo;
 
 use super::boundary::ffi_boundary;
+use crate::interpose::binaries as ibin;
 use crate::interpose::dsa as idsa;
 use crate::interpose::gl as igl;
-use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
+use crate::interpose::glx::{self as iglx, Destroy, Flavour, NewContext, Offscreen};
 
 /// The gls_glx_* and gls_gl_* functions stand in for the legacy GLX and GL
 /// functions a stereo program calls: `<glstereo/compat.h>` maps their
@@ -77,7 +78,9 @@ use crate::interpose::glx::{self as iglx, Flavour, NewContext, Offscreen};
 /// glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer lists
 /// with n > 0, glGet(Named)FramebufferParameteriv and
 /// glGetNamedFramebufferAttachmentParameteriv params, glCreateShaderProgramv
-/// strings with count > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
+/// strings with count > 0, glGetProgramiv params, glGetProgramBinary's
+/// format and, with bufSize > 0, binary, glProgramBinary's binary with
+/// length > 0): nothing happens but GL_INVALID_VALUE for glGetError in the
 /// current context (none with no context current). A pointer that is not
 /// NULL but wrong (freed, too short, not terminated) cannot be detected.
 /// An internal failure (a bug) is caught and reported as a refusal.
@@ -368,12 +371,50 @@ pub unsafe extern "C" fn gls_glx_create_window(
     })
 }
 
-/// `glXDestroyWindow`.
+/// `glXDestroyWindow`: the stereo buffers of the window go with it, in
+/// every stereo context it was bound to (where it is current, when it is
+/// released, as GLX keeps a current drawable until then).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gls_glx_destroy_window(dpy: *mut c_void, window: c_ulong) {
     ffi_boundary!("gls_glx_destroy_window" for "glXDestroyWindow", () => {
         // SAFETY: GLX's contract, forwarded.
-        unsafe { iglx::destroy_window(dpy.cast(), window) }
+        unsafe { iglx::destroy_drawable(dpy.cast(), window, Destroy::Window) }
+    })
+}
+
+/// `glXDestroyPbuffer`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_pbuffer(dpy: *mut c_void, pbuf: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_pbuffer" for "glXDestroyPbuffer", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pbuf, Destroy::Pbuffer) }
+    })
+}
+
+/// `glXDestroyGLXPbufferSGIX`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_glx_pbuffer_sgix(dpy: *mut c_void, pbuf: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_glx_pbuffer_sgix" for "glXDestroyGLXPbufferSGIX", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pbuf, Destroy::PbufferSgix) }
+    })
+}
+
+/// `glXDestroyPixmap`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_pixmap(dpy: *mut c_void, pixmap: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_pixmap" for "glXDestroyPixmap", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pixmap, Destroy::Pixmap) }
+    })
+}
+
+/// `glXDestroyGLXPixmap`: as gls_glx_destroy_window().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_glx_destroy_glx_pixmap(dpy: *mut c_void, pixmap: c_ulong) {
+    ffi_boundary!("gls_glx_destroy_glx_pixmap" for "glXDestroyGLXPixmap", () => {
+        // SAFETY: GLX's contract, forwarded.
+        unsafe { iglx::destroy_drawable(dpy.cast(), pixmap, Destroy::GlxPixmap) }
     })
 }
 
@@ -552,6 +593,46 @@ pub unsafe extern "C" fn gls_gl_delete_framebuffers_ext(n: i32, framebuffers: *c
     ffi_boundary!("gls_gl_delete_framebuffers_ext" for "glDeleteFramebuffersEXT", () => {
         // SAFETY: GL's contract, forwarded.
         unsafe { igl::delete_framebuffers(n, framebuffers, true) }
+    })
+}
+
+/// `glDeleteTextures`: the layer's own textures (in the program's share
+/// group, under names from the top of the non-negative range) are left
+/// alone, as names the program never made are; every other name is
+/// deleted.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_textures(n: i32, textures: *const u32) {
+    ffi_boundary!("gls_gl_delete_textures" for "glDeleteTextures", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, textures, igl::Deleted::Textures(false)) }
+    })
+}
+
+/// `glDeleteTexturesEXT`: as gls_gl_delete_textures().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_textures_ext(n: i32, textures: *const u32) {
+    ffi_boundary!("gls_gl_delete_textures_ext" for "glDeleteTexturesEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, textures, igl::Deleted::Textures(true)) }
+    })
+}
+
+/// `glDeleteRenderbuffers`: as gls_gl_delete_textures(), for the layer's
+/// depth/stencil renderbuffers.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_renderbuffers(n: i32, renderbuffers: *const u32) {
+    ffi_boundary!("gls_gl_delete_renderbuffers" for "glDeleteRenderbuffers", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, renderbuffers, igl::Deleted::Renderbuffers(false)) }
+    })
+}
+
+/// `glDeleteRenderbuffersEXT`: as gls_gl_delete_renderbuffers().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_delete_renderbuffers_ext(n: i32, renderbuffers: *const u32) {
+    ffi_boundary!("gls_gl_delete_renderbuffers_ext" for "glDeleteRenderbuffersEXT", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { igl::delete_objects(n, renderbuffers, igl::Deleted::Renderbuffers(true)) }
     })
 }
 
@@ -963,6 +1044,10 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glXSwapBuffers" => gls_glx_swap_buffers as *mut c_void,
         b"glXCreateWindow" => gls_glx_create_window as *mut c_void,
         b"glXDestroyWindow" => gls_glx_destroy_window as *mut c_void,
+        b"glXDestroyPbuffer" => gls_glx_destroy_pbuffer as *mut c_void,
+        b"glXDestroyGLXPbufferSGIX" => gls_glx_destroy_glx_pbuffer_sgix as *mut c_void,
+        b"glXDestroyPixmap" => gls_glx_destroy_pixmap as *mut c_void,
+        b"glXDestroyGLXPixmap" => gls_glx_destroy_glx_pixmap as *mut c_void,
         b"glXCreatePixmap" => gls_glx_create_pixmap as *mut c_void,
         b"glXCreatePbuffer" => gls_glx_create_pbuffer as *mut c_void,
         b"glXCreateGLXPixmapWithConfigSGIX" => {
@@ -983,6 +1068,10 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glBindFramebufferEXT" => gls_gl_bind_framebuffer_ext as *mut c_void,
         b"glDeleteFramebuffers" => gls_gl_delete_framebuffers as *mut c_void,
         b"glDeleteFramebuffersEXT" => gls_gl_delete_framebuffers_ext as *mut c_void,
+        b"glDeleteTextures" => gls_gl_delete_textures as *mut c_void,
+        b"glDeleteTexturesEXT" => gls_gl_delete_textures_ext as *mut c_void,
+        b"glDeleteRenderbuffers" => gls_gl_delete_renderbuffers as *mut c_void,
+        b"glDeleteRenderbuffersEXT" => gls_gl_delete_renderbuffers_ext as *mut c_void,
         b"glGetFramebufferAttachmentParameteriv" => {
             gls_gl_get_framebuffer_attachment_parameteriv as *mut c_void
         }
@@ -1032,6 +1121,16 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glBlitNamedFramebuffer" => gls_gl_blit_named_framebuffer as *mut c_void,
         b"glInvalidateFramebuffer" => gls_gl_invalidate_framebuffer as *mut c_void,
         b"glInvalidateSubFramebuffer" => gls_gl_invalidate_sub_framebuffer as *mut c_void,
+        b"glInvalidateNamedFramebufferData" => {
+            gls_gl_invalidate_named_framebuffer_data as *mut c_void
+        }
+        b"glInvalidateNamedFramebufferSubData" => {
+            gls_gl_invalidate_named_framebuffer_sub_data as *mut c_void
+        }
+        b"glCheckNamedFramebufferStatus" => gls_gl_check_named_framebuffer_status as *mut c_void,
+        b"glCheckNamedFramebufferStatusEXT" => {
+            gls_gl_check_named_framebuffer_status_ext as *mut c_void
+        }
         b"glGetNamedFramebufferAttachmentParameteriv" => {
             gls_gl_get_named_framebuffer_attachment_parameteriv as *mut c_void
         }
@@ -1041,6 +1140,11 @@ pub fn replacement(name: &[u8]) -> Option<*mut c_void> {
         b"glGetFramebufferParameteriv" => gls_gl_get_framebuffer_parameteriv as *mut c_void,
         b"glLinkProgram" | b"glLinkProgramARB" => gls_gl_link_program as *mut c_void,
         b"glCreateShaderProgramv" => gls_gl_create_shader_programv as *mut c_void,
+        b"glGetProgramiv" => gls_gl_get_programiv as *mut c_void,
+        b"glGetProgramBinary" => gls_gl_get_program_binary as *mut c_void,
+        b"glGetProgramBinaryOES" => gls_gl_get_program_binary_oes as *mut c_void,
+        b"glProgramBinary" => gls_gl_program_binary as *mut c_void,
+        b"glProgramBinaryOES" => gls_gl_program_binary_oes as *mut c_void,
         _ => return None,
     };
     Some(f)
@@ -1235,6 +1339,66 @@ pub unsafe extern "C" fn gls_gl_invalidate_sub_framebuffer(
     })
 }
 
+/// `glInvalidateNamedFramebufferData`: on framebuffer 0, as
+/// gls_gl_invalidate_framebuffer() with framebuffer 0 bound. Refused:
+/// `attachments` NULL with n > 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_invalidate_named_framebuffer_data(
+    framebuffer: u32,
+    num_attachments: i32,
+    attachments: *const u32,
+) {
+    ffi_boundary!("gls_gl_invalidate_named_framebuffer_data" for "glInvalidateNamedFramebufferData", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { idsa::invalidate_named_framebuffer_data(framebuffer, num_attachments, attachments) }
+    })
+}
+
+/// `glInvalidateNamedFramebufferSubData`: as
+/// gls_gl_invalidate_named_framebuffer_data().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_invalidate_named_framebuffer_sub_data(
+    framebuffer: u32,
+    num_attachments: i32,
+    attachments: *const u32,
+    x: i32,
+    y: i32,
+    width: i32,
+    height: i32,
+) {
+    ffi_boundary!("gls_gl_invalidate_named_framebuffer_sub_data" for "glInvalidateNamedFramebufferSubData", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe {
+            idsa::invalidate_named_framebuffer_sub_data(
+                framebuffer,
+                num_attachments,
+                attachments,
+                [x, y, width, height],
+            )
+        }
+    })
+}
+
+/// `glCheckNamedFramebufferStatus`: framebuffer 0 is the emulated default
+/// framebuffer, complete as a window is (whatever a layer below has as its
+/// framebuffer 0); `target` is checked as GL checks it (GL_INVALID_ENUM
+/// and 0).
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_check_named_framebuffer_status(framebuffer: u32, target: u32) -> u32 {
+    ffi_boundary!("gls_gl_check_named_framebuffer_status" for "glCheckNamedFramebufferStatus", 0 => {
+        idsa::check_named_framebuffer_status(framebuffer, target, false)
+    })
+}
+
+/// `glCheckNamedFramebufferStatusEXT` (GL_EXT_direct_state_access): as
+/// gls_gl_check_named_framebuffer_status().
+#[unsafe(no_mangle)]
+pub extern "C" fn gls_gl_check_named_framebuffer_status_ext(framebuffer: u32, target: u32) -> u32 {
+    ffi_boundary!("gls_gl_check_named_framebuffer_status_ext" for "glCheckNamedFramebufferStatusEXT", 0 => {
+        idsa::check_named_framebuffer_status(framebuffer, target, true)
+    })
+}
+
 /// `glGetNamedFramebufferAttachmentParameteriv`: on framebuffer 0, as
 /// gls_gl_get_framebuffer_attachment_parameteriv() with framebuffer 0
 /// bound (GL_FRAMEBUFFER_DEFAULT, the window's component sizes; the right
@@ -1313,5 +1477,87 @@ pub unsafe extern "C" fn gls_gl_create_shader_programv(
     ffi_boundary!("gls_gl_create_shader_programv" for "glCreateShaderProgramv", 0 => {
         // SAFETY: GL's contract, forwarded.
         unsafe { idsa::create_shader_programv(kind, count, strings) }
+    })
+}
+
+/// `glGetProgramiv`: in a stereo context GL_PROGRAM_BINARY_LENGTH counts
+/// the 12-byte tag gls_gl_get_program_binary() puts before the driver's
+/// binary; everything else is the driver's answer. Refused: `params` NULL
+/// (GL_INVALID_VALUE, nothing written).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_programiv(program: u32, pname: u32, params: *mut i32) {
+    ffi_boundary!("gls_gl_get_programiv" for "glGetProgramiv", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::get_programiv(program, pname, params) }
+    })
+}
+
+/// `glGetProgramBinary`: in a stereo context, the driver's binary of the
+/// program as linked there (with the copies of output 0 that
+/// gls_gl_link_program() adds) behind a 12-byte tag of glstereo's, in the
+/// driver's binary format; a program whose copies glstereo cannot vouch
+/// for gets the driver's binary as it is. Refused: `binary_format` NULL,
+/// or `binary` NULL with `buf_size` > 0 (GL_INVALID_VALUE).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_program_binary(
+    program: u32,
+    buf_size: i32,
+    length: *mut i32,
+    binary_format: *mut u32,
+    binary: *mut c_void,
+) {
+    ffi_boundary!("gls_gl_get_program_binary" for "glGetProgramBinary", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::get_program_binary(program, buf_size, length, binary_format, binary, false) }
+    })
+}
+
+/// `glGetProgramBinaryOES`: as gls_gl_get_program_binary().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_get_program_binary_oes(
+    program: u32,
+    buf_size: i32,
+    length: *mut i32,
+    binary_format: *mut u32,
+    binary: *mut c_void,
+) {
+    ffi_boundary!("gls_gl_get_program_binary_oes" for "glGetProgramBinaryOES", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::get_program_binary(program, buf_size, length, binary_format, binary, true) }
+    })
+}
+
+/// `glProgramBinary`: a binary gls_gl_get_program_binary() tagged loads
+/// the driver's binary behind the tag. In a stereo context a binary
+/// without the tag (made without glstereo, or by a mono context) is kept
+/// only when its fragment output 0 needs no copies; otherwise its load
+/// fails as GL lets a load fail (GL_LINK_STATUS false, no GL error; a
+/// shader cache then compiles the source, which glLinkProgram links with
+/// the copies) and stderr says so once. Refused: `binary` NULL with
+/// `length` > 0 (GL_INVALID_VALUE).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_program_binary(
+    program: u32,
+    binary_format: u32,
+    binary: *const c_void,
+    length: i32,
+) {
+    ffi_boundary!("gls_gl_program_binary" for "glProgramBinary", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::program_binary(program, binary_format, binary, length, false) }
+    })
+}
+
+/// `glProgramBinaryOES`: as gls_gl_program_binary().
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gls_gl_program_binary_oes(
+    program: u32,
+    binary_format: u32,
+    binary: *const c_void,
+    length: i32,
+) {
+    ffi_boundary!("gls_gl_program_binary_oes" for "glProgramBinaryOES", () => {
+        // SAFETY: GL's contract, forwarded.
+        unsafe { ibin::program_binary(program, binary_format, binary, length, true) }
     })
 }

@@ -11,9 +11,9 @@
 //! context's version ([`Gl::version`]), not from the pointer.
 
 pub mod enums;
+pub mod names;
 
 use std::ffi::{CStr, c_char, c_void};
-use std::sync::atomic::{AtomicU32, Ordering};
 
 use crate::error::{Error, Result};
 
@@ -43,8 +43,8 @@ macro_rules! gl_table {
         pub struct Gl {
             $( $method: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
             version: (u32, u32),
-            /// The next reserved name, when shared objects are named from the top ([`Gl::reserve_names`]).
-            reserved: Option<AtomicU32>,
+            /// The names of the library's objects in a program's share group ([`Gl::own_names`]).
+            names: Option<names::LayerNames>,
         }
 
         impl Gl {
@@ -68,7 +68,7 @@ macro_rules! gl_table {
                         unsafe { std::mem::transmute::<*const c_void, unsafe extern "system" fn($($ty),*) $(-> $ret)?>(p) }
                     }, )*
                     version: (0, 0),
-                    reserved: None,
+                    names: None,
                 })
             }
 
@@ -204,90 +204,166 @@ impl Gl {
         self.version
     }
 
-    /// From now on, [`Gl::gen_texture`] and [`Gl::gen_renderbuffer`] name
-    /// objects downward from [`RESERVED_NAME_TOP`] instead of asking the
-    /// driver. For objects made in a share group that an unmodified program
-    /// also uses (the LD_PRELOAD interposer): legacy programs often bind
-    /// texture names they never generated (`glBindTexture(GL_TEXTURE_2D, 1)`
-    /// is legal in the compatibility profile), so the library's objects must
-    /// not take the small names glGen* hands out first. Needs a
+    /// From now on, [`Gl::gen_texture`], [`Gl::gen_renderbuffer`] and
+    /// [`Gl::gen_framebuffer`] name objects as [`names`] says (for objects
+    /// made in a share group that an unmodified program also uses: the
+    /// LD_PRELOAD interposer) and remember them until
+    /// [`Gl::delete_textures`] (and the like) deletes them. Needs a
     /// compatibility-profile context (binding an unused name creates it).
-    pub fn reserve_names(&mut self) {
-        self.reserved = Some(AtomicU32::new(RESERVED_NAME_TOP));
+    pub fn own_names(&mut self) {
+        self.names = Some(names::LayerNames::default());
     }
 
-    fn next_reserved(&self) -> Option<u32> {
-        self.reserved
-            .as_ref()
-            .map(|next| next.fetch_sub(1, Ordering::Relaxed))
+    /// Whether `name` names an object of `kind` the library made (with
+    /// [`Gl::own_names`] on).
+    pub fn owns(&self, kind: names::Kind, name: u32) -> bool {
+        self.names.as_ref().is_some_and(|n| n.owns(kind, name))
+    }
+
+    /// Whether the library holds any object of `kind` (with
+    /// [`Gl::own_names`] on): a glDelete* of the program needs no look-up
+    /// otherwise.
+    pub fn owns_any(&self, kind: names::Kind) -> bool {
+        self.names.as_ref().is_some_and(|n| n.any(kind))
+    }
+
+    /// A texture or renderbuffer name: with [`Gl::own_names`], from the
+    /// reserved range, followed by the allocator ceiling (`bind` binds a
+    /// name of the kind, `delete` deletes one) and remembered; else
+    /// glGen*'s (`make`).
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    unsafe fn reserved_or_generated(
+        &self,
+        kind: names::Kind,
+        make: impl Fn() -> u32,
+        bind: impl Fn(u32),
+        delete: impl Fn(u32),
+    ) -> u32 {
+        let Some(owned) = &self.names else {
+            return make();
+        };
+        let name = names::next_reserved();
+        bind(names::ALLOCATOR_CEILING);
+        bind(0);
+        delete(names::ALLOCATOR_CEILING);
+        owned.keep(kind, name);
+        name
     }
 
     /// One new texture name, bound to GL_TEXTURE_2D (the binding is left
-    /// at 0). See [`Gl::reserve_names`].
+    /// at 0). See [`Gl::own_names`].
     ///
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_texture(&self) -> u32 {
-        let mut name = 0;
-        // SAFETY: contract; one name written.
+        // SAFETY: contract.
+        unsafe { self.gen_texture_of(enums::GL_TEXTURE_2D) }
+    }
+
+    /// One new texture name of `target` (GL_TEXTURE_2D_ARRAY…), created
+    /// by binding it there (the binding is left at 0). See
+    /// [`Gl::own_names`].
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn gen_texture_of(&self, target: u32) -> u32 {
+        // SAFETY: contract; one name written or read at a time.
         unsafe {
-            match self.next_reserved() {
-                Some(n) => name = n,
-                None => self.GenTextures(1, &mut name),
-            }
-            // Binding creates the object (and marks a reserved name used).
-            self.BindTexture(enums::GL_TEXTURE_2D, name);
-            self.BindTexture(enums::GL_TEXTURE_2D, 0);
+            let bind = |n| self.BindTexture(target, n);
+            let name = self.reserved_or_generated(
+                names::Kind::Texture,
+                || {
+                    let mut n = 0;
+                    self.GenTextures(1, &mut n);
+                    n
+                },
+                bind,
+                |n| self.DeleteTextures(1, &n),
+            );
+            // Binding creates the object.
+            bind(name);
+            bind(0);
+            name
         }
-        name
     }
 
     /// One new renderbuffer name (created; the binding is left at 0). See
-    /// [`Gl::reserve_names`].
+    /// [`Gl::own_names`].
     ///
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_renderbuffer(&self) -> u32 {
-        let mut name = 0;
-        // SAFETY: contract; one name written.
+        // SAFETY: contract; one name written or read at a time.
         unsafe {
-            match self.next_reserved() {
-                Some(n) => name = n,
-                None => self.GenRenderbuffers(1, &mut name),
-            }
-            self.BindRenderbuffer(enums::GL_RENDERBUFFER, name);
-            self.BindRenderbuffer(enums::GL_RENDERBUFFER, 0);
+            let bind = |n| self.BindRenderbuffer(enums::GL_RENDERBUFFER, n);
+            let name = self.reserved_or_generated(
+                names::Kind::Renderbuffer,
+                || {
+                    let mut n = 0;
+                    self.GenRenderbuffers(1, &mut n);
+                    n
+                },
+                bind,
+                |n| self.DeleteRenderbuffers(1, &n),
+            );
+            bind(name);
+            bind(0);
+            name
         }
-        name
     }
 
-    /// One new framebuffer-object name, for the library's own contexts
-    /// (compositor and layer contexts, compatibility profile). Mesa shares
-    /// framebuffer objects across a share group, so with
-    /// [`Gl::reserve_names`] they too come from the reserved range, where a
-    /// program that deletes or binds names it guessed cannot reach them.
-    /// The framebuffer bindings are left as they were.
+    /// One new framebuffer-object name from glGenFramebuffers (not bound:
+    /// the caller binds it to attach), remembered as the library's with
+    /// [`Gl::own_names`].
     ///
     /// # Safety
     /// A context of this backend must be current.
     pub unsafe fn gen_framebuffer(&self) -> u32 {
         let mut name = 0;
-        // SAFETY: contract; one name written, bindings restored.
-        unsafe {
-            match self.next_reserved() {
-                Some(n) => {
-                    name = n;
-                    let draw = self.integer(enums::GL_DRAW_FRAMEBUFFER_BINDING) as u32;
-                    let read = self.integer(enums::GL_READ_FRAMEBUFFER_BINDING) as u32;
-                    // Binding creates the object.
-                    self.BindFramebuffer(enums::GL_FRAMEBUFFER, name);
-                    self.BindFramebuffer(enums::GL_DRAW_FRAMEBUFFER, draw);
-                    self.BindFramebuffer(enums::GL_READ_FRAMEBUFFER, read);
-                }
-                None => self.GenFramebuffers(1, &mut name),
-            }
+        // SAFETY: contract; one name written.
+        unsafe { self.GenFramebuffers(1, &mut name) };
+        if let Some(owned) = &self.names {
+            owned.keep(names::Kind::Framebuffer, name);
         }
         name
+    }
+
+    /// glDeleteTextures of the library's own `names` (forgotten as its).
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn delete_textures(&self, names: &[u32]) {
+        if let Some(owned) = &self.names {
+            owned.release(names::Kind::Texture, names);
+        }
+        // SAFETY: contract.
+        unsafe { self.DeleteTextures(names.len() as i32, names.as_ptr()) }
+    }
+
+    /// glDeleteRenderbuffers of the library's own `names`.
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn delete_renderbuffers(&self, names: &[u32]) {
+        if let Some(owned) = &self.names {
+            owned.release(names::Kind::Renderbuffer, names);
+        }
+        // SAFETY: contract.
+        unsafe { self.DeleteRenderbuffers(names.len() as i32, names.as_ptr()) }
+    }
+
+    /// glDeleteFramebuffers of the library's own `names`.
+    ///
+    /// # Safety
+    /// A context of this backend must be current.
+    pub unsafe fn delete_framebuffers(&self, names: &[u32]) {
+        if let Some(owned) = &self.names {
+            owned.release(names::Kind::Framebuffer, names);
+        }
+        // SAFETY: contract.
+        unsafe { self.DeleteFramebuffers(names.len() as i32, names.as_ptr()) }
     }
 
     /// glGetString as a Rust string ("" when NULL).
@@ -352,22 +428,6 @@ impl Gl {
             e => Err(Error::Gl(format!("{what}: GL error {e:#06x}"))),
         }
     }
-}
-
-/// The first name [`Gl::reserve_names`] hands out; later ones count down.
-/// Mesa hands out `highest name in use + 1` while that fits and otherwise
-/// the lowest free names, so names at the very top leave the program's own
-/// glGen* results small, as they are without the library.
-pub const RESERVED_NAME_TOP: u32 = 0xFFFF_FFFE;
-
-/// How many names below [`RESERVED_NAME_TOP`] count as reserved: far more
-/// than the library ever makes, far above anything glGen* hands out.
-pub const RESERVED_NAME_SPAN: u32 = 1 << 24;
-
-/// Whether `name` lies in the library's reserved range (see
-/// [`Gl::reserve_names`]): a program can only have it by guessing.
-pub fn is_reserved_name(name: u32) -> bool {
-    name > RESERVED_NAME_TOP - RESERVED_NAME_SPAN
 }
 
 /// Parses the GL_VERSION string of the current context into (major, minor).

@@ -17,6 +17,15 @@
 //! fall behind, presenting waits for room rather than dropping a frame or
 //! growing without limit. Frames still queued when the program exits are
 //! written before it ends (an `atexit` handler).
+//!
+//! A child the program makes with fork() inherits the queue but none of
+//! its threads (fork copies only the calling thread): the frames in it
+//! are the parent's to write, and the workers cannot be joined there (a
+//! join of a thread of another process panics, inside the extern "C"
+//! exit handler: an abort). So the queue remembers the process that made
+//! it: in any other process presenting captures nothing (said once on
+//! stderr) and exiting leaves the queue alone, whichever way the child
+//! ends (exit, a return from main, _exit, exec).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -127,6 +136,8 @@ pub struct Frame {
 
 /// Where frames go.
 pub struct Sink {
+    /// The process that started the workers (a forked child has another id).
+    pid: u32,
     dir: PathBuf,
     settings: CaptureSettings,
     next: AtomicU64,
@@ -161,7 +172,8 @@ pub fn sink() -> Option<&'static Sink> {
 }
 
 extern "C" fn flush_at_exit() {
-    if let Some(s) = sink() {
+    // A forked child inherits the handler; its parent writes the frames.
+    if let Some(s) = sink().filter(|s| s.owned_here()) {
         s.flush();
     }
 }
@@ -187,6 +199,7 @@ impl Sink {
         // SAFETY: registers a plain extern "C" function once per process.
         unsafe { libc::atexit(flush_at_exit) };
         Sink {
+            pid: std::process::id(),
             dir,
             settings,
             next: AtomicU64::new(1),
@@ -205,8 +218,21 @@ impl Sink {
         &self.settings
     }
 
-    /// Queues a frame (waits while the queue is full).
+    /// Whether this process started the workers (false in a forked child).
+    fn owned_here(&self) -> bool {
+        self.pid == std::process::id()
+    }
+
+    /// Queues a frame (waits while the queue is full). In a forked child,
+    /// whose queue has no workers, the frame is not captured.
     pub fn submit(&self, frame: Frame) {
+        if !self.owned_here() {
+            super::warn(&format!(
+                "{ENV_CAPTURE_DIR}: frames presented in a child made with fork() are not \
+                 captured (the capture threads are its parent's)"
+            ));
+            return;
+        }
         let tx = self.tx.lock().unwrap_or_else(|e| e.into_inner()).clone();
         if let Some(tx) = tx {
             let n = self.next.fetch_add(1, Ordering::Relaxed);
@@ -214,8 +240,12 @@ impl Sink {
         }
     }
 
-    /// Writes every queued frame and stops the workers.
+    /// Writes every queued frame and stops the workers (in the process
+    /// that started them: a forked child leaves them alone).
     pub fn flush(&self) {
+        if !self.owned_here() {
+            return;
+        }
         drop(self.tx.lock().unwrap_or_else(|e| e.into_inner()).take());
         let handles = std::mem::take(&mut *self.workers.lock().unwrap_or_else(|e| e.into_inner()));
         for h in handles {

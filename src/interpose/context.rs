@@ -5,8 +5,8 @@
 //! Objects and where they live:
 //! - the colour textures and the depth/stencil renderbuffer of each
 //!   drawable's [`EmulatedFramebuffer`] are made in the layer's context,
-//!   which shares objects with the program's (names from the top of the
-//!   name space: [`crate::gl::Gl::reserve_names`]);
+//!   which shares objects with the program's (names as
+//!   [`crate::gl::names`] says);
 //! - the framebuffer object the program renders into is made in the
 //!   program's context (framebuffer objects are not shared) and bound
 //!   wherever the program would have framebuffer 0;
@@ -17,7 +17,10 @@
 //!   double-buffered window gets the composite from memory instead, through
 //!   a MIT-SHM image per drawable (`backend/xshm.rs`): the eyes are read
 //!   back in bands and composed on the CPU straight into the shared
-//!   segment, with no full-window GL pass and no swap.
+//!   segment, with no full-window GL pass and no swap — unless the next
+//!   glXSwapBuffers belongs to another GL layer below this one (MangoHud,
+//!   VirtualGL, apitrace: [`super::real::Real::swap_layered`]), which must
+//!   see every frame: then the composite goes through GL and that swap.
 
 use std::cell::Cell;
 use std::collections::HashMap;
@@ -70,16 +73,23 @@ pub(super) struct Drawn {
     /// the frame to be shown), None when unknown: the next present of a
     /// frame of that size needs no request of its own to learn it.
     size_seen: Option<(u32, u32)>,
+    /// Its drawable was destroyed where the buffers could not be freed at
+    /// once (while current: GLX keeps a current drawable until it is
+    /// released; or while the context was current on another thread):
+    /// freed when the context is next bound or released.
+    gone: bool,
 }
 
 /// The mutable part of a stereo context. Lock order: the registry's lock
 /// may be held when a state is locked, never the other way round.
 pub(super) struct CtxState {
     pub(super) fbs: HashMap<u64, Drawn>,
-    /// GL errors raised by the emulation (or saved from the driver before
-    /// the layer called GL in the program's context), oldest first, each
-    /// code once: what glGetError reports before the driver's own.
-    pub(super) pending: Vec<u32>,
+    /// The context's GL error flag as Mesa keeps it: the first error
+    /// raised since the last glGetError, by the emulation or by the driver
+    /// (saved before the layer called GL in the program's context), or
+    /// GL_NO_ERROR. glGetError reports it before asking the driver; every
+    /// later error until then is dropped, as Mesa drops it.
+    pub(super) pending: u32,
     compositor: GlCompositor,
     /// Whether the program's context can host the emulation (GL ≥ 3.0);
     /// None until first bound.
@@ -100,6 +110,11 @@ pub(super) struct CtxState {
     /// The program's clear colour (glClearColor), which the layer's fast
     /// clear of an opaque emulated framebuffer changes for a moment.
     pub(super) clear_color: super::gl::ClearColor,
+    /// How the programs linked here reach the selected buffers (what
+    /// their binaries are tagged with, [`super::binaries`]).
+    pub(super) programs: super::binaries::Linked,
+    /// Automatic stereo's state ([`crate::auto::runtime`]).
+    pub(super) auto: crate::auto::runtime::AutoState,
 }
 
 /// The draw buffer indices whose colour masks the layer shadows
@@ -125,24 +140,42 @@ impl CtxState {
         fbo != 0 && self.fbs.values().any(|d| d.fb.app_fbo() == fbo)
     }
 
-    /// Queues a GL error for glGetError (each code once, as GL's flags).
-    pub(super) fn push_error(&mut self, code: u32) {
-        if code != GL_NO_ERROR && !self.pending.contains(&code) {
-            self.pending.push(code);
+    /// Raises GL error `code` in the program's context (current: callers),
+    /// as Mesa records one: only when no error was raised since the last
+    /// glGetError, the driver's included (an error the driver holds came
+    /// first, and is the one kept).
+    pub(super) fn push_error(&mut self, gl: &Gl, code: u32) {
+        if code == GL_NO_ERROR || self.pending != GL_NO_ERROR {
+            return;
+        }
+        self.save_driver_errors(gl);
+        if self.pending == GL_NO_ERROR {
+            self.pending = code;
         }
     }
 
-    /// Moves the driver's pending errors into the queue, so the layer's own
-    /// GL calls in the program's context neither lose nor fake any.
+    /// Moves the driver's error flag into [`CtxState::pending`] (where one
+    /// is held already, the driver's later error is dropped, as Mesa drops
+    /// it), so the layer's own GL calls in the program's context neither
+    /// lose nor fake any.
     pub(super) fn save_driver_errors(&mut self, gl: &Gl) {
-        for _ in 0..16 {
-            // SAFETY: the program's context is current (callers).
-            let e = unsafe { gl.GetError() };
-            if e == GL_NO_ERROR {
-                break;
-            }
-            self.push_error(e);
+        // SAFETY: the program's context is current (callers).
+        let e = unsafe { gl.GetError() };
+        if self.pending == GL_NO_ERROR {
+            self.pending = e;
         }
+    }
+
+    /// glGetError: the flag [`CtxState::pending`] holds, clearing the
+    /// driver's too (an error it raised since came later and is dropped);
+    /// None when it holds none (the driver's flag is the answer).
+    pub(super) fn take_error(&mut self, gl: &Gl) -> Option<u32> {
+        if self.pending == GL_NO_ERROR {
+            return None;
+        }
+        // SAFETY: the program's context is current (callers).
+        unsafe { gl.GetError() };
+        Some(std::mem::replace(&mut self.pending, GL_NO_ERROR))
     }
 }
 
@@ -153,10 +186,20 @@ pub struct StereoContext {
     ours: usize,
     shape: FramebufferShape,
     formats: BufferFormats,
+    /// A mono context given automatic stereo (glstereo-run --auto): its
+    /// buffers are stereo, its program sees a mono visual.
+    auto: bool,
+    /// Its share group ([`registry::Registry::group`]).
+    group: u64,
     state: Mutex<CtxState>,
     /// Its display was closed: nothing may be done with it any more (it
     /// may still sit in another thread's current slot).
     closed: AtomicBool,
+    /// Held while the layer makes the program's context current itself,
+    /// and around glXMakeCurrent of it: the layer's own make-current of a
+    /// context that is current nowhere (to free a destroyed drawable's
+    /// buffers, or to present) never races the program's.
+    binding: Mutex<()>,
 }
 
 /// The stereo context current on this thread and its drawables.
@@ -200,6 +243,7 @@ pub fn current() -> Option<Current> {
 /// it (its display is closing: nothing may be done with it any more).
 pub fn forget_current() {
     let old = CURRENT.with(|c| c.replace(std::ptr::null_mut()));
+    super::draws::watch_auto(false);
     if !old.is_null() {
         // SAFETY: the Box set_current leaked; reclaimed once.
         drop(unsafe { Box::from_raw(old) });
@@ -232,6 +276,7 @@ pub fn set_current(new: Option<Current>) {
             }
         }
     }
+    super::draws::watch_auto(new.as_ref().is_some_and(|n| n.sc.auto()));
     if let Some(n) = new {
         n.sc.lock().owner = Some(me);
     }
@@ -272,6 +317,27 @@ impl Saved {
                 (r.glx.glXMakeContextCurrent)(self.display, self.draw, self.read, self.ctx);
             }
         }
+    }
+}
+
+/// Deletes the program-side objects of destroyed drawables' buffers (their
+/// framebuffer objects, which hold the textures) and finishes the
+/// program's rendering, so that nothing renders into their memory when the
+/// layer's context frees it ([`StereoContext::free_shared_side`]).
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn free_program_side(gl: &Gl, gone: &mut [(u64, Drawn)]) {
+    if gone.is_empty() {
+        return;
+    }
+    // SAFETY: contract. Deleting a bound framebuffer object reverts the
+    // binding to 0, where the caller binds what belongs there.
+    unsafe {
+        for (_, d) in gone.iter_mut() {
+            d.fb.delete_app_fbo(gl);
+        }
+        gl.Finish();
     }
 }
 
@@ -339,6 +405,7 @@ impl StereoContext {
         ours: usize,
         shape: FramebufferShape,
         formats: BufferFormats,
+        group: u64,
     ) -> Arc<StereoContext> {
         Arc::new(StereoContext {
             display,
@@ -346,10 +413,13 @@ impl StereoContext {
             ours,
             shape,
             formats,
+            auto: formats.layered.is_some(),
+            group,
             closed: AtomicBool::new(false),
+            binding: Mutex::new(()),
             state: Mutex::new(CtxState {
                 fbs: HashMap::new(),
-                pending: Vec::new(),
+                pending: GL_NO_ERROR,
                 compositor: GlCompositor::new(),
                 usable: None,
                 owner: None,
@@ -357,6 +427,8 @@ impl StereoContext {
                 attribs: Vec::new(),
                 color_mask: [[true; 4]; MASKED_BUFFERS],
                 clear_color: super::gl::ClearColor::Float([0.0; 4]),
+                programs: Default::default(),
+                auto: Default::default(),
             }),
         })
     }
@@ -376,9 +448,57 @@ impl StereoContext {
         self.formats
     }
 
-    /// The framebuffer shape of its visual.
+    /// The framebuffer shape of its buffers.
     pub fn shape(&self) -> FramebufferShape {
         self.shape
+    }
+
+    /// The framebuffer shape the program's visual has: mono for a context
+    /// given automatic stereo ([`Self::auto`]), else [`Self::shape`].
+    pub fn program_shape(&self) -> FramebufferShape {
+        FramebufferShape {
+            stereo: self.shape.stereo && !self.auto,
+            ..self.shape
+        }
+    }
+
+    /// Whether this is a mono context given automatic stereo
+    /// (glstereo-run --auto; [`crate::auto`]).
+    pub fn auto(&self) -> bool {
+        self.auto
+    }
+
+    /// Its share group: programs linked in one context of it are used in
+    /// every other.
+    pub fn group(&self) -> u64 {
+        self.group
+    }
+
+    /// Runs `f` with the context's automatic-stereo state and the layered
+    /// eyes of `drawable`'s emulated framebuffer (None: it has none) with
+    /// the name of the framebuffer object the program draws into for it.
+    pub fn with_auto<T>(
+        &self,
+        drawable: u64,
+        f: impl FnOnce(
+            &mut crate::auto::runtime::AutoState,
+            Option<(u32, crate::auto::eyes::Attachments)>,
+        ) -> T,
+    ) -> T {
+        let mut st = self.lock();
+        let eyes = st
+            .fbs
+            .get(&drawable)
+            .and_then(|d| d.fb.layered().map(|e| (d.fb.app_fbo(), e.attachments())));
+        f(&mut st.auto, eyes)
+    }
+
+    /// Held around the program's glXMakeCurrent of this context and
+    /// wherever the layer makes it current itself: the layer's own
+    /// make-current of a context that is current nowhere never races the
+    /// program's.
+    pub fn hold_binding(&self) -> MutexGuard<'_, ()> {
+        self.binding.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     pub(super) fn lock(&self) -> MutexGuard<'_, CtxState> {
@@ -415,9 +535,19 @@ impl StereoContext {
     /// Marks it as belonging to a display the program closed (XCloseDisplay
     /// frees the connection: the layer must never use it again).
     pub fn mark_closed(&self) {
+        self.end_of_share_group();
         // XCloseDisplay's hooks run before it disconnects.
         self.release_images(Connection::Closing);
         self.closed.store(true, Ordering::SeqCst);
+    }
+
+    /// Before the share group may go (its objects freed by the driver, not
+    /// by the layer): readies the layered eyes' shared memory for that
+    /// ([`EmulatedFramebuffer::prepare_unmap`]).
+    fn end_of_share_group(&self) {
+        for drawn in self.lock().fbs.values() {
+            drawn.fb.prepare_unmap();
+        }
     }
 
     /// Frees the MIT-SHM images of its drawables.
@@ -479,6 +609,7 @@ impl StereoContext {
         if self.is_closed() {
             return;
         }
+        self.end_of_share_group();
         self.release_images(Connection::Open);
         if let Ok(r) = real() {
             // SAFETY: our own context, current nowhere (it is only made
@@ -525,6 +656,7 @@ impl StereoContext {
         if read != draw && read != 0 {
             wanted.push((read, drawable_size(r, self.display, read)?));
         }
+        let gone_ids = self.gone_drawables(r, draw, read);
         let mut st = self.lock();
         if st.usable.is_none() {
             // SAFETY: the program's context is current.
@@ -538,15 +670,24 @@ impl StereoContext {
                     .into(),
             ));
         }
+        let mut gone: Vec<(u64, Drawn)> = gone_ids
+            .iter()
+            .filter_map(|&d| st.fbs.remove_entry(&d))
+            .collect();
         let stale: Vec<(u64, (u32, u32))> = wanted
             .iter()
             .copied()
             .filter(|(d, size)| st.fbs.get(d).is_none_or(|x| x.fb.size() != *size))
             .collect();
-        if !stale.is_empty() {
+        // SAFETY: the program's context is current.
+        unsafe { free_program_side(gl, &mut gone) };
+        if !stale.is_empty() || !gone.is_empty() {
             let saved = Saved::now(r);
-            self.make_ours_current(r, draw)?;
-            let made = self.allocate(gl, &mut st, &stale);
+            let made = self.make_ours_current(r, draw).and_then(|()| {
+                // SAFETY: the layer's context is current.
+                unsafe { self.free_shared_side(r, gone) };
+                self.allocate(gl, &mut st, &stale)
+            });
             saved.restore(r, self.display);
             made?;
         }
@@ -582,6 +723,186 @@ impl StereoContext {
         }
     }
 
+    /// The drawables whose buffers [`Self::bind`] of `draw` and `read`
+    /// frees: those marked gone ([`Drawn::gone`]), and, when one of `draw`
+    /// and `read` is new to the context, every other one that no longer
+    /// exists (an X window destroyed with XDestroyWindow, with its parent,
+    /// through xcb or by another client, which the layer does not see):
+    /// one trapped XGetGeometry each (glXQueryDrawable for pbuffers and
+    /// pixmaps), only then, never per frame. Takes the registry's lock:
+    /// call it with no state locked.
+    fn gone_drawables(&self, r: &Real, draw: u64, read: u64) -> Vec<u64> {
+        let (mut gone, others) = {
+            let st = self.lock();
+            let new = !st.fbs.contains_key(&draw) || (read != 0 && !st.fbs.contains_key(&read));
+            let mut gone = Vec::new();
+            let mut others = Vec::new();
+            for (&d, drawn) in &st.fbs {
+                if drawn.gone {
+                    // Also when it is `draw` or `read`: a new drawable
+                    // with the destroyed one's id gets buffers of its own.
+                    gone.push(d);
+                } else if new && d != draw && d != read {
+                    others.push(d);
+                }
+            }
+            (gone, others)
+        };
+        gone.extend(
+            others
+                .into_iter()
+                .filter(|&d| drawable_size(r, self.display, d).is_err()),
+        );
+        gone
+    }
+
+    /// Drawable `drawable` of this context's display is being destroyed
+    /// (glXDestroyWindow, glXDestroyPbuffer, glXDestroyPixmap…; called
+    /// before the real destroy, while it still exists): frees its buffers
+    /// now where GLX allows, else marks them to be freed when the context
+    /// is next bound or released. Current here on
+    /// another drawable: freed in the program's context, then the layer's.
+    /// Current nowhere: the program's context and the layer's are made
+    /// current for the moment (with no drawable, or on `drawable`), then
+    /// what was current is put back. Current on `drawable` (GLX keeps it
+    /// until released) or on another thread: marked.
+    pub fn drawable_destroyed(self: &Arc<Self>, drawable: u64) {
+        if self.is_closed() {
+            return;
+        }
+        let Ok(r) = real() else {
+            return;
+        };
+        let _binding = self.hold_binding();
+        let here_on = current()
+            .filter(|c| Arc::ptr_eq(&c.sc, self))
+            .map(|c| (c.draw, c.read));
+        let mut st = self.lock();
+        let elsewhere = st.owner.is_some() && here_on.is_none();
+        let Some(drawn) = st.fbs.get_mut(&drawable) else {
+            return;
+        };
+        match here_on {
+            Some((draw, read)) if draw == drawable || read == drawable => {
+                drawn.gone = true;
+                return;
+            }
+            _ if elsewhere => {
+                drawn.gone = true;
+                return;
+            }
+            _ => {}
+        }
+        let drawn = st.fbs.remove_entry(&drawable).expect("found above");
+        let host = here_on.map_or(drawable, |(draw, _)| draw);
+        if let Some(kept) = self.free_now(r, vec![drawn], here_on.is_some(), host) {
+            st.fbs.extend(kept);
+        }
+    }
+
+    /// After this context stopped being current on this thread: frees the
+    /// buffers of drawables destroyed while it was current on them, now
+    /// that it is current nowhere (as [`Self::drawable_destroyed`]).
+    pub fn released(self: &Arc<Self>) {
+        if self.is_closed() {
+            return;
+        }
+        let Ok(r) = real() else {
+            return;
+        };
+        let _binding = self.hold_binding();
+        let mut st = self.lock();
+        if st.owner.is_some() || st.destroyed || !st.fbs.values().any(|d| d.gone) {
+            return;
+        }
+        let ids: Vec<u64> = st
+            .fbs
+            .iter()
+            .filter(|(_, d)| d.gone)
+            .map(|(&k, _)| k)
+            .collect();
+        let gone: Vec<(u64, Drawn)> = ids.iter().filter_map(|d| st.fbs.remove_entry(d)).collect();
+        // No drawable to fall back on: these are destroyed.
+        if let Some(kept) = self.free_now(r, gone, false, 0) {
+            st.fbs.extend(kept);
+        }
+    }
+
+    /// Frees `gone` (removed from the state, whose lock the caller holds
+    /// with [`StereoContext::binding`]): in the program's context — current
+    /// here when `program_current`, else made current with no drawable or
+    /// on `host` — its framebuffer objects go and its rendering is
+    /// finished; then in the layer's, the textures, their memory and the
+    /// images. What was current is put back. Returns the entries it could
+    /// not free (no context could be made current), marked gone, keyed by
+    /// drawable, for the caller to put back.
+    fn free_now(
+        &self,
+        r: &Real,
+        mut gone: Vec<(u64, Drawn)>,
+        program_current: bool,
+        host: u64,
+    ) -> Option<Vec<(u64, Drawn)>> {
+        let saved = Saved::now(r);
+        let give_back = |mut gone: Vec<(u64, Drawn)>| {
+            for (_, d) in &mut gone {
+                d.gone = true;
+            }
+            Some(gone)
+        };
+        if !program_current && !self.make_current_anywhere(r, self.ctx, host) {
+            saved.restore(r, self.display);
+            return give_back(gone);
+        }
+        // SAFETY: the program's context is current.
+        unsafe { free_program_side(&r.gl, &mut gone) };
+        let ours = self.make_current_anywhere(r, self.ours, host);
+        let kept = if ours {
+            // SAFETY: the layer's context is current.
+            unsafe { self.free_shared_side(r, gone) };
+            None
+        } else {
+            give_back(gone)
+        };
+        saved.restore(r, self.display);
+        kept
+    }
+
+    /// Makes `ctx` (the program's context or the layer's) current with no
+    /// drawable (GLX 1.3 with GL ≥ 3.0 contexts; Mesa allows it), else on
+    /// `host` (0: none), X errors trapped; false when neither works.
+    fn make_current_anywhere(&self, r: &Real, ctx: usize, host: u64) -> bool {
+        let dpy = self.display as *mut xlib::Display;
+        let attempt = |d: u64| {
+            let (ok, err) = trap_x_errors(&r.xlib, dpy, || {
+                // SAFETY: an open display, a context of the program's or
+                // the layer's, current nowhere else (binding held, or
+                // current on this thread), and a drawable or None.
+                unsafe { (r.glx.glXMakeContextCurrent)(dpy, d, d, ctx as GLXContext) }
+            });
+            ok != 0 && err == 0
+        };
+        attempt(0) || (host != 0 && attempt(host))
+    }
+
+    /// Frees the shared objects of destroyed drawables' buffers (their
+    /// framebuffer objects in the program's context went first,
+    /// [`free_program_side`]): textures, renderbuffer, memory, images.
+    ///
+    /// # Safety
+    /// The layer's context is current on this thread.
+    unsafe fn free_shared_side(&self, r: &Real, gone: Vec<(u64, Drawn)>) {
+        let dpy = self.display as *mut xlib::Display;
+        for (_, mut d) in gone {
+            // SAFETY: the layer's context (which made them) is current;
+            // the program's finished its rendering into them.
+            unsafe {
+                d.fb.release(&r.gl);
+                d.image.release(&r.xlib, dpy, Connection::Open);
+            }
+        }
+    }
+
     /// Allocates or resizes the framebuffers of `stale` drawables; the
     /// layer's context is current.
     fn allocate(&self, gl: &Gl, st: &mut CtxState, stale: &[(u64, (u32, u32))]) -> Result<()> {
@@ -603,6 +924,7 @@ impl StereoContext {
                             last_bound: 0,
                             viewport_checked: false,
                             size_seen: None,
+                            gone: false,
                         },
                     );
                 }
@@ -638,6 +960,23 @@ impl StereoContext {
         self.bind(cur.draw, cur.read)
     }
 
+    /// The first draw after a present ([`super::draws`]): the drawable's
+    /// size, asked of the X server (one round trip, as Mesa's software
+    /// framebuffer asks at the first draw after each swap), and the buffers
+    /// resized before the program draws when the window changed size since
+    /// — the program resized it itself, or a window manager did.
+    pub fn follow_drawable_size(self: &Arc<Self>, cur: &Current) -> Result<()> {
+        let r = loaded()?;
+        let size = match self.lock().fbs.get(&cur.draw) {
+            Some(d) => d.fb.size(),
+            None => return Ok(()),
+        };
+        if drawable_size(r, self.display, cur.draw)? == size {
+            return Ok(());
+        }
+        self.bind(cur.draw, cur.read)
+    }
+
     /// Presents `drawable`'s front buffers: with `flip`, first its back
     /// buffers become the front ones (glXSwapBuffers); without, the fronts
     /// as they are (glFlush/glFinish after drawing to a front buffer).
@@ -649,6 +988,7 @@ impl StereoContext {
         let r = loaded()?;
         self.check_open()?;
         let saved = Saved::now(r);
+        let _binding = (!here).then(|| self.hold_binding());
         if !here {
             // Not current on this thread (and not on another: checked by the
             // caller): bind it here for the flip.
@@ -681,6 +1021,8 @@ impl StereoContext {
                     reattached?;
                 }
             }
+            // The window may change size before the program draws again.
+            super::draws::check_size_at_next_draw();
         }
         profile::frame_end();
         result
@@ -713,15 +1055,21 @@ impl StereoContext {
         profile::frame_start(|| window);
         let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
         let mut st = self.lock();
+        // The layer's own calls below keep the program's errors apart.
+        st.save_driver_errors(gl);
         let drawn = st
             .fbs
             .get_mut(&drawable)
             .ok_or_else(|| Error::invalid_operation("no stereo buffers for this drawable"))?;
         // SAFETY: the program's context is current on this thread.
         unsafe {
+            // Automatic stereo draws both eyes into layers: the buffers
+            // shown get them.
+            drawn.fb.resolve_layers(!flip);
             if flip {
                 profile::span(Stage::Flip, || drawn.fb.swap(gl));
             }
+            gl.take_error();
             // The layer's context reads what the program drew: finish it.
             profile::span(Stage::Finish, || gl.Finish());
             // Nothing renders into replaced textures now: free their memory.
@@ -746,8 +1094,9 @@ impl StereoContext {
         frame_index: u64,
     ) -> Result<()> {
         let gl = &r.gl;
-        let s = settings::get();
-        let mode = settings::window_mode();
+        let mode = super::live::mode();
+        let options = super::live::options();
+        super::controls::presented(self.display, x_window, width, height);
         let CtxState {
             fbs, compositor, ..
         } = st;
@@ -756,7 +1105,7 @@ impl StereoContext {
             &drawn.fb,
             InputFraming::QuadBuffer,
             mode,
-            s.options,
+            options,
             frame_index,
         );
         // A software renderer's frame goes to the window from memory when
@@ -765,9 +1114,17 @@ impl StereoContext {
         // single-buffered windows: Mesa's software driver copies the
         // program's real front buffer into the window when the program
         // flushes, over the frame put there.
+        // Not when the next glXSwapBuffers is another layer's: that layer
+        // must see every frame (MangoHud's HUD, VirtualGL's transport).
         // Some(size after the put) when the frame went out through MIT-SHM.
         let mut seen = None;
-        let shown = if self.shape.double_buffered {
+        if r.swap_layered {
+            settings::tell(
+                "frames are presented through the glXSwapBuffers of a GL layer below glstereo \
+                 (composed by GL, not put with MIT-SHM)",
+            );
+        }
+        let shown = if self.shape.double_buffered && !r.swap_layered {
             // SAFETY: the layer's context is current on the drawable, whose
             // X drawable is `x_window`; the job's textures are shared with it.
             unsafe {
@@ -819,7 +1176,7 @@ impl StereoContext {
                 left,
                 right,
                 mode,
-                options: s.options,
+                options,
                 frame_index,
             });
         }

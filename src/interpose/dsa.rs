@@ -21,13 +21,20 @@
 //!   answer from the window's framebuffer (GL_SAMPLES, GL_SAMPLE_BUFFERS,
 //!   the implementation read format and type, and the errors), with
 //!   GL_STEREO and GL_DOUBLEBUFFER those of the emulated one;
-//! - glInvalidate(Sub)Framebuffer with framebuffer 0 bound is validated as
-//!   the driver validates it on a window (GL_COLOR, GL_FRONT_LEFT …,
-//!   GL_DEPTH, GL_STENCIL), by asking the window: invalidation is a hint,
-//!   and the emulated buffers keep their contents. The named forms on 0,
-//!   glCheckNamedFramebufferStatus(0, …) and glReadnPixels go to the
-//!   driver unchanged: the window's answers are the right ones (the read
+//! - glInvalidate(Sub)Framebuffer with framebuffer 0 bound, and
+//!   glInvalidateNamedFramebuffer(Sub)Data on 0, are validated as Mesa
+//!   validates a window (GL_COLOR, GL_DEPTH, GL_STENCIL, GL_FRONT_LEFT …
+//!   GL_BACK_RIGHT: [`crate::stereo::buffers::default_invalidate_error`]):
+//!   invalidation is a hint, and the emulated buffers keep their contents;
+//! - glCheckNamedFramebufferStatus(0, …) is the emulated framebuffer
+//!   object's status; glReadnPixels goes to the driver unchanged (the read
 //!   framebuffer bound is the emulated one).
+//!
+//! What describes the window's own buffers (component sizes and encoding,
+//! samples, the read format) is asked of framebuffer 0 as the layer below
+//! presents it, through the non-named queries (which VirtualGL translates
+//! for the framebuffer object it stands in with); nothing is asked of a
+//! framebuffer 0 by name, which a layer below may have left undefined.
 //! - glLinkProgram / glCreateShaderProgramv: a program with a user-defined
 //!   fragment output at location 0 is relinked with copies of it
 //!   ([`crate::stereo::outputs`]), so output 0 reaches every buffer a
@@ -43,7 +50,7 @@ use super::gl::{
 use super::real::{Real, loaded};
 use crate::error::{Error, Result};
 use crate::gl::enums::*;
-use crate::stereo::buffers::gl_error_code;
+use crate::stereo::buffers::{default_invalidate_error, gl_error_code};
 use crate::stereo::emulated::{DrawSlots, EmulatedFramebuffer};
 use crate::stereo::outputs::{LinkFns, Outcome};
 
@@ -54,6 +61,9 @@ type ClearFn<T> = unsafe extern "system" fn(u32, i32, *const T);
 type ClearNamedFn<T> = unsafe extern "system" fn(u32, u32, i32, *const T);
 type InvalidateFn = unsafe extern "system" fn(u32, i32, *const u32);
 type InvalidateSubFn = unsafe extern "system" fn(u32, i32, *const u32, i32, i32, i32, i32);
+type InvalidateNamedFn = unsafe extern "system" fn(u32, i32, *const u32);
+type InvalidateNamedSubFn = unsafe extern "system" fn(u32, i32, *const u32, i32, i32, i32, i32);
+type CheckNamedFn = unsafe extern "system" fn(u32, u32) -> u32;
 type ParamFn = unsafe extern "system" fn(u32, u32, *mut i32);
 type AttachmentFn = unsafe extern "system" fn(u32, u32, u32, *mut i32);
 type BlitFn = unsafe extern "system" fn(u32, u32, i32, i32, i32, i32, i32, i32, i32, i32, u32, u32);
@@ -102,6 +112,10 @@ fns! {
     blit_named: BlitFn = c"glBlitNamedFramebuffer";
     invalidate: InvalidateFn = c"glInvalidateFramebuffer";
     invalidate_sub: InvalidateSubFn = c"glInvalidateSubFramebuffer";
+    invalidate_named: InvalidateNamedFn = c"glInvalidateNamedFramebufferData";
+    invalidate_named_sub: InvalidateNamedSubFn = c"glInvalidateNamedFramebufferSubData";
+    check_named: CheckNamedFn = c"glCheckNamedFramebufferStatus";
+    check_named_ext: CheckNamedFn = c"glCheckNamedFramebufferStatusEXT";
     named_attachment: AttachmentFn = c"glGetNamedFramebufferAttachmentParameteriv";
     named_parameter: ParamFn = c"glGetNamedFramebufferParameteriv";
     parameter: ParamFn = c"glGetFramebufferParameteriv";
@@ -111,6 +125,11 @@ fns! {
 fn fns() -> &'static Fns {
     static FNS: OnceLock<Fns> = OnceLock::new();
     FNS.get_or_init(load)
+}
+
+/// What relinking needs (None before GL 4.3).
+pub(super) fn link_fns() -> Option<&'static LinkFns> {
+    fns().link.as_ref()
 }
 
 /// The real function, or the refusal a missing one gets (the program
@@ -137,8 +156,9 @@ fn with_fb0<T>(
     let fb = &mut st.fbs.get_mut(&drawable)?.fb;
     let mut errors = Vec::new();
     let v = f(fb, &mut errors);
-    for e in errors {
-        st.push_error(e);
+    if let (Some(&e), Ok(r)) = (errors.first(), super::real::real()) {
+        // The first error only: GL keeps one (later ones are dropped).
+        st.push_error(&r.gl, e);
     }
     Some(v)
 }
@@ -211,6 +231,7 @@ pub unsafe fn clear_buffer<T: ClearValue>(
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     let r = loaded()?;
     let real = need(T::clear(fns()), T::CLEAR)?;
     if value.is_null() {
@@ -261,6 +282,7 @@ pub unsafe fn clear_named_framebuffer<T: ClearValue>(
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     let r = loaded()?;
     let real = need(T::clear_named(fns()), T::CLEAR_NAMED)?;
     if value.is_null() {
@@ -296,6 +318,7 @@ pub fn clear_named_framebufferfi(
     depth: f32,
     stencil: i32,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     loaded()?;
     let real = need(fns().clear_named_fi, "glClearNamedFramebufferfi")?;
     let fbo = if framebuffer == 0 {
@@ -389,6 +412,7 @@ pub fn blit_named_framebuffer(
     mask: u32,
     filter: u32,
 ) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Blit);
     let r = loaded()?;
     let real = need(fns().blit_named, "glBlitNamedFramebuffer")?;
     let (mut read, mut draw) = (read, draw);
@@ -429,26 +453,35 @@ fn emulated_at(r: &Real, cur: &Current, target: u32) -> bool {
     bound(&r.gl, &mut st.fbs, drawable, binding).is_some()
 }
 
-/// Runs `call`, a forwarded call on `target`, on the window's framebuffer
-/// when the emulated one is bound at `target` (then returning the current
-/// context), else as it is.
-fn on_window_at(r: &Real, target: u32, call: impl FnOnce()) -> Option<Current> {
-    match current() {
-        Some(cur) if emulated_at(r, &cur, target) => {
-            with_window_framebuffer(&r.gl, call);
-            Some(cur)
-        }
-        _ => {
-            call();
-            None
-        }
+/// Invalidation of the emulated default framebuffer (`size`: the Sub
+/// forms' width and height): validated as a driver validates a window
+/// ([`default_invalidate_error`], the error queued), whatever the layer
+/// below has as framebuffer 0; the eyes keep their contents (a hint GL
+/// lets an implementation ignore).
+///
+/// # Safety
+/// `attachments` holds `n` values when `n` > 0 (GL's contract).
+unsafe fn invalidate_emulated(
+    r: &Real,
+    cur: &Current,
+    n: i32,
+    attachments: *const u32,
+    size: Option<(i32, i32)>,
+) {
+    let list = if n > 0 {
+        // SAFETY: contract; not NULL (callers refuse that).
+        unsafe { std::slice::from_raw_parts(attachments, n as usize) }
+    } else {
+        &[]
+    };
+    if let Some(e) = default_invalidate_error(n, list, size) {
+        cur.sc.lock().push_error(&r.gl, e);
     }
 }
 
-/// glInvalidateFramebuffer: with framebuffer 0 bound at `target`, validated
-/// by the window's framebuffer (the driver's errors for a default
-/// framebuffer); the emulated buffers keep their contents (a hint GL lets
-/// an implementation ignore). Refused: `attachments` NULL with n > 0.
+/// glInvalidateFramebuffer: with framebuffer 0 bound at `target`,
+/// validated as a driver validates a window's, the eyes kept (a hint).
+/// Refused: `attachments` NULL with n > 0.
 ///
 /// # Safety
 /// `attachments` must hold `n` values (GL's contract).
@@ -458,8 +491,14 @@ pub unsafe fn invalidate_framebuffer(target: u32, n: i32, attachments: *const u3
     if missing(n, attachments) {
         return Err(refuse_null(r, "attachments"));
     }
-    // SAFETY: forwarded call.
-    on_window_at(r, target, || unsafe { real(target, n, attachments) });
+    match current() {
+        // SAFETY: contract.
+        Some(cur) if emulated_at(r, &cur, target) => unsafe {
+            invalidate_emulated(r, &cur, n, attachments, None)
+        },
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, n, attachments) },
+    }
     Ok(())
 }
 
@@ -479,11 +518,96 @@ pub unsafe fn invalidate_sub_framebuffer(
         return Err(refuse_null(r, "attachments"));
     }
     let [x, y, w, h] = rect;
-    // SAFETY: forwarded call.
-    on_window_at(r, target, || unsafe {
-        real(target, n, attachments, x, y, w, h)
-    });
+    match current() {
+        // SAFETY: contract.
+        Some(cur) if emulated_at(r, &cur, target) => unsafe {
+            invalidate_emulated(r, &cur, n, attachments, Some((w, h)))
+        },
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, n, attachments, x, y, w, h) },
+    }
     Ok(())
+}
+
+/// The current stereo context, when framebuffer 0 is emulated in it (what
+/// direct state access on 0 names).
+fn emulated_fb0() -> Option<Current> {
+    current().filter(|c| with_fb0(c, false, |_, _| ()).is_some())
+}
+
+/// glInvalidateNamedFramebufferData: on framebuffer 0, when it is
+/// emulated, as [`invalidate_framebuffer`]. Refused: `attachments` NULL
+/// with n > 0.
+///
+/// # Safety
+/// `attachments` must hold `n` values (GL's contract).
+pub unsafe fn invalidate_named_framebuffer_data(
+    framebuffer: u32,
+    n: i32,
+    attachments: *const u32,
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(fns().invalidate_named, "glInvalidateNamedFramebufferData")?;
+    if missing(n, attachments) {
+        return Err(refuse_null(r, "attachments"));
+    }
+    match emulated_fb0().filter(|_| framebuffer == 0) {
+        // SAFETY: contract.
+        Some(cur) => unsafe { invalidate_emulated(r, &cur, n, attachments, None) },
+        // SAFETY: forwarded call.
+        None => unsafe { real(framebuffer, n, attachments) },
+    }
+    Ok(())
+}
+
+/// glInvalidateNamedFramebufferSubData: as
+/// [`invalidate_named_framebuffer_data`].
+///
+/// # Safety
+/// As [`invalidate_named_framebuffer_data`].
+pub unsafe fn invalidate_named_framebuffer_sub_data(
+    framebuffer: u32,
+    n: i32,
+    attachments: *const u32,
+    rect: [i32; 4],
+) -> Result<()> {
+    let r = loaded()?;
+    let real = need(
+        fns().invalidate_named_sub,
+        "glInvalidateNamedFramebufferSubData",
+    )?;
+    if missing(n, attachments) {
+        return Err(refuse_null(r, "attachments"));
+    }
+    let [x, y, w, h] = rect;
+    match emulated_fb0().filter(|_| framebuffer == 0) {
+        // SAFETY: contract.
+        Some(cur) => unsafe { invalidate_emulated(r, &cur, n, attachments, Some((w, h))) },
+        // SAFETY: forwarded call.
+        None => unsafe { real(framebuffer, n, attachments, x, y, w, h) },
+    }
+    Ok(())
+}
+
+/// glCheckNamedFramebufferStatus (…EXT when `ext`): framebuffer 0, when it
+/// is emulated, is answered by the emulated framebuffer's own object (the
+/// read drawable's for GL_READ_FRAMEBUFFER; the driver checks `target`),
+/// whatever the layer below has as framebuffer 0 (VirtualGL makes contexts
+/// current without a surface: there it is GL_FRAMEBUFFER_UNDEFINED).
+pub fn check_named_framebuffer_status(framebuffer: u32, target: u32, ext: bool) -> Result<u32> {
+    loaded()?;
+    let real = if ext {
+        need(fns().check_named_ext, "glCheckNamedFramebufferStatusEXT")?
+    } else {
+        need(fns().check_named, "glCheckNamedFramebufferStatus")?
+    };
+    let own = (framebuffer == 0)
+        .then(current)
+        .flatten()
+        .and_then(|cur| with_fb0(&cur, target == GL_READ_FRAMEBUFFER, |fb, _| fb.app_fbo()))
+        .filter(|&fbo| fbo != 0);
+    // SAFETY: forwarded call, on the emulated framebuffer's object for 0.
+    Ok(unsafe { real(own.unwrap_or(framebuffer), target) })
 }
 
 /// glGetNamedFramebufferAttachmentParameteriv: on framebuffer 0, as
@@ -507,11 +631,22 @@ pub unsafe fn get_named_framebuffer_attachment_parameteriv(
         return Err(refuse_null(r, "params"));
     }
     if framebuffer == 0 {
-        if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
+        if let Some(cur) = emulated_fb0() {
+            // The window's buffer answers as glGetFramebufferAttachmentParameteriv
+            // finds it, through the layer below (VirtualGL stands in for
+            // framebuffer 0 there; the named form on 0 would ask a context
+            // current without a surface).
             // SAFETY: the program's context is current; `params` not NULL.
             unsafe {
-                emulated_attachment(&cur, attachment, pname, params, |twin| {
-                    real(0, twin, pname, params)
+                emulated_attachment(&r.gl, &cur, attachment, pname, params, |twin| {
+                    with_window_framebuffer(&r.gl, || {
+                        r.gl.GetFramebufferAttachmentParameteriv(
+                            GL_DRAW_FRAMEBUFFER,
+                            twin,
+                            pname,
+                            params,
+                        )
+                    })
                 })
             };
             return Ok(());
@@ -525,7 +660,7 @@ pub unsafe fn get_named_framebuffer_attachment_parameteriv(
 /// GL_STEREO and GL_DOUBLEBUFFER of the emulated framebuffer, written over
 /// the window's answer.
 fn stereo_parameter(cur: &Current, pname: u32, params: *mut i32) {
-    let shape = cur.sc.shape();
+    let shape = cur.sc.program_shape();
     let v = match pname {
         GL_STEREO => shape.stereo,
         GL_DOUBLEBUFFER => shape.double_buffered,
@@ -552,14 +687,8 @@ pub unsafe fn get_named_framebuffer_parameteriv(
         return Err(refuse_null(r, "params"));
     }
     if framebuffer == 0 {
-        if let Some(cur) = current().filter(|c| with_fb0(c, false, |_, _| ()).is_some()) {
-            // The window's framebuffer bound: the driver brings its read
-            // state up to date only for a bound framebuffer (Mesa answers
-            // GL_IMPLEMENTATION_COLOR_READ_FORMAT with GL_INVALID_OPERATION
-            // otherwise).
-            // SAFETY: forwarded call, on the window's framebuffer.
-            with_window_framebuffer(&r.gl, || unsafe { real(0, pname, params) });
-            stereo_parameter(&cur, pname, params);
+        if let Some(cur) = emulated_fb0() {
+            default_parameter(r, &cur, pname, params);
             return Ok(());
         }
     }
@@ -579,11 +708,44 @@ pub unsafe fn get_framebuffer_parameteriv(target: u32, pname: u32, params: *mut 
     if params.is_null() {
         return Err(refuse_null(r, "params"));
     }
-    // SAFETY: forwarded call.
-    if let Some(cur) = on_window_at(r, target, || unsafe { real(target, pname, params) }) {
-        stereo_parameter(&cur, pname, params);
+    match current() {
+        Some(cur) if emulated_at(r, &cur, target) => default_parameter(r, &cur, pname, params),
+        // SAFETY: forwarded call.
+        _ => unsafe { real(target, pname, params) },
     }
     Ok(())
+}
+
+/// glGetFramebufferParameters' answer for the emulated default
+/// framebuffer (`params` not NULL): GL_STEREO and GL_DOUBLEBUFFER its own;
+/// the parameters GL 4.5 gives only to framebuffer objects
+/// (GL_FRAMEBUFFER_DEFAULT_*) GL_INVALID_OPERATION; every other the
+/// window's, through the layer below with its framebuffer 0 bound (the
+/// driver brings the read format up to date only for a bound framebuffer)
+/// — values and GL_INVALID_ENUM for unknown names.
+fn default_parameter(r: &Real, cur: &Current, pname: u32, params: *mut i32) {
+    const GL_FRAMEBUFFER_DEFAULT_WIDTH: u32 = 0x9310;
+    const GL_FRAMEBUFFER_DEFAULT_FIXED_SAMPLE_LOCATIONS: u32 = 0x9314;
+    const GL_IMPLEMENTATION_COLOR_READ_TYPE: u32 = 0x8B9A;
+    const GL_IMPLEMENTATION_COLOR_READ_FORMAT: u32 = 0x8B9B;
+    if (GL_FRAMEBUFFER_DEFAULT_WIDTH..=GL_FRAMEBUFFER_DEFAULT_FIXED_SAMPLE_LOCATIONS)
+        .contains(&pname)
+    {
+        cur.sc.lock().push_error(&r.gl, GL_INVALID_OPERATION);
+        return;
+    }
+    let Some(real) = fns().parameter else {
+        return;
+    };
+    let target = match pname {
+        GL_IMPLEMENTATION_COLOR_READ_FORMAT | GL_IMPLEMENTATION_COLOR_READ_TYPE => {
+            GL_READ_FRAMEBUFFER
+        }
+        _ => GL_DRAW_FRAMEBUFFER,
+    };
+    // SAFETY: forwarded call, on the window's framebuffer; `params` not NULL.
+    with_window_framebuffer(&r.gl, || unsafe { real(target, pname, params) });
+    stereo_parameter(cur, pname, params);
 }
 
 /// Relinks `program` with output 0 copied ([`LinkFns::duplicate_output_zero`])
@@ -598,6 +760,11 @@ fn duplicate(r: &Real, cur: &Current, program: u32, source: Option<&str>) {
     let outcome = unsafe { link.duplicate_output_zero(program, source) };
     // SAFETY: as above; drops the relink's own errors.
     while unsafe { r.gl.GetError() } != GL_NO_ERROR {}
+    super::binaries::record_link(
+        &mut cur.sc.lock(),
+        program,
+        !matches!(outcome, Outcome::Kept(_)),
+    );
     if let Outcome::Kept(why) = outcome {
         // Once per reason, not per program: engines link many variants of
         // one shader (and the ones drawing only into their own framebuffer
@@ -615,10 +782,25 @@ pub fn link_program(program: u32) -> Result<()> {
     let r = loaded()?;
     // SAFETY: forwarded call.
     unsafe { r.gl.LinkProgram(program) };
-    if let Some(cur) = current() {
-        duplicate(r, &cur, program, None);
+    match current() {
+        Some(cur) if cur.sc.auto() => shift(r, &cur, program),
+        Some(cur) => duplicate(r, &cur, program, None),
+        None => {}
     }
     Ok(())
+}
+
+/// In a context given automatic stereo: `program`'s last vertex stage
+/// relinked with the eye's shift ([`crate::auto::runtime::linked`]; its
+/// one relink: the eyes are layers of one colour buffer, so output 0
+/// needs no copies), its GL errors kept apart as [`duplicate`] keeps them.
+fn shift(r: &Real, cur: &Current, program: u32) {
+    cur.sc.lock().save_driver_errors(&r.gl);
+    // SAFETY: the program's context is current.
+    unsafe {
+        crate::auto::runtime::linked(cur.sc.group(), program);
+        while r.gl.GetError() != GL_NO_ERROR {}
+    }
 }
 
 /// glCreateShaderProgramv: as [`link_program`] for a fragment program.
@@ -635,6 +817,39 @@ pub unsafe fn create_shader_programv(
     let real = need(fns().create_shader_programv, "glCreateShaderProgramv")?;
     if missing(count, strings) {
         return Err(refuse_null(r, "strings"));
+    }
+    if let Some(cur) = current().filter(|c| c.sc.auto()) {
+        // SAFETY: GL's contract: `count` NUL-terminated strings.
+        let parts: Vec<String> = (0..count.max(0) as usize)
+            .map(|i| unsafe { *strings.add(i) })
+            .filter(|s| !s.is_null())
+            .map(|s| unsafe { CStr::from_ptr(s) }.to_string_lossy().into_owned())
+            .collect();
+        let refs: Vec<&str> = parts.iter().map(String::as_str).collect();
+        let mut program = 0;
+        if let Some(text) = crate::auto::runtime::separable_source(kind, &refs) {
+            let c = std::ffi::CString::new(text).unwrap_or_default();
+            cur.sc.lock().save_driver_errors(&r.gl);
+            // SAFETY: one NUL-terminated string.
+            program = unsafe { real(kind, 1, &c.as_ptr()) };
+            let mut linked = 0;
+            // SAFETY: as above; drops the rewrite's own errors.
+            unsafe {
+                r.gl.GetProgramiv(program, GL_LINK_STATUS, &mut linked);
+                if program != 0 && linked == 0 {
+                    r.gl.DeleteProgram(program);
+                    program = 0;
+                }
+                while r.gl.GetError() != GL_NO_ERROR {}
+            }
+        }
+        if program == 0 {
+            // SAFETY: forwarded call.
+            program = unsafe { real(kind, count, strings) };
+        }
+        // SAFETY: the program's context is current.
+        unsafe { crate::auto::runtime::created(cur.sc.group(), program) };
+        return Ok(program);
     }
     // SAFETY: forwarded call.
     let program = unsafe { real(kind, count, strings) };

@@ -7,11 +7,16 @@
 //! follows [`crate::stereo::buffers`]):
 //! - glDrawBuffer / glDrawBuffers / glReadBuffer select emulated buffers
 //!   while framebuffer 0 is bound; a bad value raises the GL error GL
-//!   would (queued for glGetError) and changes nothing. With the program's
+//!   would (kept for glGetError) and changes nothing. With the program's
 //!   own framebuffer object bound they go to the driver unchanged.
-//! - glGetError reports the emulation's errors first, then the driver's.
-//! - glGetIntegerv / Booleanv / Floatv / Doublev answer GL_STEREO (true),
-//!   GL_DOUBLEBUFFER, GL_DRAW_BUFFER(i), GL_READ_BUFFER and the draw/read
+//! - glGetError reports the first error since the last glGetError, the
+//!   emulation's or the driver's, and drops the rest, as Mesa does.
+//!   A query the driver refuses (GL_DRAW_BUFFER8 with 8 draw buffers)
+//!   keeps its error and gets no emulated answer written.
+//! - glGetIntegerv / Booleanv / Floatv / Doublev answer GL_STEREO (true)
+//!   and GL_DOUBLEBUFFER while the emulated framebuffer is the draw
+//!   framebuffer (GL answers them from the draw framebuffer: with the
+//!   program's own object bound, the driver's false), GL_DRAW_BUFFER(i), GL_READ_BUFFER and the draw/read
 //!   framebuffer bindings (0 for the emulated framebuffer) as a stereo
 //!   visual would; GL_RED/GREEN/BLUE/ALPHA/DEPTH/STENCIL_BITS, GL_SAMPLES
 //!   and GL_SAMPLE_BUFFERS come from the window's real framebuffer (the
@@ -51,6 +56,7 @@ use super::real::{Real, loaded};
 use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
+use crate::gl::names::Kind;
 use crate::stereo::buffers::{ColorBuffer, gl_error_code};
 use crate::stereo::emulated::{
     BufferFormats, DrawSelection, EmulatedFramebuffer, MAX_DRAW_BUFFERS, ReadSelection,
@@ -72,14 +78,14 @@ const GL_COLOR_WRITEMASK: u32 = 0x0C23;
 
 /// Refuses a NULL pointer that GL would read or write through (libGL
 /// dereferences it and crashes): nothing is forwarded, and GL_INVALID_VALUE
-/// is raised in the current context — in a stereo context's queue of
-/// emulated errors, in any other context by the driver itself through
+/// is raised in the current context — in a stereo context's error flag
+/// ([`CtxState::push_error`]), in any other context by the driver itself through
 /// glViewport(0, 0, -1, -1), which GL rejects with exactly that error and
 /// no other effect. With no context current nothing is raised (GL calls do
 /// nothing then).
 pub(super) fn refuse_null(r: &Real, what: &'static str) -> Error {
     match current() {
-        Some(cur) => cur.sc.lock().push_error(GL_INVALID_VALUE),
+        Some(cur) => cur.sc.lock().push_error(&r.gl, GL_INVALID_VALUE),
         // SAFETY: an erroneous call GL ignores, in whatever context is current.
         None => unsafe { r.gl.Viewport(0, 0, -1, -1) },
     }
@@ -110,7 +116,7 @@ pub(super) fn read_drawable(cur: &Current) -> u64 {
 }
 
 /// Runs `f` on the emulated framebuffer the program has bound at
-/// `binding` (of `drawable`), queueing its GL error; false when the
+/// `binding` (of `drawable`), raising its GL error; false when the
 /// program has its own framebuffer bound (the driver handles the call).
 fn on_emulated(
     cur: &Current,
@@ -124,7 +130,7 @@ fn on_emulated(
         return false;
     };
     if let Err(e) = f(fb, gl) {
-        st.push_error(gl_error_code(&e));
+        st.push_error(gl, gl_error_code(&e));
     }
     true
 }
@@ -207,9 +213,8 @@ pub fn read_buffer(src: u32) -> Result<()> {
 pub fn get_error() -> Result<u32> {
     let r = loaded()?;
     if let Some(cur) = current() {
-        let mut st = cur.sc.lock();
-        if !st.pending.is_empty() {
-            return Ok(st.pending.remove(0));
+        if let Some(e) = cur.sc.lock().take_error(&r.gl) {
+            return Ok(e);
         }
     }
     // SAFETY: forwarded call.
@@ -291,7 +296,7 @@ fn emulated_value(gl: &Gl, pname: u32) -> Option<i32> {
         let v = with_window_framebuffer(gl, || unsafe { gl.integer(pname) });
         return Some(v);
     }
-    default_framebuffer_query(pname, cur.sc.shape(), draw, read)
+    default_framebuffer_query(pname, cur.sc.program_shape(), draw, read)
 }
 
 /// glGetIntegerv / Booleanv / Floatv / Doublev: the driver's answer
@@ -310,13 +315,19 @@ unsafe fn get_v<T>(
     if data.is_null() {
         return Err(refuse_null(r, "data"));
     }
-    forward(pname, data);
+    let cur = match current() {
+        Some(cur) if answered(pname) || pname == GL_COLOR_WRITEMASK => cur,
+        _ => {
+            forward(pname, data);
+            return Ok(());
+        }
+    };
+    if !driver_accepts(&r.gl, &cur, || forward(pname, data)) {
+        return Ok(());
+    }
     if pname == GL_COLOR_WRITEMASK {
         // SAFETY: GL_COLOR_WRITEMASK returns four values (GL's contract).
         unsafe { write_mask(0, data, convert) };
-        return Ok(());
-    }
-    if !answered(pname) || !stereo_current() {
         return Ok(());
     }
     if let Some(v) = emulated_value(&r.gl, pname) {
@@ -324,6 +335,24 @@ unsafe fn get_v<T>(
         unsafe { *data = convert(v) };
     }
     Ok(())
+}
+
+/// Runs `query`, the driver's answer to a query the layer may answer
+/// over, in the stereo context `cur` (current), and says whether the
+/// driver took it: where it raised an error (a pname or index it does not
+/// have, such as GL_DRAW_BUFFER8 with 8 draw buffers), GL writes nothing,
+/// so the layer must not either; the error stays the program's (kept as
+/// Mesa keeps it, [`CtxState::push_error`]). The program's earlier error
+/// is saved first, so that the query's own is told apart.
+pub(super) fn driver_accepts(gl: &Gl, cur: &Current, query: impl FnOnce()) -> bool {
+    cur.sc.lock().save_driver_errors(gl);
+    query();
+    // SAFETY: the program's context is current (callers).
+    let e = unsafe { gl.GetError() };
+    if e != GL_NO_ERROR {
+        cur.sc.lock().push_error(gl, e);
+    }
+    e == GL_NO_ERROR
 }
 
 /// glGetIntegerv. Refused: `data` NULL (`refuse_null`).
@@ -491,11 +520,11 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
     let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
     let kept: Vec<u32> = {
         let st = cur.sc.lock();
-        // The emulated framebuffer, and the reserved names of the layer's
-        // own framebuffers (Mesa shares framebuffers across the share group).
+        // The emulated framebuffer, and the layer's own framebuffers (Mesa
+        // shares framebuffers across the share group).
         list.iter()
             .copied()
-            .filter(|&f| !st.is_ours(f) && !crate::gl::is_reserved_name(f))
+            .filter(|&f| !st.is_ours(f) && !r.gl.owns(Kind::Framebuffer, f))
             .collect()
     };
     forward(kept.len() as i32, kept.as_ptr());
@@ -519,6 +548,79 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
         apply_color_mask(gl, cur.sc.formats(), &cur.sc.lock());
     }
     Ok(())
+}
+
+/// Which objects a glDelete* call names (see [`delete_objects`]).
+#[derive(Clone, Copy)]
+pub enum Deleted {
+    /// glDeleteTextures (glDeleteTexturesEXT when true).
+    Textures(bool),
+    /// glDeleteRenderbuffers (glDeleteRenderbuffersEXT when true).
+    Renderbuffers(bool),
+}
+
+/// glDeleteTextures, glDeleteRenderbuffers and their EXT names: the
+/// layer's own objects, which live in the program's share group
+/// ([`crate::gl::names`]), are left alone, as names the program never made
+/// are; every other name is forwarded, in order. Refused: `names` NULL
+/// with `n` > 0 (`refuse_null`).
+///
+/// # Safety
+/// `names` must hold `n` values (GL's contract).
+pub unsafe fn delete_objects(n: i32, names: *const u32, what: Deleted) -> Result<()> {
+    let r = loaded()?;
+    let kind = match what {
+        Deleted::Textures(_) => Kind::Texture,
+        Deleted::Renderbuffers(_) => Kind::Renderbuffer,
+    };
+    if missing(n, names) {
+        return Err(refuse_null(
+            r,
+            match kind {
+                Kind::Texture => "textures",
+                _ => "renderbuffers",
+            },
+        ));
+    }
+    let forward = |n: i32, p: *const u32| match what {
+        // SAFETY: forwarded calls.
+        Deleted::Textures(true) if r.extra.delete_textures_ext.is_some() => unsafe {
+            (r.extra.delete_textures_ext.expect("checked"))(n, p)
+        },
+        Deleted::Textures(_) => unsafe { r.gl.DeleteTextures(n, p) },
+        Deleted::Renderbuffers(true) if r.extra.delete_renderbuffers_ext.is_some() => unsafe {
+            (r.extra.delete_renderbuffers_ext.expect("checked"))(n, p)
+        },
+        Deleted::Renderbuffers(_) => unsafe { r.gl.DeleteRenderbuffers(n, p) },
+    };
+    if n <= 0 || !r.gl.owns_any(kind) {
+        forward(n, names);
+        return Ok(());
+    }
+    // SAFETY: GL's contract: `names` holds n values.
+    let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
+    if !list.iter().any(|&name| r.gl.owns(kind, name)) || !in_stereo_group(r) {
+        forward(n, names);
+        return Ok(());
+    }
+    let kept: Vec<u32> = list
+        .iter()
+        .copied()
+        .filter(|&name| !r.gl.owns(kind, name))
+        .collect();
+    forward(kept.len() as i32, kept.as_ptr());
+    Ok(())
+}
+
+/// Whether the context current on this thread shares objects with a
+/// stereo context (where the layer's objects live): a stereo context, or
+/// one the program made sharing with one.
+fn in_stereo_group(r: &Real) -> bool {
+    stereo_current() || {
+        // SAFETY: a plain getter of the calling thread's GLX state.
+        let ctx = unsafe { (r.glx.glXGetCurrentContext)() } as usize;
+        ctx != 0 && super::registry::with(|reg| reg.in_stereo_group(ctx))
+    }
 }
 
 /// glGetFramebufferAttachmentParameteriv (…EXT when `ext`). Refused:
@@ -575,7 +677,7 @@ unsafe fn attachment_parameter(
     }
     // SAFETY: forwarded contract.
     unsafe {
-        emulated_attachment(&cur, attachment, pname, params, |twin| {
+        emulated_attachment(gl, &cur, attachment, pname, params, |twin| {
             with_window_framebuffer(gl, || forward(twin))
         })
     }
@@ -592,6 +694,7 @@ unsafe fn attachment_parameter(
 /// # Safety
 /// The program's context is current; `params` is not NULL.
 pub(super) unsafe fn emulated_attachment(
+    gl: &Gl,
     cur: &Current,
     attachment: u32,
     pname: u32,
@@ -604,15 +707,22 @@ pub(super) unsafe fn emulated_attachment(
         GL_FRONT_RIGHT => Some(ColorBuffer::FrontRight),
         GL_BACK_RIGHT => Some(ColorBuffer::BackRight),
         GL_DEPTH | GL_STENCIL => None,
-        _ => return cur.sc.lock().push_error(GL_INVALID_ENUM),
+        _ => return cur.sc.lock().push_error(gl, GL_INVALID_ENUM),
     };
     match color {
-        Some(b) if !cur.sc.shape().allocated().contains(b) => match pname {
+        Some(b) if !cur.sc.program_shape().allocated().contains(b) => match pname {
             // SAFETY: not NULL (contract), one value (GL's contract).
             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE => unsafe { *params = GL_NONE as i32 },
-            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => cur.sc.lock().push_error(GL_INVALID_ENUM),
-            _ => cur.sc.lock().push_error(GL_INVALID_OPERATION),
+            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME => cur.sc.lock().push_error(gl, GL_INVALID_ENUM),
+            _ => cur.sc.lock().push_error(gl, GL_INVALID_OPERATION),
         },
+        // GL 4.5 §9.2.3: a default framebuffer's buffers answer only these
+        // (an object name, texture level or layer is an FBO's); Mesa says
+        // so for its windows too. Not asked of the window below, which a
+        // layer such as VirtualGL stands in for with an object of its own.
+        _ if !DEFAULT_ATTACHMENT_PNAMES.contains(&pname) => {
+            cur.sc.lock().push_error(gl, GL_INVALID_ENUM)
+        }
         _ => window(match color {
             Some(ColorBuffer::FrontRight) => GL_FRONT_LEFT,
             Some(ColorBuffer::BackRight) => GL_BACK_LEFT,
@@ -620,6 +730,21 @@ pub(super) unsafe fn emulated_attachment(
         }),
     }
 }
+
+/// The glGetFramebufferAttachmentParameteriv names a default
+/// framebuffer's buffers answer: the object type, the component sizes,
+/// the component type and the colour encoding.
+const DEFAULT_ATTACHMENT_PNAMES: [u32; 9] = [
+    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+    0x8212, // GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE
+    0x8213, // GREEN_SIZE
+    0x8214, // BLUE_SIZE
+    0x8215, // ALPHA_SIZE
+    0x8216, // DEPTH_SIZE
+    0x8217, // STENCIL_SIZE
+    0x8211, // COMPONENT_TYPE
+    0x8210, // COLOR_ENCODING
+];
 
 /// glViewport: before forwarding it, a size other than the buffers' makes
 /// the layer check (once a frame) whether the window was resized.
@@ -663,7 +788,7 @@ pub fn flush(finish: bool) -> Result<()> {
 
 /// The attribute stack's depth, read in the program's context without
 /// touching its GL errors: the driver's pending error (the program's) is
-/// moved to the stereo context's queue first, and the error of the query
+/// moved to the stereo context's flag first, and the error of the query
 /// itself (GL_INVALID_ENUM in a core-profile context, which has no
 /// attribute stack) is dropped; None then.
 fn stack_depth(gl: &Gl, cur: &Current) -> Option<i32> {
@@ -1041,6 +1166,7 @@ pub fn clear_color(color: ClearColor, fixed_oes: bool) -> Result<()> {
 /// clear the program masks nothing of stays the driver's fast full clear
 /// rather than a masked one (llvmpipe draws a quad for that).
 pub fn clear(mask: u32) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Clear);
     let r = loaded()?;
     let gl = &r.gl;
     let cur = match current() {
@@ -1286,9 +1412,16 @@ pub unsafe fn get_indexed<T>(
     if data.is_null() {
         return Err(refuse_null(r, "data"));
     }
-    // SAFETY: forwarded call.
-    unsafe { f(pname, index, data) };
-    if pname == GL_COLOR_WRITEMASK && (index as usize) < MASKED_BUFFERS {
+    // SAFETY (both): forwarded call.
+    let forward = || unsafe { f(pname, index, data) };
+    let cur = match current() {
+        Some(cur) if pname == GL_COLOR_WRITEMASK && (index as usize) < MASKED_BUFFERS => cur,
+        _ => {
+            forward();
+            return Ok(());
+        }
+    };
+    if driver_accepts(&r.gl, &cur, forward) {
         // SAFETY: GL_COLOR_WRITEMASK returns four values (GL's contract).
         unsafe { write_mask(index as usize, data, get.convert) };
     }
@@ -1299,6 +1432,7 @@ pub unsafe fn get_indexed<T>(
 /// opaque emulated framebuffer has its alpha put back to 1.0.
 #[allow(clippy::too_many_arguments)]
 pub fn blit_framebuffer(src: [i32; 4], dst: [i32; 4], mask: u32, filter: u32) -> Result<()> {
+    super::draws::notice(crate::auto::entry_points::Family::Blit);
     let r = loaded()?;
     // SAFETY: forwarded call.
     unsafe {

@@ -7,8 +7,17 @@
 //! With GLSTEREO_MODE=quad on a server that has real stereo visuals, stereo
 //! requests get those and the layer does nothing (the driver's own quad
 //! buffer).
+//!
+//! Stereo is granted only where the layer can deliver it: its emulated
+//! framebuffer is a framebuffer object (GL 3.0) in the program's context,
+//! and indirect GLX (`LIBGL_ALWAYS_INDIRECT=1`, as some `ssh -X` set-ups
+//! use) offers GL 1.4. So on a display where GLX does not render directly
+//! (it asks once per display) stereo requests get the driver's own answer
+//! (no stereo visual on Mesa: the program's mono fallback runs), and a
+//! stereo context the program asks to be indirect is made direct.
 
 use std::ffi::{c_int, c_ulong};
+use std::sync::Arc;
 
 use x11_dl::glx::{GLXContext, GLXFBConfig};
 use x11_dl::xlib::{Display, XExtCodes, XVisualInfo};
@@ -33,6 +42,13 @@ const GLX_RENDER_TYPE: c_int = 0x8011;
 const GLX_WINDOW_BIT: c_int = 0x1;
 const GLX_RGBA_BIT: c_int = 0x1;
 const GLX_RGBA_TYPE: c_int = 0x8014;
+/// glXCreateContextAttribsARB's list for the layer's own contexts: the
+/// compatibility profile, the driver's highest version.
+const COMPATIBILITY: [c_int; 3] = [
+    0x9126, // GLX_CONTEXT_PROFILE_MASK_ARB
+    0x2,    // GLX_CONTEXT_COMPATIBILITY_PROFILE_BIT_ARB
+    0,
+];
 /// glXGetConfig / glXGetFBConfigAttrib success.
 const SUCCESS: c_int = 0;
 /// glXGetConfig / glXGetFBConfigAttrib: a bad argument (libglvnd's answer
@@ -112,6 +128,84 @@ fn live_share(share: GLXContext, what: &'static str) -> Result<()> {
     }
 }
 
+/// Whether stereo can be emulated for contexts on `dpy`: whether GLX
+/// renders directly there (the emulation needs GL 3.0 framebuffer objects;
+/// an indirect context has GL 1.4). Not where `LIBGL_ALWAYS_INDIRECT` makes
+/// every context indirect; else asked once per display, when `probe` is
+/// given: it makes a context (direct requested) that glXIsDirect answers
+/// for, destroyed at once, X errors trapped. Without a probe (a listing
+/// of every configuration, which mono programs make too) or when the probe
+/// makes no context (the program's own would fail the same way), nothing
+/// is decided. When stereo cannot be emulated, stderr says so once.
+fn emulation_possible(r: &Real, dpy: *mut Display, probe: Option<&dyn Fn() -> GLXContext>) -> bool {
+    let known = if indirect_forced() {
+        Some(false)
+    } else {
+        registry::with(|reg| reg.renders_directly(dpy as usize))
+    };
+    let direct = match (known, probe) {
+        (Some(known), _) => known,
+        (None, None) => return true,
+        (None, Some(probe)) => {
+            let (direct, err) = trap_x_errors(&r.xlib, dpy, || {
+                let ctx = probe();
+                // SAFETY: a context just made on this display, destroyed once.
+                (!ctx.is_null()).then(|| unsafe {
+                    let direct = (r.glx.glXIsDirect)(dpy, ctx) != 0;
+                    (r.glx.glXDestroyContext)(dpy, ctx);
+                    direct
+                })
+            });
+            let Some(direct) = direct.filter(|_| err == 0) else {
+                return true;
+            };
+            watch(r, dpy);
+            registry::with(|reg| reg.set_renders_directly(dpy as usize, direct));
+            direct
+        }
+    };
+    if !direct {
+        warn_indirect();
+    }
+    direct
+}
+
+fn warn_indirect() {
+    super::warn(
+        "GL rendering on this X display is indirect (LIBGL_ALWAYS_INDIRECT, or a server this \
+         client cannot render to directly), which has no framebuffer objects: stereo cannot be \
+         emulated, so stereo requests get the driver's own answer (no stereo visual) and the \
+         program's mono fallback runs; unset LIBGL_ALWAYS_INDIRECT for stereo",
+    );
+}
+
+/// Whether the program's new context `ctx` of a stereo visual or
+/// configuration (created direct) renders directly. One that does not
+/// (the display could not be asked before stereo was promised: a
+/// configuration picked from glXGetFBConfigs' whole list) runs in mono,
+/// stderr says why, and the display is known from then on.
+fn direct_context(r: &Real, dpy: *mut Display, ctx: GLXContext) -> bool {
+    // SAFETY: a context the real GLX just made on this display.
+    if unsafe { (r.glx.glXIsDirect)(dpy, ctx) } != 0 {
+        return true;
+    }
+    watch(r, dpy);
+    registry::with(|reg| reg.set_renders_directly(dpy as usize, false));
+    warn_indirect();
+    false
+}
+
+/// Whether `LIBGL_ALWAYS_INDIRECT` makes every GLX context indirect, as
+/// libGL reads it (1, true, y or yes, in any case).
+fn indirect_forced() -> bool {
+    std::env::var("LIBGL_ALWAYS_INDIRECT").is_ok_and(|v| {
+        let v = v.trim();
+        ["1", "true", "y", "yes"]
+            .iter()
+            .any(|t| v.eq_ignore_ascii_case(t))
+    })
+}
+
 /// glXChooseVisual. Refused: a NULL display or attribute list.
 ///
 /// # Safety
@@ -127,19 +221,33 @@ pub unsafe fn choose_visual(
     // SAFETY: the caller's list, read by its structure.
     let list = unsafe { read_visual_list(attribs) };
     let (mut stripped, stereo) = strip_visual_stereo(&list);
-    if stereo && settings::wants_native_quad() {
+    if stereo && settings::native_allowed() {
         // SAFETY: forwarded call.
         let v = unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) };
         if !v.is_null() {
+            tell_native();
             return Ok(v);
         }
     }
-    let v = if stereo {
+    let mut v = if stereo {
         // SAFETY: a None-terminated list.
         unsafe { (r.glx.glXChooseVisual)(dpy, screen, stripped.as_mut_ptr()) }
     } else {
         // SAFETY: forwarded call.
         unsafe { (r.glx.glXChooseVisual)(dpy, screen, attribs) }
+    };
+    // SAFETY: a visual the real GLX returned, for a probe context.
+    let probe = || unsafe { (r.glx.glXCreateContext)(dpy, v, std::ptr::null_mut(), 1) };
+    let stereo = if stereo && !v.is_null() && !emulation_possible(r, dpy, Some(&probe)) {
+        // The driver's own answer to the stereo request.
+        // SAFETY: the visual list is ours to free; then a forwarded call.
+        unsafe {
+            (r.xlib.XFree)(v.cast());
+            v = (r.glx.glXChooseVisual)(dpy, screen, attribs);
+        }
+        false
+    } else {
+        stereo
     };
     if !v.is_null() {
         // SAFETY: a visual the real GLX returned.
@@ -219,10 +327,11 @@ pub unsafe fn choose_fbconfig(
     if !stereo {
         return Ok(choose(attribs));
     }
-    if settings::wants_native_quad() {
+    if settings::native_allowed() {
         let native = choose(attribs);
         // SAFETY: nelements was written by the real call when it returned a list.
         if !native.is_null() && unsafe { *nelements } > 0 {
+            tell_native();
             return Ok(native);
         }
     }
@@ -232,6 +341,18 @@ pub unsafe fn choose_fbconfig(
     }
     // SAFETY: the real call wrote the count of the list it returned.
     let n = unsafe { *nelements }.max(0) as usize;
+    if n > 0 {
+        // SAFETY: the list holds n > 0 configurations; a probe context.
+        let probe = || unsafe {
+            (r.glx.glXCreateNewContext)(dpy, *configs, GLX_RGBA_TYPE, std::ptr::null_mut(), 1)
+        };
+        if !emulation_possible(r, dpy, Some(&probe)) {
+            // The driver's own answer to the stereo request.
+            // SAFETY: the list is ours to free; then a forwarded call.
+            unsafe { (r.xlib.XFree)(configs.cast()) };
+            return Ok(choose(attribs));
+        }
+    }
     watch(r, dpy);
     registry::with(|reg| {
         for i in 0..n {
@@ -246,9 +367,15 @@ pub unsafe fn choose_fbconfig(
 }
 
 /// glXGetFBConfigs: the server's configurations, followed by a stereo twin
-/// of each RGBA window configuration (so programs that pick from the whole
-/// list, as GLFW does, find stereo ones). The first entries are the real
-/// list, in its order.
+/// of each mono RGBA window configuration (so programs that pick from the
+/// whole list, as GLFW does, find stereo ones). The first entries are the
+/// real list, in its order — but for the stereo configurations the driver
+/// or a layer below offers (VirtualGL has 144), which are left out when
+/// the user chose a format ([`settings::native_allowed`]): the program
+/// then picks one of the layer's, emulated and shown in that format. No
+/// twins where stereo is known not to be possible (`LIBGL_ALWAYS_INDIRECT`,
+/// or a display found to render indirectly; no probe context here: mono
+/// programs list too).
 ///
 /// Refused: a NULL display or `nelements`.
 ///
@@ -269,23 +396,36 @@ pub unsafe fn get_fbconfigs(
     }
     // SAFETY: the count of the list the real call returned.
     let n = unsafe { *nelements }.max(0) as usize;
-    // SAFETY: n entries.
-    let reals: Vec<GLXFBConfig> = unsafe { std::slice::from_raw_parts(configs, n) }.to_vec();
     let attr = |c: GLXFBConfig, a: c_int| {
         let mut v = 0;
         // SAFETY: a real configuration of this display.
         unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
         v
     };
+    // Mono programs list every configuration too: no probe context here.
+    if !emulation_possible(r, dpy, None) {
+        return Ok(configs);
+    }
+    // SAFETY: n entries.
+    let reals: Vec<GLXFBConfig> = unsafe { std::slice::from_raw_parts(configs, n) }
+        .iter()
+        .copied()
+        .filter(|&c| settings::native_allowed() || attr(c, GLX_STEREO) == 0)
+        .collect();
+    let n = reals.len();
+    let twinned: Vec<GLXFBConfig> = reals
+        .iter()
+        .copied()
+        .filter(|&c| {
+            attr(c, GLX_RENDER_TYPE) & GLX_RGBA_BIT != 0
+                && attr(c, GLX_DRAWABLE_TYPE) & GLX_WINDOW_BIT != 0
+                && attr(c, GLX_STEREO) == 0
+        })
+        .collect();
     watch(r, dpy);
     let twins: Vec<GLXFBConfig> = registry::with(|reg| {
-        reals
+        twinned
             .iter()
-            .filter(|&&c| {
-                attr(c, GLX_RENDER_TYPE) & GLX_RGBA_BIT != 0
-                    && attr(c, GLX_DRAWABLE_TYPE) & GLX_WINDOW_BIT != 0
-                    && attr(c, GLX_STEREO) == 0
-            })
             .map(|&c| reg.fake_config(dpy as usize, c as usize) as GLXFBConfig)
             .collect()
     });
@@ -374,6 +514,15 @@ pub unsafe fn get_visual_from_fbconfig(
     Ok(v)
 }
 
+/// Says (with GLSTEREO_VERBOSE) that a stereo request got native stereo.
+fn tell_native() {
+    settings::tell(
+        "stereo is native: the driver's or a GL layer below's own stereo configuration, \
+         shown as that layer shows it; choose a format (glstereo-run -m MODE) to have \
+         glstereo emulate and show it instead",
+    );
+}
+
 /// Makes program context `ctx` a stereo context: creates the layer's
 /// context (`make_ours(ctx)`, sharing its objects; X errors trapped) and
 /// records the shape the configuration gives (`attrib` reads it). On
@@ -382,10 +531,27 @@ fn adopt(
     r: &Real,
     dpy: *mut Display,
     ctx: GLXContext,
-    make_ours: impl FnOnce(GLXContext) -> GLXContext,
+    make_ours: &[&dyn Fn(GLXContext) -> GLXContext],
     attrib: impl Fn(c_int) -> c_int,
+    auto: bool,
 ) {
-    let (ours, err) = trap_x_errors(&r.xlib, dpy, || make_ours(ctx));
+    if auto && r.extra.layered.is_none() {
+        super::warn(
+            "automatic stereo needs GL 4.3 (layered framebuffers, glCopyImageSubData): \
+             this context stays mono",
+        );
+        return;
+    }
+    // The first way that works (each tried with its own X errors trapped).
+    let mut ours = std::ptr::null_mut();
+    let mut err = 0;
+    for make in make_ours {
+        let (c, e) = trap_x_errors(&r.xlib, dpy, || make(ctx));
+        (ours, err) = (c, e);
+        if !c.is_null() && e == 0 {
+            break;
+        }
+    }
     if ours.is_null() || err != 0 {
         super::warn(&format!(
             "the layer's own GL context could not be created (X error {err}): \
@@ -399,28 +565,63 @@ fn adopt(
     };
     let bits = |a| attrib(a).max(0) as u32;
     let formats = BufferFormats {
-        in_place: r.extra.memory_objects,
+        // Eyes in memory the CPU reads serve the MIT-SHM path; a GL layer
+        // below (RenderDoc, apitrace) must see plain GL it can record and
+        // replay, and frames go through GL there anyway.
+        in_place: r.extra.memory_objects.filter(|_| !r.swap_layered),
+        layered: r.extra.layered.filter(|_| auto),
         ..BufferFormats::matching(
             bits(GLX_ALPHA_SIZE),
             bits(GLX_DEPTH_SIZE),
             bits(GLX_STENCIL_SIZE),
         )
     };
-    let sc = StereoContext::new(dpy as usize, ctx as usize, ours as usize, shape, formats);
+    let group = registry::with(|reg| reg.group(ctx as usize));
+    let sc = StereoContext::new(
+        dpy as usize,
+        ctx as usize,
+        ours as usize,
+        shape,
+        formats,
+        group,
+    );
+    settings::tell(&format!(
+        "{}: both eyes shown as {} in the program's window",
+        if auto {
+            "automatic stereo for a mono context"
+        } else {
+            "stereo is emulated"
+        },
+        super::live::mode().canonical_name()
+    ));
     watch(r, dpy);
     registry::with(|reg| reg.add_context(ctx as usize, sc));
+    super::controls::arm(&r.xlib, dpy);
+}
+
+/// Under `--auto` every context the program makes is an automatic-stereo
+/// context: the live keys work from the first one on.
+fn arm_automatic(r: &Real, dpy: *mut Display, ctx: GLXContext) {
+    if !ctx.is_null() && super::live::auto_requested() {
+        super::controls::arm(&r.xlib, dpy);
+    }
 }
 
 /// Forgets whatever was known about a context at this address (a new
-/// context may reuse a destroyed one's address).
-fn forget(ctx: GLXContext) {
+/// context may reuse a destroyed one's address), and records the share
+/// group it joins.
+fn forget(ctx: GLXContext, share: GLXContext) {
     if !ctx.is_null() {
-        registry::with(|reg| reg.born(ctx as usize));
+        registry::with(|reg| {
+            reg.born(ctx as usize);
+            reg.join_group(ctx as usize, share as usize);
+        });
     }
 }
 
 /// glXCreateContext. Refused: a NULL display or visual, a share list the
-/// program destroyed.
+/// program destroyed. A context of a stereo visual is created direct
+/// whatever `direct` says (stereo is emulated only in direct contexts).
 ///
 /// # Safety
 /// As glXCreateContext.
@@ -434,28 +635,44 @@ pub unsafe fn create_context(
     display(dpy)?;
     required(vis, "vis (the XVisualInfo*)")?;
     live_share(share, "shareList (destroyed by glXDestroyContext)")?;
+    // SAFETY: the program's visual.
+    let id = unsafe { (*vis).visualid };
+    let stereo = registry::with(|reg| reg.is_stereo_visual(vis as usize, id));
+    // A stereo context is direct: an indirect one could not be emulated.
+    let direct = if stereo { 1 } else { direct };
     // SAFETY: forwarded call.
     let ctx = unsafe { (r.glx.glXCreateContext)(dpy, vis, share, direct) };
-    forget(ctx);
+    forget(ctx, share);
     if ctx.is_null() {
         return Ok(ctx);
     }
-    // SAFETY: the program's visual.
-    let id = unsafe { (*vis).visualid };
-    if registry::with(|reg| reg.is_stereo_visual(vis as usize, id)) {
+    let mut native = 0;
+    if !stereo && (settings::verbose() || super::live::auto_requested()) {
+        // SAFETY: a valid visual.
+        unsafe { (r.glx.glXGetConfig)(dpy, vis, GLX_STEREO, &mut native) };
+        if native != 0 {
+            tell_native();
+        }
+    }
+    // Under --auto a mono visual's context gets automatic stereo.
+    let auto = !stereo && native == 0 && super::live::auto_requested();
+    if (stereo || auto) && direct_context(r, dpy, ctx) {
         adopt(
             r,
             dpy,
             ctx,
             // SAFETY: the same visual, sharing the program's context.
-            |prog| unsafe { (r.glx.glXCreateContext)(dpy, vis, prog, direct) },
+            &[&|prog| unsafe { (r.glx.glXCreateContext)(dpy, vis, prog, direct) }],
             |a| {
                 let mut v = 0;
                 // SAFETY: a valid visual.
                 unsafe { (r.glx.glXGetConfig)(dpy, vis, a, &mut v) };
                 v
             },
+            auto,
         );
+    } else {
+        arm_automatic(r, dpy, ctx);
     }
     Ok(ctx)
 }
@@ -470,7 +687,8 @@ pub enum NewContext {
 
 /// glXCreateNewContext, glXCreateContextWithConfigSGIX and
 /// glXCreateContextAttribsARB. Refused: a NULL display, a share context
-/// the program destroyed.
+/// the program destroyed. A context of a stereo configuration is created
+/// direct whatever `direct` says.
 ///
 /// # Safety
 /// As those functions.
@@ -486,6 +704,8 @@ pub unsafe fn create_config_context(
     live_share(share, "the share context (destroyed by glXDestroyContext)")?;
     let (real_config, stereo) = registry::with(|reg| reg.real_config(config as usize));
     let c = real_config as GLXFBConfig;
+    // A stereo context is direct: an indirect one could not be emulated.
+    let direct = if stereo { 1 } else { direct };
     let ctx = match how {
         // SAFETY: forwarded calls.
         NewContext::RenderType(t, Flavour::Glx13) => unsafe {
@@ -502,22 +722,46 @@ pub unsafe fn create_config_context(
             None => std::ptr::null_mut(),
         },
     };
-    forget(ctx);
-    if stereo && !ctx.is_null() {
+    forget(ctx, share);
+    let mut native = 0;
+    if !stereo && !ctx.is_null() && (settings::verbose() || super::live::auto_requested()) {
+        // SAFETY: a real configuration.
+        unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, GLX_STEREO, &mut native) };
+        if native != 0 {
+            tell_native();
+        }
+    }
+    // Under --auto a mono configuration's context gets automatic stereo.
+    let auto = !stereo && native == 0 && super::live::auto_requested();
+    if (stereo || auto) && !ctx.is_null() && direct_context(r, dpy, ctx) {
         adopt(
             r,
             dpy,
             ctx,
-            // SAFETY: a compatibility context of the same configuration,
-            // sharing the program's objects.
-            |prog| unsafe { (r.glx.glXCreateNewContext)(dpy, c, GLX_RGBA_TYPE, prog, direct) },
+            &[
+                // A compatibility context of the same configuration, sharing
+                // the program's objects, made as GL 3.2+ programs make
+                // theirs: RenderDoc below captures only frames whose
+                // context was made with glXCreateContextAttribsARB, and the
+                // frame's swap is this context's.
+                &|prog| match r.extra.create_context_attribs {
+                    // SAFETY: a valid configuration and a None-terminated list.
+                    Some(f) => unsafe { f(dpy, c, prog, direct, COMPATIBILITY.as_ptr()) },
+                    None => std::ptr::null_mut(),
+                },
+                // SAFETY: as above, the GLX 1.3 way.
+                &|prog| unsafe { (r.glx.glXCreateNewContext)(dpy, c, GLX_RGBA_TYPE, prog, direct) },
+            ],
             |a| {
                 let mut v = 0;
                 // SAFETY: a real configuration.
                 unsafe { (r.glx.glXGetFBConfigAttrib)(dpy, c, a, &mut v) };
                 v
             },
+            auto,
         );
+    } else {
+        arm_automatic(r, dpy, ctx);
     }
     Ok(ctx)
 }
@@ -594,6 +838,16 @@ pub unsafe fn make_current(
     if !ctx.is_null() && registry::with(|reg| reg.is_doomed(ctx as usize)) {
         return Err(doomed());
     }
+    let sc = if ctx.is_null() {
+        None
+    } else {
+        registry::with(|reg| reg.context(ctx as usize))
+    };
+    let before = current();
+    // The layer's own make-current of this context (freeing a destroyed
+    // drawable's buffers while it is current nowhere) waits for this one.
+    let held = sc.clone();
+    let binding = held.as_ref().map(|sc| sc.hold_binding());
     let ok = match read {
         // SAFETY: forwarded calls.
         None => unsafe { (r.glx.glXMakeCurrent)(dpy, draw, ctx) },
@@ -603,11 +857,6 @@ pub unsafe fn make_current(
         return Ok(ok);
     }
     let read = read.unwrap_or(draw);
-    let sc = if ctx.is_null() {
-        None
-    } else {
-        registry::with(|reg| reg.context(ctx as usize))
-    };
     let next = match sc {
         Some(sc) if draw != 0 && !sc.unusable() => match sc.bind(draw, read) {
             Ok(()) => Some(Current {
@@ -624,6 +873,14 @@ pub unsafe fn make_current(
         _ => None,
     };
     set_current(next);
+    drop(binding);
+    // The context current here before, now current nowhere: the buffers
+    // of drawables destroyed while it was current on them go.
+    if let Some(old) = before {
+        if current().is_none_or(|now| !Arc::ptr_eq(&now.sc, &old.sc)) {
+            old.sc.released();
+        }
+    }
     Ok(ok)
 }
 
@@ -686,16 +943,55 @@ pub unsafe fn create_window(
     Ok(w)
 }
 
-/// glXDestroyWindow. Refused: a NULL display.
+/// A GLX drawable's destroyer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Destroy {
+    /// glXDestroyWindow.
+    Window,
+    /// glXDestroyPbuffer.
+    Pbuffer,
+    /// glXDestroyGLXPbufferSGIX.
+    PbufferSgix,
+    /// glXDestroyPixmap.
+    Pixmap,
+    /// glXDestroyGLXPixmap.
+    GlxPixmap,
+}
+
+/// glXDestroyWindow, glXDestroyPbuffer, glXDestroyGLXPbufferSGIX,
+/// glXDestroyPixmap and glXDestroyGLXPixmap (`what` says which): the
+/// stereo buffers every stereo context of the display has for the
+/// drawable are freed ([`StereoContext::drawable_destroyed`]: at once,
+/// or when the context is released where GLX keeps the drawable), then
+/// the real function destroys it. Refused: a NULL display.
 ///
 /// # Safety
-/// As glXDestroyWindow.
-pub unsafe fn destroy_window(dpy: *mut Display, window: c_ulong) -> Result<()> {
+/// As the GLX function.
+pub unsafe fn destroy_drawable(dpy: *mut Display, drawable: c_ulong, what: Destroy) -> Result<()> {
     let r = loaded()?;
     display(dpy)?;
-    registry::with(|reg| reg.remove_glx_window(dpy as usize, window));
-    // SAFETY: forwarded call.
-    unsafe { (r.glx.glXDestroyWindow)(dpy, window) };
+    if drawable != 0 {
+        for sc in registry::with(|reg| reg.contexts_of(dpy as usize)) {
+            sc.drawable_destroyed(drawable);
+        }
+    }
+    if what == Destroy::Window {
+        registry::with(|reg| reg.remove_glx_window(dpy as usize, drawable));
+    }
+    // SAFETY: forwarded calls.
+    unsafe {
+        match what {
+            Destroy::Window => (r.glx.glXDestroyWindow)(dpy, drawable),
+            Destroy::Pbuffer => (r.glx.glXDestroyPbuffer)(dpy, drawable),
+            Destroy::PbufferSgix => {
+                if let Some(f) = r.extra.sgix.destroy_pbuffer {
+                    f(dpy, drawable)
+                }
+            }
+            Destroy::Pixmap => (r.glx.glXDestroyPixmap)(dpy, drawable),
+            Destroy::GlxPixmap => (r.glx.glXDestroyGLXPixmap)(dpy, drawable),
+        }
+    }
     Ok(())
 }
 

@@ -20,13 +20,19 @@
 //!   drawable's emulated default framebuffer — the four colour buffers and
 //!   the shared depth/stencil buffer of [`crate::stereo::emulated`], sized
 //!   to the drawable and resized with it — and binds it in the program's
-//!   context wherever the program has framebuffer 0;
+//!   context wherever the program has framebuffer 0. Those buffers live
+//!   as long as the drawable: the GLX destroy functions free them in every
+//!   context (a drawable current somewhere when its context is released),
+//!   and a window destroyed behind GLX's back (XDestroyWindow, its parent,
+//!   xcb, another client) is found gone the next time the context is made
+//!   current on a new drawable ([`context::StereoContext::drawable_destroyed`]);
 //! - GL calls about the default framebuffer are answered as a stereo
 //!   visual would ([`gl`]), with the exact GL errors of
 //!   [`crate::stereo::buffers`]; so are glClearBuffer and GL 4.5 direct
 //!   state access on framebuffer 0, and programs are linked so that a
 //!   shader's output 0 reaches every buffer a name such as GL_BACK selects
-//!   ([`dsa`], [`crate::stereo::outputs`]);
+//!   ([`dsa`], [`crate::stereo::outputs`]), program binaries included
+//!   ([`binaries`]);
 //! - glXSwapBuffers flips back and front buffers and shows the front
 //!   buffers composed in GLSTEREO_MODE (default anaglyph-red-cyan) in the
 //!   window ([`context::StereoContext::present`]), and, with
@@ -103,9 +109,11 @@
 //!   values, glNamedFramebufferDrawBuffers and glInvalidate(Sub)Framebuffer
 //!   lists with n > 0, the glGet*FramebufferParameteriv and
 //!   glGetNamedFramebufferAttachmentParameteriv params,
-//!   glCreateShaderProgramv strings):
-//!   nothing happens but GL_INVALID_VALUE, in the stereo context's queue of
-//!   emulated errors or, in any other context, raised by the driver itself
+//!   glCreateShaderProgramv strings; and of [`binaries`]: glGetProgramiv
+//!   params, glGetProgramBinary's format and binary, glProgramBinary's
+//!   binary):
+//!   nothing happens but GL_INVALID_VALUE, in the stereo context's error
+//!   flag or, in any other context, raised by the driver itself
 //!   with glViewport(0, 0, -1, -1) (GL rejects it with exactly that error
 //!   and no other effect). With no context current nothing is raised, as
 //!   GL raises nothing then.
@@ -113,8 +121,14 @@
 //! Pointers that are not NULL but wrong (freed, too short, unterminated
 //! lists) cannot be detected, by libGL or the layer. The layer's own GL
 //! queries in the program's context never add or hide a GL error (the
-//! program's pending errors are moved to the queue first; see
-//! [`gl::push_attrib`] in a core-profile context).
+//! program's pending error is moved to the context's flag first; see
+//! [`gl::push_attrib`] in a core-profile context), and a query the driver
+//! refuses gets no emulated answer written.
+//!
+//! GL errors are kept as Mesa keeps them: one flag per context, the first
+//! error raised since the last glGetError, whether the emulation or the
+//! driver raised it; later ones are dropped. (GL 4.5 describes one flag
+//! per error code; where Mesa can answer, the layer's answer is Mesa's.)
 //!
 //! # Threads
 //!
@@ -129,19 +143,57 @@
 //! on is not updated (said on stderr): GLX would swap a context's drawable
 //! only where it is current too.
 //!
-//! Names: the layer's textures and renderbuffers live in the program's
-//! share group, so they take names from the top of the name space
-//! ([`crate::gl::Gl::reserve_names`]): legacy programs bind small texture
-//! names they never generated. Its framebuffer object in the program's
-//! context is never reported (bindings of it read 0) and never deleted by
-//! the program.
+//! Names: the layer's textures, renderbuffers and framebuffer objects live
+//! in the program's share group. Textures and renderbuffers take names
+//! from just below 2^31, framebuffer objects glGen* names
+//! ([`crate::gl::names`] says why: legacy programs bind small texture
+//! names they never generated and index small tables with their generated
+//! ones, bindings read through a GLint must stay non-negative, layers
+//! below track framebuffer objects by name). The program's glDelete* leave
+//! them alone; the layer's framebuffer object in the program's context is
+//! never reported (bindings of it read 0).
+//!
+//! # Other GL layers in the process
+//!
+//! The layer is one of several: VirtualGL, apitrace, RenderDoc and
+//! MangoHud stack above or below it (tests/stacking.rs runs each, in both
+//! launch orders). Above it, a layer asks it for "the real" functions
+//! (dlsym(RTLD_NEXT), glXGetProcAddress, dlopen of libGL) and gets the
+//! layer's own — never the first definition of a name in the process,
+//! which would be that layer's own function (preload/src/lib.rs). Below
+//! it ([`next`]):
+//! - every frame goes through the next glXSwapBuffers when that is another
+//!   layer's ([`real::Real::swap_layered`]): MangoHud draws its HUD there,
+//!   VirtualGL sends the frame, apitrace and RenderDoc end a frame there;
+//!   the composite is drawn by GL then, not put with MIT-SHM, and the eyes
+//!   are plain textures (no imported memory, which no layer can replay);
+//! - the layer's own context is made with glXCreateContextAttribsARB
+//!   where the program's configuration allows (RenderDoc captures only
+//!   such contexts' frames);
+//! - framebuffer 0 answers from the emulated framebuffer, whatever the
+//!   layer below has as its framebuffer 0 (VirtualGL makes contexts current
+//!   without a surface: there it is undefined) — see [`dsa`];
+//! - stereo a driver or a layer below offers (VirtualGL's own 144 stereo
+//!   configurations) is used as it is when the user chose no format, and
+//!   emulated like a mono configuration when the user chose one
+//!   ([`settings::native_allowed`]); GLSTEREO_VERBOSE says which.
+//!
+//! A layer above that takes libGL's functions straight from libGL,
+//! bypassing every layer after it (MangoHud, when it is preloaded before
+//! glstereo by hand: it finds libc's dlopen by walking the ELF tables), is
+//! out of reach: the program's contexts and swaps never pass through
+//! glstereo then.
 
 pub mod attribs;
+pub mod binaries;
 pub mod capture;
 pub mod context;
+pub mod controls;
+pub mod draws;
 pub mod dsa;
 pub mod gl;
 pub mod glx;
+pub mod live;
 pub mod next;
 pub mod real;
 pub mod registry;

@@ -239,6 +239,36 @@ pub fn next_symbol(name: &CStr) -> *mut c_void {
     bottom_symbol(name)
 }
 
+/// The next definition of `name`, a function of library `soname` that is
+/// not GL's (libxcb's event functions): the next definition after the
+/// layer, else the one in `soname` as loaded already (a library opened
+/// with RTLD_LOCAL, as SDL2 opens libX11 and so libxcb, is in no global
+/// scope). Never the layer's own; NULL where `soname` is not loaded —
+/// nothing is loaded for the look-up (a program that never loaded GL
+/// does not get libGL loaded behind its back, unlike [`next_symbol`]).
+pub fn next_symbol_in(name: &CStr, soname: &CStr) -> *mut c_void {
+    let p = lookup_in(libc::RTLD_NEXT, name);
+    if !p.is_null() {
+        return p;
+    }
+    own_symbol_in(name, soname)
+}
+
+/// `soname`'s own `name`, under every layer (a handle's look-up searches
+/// that library and its dependencies only); NULL where `soname` is not
+/// loaded.
+pub fn own_symbol_in(name: &CStr, soname: &CStr) -> *mut c_void {
+    let Some(open) = libc_dlopen() else {
+        return std::ptr::null_mut();
+    };
+    // SAFETY: libc's dlopen with a NUL-terminated name; RTLD_NOLOAD only
+    // finds a library that is loaded already. The reference it takes is
+    // kept: the address found is cached by the caller, and must stay
+    // valid if the program unloads its own user of the library.
+    let h = unsafe { open(soname.as_ptr(), libc::RTLD_LAZY | libc::RTLD_NOLOAD) };
+    lookup_in(h, name)
+}
+
 /// libGL's own `name`, under every layer: from libGL.so.1 opened with
 /// libc's dlopen, else from its glXGetProcAddressARB. NULL without libGL.
 pub fn bottom_symbol(name: &CStr) -> *mut c_void {

@@ -43,6 +43,10 @@ pub struct Extra {
     pub bind_framebuffer_ext: Option<unsafe extern "system" fn(u32, u32)>,
     /// `glDeleteFramebuffersEXT`.
     pub delete_framebuffers_ext: Option<unsafe extern "system" fn(i32, *const u32)>,
+    /// `glDeleteTexturesEXT` (GL_EXT_texture_object).
+    pub delete_textures_ext: Option<unsafe extern "system" fn(i32, *const u32)>,
+    /// `glDeleteRenderbuffersEXT` (GL_EXT_framebuffer_object).
+    pub delete_renderbuffers_ext: Option<unsafe extern "system" fn(i32, *const u32)>,
     /// `glDrawBuffersARB`.
     pub draw_buffers_arb: Option<unsafe extern "system" fn(i32, *const u32)>,
     /// `glGetFramebufferAttachmentParameterivEXT`.
@@ -99,6 +103,9 @@ pub struct Extra {
     /// GL_EXT_memory_object(_fd): eye textures read in place
     /// ([`crate::stereo::eye_memory`]).
     pub memory_objects: Option<crate::stereo::eye_memory::MemoryObjectApi>,
+    /// GL 3.2–4.3's layered attachments and image copies: automatic
+    /// stereo's eyes ([`crate::auto::eyes`]).
+    pub layered: Option<crate::auto::eyes::LayeredApi>,
     /// The SGIX FBConfig functions (GLX_SGIX_fbconfig), which take configs too.
     pub sgix: Sgix,
 }
@@ -138,6 +145,8 @@ pub struct Sgix {
     pub create_pbuffer: Option<
         unsafe extern "C" fn(*mut xlib::Display, GLXFBConfig, u32, u32, *const c_int) -> c_ulong,
     >,
+    /// `glXDestroyGLXPbufferSGIX`.
+    pub destroy_pbuffer: Option<unsafe extern "C" fn(*mut xlib::Display, c_ulong)>,
 }
 
 macro_rules! glx_table {
@@ -190,6 +199,9 @@ glx_table! {
     glXCreateWindow(*mut xlib::Display, GLXFBConfig, c_ulong, *const c_int) -> c_ulong;
     glXDestroyContext(*mut xlib::Display, GLXContext);
     glXDestroyWindow(*mut xlib::Display, c_ulong);
+    glXDestroyPbuffer(*mut xlib::Display, c_ulong);
+    glXDestroyPixmap(*mut xlib::Display, c_ulong);
+    glXDestroyGLXPixmap(*mut xlib::Display, c_ulong);
     glXGetConfig(*mut xlib::Display, *mut xlib::XVisualInfo, c_int, *mut c_int) -> c_int;
     glXGetCurrentContext() -> GLXContext;
     glXGetCurrentDisplay() -> *mut xlib::Display;
@@ -199,6 +211,7 @@ glx_table! {
     glXGetFBConfigs(*mut xlib::Display, c_int, *mut c_int) -> *mut GLXFBConfig;
     glXGetProcAddressARB(*const c_uchar) -> Option<unsafe extern "C" fn()>;
     glXGetVisualFromFBConfig(*mut xlib::Display, GLXFBConfig) -> *mut xlib::XVisualInfo;
+    glXIsDirect(*mut xlib::Display, GLXContext) -> c_int;
     glXMakeContextCurrent(*mut xlib::Display, c_ulong, c_ulong, GLXContext) -> c_int;
     glXMakeCurrent(*mut xlib::Display, c_ulong, GLXContext) -> c_int;
     glXQueryDrawable(*mut xlib::Display, c_ulong, c_int, *mut c_uint);
@@ -211,11 +224,16 @@ pub struct Real {
     pub xlib: Xlib,
     /// The GLX functions below the layer.
     pub glx: Glx,
-    /// GL functions (dispatch stubs). Textures and renderbuffers made
-    /// through it take reserved names ([`Gl::reserve_names`]).
+    /// GL functions (dispatch stubs). The objects made through it in a
+    /// program's share group are named as [`crate::gl::names`] says
+    /// ([`Gl::own_names`]).
     pub gl: Gl,
     /// The rest.
     pub extra: Extra,
+    /// The next glXSwapBuffers is not libGL's own but a GL layer's below
+    /// this one (MangoHud draws its HUD there, VirtualGL sends the frame,
+    /// apitrace records it): every frame must go through it.
+    pub swap_layered: bool,
 }
 
 // SAFETY: function tables only; the functions are thread-safe as GLX and
@@ -246,7 +264,7 @@ fn load() -> Result<Real, String> {
     // SAFETY: the next glXGetProcAddressARB returns each named GL function
     // (libglvnd returns a dispatch stub for every gl* name) or NULL.
     let mut gl = unsafe { Gl::load(get) }.map_err(|e| e.to_string())?;
-    gl.reserve_names();
+    gl.own_names();
     macro_rules! lookup {
         ($name:literal) => {{
             let p = get($name);
@@ -259,6 +277,8 @@ fn load() -> Result<Real, String> {
         create_context_attribs: lookup!(c"glXCreateContextAttribsARB"),
         bind_framebuffer_ext: lookup!(c"glBindFramebufferEXT"),
         delete_framebuffers_ext: lookup!(c"glDeleteFramebuffersEXT"),
+        delete_textures_ext: lookup!(c"glDeleteTexturesEXT"),
+        delete_renderbuffers_ext: lookup!(c"glDeleteRenderbuffersEXT"),
         draw_buffers_arb: lookup!(c"glDrawBuffersARB"),
         get_attachment_ext: lookup!(c"glGetFramebufferAttachmentParameterivEXT"),
         push_attrib: lookup!(c"glPushAttrib"),
@@ -286,6 +306,8 @@ fn load() -> Result<Real, String> {
         clear_colorx_oes: lookup!(c"glClearColorxOES"),
         // SAFETY: `get` returns the named GL function or NULL.
         memory_objects: unsafe { crate::stereo::eye_memory::MemoryObjectApi::load(get) },
+        // SAFETY: as above.
+        layered: unsafe { crate::auto::eyes::LayeredApi::load(get) },
         sgix: Sgix {
             choose: lookup!(c"glXChooseFBConfigSGIX"),
             get_attrib: lookup!(c"glXGetFBConfigAttribSGIX"),
@@ -293,13 +315,17 @@ fn load() -> Result<Real, String> {
             create_context: lookup!(c"glXCreateContextWithConfigSGIX"),
             create_pixmap: lookup!(c"glXCreateGLXPixmapWithConfigSGIX"),
             create_pbuffer: lookup!(c"glXCreateGLXPbufferSGIX"),
+            destroy_pbuffer: lookup!(c"glXDestroyGLXPbufferSGIX"),
         },
     };
+    let swap_layered = glx.glXSwapBuffers as *const c_void
+        != super::next::bottom_symbol(c"glXSwapBuffers").cast_const();
     Ok(Real {
         xlib,
         glx,
         gl,
         extra,
+        swap_layered,
     })
 }
 

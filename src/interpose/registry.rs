@@ -61,6 +61,18 @@ pub struct Registry {
     dead: VecDeque<usize>,
     /// Displays whose XCloseDisplay calls [`Registry::forget_display`].
     watched: HashSet<usize>,
+    /// Every live context the program made → its share group (contexts
+    /// made with a share context join its group; the layer's own contexts
+    /// join the program's).
+    groups: HashMap<usize, u64>,
+    /// Share groups holding a stereo context, whose objects include the
+    /// layer's.
+    stereo_groups: HashSet<u64>,
+    /// The last share group number handed out.
+    last_group: u64,
+    /// Display → whether GLX renders directly there (asked once: stereo
+    /// is emulated only where it does).
+    direct: HashMap<usize, bool>,
 }
 
 /// What [`Registry::forget_display`] removed, to be dropped after the
@@ -152,6 +164,33 @@ impl Registry {
         self.dead.retain(|&c| c != ctx);
         self.contexts.remove(&ctx);
         self.doomed.remove(&ctx);
+        self.groups.remove(&ctx);
+    }
+
+    /// Records new context `ctx`, made sharing objects with `share` (0:
+    /// none), in `share`'s share group or a group of its own.
+    pub fn join_group(&mut self, ctx: usize, share: usize) {
+        let group = match self.groups.get(&share) {
+            Some(&g) if share != 0 => g,
+            _ => {
+                self.last_group += 1;
+                self.last_group
+            }
+        };
+        self.groups.insert(ctx, group);
+    }
+
+    /// The share group of context `ctx` (0: unknown).
+    pub fn group(&self, ctx: usize) -> u64 {
+        self.groups.get(&ctx).copied().unwrap_or(0)
+    }
+
+    /// Whether context `ctx` shares objects with a stereo context (and so
+    /// with the layer's objects).
+    pub fn in_stereo_group(&self, ctx: usize) -> bool {
+        self.groups
+            .get(&ctx)
+            .is_some_and(|g| self.stereo_groups.contains(g))
     }
 
     /// Records a stereo context destroyed while current (its destruction
@@ -173,6 +212,9 @@ impl Registry {
 
     /// Records a stereo context.
     pub fn add_context(&mut self, ctx: usize, sc: Arc<StereoContext>) {
+        if let Some(&g) = self.groups.get(&ctx) {
+            self.stereo_groups.insert(g);
+        }
         self.contexts.insert(ctx, sc);
     }
 
@@ -205,6 +247,16 @@ impl Registry {
         self.glx_windows.remove(&(display, glx_window));
     }
 
+    /// Whether GLX renders directly on `display`, if known.
+    pub fn renders_directly(&self, display: usize) -> Option<bool> {
+        self.direct.get(&display).copied()
+    }
+
+    /// Records whether GLX renders directly on `display`.
+    pub fn set_renders_directly(&mut self, display: usize, direct: bool) {
+        self.direct.insert(display, direct);
+    }
+
     /// Marks `display` as watched; true the first time (install the hook).
     pub fn watch(&mut self, display: usize) -> bool {
         self.watched.insert(display)
@@ -215,6 +267,7 @@ impl Registry {
     /// real ones too), contexts and GLX windows.
     pub fn forget_display(&mut self, display: usize) -> Forgotten {
         self.watched.remove(&display);
+        self.direct.remove(&display);
         self.stereo_visuals.retain(|_, &mut (_, d)| d != display);
         self.fakes.retain(|_, f| f.display != display);
         self.fake_of.retain(|&(d, _), _| d != display);
@@ -240,6 +293,7 @@ impl Registry {
             + self.doomed.len()
             + self.glx_windows.len()
             + self.watched.len()
+            + self.direct.len()
     }
 
     /// Whether the registry holds nothing.
@@ -307,6 +361,7 @@ mod tests {
             r.mark_visual(d, 0x100 * d, 33, true);
             r.fake_config(d, 0x1000);
             r.add_glx_window(d, 0x400001, 0x200001);
+            r.set_renders_directly(d, d == 2);
         }
         let a2 = r.fake_config(2, 0x1000);
         let before = r.len();
@@ -317,6 +372,8 @@ mod tests {
         assert_eq!(r.real_config(a2), (0x1000, true));
         assert_eq!(r.x_drawable(1, 0x400001), 0x400001);
         assert_eq!(r.x_drawable(2, 0x400001), 0x200001);
+        assert_eq!(r.renders_directly(1), None);
+        assert_eq!(r.renders_directly(2), Some(true));
         assert!(
             r.watch(1),
             "a new display at the same address is watched again"

@@ -32,9 +32,31 @@ pub fn window_mode() -> OutputMode {
     }
 }
 
-/// Whether the user asked for the driver's own quad buffer
-/// (GLSTEREO_MODE=quad): then a server with real stereo visuals is used as
-/// it is, and the layer stays out of the way.
-pub fn wants_native_quad() -> bool {
-    get().mode == Some(OutputMode::Quad)
+/// Whether a stereo request may be answered with native stereo — the
+/// driver's quad buffer, or the stereo visuals and configurations a layer
+/// below offers (VirtualGL's): when the user chose no format, or chose
+/// `quad`. An explicit format (GLSTEREO_MODE, `glstereo-run -m`) means the
+/// user wants that format, so every stereo request is emulated and shown
+/// in it.
+pub fn native_allowed() -> bool {
+    matches!(get().mode, None | Some(OutputMode::Quad))
+}
+
+/// GLSTEREO_VERBOSE (`glstereo-run -v`): the layer says on stderr, once
+/// per kind, which stereo each program got (native or emulated, and in
+/// which format) and how its frames are presented.
+pub const ENV_VERBOSE: &str = "GLSTEREO_VERBOSE";
+
+/// Whether GLSTEREO_VERBOSE is set to anything but "" or "0".
+pub fn verbose() -> bool {
+    static VERBOSE: OnceLock<bool> = OnceLock::new();
+    *VERBOSE
+        .get_or_init(|| std::env::var_os(ENV_VERBOSE).is_some_and(|v| !v.is_empty() && v != "0"))
+}
+
+/// Says `message` on stderr (once) when GLSTEREO_VERBOSE is set.
+pub fn tell(message: &str) {
+    if verbose() {
+        super::warn(message);
+    }
 }

@@ -194,12 +194,19 @@ pub fn preferred_path(software: bool, mode: OutputMode, options: &OutputOptions)
     }
 }
 
-/// Whether a GL_RENDERER string names one of Mesa's software rasterizers.
+/// Whether a GL_RENDERER string names one of Mesa's software rasterizers
+/// as the GL driver: llvmpipe, softpipe, swrast (their name comes first)
+/// or the classic "Software Rasterizer". A GL driver over another API
+/// names its device after its own name — zink over lavapipe is
+/// "zink (llvmpipe (LLVM …))", virgl "virgl (…)" — and is not one: its
+/// frames reach the window through its own swap (zink: Vulkan's), so it
+/// gets the GL paths a hardware driver gets, wherever its device renders.
 pub fn is_software_renderer(renderer: &str) -> bool {
-    let r = renderer.to_ascii_lowercase();
-    ["llvmpipe", "softpipe", "swrast", "software rasterizer"]
+    let r = renderer.trim_start().to_ascii_lowercase();
+    ["llvmpipe", "softpipe", "swrast"]
         .iter()
-        .any(|s| r.contains(s))
+        .any(|s| r.starts_with(s))
+        || r.contains("software rasterizer")
 }
 
 /// The shader programs; one per family of modes and variant.
@@ -1302,6 +1309,16 @@ mod tests {
         ));
         assert!(!is_software_renderer(
             "AMD Radeon RX 6600 (navi23, LLVM 15.0.6, DRM 3.49)"
+        ));
+        // GL over Vulkan (or a remote GPU) names its device in brackets.
+        assert!(!is_software_renderer(
+            "zink (llvmpipe (LLVM 15.0.6, 256 bits))"
+        ));
+        assert!(!is_software_renderer(
+            "zink (Lavapipe (LLVM 19.1.7, 256 bits))"
+        ));
+        assert!(!is_software_renderer(
+            "virgl (LLVMPIPE (LLVM 15.0.6, 256 bits))"
         ));
     }
 

@@ -187,6 +187,45 @@ pub fn gl_error_code(e: &Error) -> u32 {
     }
 }
 
+/// The GL error glInvalidateFramebuffer, glInvalidateSubFramebuffer and
+/// glInvalidateNamedFramebuffer(Sub)Data raise for a default framebuffer
+/// (desktop GL, in Mesa's order): a negative `n`, or a negative width or
+/// height (`size`, for the Sub forms) is GL_INVALID_VALUE; an attachment
+/// other than GL_COLOR, GL_DEPTH, GL_STENCIL, GL_FRONT_LEFT, GL_FRONT_RIGHT,
+/// GL_BACK_LEFT and GL_BACK_RIGHT is GL_INVALID_ENUM. None: accepted.
+/// Invalidation is a hint: what it accepts, an emulated framebuffer may
+/// keep.
+pub fn default_invalidate_error(
+    n: i32,
+    attachments: &[u32],
+    size: Option<(i32, i32)>,
+) -> Option<u32> {
+    if n < 0 || size.is_some_and(|(w, h)| w < 0 || h < 0) {
+        return Some(GL_INVALID_VALUE);
+    }
+    attachments
+        .iter()
+        .any(|&a| {
+            !matches!(
+                a,
+                GL_COLOR_NAME
+                    | GL_DEPTH_NAME
+                    | GL_STENCIL_NAME
+                    | GL_FRONT_LEFT
+                    | GL_FRONT_RIGHT
+                    | GL_BACK_LEFT
+                    | GL_BACK_RIGHT
+            )
+        })
+        .then_some(GL_INVALID_ENUM)
+}
+
+/// GL_COLOR, GL_DEPTH and GL_STENCIL, the names a default framebuffer's
+/// buffers take in glInvalidate* and glClearBuffer.
+const GL_COLOR_NAME: u32 = 0x1800;
+const GL_DEPTH_NAME: u32 = 0x1801;
+const GL_STENCIL_NAME: u32 = 0x1802;
+
 /// Human-readable name of a buffer enum, for messages.
 pub fn buffer_name(buf: u32) -> String {
     match buf {
@@ -539,5 +578,39 @@ mod tests {
         }
         assert_eq!(STEREO_DB.allocated().len(), 4);
         assert_eq!(MONO_SB.allocated(), set(&[FrontLeft]));
+    }
+
+    #[test]
+    fn invalidating_a_default_framebuffer_is_validated_as_mesa_validates_a_window() {
+        // Accepted: the names Mesa 22.3 takes for a window (the probes of
+        // tests/c/glx_core_stereo.c on a mono window).
+        for a in [
+            0x1800,
+            0x1801,
+            0x1802,
+            GL_FRONT_LEFT,
+            GL_BACK_LEFT,
+            GL_FRONT_RIGHT,
+            GL_BACK_RIGHT,
+        ] {
+            assert_eq!(default_invalidate_error(1, &[a], None), None, "{a:#x}");
+        }
+        for a in [GL_COLOR_ATTACHMENT0, 0x8D00, GL_FRONT, GL_BACK, 0x1234] {
+            assert_eq!(
+                default_invalidate_error(2, &[0x1800, a], None),
+                Some(GL_INVALID_ENUM),
+                "{a:#x}"
+            );
+        }
+        assert_eq!(
+            default_invalidate_error(-1, &[], None),
+            Some(GL_INVALID_VALUE)
+        );
+        // The value check comes first, as in Mesa.
+        assert_eq!(
+            default_invalidate_error(1, &[GL_COLOR_ATTACHMENT0], Some((4, -1))),
+            Some(GL_INVALID_VALUE)
+        );
+        assert_eq!(default_invalidate_error(0, &[], Some((0, 0))), None);
     }
 }

@@ -9,6 +9,17 @@
 //! each eye and re-issues glDrawBuffers/glReadBuffer, so presenting a frame
 //! copies nothing.
 //!
+//! The draw-buffer table of that framebuffer object is sparse where GL
+//! says outputs go nowhere: under glDrawBuffer(GL_BACK) on stereo it is
+//! {back-left, NONE ×4, back-right} (the copies of output 0 are at
+//! [`COPY_LOCATIONS`]). Mesa 22.3's zink crashes on a table with two or
+//! more GL_NONE entries below its last buffer (inside its Vulkan driver,
+//! at the first clear or draw; its own GL programs can trigger it too), so
+//! on zink ([`fills_draw_buffer_gaps`]) the gaps are filled with
+//! one-channel textures nothing reads, attached at
+//! `GL_COLOR_ATTACHMENT4…7`: outputs 1…4 still reach no colour buffer the
+//! program can see, and every query answers as before.
+//!
 //! Where the driver allows (llvmpipe) and the formats ask for it
 //! ([`BufferFormats::in_place`]), the colour textures' storage is memory
 //! the CPU maps too ([`crate::stereo::eye_memory`]), so a composite reads
@@ -18,6 +29,7 @@
 //! ([`EmulatedFramebuffer::reattach_app`]) and the old memory is freed
 //! once nothing renders into it ([`EmulatedFramebuffer::release_retired`]).
 
+use crate::auto::eyes::{LayeredApi, LayeredEyes};
 use crate::error::{Error, Result};
 use crate::gl::Gl;
 use crate::gl::enums::*;
@@ -37,8 +49,23 @@ pub const MAX_DRAW_BUFFERS: usize = 8;
 /// and fourth buffer a glDrawBuffer name selects: the top three of
 /// [`MAX_DRAW_BUFFERS`], which programs drawing into a default framebuffer
 /// leave unused (only output 0 reaches a default framebuffer under
-/// glDrawBuffer).
-pub const COPY_LOCATIONS: [u32; 3] = [7, 6, 5];
+/// glDrawBuffer). In that order: the second buffer at 5 leaves four gaps
+/// below it (slots 1…4), as many as there are filler attachments where a
+/// driver needs the gaps filled ([`fills_draw_buffer_gaps`]).
+pub const COPY_LOCATIONS: [u32; 3] = [5, 6, 7];
+
+/// Filler attachments at most (`GL_COLOR_ATTACHMENT4…7`; GL 3.0 has 8).
+const FILLERS: usize = MAX_DRAW_BUFFERS - 4;
+
+/// Whether the renderer named `renderer` (GL_RENDERER) gets the gaps of
+/// its draw-buffer tables filled (see the module documentation): zink,
+/// whose Mesa 22.3 crashes on two GL_NONE entries below the last buffer
+/// (checked with and without glstereo; zink on Mesa 25 does not, and
+/// llvmpipe never did). The cost is four one-channel textures the size of
+/// the eyes and their writes; other drivers take the sparse table.
+pub fn fills_draw_buffer_gaps(renderer: &str) -> bool {
+    renderer.starts_with("zink")
+}
 
 /// Up to four draw-buffer indices ([`EmulatedFramebuffer::draw_buffer_slots`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -66,12 +93,25 @@ impl DrawSlots {
     }
 }
 
+/// Puts the filler attachments (`GL_COLOR_ATTACHMENT4…7`, in order) in
+/// the GL_NONE entries of a draw-buffer table below its last buffer, as
+/// many as there are fillers; entries after the last buffer stay GL_NONE.
+fn fill_gaps(table: &mut [u32]) {
+    let last = table.iter().rposition(|&a| a != GL_NONE).unwrap_or(0);
+    let gaps = table[..last].iter_mut().filter(|a| **a == GL_NONE);
+    for (a, k) in gaps.zip(0..FILLERS) {
+        *a = GL_COLOR_ATTACHMENT0 + (4 + k) as u32;
+    }
+}
+
 /// What glGetIntegerv(`pname`) reports about an emulated default
 /// framebuffer of `shape`, or None where the driver's own answer stands.
 /// `draw` and `read` are the emulated framebuffer when its object is the
 /// one bound to that target, None when the program has bound its own.
 ///
-/// Answered: GL_STEREO and GL_DOUBLEBUFFER (from the shape);
+/// Answered: GL_STEREO and GL_DOUBLEBUFFER (from the shape, when the
+/// emulated framebuffer is the draw framebuffer: GL answers them from the
+/// draw framebuffer, and a framebuffer object is neither);
 /// GL_DRAW_BUFFER, GL_DRAW_BUFFERi and GL_READ_BUFFER (as the program set
 /// them); GL_DRAW_FRAMEBUFFER_BINDING and GL_READ_FRAMEBUFFER_BINDING (0:
 /// the emulation's framebuffer object is the default framebuffer).
@@ -82,8 +122,8 @@ pub fn default_framebuffer_query(
     read: Option<&EmulatedFramebuffer>,
 ) -> Option<i32> {
     match (pname, draw, read) {
-        (GL_STEREO, _, _) => Some(shape.stereo as i32),
-        (GL_DOUBLEBUFFER, _, _) => Some(shape.double_buffered as i32),
+        (GL_STEREO, Some(_), _) => Some(shape.stereo as i32),
+        (GL_DOUBLEBUFFER, Some(_), _) => Some(shape.double_buffered as i32),
         (GL_DRAW_FRAMEBUFFER_BINDING, Some(_), _) => Some(0),
         (GL_READ_FRAMEBUFFER_BINDING, _, Some(_)) => Some(0),
         (GL_DRAW_BUFFER, Some(fb), _) => Some(fb.draw_buffer_query(0) as i32),
@@ -159,6 +199,11 @@ pub struct BufferFormats {
     /// replaces the textures, and the program's framebuffer object needs
     /// [`EmulatedFramebuffer::reattach_app`].
     pub in_place: Option<MemoryObjectApi>,
+    /// Automatic stereo ([`crate::auto::eyes`]): the colour buffers are
+    /// the layers of two arrays (a front and a back pair), depth and
+    /// stencil one array, all made through this API and attached layered,
+    /// so one draw reaches both eyes by its layer.
+    pub layered: Option<LayeredApi>,
 }
 
 impl BufferFormats {
@@ -174,6 +219,7 @@ impl BufferFormats {
                 0
             },
             in_place: None,
+            layered: None,
         }
     }
 
@@ -191,6 +237,7 @@ impl BufferFormats {
                 _ => GL_DEPTH24_STENCIL8,
             },
             in_place: None,
+            layered: None,
         }
     }
 
@@ -213,6 +260,10 @@ pub struct EmulatedFramebuffer {
     textures: [u32; 4],
     /// Depth/stencil renderbuffer (0 when the config has neither).
     depth_stencil: u32,
+    /// One-channel textures that fill the gaps of the draw-buffer table
+    /// at `GL_COLOR_ATTACHMENT4…7` (all 0 where the driver takes gaps:
+    /// [`fills_draw_buffer_gaps`]).
+    fillers: [u32; FILLERS],
     /// Storage formats.
     formats: BufferFormats,
     /// Slot of each colour buffer, by [`ColorBuffer::index`].
@@ -232,6 +283,11 @@ pub struct EmulatedFramebuffer {
     draw: DrawState,
     read_name: u32,
     read: Option<ColorBuffer>,
+    /// Automatic stereo's layered eyes ([`BufferFormats::layered`]).
+    layered: Option<LayeredEyes>,
+    /// Layered eyes replaced by a resize, released by
+    /// [`EmulatedFramebuffer::release_retired`].
+    retired_layers: Vec<LayeredEyes>,
 }
 
 impl EmulatedFramebuffer {
@@ -273,6 +329,7 @@ impl EmulatedFramebuffer {
             height,
             textures: [0; 4],
             depth_stencil: 0,
+            fillers: [0; FILLERS],
             formats,
             slot_of: [0, 1, 2, 3],
             app_fbo: 0,
@@ -286,6 +343,8 @@ impl EmulatedFramebuffer {
             },
             read_name: initial,
             read: resolve_read_buffer(shape, initial).expect("the initial buffer exists"),
+            layered: None,
+            retired_layers: Vec::new(),
         };
         // SAFETY: a context is current (contract).
         unsafe {
@@ -299,11 +358,22 @@ impl EmulatedFramebuffer {
             }
             gl.take_error();
             fb.read_fbo = gl.gen_framebuffer();
-            for b in shape.allocated().iter() {
+            // Layered eyes make their own textures.
+            for b in shape
+                .allocated()
+                .iter()
+                .filter(|_| formats.layered.is_none())
+            {
                 fb.textures[fb.slot_of[b.index()]] = gl.gen_texture();
             }
-            if formats.depth != 0 {
+            // Layered eyes keep depth and stencil in their own array.
+            if formats.depth != 0 && formats.layered.is_none() {
                 fb.depth_stencil = gl.gen_renderbuffer();
+            }
+            if fills_draw_buffer_gaps(&gl.string(GL_RENDERER)) {
+                for f in &mut fb.fillers {
+                    *f = gl.gen_texture();
+                }
             }
             let mut stored = fb.allocate_storage(gl);
             if stored.is_ok() && formats.color != GL_RGBA8 && !fb.color_renderable(gl) {
@@ -344,6 +414,10 @@ impl EmulatedFramebuffer {
 
     /// (Re)allocates texture and renderbuffer storage at the current size and clears it.
     unsafe fn allocate_storage(&mut self, gl: &Gl) -> Result<()> {
+        if let Some(api) = self.formats.layered {
+            // SAFETY: contract.
+            return unsafe { self.allocate_layered(gl, api) };
+        }
         let (w, h) = (self.width as i32, self.height as i32);
         // SAFETY: a context is current (contract of the callers).
         unsafe {
@@ -374,6 +448,22 @@ impl EmulatedFramebuffer {
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE as i32);
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
             }
+            // The fillers' contents are never read: no clear.
+            for &tex in self.fillers.iter().filter(|&&t| t != 0) {
+                gl.BindTexture(GL_TEXTURE_2D, tex);
+                gl.TexImage2D(
+                    GL_TEXTURE_2D,
+                    0,
+                    GL_R8 as i32,
+                    w,
+                    h,
+                    0,
+                    GL_RED,
+                    GL_UNSIGNED_BYTE,
+                    std::ptr::null(),
+                );
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+            }
             gl.BindTexture(GL_TEXTURE_2D, 0);
             if self.depth_stencil != 0 {
                 gl.BindRenderbuffer(GL_RENDERBUFFER, self.depth_stencil);
@@ -402,6 +492,67 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
             gl.check("clearing the stereo buffers")
         }
+    }
+
+    /// [`Self::allocate_storage`] of layered eyes: new ones (the old go
+    /// once nothing renders into them), their textures in the slots.
+    unsafe fn allocate_layered(&mut self, gl: &Gl, api: LayeredApi) -> Result<()> {
+        if let Some(old) = self.layered.take() {
+            self.retired_layers.push(old);
+        }
+        let pairs = [true, self.shape.double_buffered];
+        // SAFETY: contract.
+        let eyes = unsafe {
+            LayeredEyes::allocate(
+                gl,
+                api,
+                self.formats.in_place,
+                (self.width, self.height),
+                (self.formats.depth, self.formats.opaque),
+                pairs,
+                self.read_fbo,
+            )?
+        };
+        for slot in 0..4 {
+            self.textures[slot] = eyes.texture(slot);
+        }
+        self.layered = Some(eyes);
+        self.attachments_stale = self.app_fbo != 0;
+        Ok(())
+    }
+
+    /// Copies the layered eyes (automatic stereo) into the colour buffers
+    /// a present shows: the back buffers before a swap (`front` false),
+    /// the front buffers of a single-buffered framebuffer. Nothing without
+    /// layered eyes.
+    ///
+    /// # Safety
+    /// A context sharing the framebuffer's objects must be current.
+    pub unsafe fn resolve_layers(&self, front: bool) {
+        let Some(eyes) = &self.layered else {
+            return;
+        };
+        let left = if front || !self.shape.double_buffered {
+            ColorBuffer::FrontLeft
+        } else {
+            ColorBuffer::BackLeft
+        };
+        // SAFETY: contract.
+        unsafe { eyes.resolve(crate::auto::eyes::pair(self.slot_of[left.index()])) };
+    }
+
+    /// Readies layered eyes' shared memory to be freed by the driver
+    /// rather than by [`Self::release`] (their share group ends): nothing
+    /// may render into them afterwards.
+    pub fn prepare_unmap(&self) {
+        for eyes in self.layered.iter().chain(&self.retired_layers) {
+            eyes.prepare_unmap();
+        }
+    }
+
+    /// The layered eyes of automatic stereo, if this framebuffer has them.
+    pub fn layered(&self) -> Option<&LayeredEyes> {
+        self.layered.as_ref()
     }
 
     /// Gives every colour texture storage the CPU reads in place
@@ -452,7 +603,7 @@ impl EmulatedFramebuffer {
             gl.Finish();
             for slot in 0..4 {
                 if self.textures[slot] != 0 {
-                    gl.DeleteTextures(1, &self.textures[slot]);
+                    gl.delete_textures(&[self.textures[slot]]);
                     self.textures[slot] = gl.gen_texture();
                 }
                 if let Some(m) = self.memory[slot].take() {
@@ -473,7 +624,7 @@ impl EmulatedFramebuffer {
             if let Some(m) = self.memory[slot].take() {
                 // SAFETY: a context is current (contract of the callers).
                 unsafe {
-                    gl.DeleteTextures(1, &self.textures[slot]);
+                    gl.delete_textures(&[self.textures[slot]]);
                     self.textures[slot] = gl.gen_texture();
                 }
                 self.retired.push(m);
@@ -488,7 +639,11 @@ impl EmulatedFramebuffer {
     ///
     /// # Safety
     /// A context sharing the framebuffer's objects must be current.
-    pub unsafe fn release_retired(&mut self, _gl: &Gl) {
+    pub unsafe fn release_retired(&mut self, gl: &Gl) {
+        for mut eyes in self.retired_layers.drain(..) {
+            // SAFETY: contract.
+            unsafe { eyes.release(gl) };
+        }
         if self.retired.is_empty() {
             return;
         }
@@ -533,7 +688,10 @@ impl EmulatedFramebuffer {
     /// Whether any colour texture's storage (or a replaced one's, not yet
     /// freed) is memory from [`crate::stereo::eye_memory`].
     pub fn holds_memory(&self) -> bool {
-        self.memory.iter().any(Option::is_some) || !self.retired.is_empty()
+        self.memory.iter().any(Option::is_some)
+            || !self.retired.is_empty()
+            || self.layered.as_ref().is_some_and(|e| e.pixels(0).is_some())
+            || !self.retired_layers.is_empty()
     }
 
     /// Where the CPU reads `buffer` in place, when its storage is memory
@@ -543,6 +701,9 @@ impl EmulatedFramebuffer {
             return None;
         }
         let slot = self.slot_of[buffer.index()];
+        if let Some(eyes) = &self.layered {
+            return eyes.pixels(slot);
+        }
         self.memory[slot]
             .as_ref()
             .map(|m| m.pixels(self.textures[slot]))
@@ -564,7 +725,8 @@ impl EmulatedFramebuffer {
     unsafe fn delete(&mut self, gl: &Gl) {
         // SAFETY: a context is current (contract of the callers).
         unsafe {
-            gl.DeleteTextures(4, self.textures.as_ptr());
+            gl.delete_textures(&self.textures);
+            gl.delete_textures(&self.fillers);
             if self.memory.iter().any(Option::is_some) || !self.retired.is_empty() {
                 // Memory goes with its memory object: nothing may render
                 // into it any more.
@@ -575,11 +737,20 @@ impl EmulatedFramebuffer {
                 self.release_retired(gl);
             }
             if self.depth_stencil != 0 {
-                gl.DeleteRenderbuffers(1, &self.depth_stencil);
+                gl.delete_renderbuffers(&[self.depth_stencil]);
             }
-            gl.DeleteFramebuffers(1, &self.read_fbo);
+            for mut eyes in self
+                .layered
+                .take()
+                .into_iter()
+                .chain(self.retired_layers.drain(..))
+            {
+                eyes.release(gl);
+            }
+            gl.delete_framebuffers(&[self.read_fbo]);
         }
         self.textures = [0; 4];
+        self.fillers = [0; FILLERS];
         self.depth_stencil = 0;
         self.read_fbo = 0;
     }
@@ -642,7 +813,7 @@ impl EmulatedFramebuffer {
         unsafe {
             let prev_draw = gl.integer(GL_DRAW_FRAMEBUFFER_BINDING) as u32;
             let prev_read = gl.integer(GL_READ_FRAMEBUFFER_BINDING) as u32;
-            gl.GenFramebuffers(1, &mut self.app_fbo);
+            self.app_fbo = gl.gen_framebuffer();
             gl.BindFramebuffer(GL_FRAMEBUFFER, self.app_fbo);
             let attached = self.attach_storage(gl);
             if attached.is_ok() {
@@ -652,16 +823,42 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, prev_draw);
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, prev_read);
             if attached.is_err() {
-                gl.DeleteFramebuffers(1, &self.app_fbo);
+                gl.delete_framebuffers(&[self.app_fbo]);
                 self.app_fbo = 0;
             }
             attached
         }
     }
 
+    /// Deletes the application's framebuffer object, when the drawable it
+    /// stands for goes: the textures it holds (and their memory) are freed
+    /// only once no framebuffer object holds them.
+    ///
+    /// # Safety
+    /// The context the object was made in (the application's) must be
+    /// current on this thread.
+    pub unsafe fn delete_app_fbo(&mut self, gl: &Gl) {
+        if self.app_fbo != 0 {
+            // SAFETY: contract.
+            unsafe { gl.DeleteFramebuffers(1, &self.app_fbo) };
+            self.app_fbo = 0;
+            self.attachments_stale = false;
+        }
+    }
+
     unsafe fn attach_storage(&self, gl: &Gl) -> Result<()> {
         // SAFETY: the application context is current with app_fbo bound.
         unsafe {
+            if let Some(eyes) = &self.layered {
+                eyes.attachments().attach(GL_FRAMEBUFFER, None);
+                let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+                if status != GL_FRAMEBUFFER_COMPLETE {
+                    return Err(Error::Gl(format!(
+                        "the layered eyes are incomplete (status {status:#06x})"
+                    )));
+                }
+                return Ok(());
+            }
             for slot in 0..4 {
                 gl.FramebufferTexture2D(
                     GL_FRAMEBUFFER,
@@ -670,6 +867,17 @@ impl EmulatedFramebuffer {
                     self.textures[slot],
                     0,
                 );
+            }
+            for (k, &tex) in self.fillers.iter().enumerate() {
+                if tex != 0 {
+                    gl.FramebufferTexture2D(
+                        GL_FRAMEBUFFER,
+                        GL_COLOR_ATTACHMENT0 + (4 + k) as u32,
+                        GL_TEXTURE_2D,
+                        tex,
+                        0,
+                    );
+                }
             }
             if self.depth_stencil != 0 {
                 gl.FramebufferRenderbuffer(
@@ -692,7 +900,14 @@ impl EmulatedFramebuffer {
 
     fn attachment(&self, b: Option<ColorBuffer>) -> u32 {
         b.map_or(GL_NONE, |b| {
-            GL_COLOR_ATTACHMENT0 + self.slot_of[b.index()] as u32
+            let slot = self.slot_of[b.index()];
+            // Layered eyes: a pair's two buffers are one attachment.
+            let slot = if self.layered.is_some() {
+                crate::auto::eyes::pair(slot)
+            } else {
+                slot
+            };
+            GL_COLOR_ATTACHMENT0 + slot as u32
         })
     }
 
@@ -703,30 +918,43 @@ impl EmulatedFramebuffer {
     /// gl_FragColor reach every enabled slot, and a shader's user-defined
     /// output 0 reaches them through the copies
     /// [`crate::stereo::outputs`] adds at link time. Slots 1…4 stay
-    /// GL_NONE, so outputs 1…4 go nowhere, as GL says for glDrawBuffer.
+    /// GL_NONE, so outputs 1…4 go nowhere, as GL says for glDrawBuffer;
+    /// where the driver needs them filled, the fillers take the GL_NONE
+    /// entries below the last buffer (as many as there are fillers).
     fn draw_attachments(&self) -> ([u32; MAX_DRAW_BUFFERS], usize) {
         let mut out = [GL_NONE; MAX_DRAW_BUFFERS];
-        match self.draw {
-            DrawState::Single { set, .. } if set.is_empty() => (out, 1),
+        let n = match self.draw {
+            DrawState::Single { set, .. } if set.is_empty() => 1,
             DrawState::Single { set, .. } => {
                 let mut buffers = set.iter();
                 if let Some(first) = buffers.next() {
                     out[0] = self.attachment(Some(first));
                 }
                 let mut n = 1;
-                for (b, &slot) in buffers.zip(COPY_LOCATIONS.iter()) {
-                    out[slot as usize] = self.attachment(Some(b));
-                    n = MAX_DRAW_BUFFERS;
+                let mut copies = COPY_LOCATIONS.iter();
+                for b in buffers {
+                    let att = self.attachment(Some(b));
+                    // Layered eyes: both buffers of a pair are one attachment.
+                    if out.contains(&att) {
+                        continue;
+                    }
+                    let Some(&slot) = copies.next() else { break };
+                    out[slot as usize] = att;
+                    n = slot as usize + 1;
                 }
-                (out, n)
+                n
             }
             DrawState::Multi { n, bufs, .. } => {
                 for i in 0..n {
                     out[i] = self.attachment(bufs[i]);
                 }
-                (out, n.max(1))
+                n.max(1)
             }
+        };
+        if self.fillers[0] != 0 {
+            fill_gaps(&mut out[..n]);
         }
+        (out, n)
     }
 
     /// The draw-buffer indices of the framebuffer object that stand for
@@ -736,6 +964,20 @@ impl EmulatedFramebuffer {
     /// glClearBuffer, which clears one draw buffer by index.
     pub fn draw_buffer_slots(&self, i: i32) -> DrawSlots {
         match self.draw {
+            DrawState::Single { set, .. } if set.len() > 1 && self.layered.is_some() => {
+                let (atts, _) = self.draw_attachments();
+                let mut v = DrawSlots::default();
+                if i == 0 {
+                    for (k, &a) in atts.iter().enumerate() {
+                        if a != GL_NONE {
+                            v.push(k as i32);
+                        }
+                    }
+                } else if !(1..MAX_DRAW_BUFFERS as i32).contains(&i) {
+                    v.push(i);
+                }
+                v
+            }
             DrawState::Single { set, .. } if set.len() > 1 => {
                 if i == 0 {
                     let mut v = DrawSlots::default();
@@ -1015,6 +1257,34 @@ impl EmulatedFramebuffer {
     /// The surface's compositor context must be current on this thread and
     /// `out` must hold width × height values.
     pub unsafe fn read_depth(&self, gl: &Gl, out: &mut [f32]) -> Result<()> {
+        if let Some(eyes) = self.layered.as_ref() {
+            assert_eq!(out.len(), (self.width * self.height) as usize);
+            // SAFETY: as below; the left eye's depth.
+            return unsafe {
+                gl.take_error();
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, self.read_fbo);
+                if !eyes.attach_left_depth(GL_READ_FRAMEBUFFER, true) {
+                    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+                    return Err(Error::invalid_operation(
+                        "this framebuffer has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
+                    ));
+                }
+                gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+                gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+                gl.ReadPixels(
+                    0,
+                    0,
+                    self.width as i32,
+                    self.height as i32,
+                    GL_DEPTH_COMPONENT,
+                    GL_FLOAT,
+                    out.as_mut_ptr().cast(),
+                );
+                eyes.attach_left_depth(GL_READ_FRAMEBUFFER, false);
+                gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+                gl.check("reading the depth buffer")
+            };
+        }
         if self.depth_stencil == 0 {
             return Err(Error::invalid_operation(
                 "this framebuffer has no depth buffer: choose a configuration with GLX_DEPTH_SIZE",
@@ -1055,5 +1325,55 @@ impl EmulatedFramebuffer {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
             gl.check("reading the depth buffer")
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const A: u32 = GL_COLOR_ATTACHMENT0 + 1;
+    const B: u32 = GL_COLOR_ATTACHMENT0 + 3;
+    const F: [u32; 4] = [
+        GL_COLOR_ATTACHMENT0 + 4,
+        GL_COLOR_ATTACHMENT0 + 5,
+        GL_COLOR_ATTACHMENT0 + 6,
+        GL_COLOR_ATTACHMENT0 + 7,
+    ];
+
+    #[test]
+    fn the_second_selected_buffer_leaves_no_more_gaps_than_there_are_fillers() {
+        // GL_BACK on stereo: back-left in slot 0, back-right at the first
+        // copy location, the gaps below it filled.
+        assert_eq!(COPY_LOCATIONS[0] as usize - 1, FILLERS);
+        let mut t = [A, GL_NONE, GL_NONE, GL_NONE, GL_NONE, B];
+        fill_gaps(&mut t);
+        assert_eq!(t, [A, F[0], F[1], F[2], F[3], B]);
+    }
+
+    #[test]
+    fn gaps_are_filled_below_the_last_buffer_only_and_at_most_four() {
+        let mut t = [GL_NONE, A, GL_NONE, B, GL_NONE];
+        fill_gaps(&mut t);
+        assert_eq!(t, [F[0], A, F[1], B, GL_NONE], "trailing NONE stays");
+        let mut t = [A, GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_NONE, B];
+        fill_gaps(&mut t);
+        assert_eq!(t, [A, F[0], F[1], F[2], F[3], GL_NONE, GL_NONE, B]);
+        for mut t in [[GL_NONE; 1], [A; 1]] {
+            let before = t;
+            fill_gaps(&mut t);
+            assert_eq!(t, before, "nothing to fill");
+        }
+    }
+
+    #[test]
+    fn only_zink_gets_its_gaps_filled() {
+        assert!(fills_draw_buffer_gaps(
+            "zink (llvmpipe (LLVM 15.0.6, 256 bits))"
+        ));
+        assert!(!fills_draw_buffer_gaps("llvmpipe (LLVM 15.0.6, 256 bits)"));
+        assert!(!fills_draw_buffer_gaps(
+            "AMD Radeon RX 6600 (navi23, LLVM 15.0.6, DRM 3.49)"
+        ));
     }
 }

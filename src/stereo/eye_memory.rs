@@ -37,15 +37,19 @@ use crate::gl::Gl;
 use crate::gl::enums::*;
 
 /// GL_HANDLE_TYPE_OPAQUE_FD_EXT (GL_EXT_memory_object_fd).
-const GL_HANDLE_TYPE_OPAQUE_FD_EXT: u32 = 0x9586;
+pub(crate) const GL_HANDLE_TYPE_OPAQUE_FD_EXT: u32 = 0x9586;
 
 /// GL_EXT_memory_object's entry points, loaded where the driver has them.
 #[derive(Clone, Copy, Debug)]
 pub struct MemoryObjectApi {
-    create: unsafe extern "system" fn(i32, *mut u32),
-    delete: unsafe extern "system" fn(i32, *const u32),
-    import_fd: unsafe extern "system" fn(u32, u64, u32, i32),
-    tex_storage_mem_2d: unsafe extern "system" fn(u32, i32, u32, i32, i32, u32, u64),
+    pub(crate) create: unsafe extern "system" fn(i32, *mut u32),
+    pub(crate) delete: unsafe extern "system" fn(i32, *const u32),
+    pub(crate) import_fd: unsafe extern "system" fn(u32, u64, u32, i32),
+    pub(crate) tex_storage_mem_2d: unsafe extern "system" fn(u32, i32, u32, i32, i32, u32, u64),
+    /// glTexStorageMem3DEXT (automatic stereo's layered eyes,
+    /// [`crate::auto::eyes`]), where the driver has it.
+    pub(crate) tex_storage_mem_3d:
+        Option<unsafe extern "system" fn(u32, i32, u32, i32, i32, i32, u32, u64)>,
 }
 
 impl MemoryObjectApi {
@@ -63,6 +67,7 @@ impl MemoryObjectApi {
         let delete = f(c"glDeleteMemoryObjectsEXT")?;
         let import_fd = f(c"glImportMemoryFdEXT")?;
         let storage = f(c"glTexStorageMem2DEXT")?;
+        let storage_3d = f(c"glTexStorageMem3DEXT");
         // SAFETY: each address is the named function's, whose Khronos
         // signature the field's type spells.
         unsafe {
@@ -83,6 +88,12 @@ impl MemoryObjectApi {
                     *const c_void,
                     unsafe extern "system" fn(u32, i32, u32, i32, i32, u32, u64),
                 >(storage),
+                tex_storage_mem_3d: storage_3d.map(|p| {
+                    std::mem::transmute::<
+                        *const c_void,
+                        unsafe extern "system" fn(u32, i32, u32, i32, i32, i32, u32, u64),
+                    >(p)
+                }),
             })
         }
     }
@@ -114,7 +125,7 @@ pub fn give_up(why: &str) {
 /// offset again in the `size_t` just before the data, where the driver
 /// finds the header to unmap its view when the memory object goes
 /// (without it, it would unmap a length read from the pixels).
-fn header(total: usize, offset: usize, uuid: &[u8; 16]) -> Vec<u8> {
+pub(crate) fn header(total: usize, offset: usize, uuid: &[u8; 16]) -> Vec<u8> {
     let word = size_of::<usize>();
     assert!(offset >= 2 * word + 16 + word, "room for the header");
     let mut h = vec![0; offset];
@@ -219,12 +230,12 @@ fn sha1(data: &[u8]) -> [u8; 20] {
 /// llvmpipe's row stride for an RGBA8 texture `width` texels wide: the
 /// width rounded up to 4 texels, in bytes rounded up to a 64-byte cache
 /// line. Checked against the texture's real layout before use.
-fn predicted_stride(width: u32) -> usize {
+pub(crate) fn predicted_stride(width: u32) -> usize {
     (width as usize).div_ceil(4) * 4 * 4
 }
 
 /// Rounds `n` up to a multiple of 64.
-fn cache_lines(n: usize) -> usize {
+pub(crate) fn cache_lines(n: usize) -> usize {
     n.div_ceil(64) * 64
 }
 
@@ -435,7 +446,7 @@ impl Drop for TextureMemory {
 }
 
 /// A distinct RGBA8 colour for corner `i`.
-fn marker(i: usize) -> [u8; 4] {
+pub(crate) fn marker(i: usize) -> [u8; 4] {
     let i = i as u8;
     [0x11 + i, 0xA0 - i, 0x5C + 3 * i, 0xF0 - 7 * i]
 }
@@ -460,6 +471,29 @@ unsafe impl Send for EyePixels {}
 unsafe impl Sync for EyePixels {}
 
 impl EyePixels {
+    /// The pixels of `texture`, `width` × `height` RGBA8 rows bottom first
+    /// from `rows`, `stride` bytes apart (a layer of automatic stereo's
+    /// eyes, [`crate::auto::eyes`]).
+    ///
+    /// # Safety
+    /// The rows are inside a mapping that lives as the type's contract
+    /// says.
+    pub(crate) unsafe fn new(
+        texture: u32,
+        rows: *const u8,
+        stride: usize,
+        width: u32,
+        height: u32,
+    ) -> EyePixels {
+        EyePixels {
+            texture,
+            rows,
+            stride,
+            width,
+            height,
+        }
+    }
+
     /// The rows of the rectangle at (`x`, `y`) (bottom row), `width` ×
     /// `height` texels; None if it is not inside the texture.
     ///

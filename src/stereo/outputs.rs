@@ -30,7 +30,8 @@
 //! into its own components ([`copy_of`]); or `gl_FragData[0]`, copied to
 //! `gl_FragData[5…7]` ([`Copies`]). The program keeps the user's shader
 //! objects attached, and a failure at any step (no source: SPIR-V or
-//! program binaries; several fragment shaders; locations 5…7 or
+//! program binaries, which [`crate::interpose::binaries`] keeps from being
+//! loaded without the copies; several fragment shaders; locations 5…7 or
 //! dual-source outputs in use; `gl_FragData` elements other than 0
 //! written; the rewritten shader not compiling) relinks the program as the
 //! user linked it and says why ([`Outcome::Kept`]).
@@ -251,7 +252,7 @@ macro_rules! link_fns {
         /// up once through the backend's GetProcAddress.
         #[allow(non_snake_case)]
         pub struct LinkFns {
-            $( $field: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
+            $( pub(crate) $field: unsafe extern "system" fn($($ty),*) $(-> $ret)?, )*
         }
 
         impl LinkFns {
@@ -312,6 +313,22 @@ pub enum Outcome {
     /// Linked as the user linked it, for this reason: output 0 reaches
     /// only the first selected buffer.
     Kept(String),
+}
+
+/// Where a linked program's fragment output 0 goes under a glDrawBuffer
+/// name selecting several buffers, as its interface shows
+/// ([`LinkFns::reach`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reach {
+    /// Every selected buffer: it carries the copies, or has nothing to
+    /// copy (fixed function, gl_FragColor, no output at location 0).
+    Every,
+    /// The first selected buffer only: a user-defined output at location
+    /// 0 without copies.
+    First,
+    /// Not shown: it writes `gl_FragData`, whose copies (elements 5…7)
+    /// its interface does not tell apart.
+    Unknown,
 }
 
 /// One fragment output of a linked program.
@@ -475,14 +492,39 @@ impl LinkFns {
         }
     }
 
-    unsafe fn program_int(&self, program: u32, pname: u32) -> i32 {
+    /// Where the fragment output 0 of `program` (linked, or loaded from a
+    /// binary) goes, from its interface alone. May raise GL errors (the
+    /// GL_LOCATION_COMPONENT query before GL 4.4); callers keep the
+    /// program's error state apart.
+    ///
+    /// # Safety
+    /// A GL context must be current on this thread, `program` a program
+    /// object of it.
+    pub unsafe fn reach(&self, program: u32) -> Reach {
+        // SAFETY: contract.
+        let outputs = unsafe { self.outputs(program) };
+        if outputs.iter().any(|o| o.name.starts_with(COPY_PREFIX)) {
+            Reach::Every
+        } else if outputs
+            .iter()
+            .any(|o| o.location == 0 && !o.name.starts_with("gl_"))
+        {
+            Reach::First
+        } else if outputs.iter().any(|o| o.name.starts_with("gl_FragData")) {
+            Reach::Unknown
+        } else {
+            Reach::Every
+        }
+    }
+
+    pub(crate) unsafe fn program_int(&self, program: u32, pname: u32) -> i32 {
         let mut v = 0;
         // SAFETY: contract of the callers; one value.
         unsafe { (self.get_programiv)(program, pname, &mut v) };
         v
     }
 
-    unsafe fn shader_int(&self, shader: u32, pname: u32) -> i32 {
+    pub(crate) unsafe fn shader_int(&self, shader: u32, pname: u32) -> i32 {
         let mut v = 0;
         // SAFETY: contract of the callers; one value.
         unsafe { (self.get_shaderiv)(shader, pname, &mut v) };
@@ -552,7 +594,8 @@ impl LinkFns {
         }
     }
 
-    unsafe fn fragment_shader(&self, program: u32) -> Result<u32, String> {
+    /// The shader objects attached to `program`.
+    pub(crate) unsafe fn attached_shaders(&self, program: u32) -> Vec<u32> {
         // SAFETY: contract of the callers; the list is sized as GL is told.
         unsafe {
             let n = self.program_int(program, GL_ATTACHED_SHADERS).max(0);
@@ -560,7 +603,15 @@ impl LinkFns {
             let mut count = 0;
             (self.get_attached_shaders)(program, n, &mut count, list.as_mut_ptr());
             list.truncate(count.max(0) as usize);
-            let fragment: Vec<u32> = list
+            list
+        }
+    }
+
+    unsafe fn fragment_shader(&self, program: u32) -> Result<u32, String> {
+        // SAFETY: contract of the callers.
+        unsafe {
+            let fragment: Vec<u32> = self
+                .attached_shaders(program)
                 .into_iter()
                 .filter(|&s| self.shader_int(s, GL_SHADER_TYPE) == GL_FRAGMENT_SHADER as i32)
                 .collect();
@@ -572,7 +623,7 @@ impl LinkFns {
         }
     }
 
-    unsafe fn shader_source(&self, shader: u32) -> Option<String> {
+    pub(crate) unsafe fn shader_source(&self, shader: u32) -> Option<String> {
         // SAFETY: contract of the callers; the buffer is sized as GL is told.
         unsafe {
             let len = self.shader_int(shader, GL_SHADER_SOURCE_LENGTH);
@@ -589,9 +640,16 @@ impl LinkFns {
     /// A compiled fragment shader of `source`, or None (deleted) when it
     /// does not compile.
     unsafe fn compile(&self, source: &str) -> Option<u32> {
+        // SAFETY: contract of the callers.
+        unsafe { self.compile_as(GL_FRAGMENT_SHADER, source) }
+    }
+
+    /// A compiled shader of type `shader_type` from `source`, or None
+    /// (deleted) when it does not compile.
+    pub(crate) unsafe fn compile_as(&self, shader_type: u32, source: &str) -> Option<u32> {
         // SAFETY: contract of the callers; one string of the given length.
         unsafe {
-            let s = (self.create_shader)(GL_FRAGMENT_SHADER);
+            let s = (self.create_shader)(shader_type);
             if s == 0 {
                 return None;
             }

@@ -20,6 +20,11 @@
  *   glx_core_stereo kept     GL 3.3 core: a program using location 6 itself
  *                            keeps output 0 in the first selected buffer
  *                            (the layer says why on stderr)
+ *   glx_core_stereo binary   GL 4.5 core: program binaries keep output 0
+ *                            in every selected buffer (a binary made by a
+ *                            mono context without the copies is refused;
+ *                            one made here round-trips with them, also
+ *                            through the OES names)
  *   glx_core_stereo mono45   no checks: a mono configuration, prints the
  *                            probes (the test compares them with core45's:
  *                            the errors and values GL gives a default
@@ -30,6 +35,7 @@
  */
 #define GL_GLEXT_PROTOTYPES 1
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <GL/gl.h>
@@ -711,6 +717,119 @@ static void dsa(void)
     drain_errors("dsa queries");
 }
 
+/* glGetError until GL_NO_ERROR (at most 4), printed after `what`. */
+static void probe_errors(const char *what)
+{
+    printf("probe errors after %s:", what);
+    for (int i = 0; i < 4; i++) {
+        GLenum e = glGetError();
+        printf(" 0x%x", e);
+        if (e == GL_NO_ERROR) break;
+    }
+    printf("\n");
+}
+
+/* Queries the driver refuses leave the program's variable alone; a run of
+ * bad calls leaves the errors GL keeps (Mesa: the first since the last
+ * glGetError); GL_STEREO and GL_DOUBLEBUFFER come from the draw
+ * framebuffer, false for a framebuffer object. */
+static void probe_queries_and_errors(void)
+{
+    GLint max = get_int(GL_MAX_DRAW_BUFFERS);
+    for (GLenum i = 0; i < 16; i++) {
+        GLint v = -7;
+        GLboolean b = 7;
+        GLfloat f = -7.0f;
+        GLdouble dv = -7.0;
+        GLint64 v64 = -7;
+        glGetIntegerv(GL_DRAW_BUFFER0 + i, &v);
+        GLenum ev = glGetError();
+        glGetBooleanv(GL_DRAW_BUFFER0 + i, &b);
+        GLenum eb = glGetError();
+        glGetFloatv(GL_DRAW_BUFFER0 + i, &f);
+        GLenum ef = glGetError();
+        glGetDoublev(GL_DRAW_BUFFER0 + i, &dv);
+        GLenum ed = glGetError();
+        glGetInteger64v(GL_DRAW_BUFFER0 + i, &v64);
+        GLenum e64 = glGetError();
+        printf("probe glGet*v(GL_DRAW_BUFFER%u) of %d: %d 0x%x %d 0x%x %g 0x%x %g 0x%x %lld 0x%x\n",
+               i, max, v, ev, b, eb, f, ef, dv, ed, (long long)v64, e64);
+    }
+    GLint mask[4] = {-7, -7, -7, -7};
+    glGetIntegeri_v(GL_COLOR_WRITEMASK, 99, mask);
+    printf("probe glGetIntegeri_v(GL_COLOR_WRITEMASK, 99): %d 0x%x\n", mask[0], glGetError());
+
+    glDrawBuffer(GL_COLOR_ATTACHMENT0);
+    glViewport(0, 0, -1, -1);
+    glEnable(0x1234);
+    probe_errors("glDrawBuffer(GL_COLOR_ATTACHMENT0), glViewport(-1), glEnable(0x1234)");
+    glViewport(0, 0, -1, -1);
+    glDrawBuffer(0x1234);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    probe_errors("glViewport(-1), glDrawBuffer(0x1234), glReadBuffer(GL_COLOR_ATTACHMENT0)");
+    glDrawBuffer(0x1234);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glDrawBuffers(1, (const GLenum[]){GL_BACK});
+    probe_errors("glDrawBuffer(0x1234), glReadBuffer(GL_COLOR_ATTACHMENT0), glDrawBuffers({GL_BACK})");
+    GLint v = -7;
+    glEnable(0x1234);
+    glGetIntegerv(GL_DRAW_BUFFER9, &v);
+    glDrawBuffer(0x1234);
+    probe_errors("glEnable(0x1234), glGetIntegerv(GL_DRAW_BUFFER9), glDrawBuffer(0x1234)");
+    glGetIntegerv(GL_DRAW_BUFFER9, &v);
+    glViewport(0, 0, -1, -1);
+    glGetIntegerv(GL_STEREO, &v);
+    glGetIntegerv(GL_DRAW_BUFFER, &v);
+    probe_errors("glGetIntegerv(GL_DRAW_BUFFER9), glViewport(-1), glGetIntegerv(GL_STEREO)");
+    glDrawBuffer(GL_BACK);
+    glReadBuffer(GL_BACK);
+
+    /* Program binaries: the driver's formats and errors. */
+    GLint nformats = get_int(GL_NUM_PROGRAM_BINARY_FORMATS);
+    printf("probe GL_NUM_PROGRAM_BINARY_FORMATS: %d\n", nformats);
+    GLuint unlinked = glCreateProgram();
+    GLint blen = -7;
+    glGetProgramiv(unlinked, GL_PROGRAM_BINARY_LENGTH, &blen);
+    printf("probe GL_PROGRAM_BINARY_LENGTH unlinked: %d 0x%x\n", blen, glGetError());
+    unsigned char bbuf[64];
+    GLsizei gotlen = -7;
+    GLenum bfmt = 7;
+    glGetProgramBinary(unlinked, sizeof bbuf, &gotlen, &bfmt, bbuf);
+    printf("probe glGetProgramBinary unlinked: %d 0x%x 0x%x\n", gotlen, bfmt, glGetError());
+    GLuint linked = program(VS33, FS_TINT);
+    glGetProgramBinary(linked, 4, &gotlen, &bfmt, bbuf);
+    printf("probe glGetProgramBinary bufSize 4: %d 0x%x 0x%x\n", gotlen, bfmt, glGetError());
+    glGetProgramBinary(linked, -1, &gotlen, &bfmt, bbuf);
+    printf("probe glGetProgramBinary bufSize -1: %d 0x%x 0x%x\n", gotlen, bfmt, glGetError());
+    glGetProgramBinary(0x7777, sizeof bbuf, &gotlen, &bfmt, bbuf);
+    printf("probe glGetProgramBinary(0x7777): %d 0x%x 0x%x\n", gotlen, bfmt, glGetError());
+    memset(bbuf, 0x5a, sizeof bbuf);
+    GLint lstatus = -7;
+    glProgramBinary(unlinked, GL_PROGRAM_BINARY_FORMAT_MESA, bbuf, sizeof bbuf);
+    glGetProgramiv(unlinked, GL_LINK_STATUS, &lstatus);
+    printf("probe glProgramBinary(garbage): %d 0x%x\n", lstatus, glGetError());
+    glProgramBinary(unlinked, 0x1234, bbuf, sizeof bbuf);
+    glGetProgramiv(unlinked, GL_LINK_STATUS, &lstatus);
+    printf("probe glProgramBinary(format 0x1234): %d 0x%x\n", lstatus, glGetError());
+    glProgramBinary(unlinked, GL_PROGRAM_BINARY_FORMAT_MESA, bbuf, -1);
+    printf("probe glProgramBinary(length -1): 0x%x\n", glGetError());
+    glProgramBinary(0x7777, GL_PROGRAM_BINARY_FORMAT_MESA, bbuf, sizeof bbuf);
+    printf("probe glProgramBinary(0x7777): 0x%x\n", glGetError());
+    glDeleteProgram(unlinked);
+    glDeleteProgram(linked);
+
+    GLuint fbo = 0;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    GLboolean st = 7, db = 7;
+    glGetBooleanv(GL_STEREO, &st);
+    glGetBooleanv(GL_DOUBLEBUFFER, &db);
+    printf("probe GL_STEREO GL_DOUBLEBUFFER with a framebuffer object drawn: %d %d %d %d 0x%x\n",
+           st, db, get_int(GL_STEREO), get_int(GL_DOUBLEBUFFER), glGetError());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+}
+
 /* The answers GL gives about a default framebuffer that do not depend on
  * stereo: printed, for the test to compare with the driver's on a mono
  * configuration. */
@@ -815,6 +934,7 @@ static void probes(void)
     printf("probe glBlitNamedFramebuffer(0, 0, depth, linear): 0x%x\n", glGetError());
     glDrawBuffer(GL_BACK);
     glReadBuffer(GL_BACK);
+    probe_queries_and_errors();
 }
 
 typedef GLXContext (*CreateContextAttribs)(Display *, GLXFBConfig, GLXContext, Bool,
@@ -865,6 +985,18 @@ static int open_window(Display *d, int stereo, int major, int minor, int profile
     return 1;
 }
 
+/* The double-buffered mono configuration open_window(d, 0, …) picks. */
+static GLXFBConfig mono_fbconfig(Display *d)
+{
+    int attrs[] = {GLX_RENDER_TYPE, GLX_RGBA_BIT, GLX_DOUBLEBUFFER, True, GLX_STEREO, False,
+                   GLX_RED_SIZE, 8, GLX_DEPTH_SIZE, 24, GLX_STENCIL_SIZE, 8, None};
+    int n = 0;
+    GLXFBConfig *configs = glXChooseFBConfig(d, DefaultScreen(d), attrs, &n);
+    GLXFBConfig c = configs != NULL && n > 0 ? configs[0] : NULL;
+    if (configs) XFree(configs);
+    return c;
+}
+
 static void close_window(Display *d, struct window *w)
 {
     glXMakeContextCurrent(d, None, None, NULL);
@@ -872,6 +1004,158 @@ static void close_window(Display *d, struct window *w)
     XDestroyWindow(d, w->win);
     XFreeColormap(d, w->cmap);
     XFree(w->vi);
+}
+
+/* GL_OES_get_program_binary's names, which libGL exports too. */
+typedef void (*GetProgramBinaryOES)(GLuint, GLsizei, GLsizei *, GLenum *, void *);
+typedef void (*ProgramBinaryOES)(GLuint, GLenum, const void *, GLint);
+
+/* A program binary: its format and bytes. */
+struct binary {
+    GLenum format;
+    GLint length;
+    unsigned char *bytes;
+};
+
+/* glGetProgramBinary of `p` (through the OES name when `oes`), checking
+ * GL_PROGRAM_BINARY_LENGTH and the format against the driver's list. */
+static struct binary get_binary(GLuint p, int oes)
+{
+    struct binary b = {0, 0, NULL};
+    GLint len = 0;
+    glGetProgramiv(p, GL_PROGRAM_BINARY_LENGTH, &len);
+    CHECK(len > 0, "GL_PROGRAM_BINARY_LENGTH %d", len);
+    b.bytes = calloc((size_t)len + 1, 1);
+    if (oes) {
+        GetProgramBinaryOES get = (GetProgramBinaryOES)glXGetProcAddressARB(
+            (const GLubyte *)"glGetProgramBinaryOES");
+        CHECK(get != NULL, "glGetProgramBinaryOES");
+        if (get) get(p, len, &b.length, &b.format, b.bytes);
+    } else {
+        glGetProgramBinary(p, len, &b.length, &b.format, b.bytes);
+    }
+    CHECK(b.length == len, "glGetProgramBinary wrote %d bytes of %d", b.length, len);
+    GLint n = get_int(GL_NUM_PROGRAM_BINARY_FORMATS), found = 0;
+    GLint formats[8] = {0};
+    if (n > 0 && n <= 8) glGetIntegerv(GL_PROGRAM_BINARY_FORMATS, formats);
+    for (int i = 0; i < n && i < 8; i++) found |= (GLenum)formats[i] == b.format;
+    CHECK(found, "the binary's format 0x%x is one GL_PROGRAM_BINARY_FORMATS lists", b.format);
+    CHECK(glGetError() == GL_NO_ERROR, "glGetProgramBinary");
+    return b;
+}
+
+/* A new program loaded from `b` (length `length`, through the OES name
+ * when `oes`); its GL_LINK_STATUS in *linked. */
+static GLuint load_binary(const struct binary *b, GLint length, int oes, GLint *linked)
+{
+    GLuint p = glCreateProgram();
+    if (oes) {
+        ProgramBinaryOES load =
+            (ProgramBinaryOES)glXGetProcAddressARB((const GLubyte *)"glProgramBinaryOES");
+        CHECK(load != NULL, "glProgramBinaryOES");
+        if (load) load(p, b->format, b->bytes, length);
+    } else {
+        glProgramBinary(p, b->format, b->bytes, length);
+    }
+    *linked = -7;
+    glGetProgramiv(p, GL_LINK_STATUS, linked);
+    CHECK(glGetError() == GL_NO_ERROR, "glProgramBinary raises no GL error");
+    return p;
+}
+
+/* Draws the quad with `p` (FS_TINT's interface) in `rgb` under GL_BACK:
+ * both back buffers get it. */
+static void expect_both_backs(GLuint p, const char *what, float r, float g, float b)
+{
+    clear_all();
+    glDrawBuffer(GL_BACK);
+    glUseProgram(p);
+    glUniform4f(glGetUniformLocation(p, "tint"), r, g, b, 1.0f);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glUseProgram(0);
+    expect_buffers(what, M_BACK, (int)(r * 255), (int)(g * 255), (int)(b * 255));
+}
+
+static const char *FS_LOC1 = "#version 330 core\n"
+                             "layout(location = 1) out vec4 other;\n"
+                             "void main() { other = vec4(1.0); }\n";
+
+/* Program binaries in the stereo context (current on w->win): one made
+ * by a mono context (as by a run without the layer) is refused when its
+ * output 0 needs the copies, kept when it needs none; one made here
+ * round-trips through glGetProgramBinary / glProgramBinary and their OES
+ * names with the copies; the mono context loads it too. */
+static void program_binaries(Display *d, struct window *w, GLXFBConfig mono_config)
+{
+    CreateContextAttribs create = (CreateContextAttribs)glXGetProcAddressARB(
+        (const GLubyte *)"glXCreateContextAttribsARB");
+    const int ctx_attrs[] = {0x2091, 4, 0x2092, 5, 0x9126, 1, None};
+    GLXContext mono = create(d, mono_config, NULL, True, ctx_attrs);
+    CHECK(mono != NULL, "a mono 4.5 context");
+    if (mono == NULL) return;
+    /* Binaries made without the layer's copies. */
+    CHECK(glXMakeContextCurrent(d, w->win, w->win, mono), "the mono context");
+    GLuint pm = program(VS33, FS_TINT), pm1 = program(VS33, FS_LOC1);
+    struct binary foreign = get_binary(pm, 0), foreign_loc1 = get_binary(pm1, 0);
+    glDeleteProgram(pm);
+    glDeleteProgram(pm1);
+    CHECK(glXMakeContextCurrent(d, w->win, w->win, w->ctx), "the stereo context again");
+
+    GLint linked = -7;
+    GLuint p = load_binary(&foreign, foreign.length, 0, &linked);
+    if (linked) {
+        expect_both_backs(p, "a program loaded from a binary made without the copies", 1, 0, 1);
+    }
+    CHECK(!linked, "a binary without the copies of output 0 is refused (GL_LINK_STATUS %d)",
+          linked);
+    glDeleteProgram(p);
+    p = load_binary(&foreign, foreign.length, 1, &linked);
+    CHECK(!linked, "glProgramBinaryOES refuses it too (GL_LINK_STATUS %d)", linked);
+    glDeleteProgram(p);
+    p = load_binary(&foreign_loc1, foreign_loc1.length, 0, &linked);
+    CHECK(linked == GL_TRUE, "a binary whose output 0 needs no copies loads (%d)", linked);
+    glDeleteProgram(p);
+
+    /* Made here: the binary carries the copies. */
+    GLuint src = program(VS33, FS_TINT);
+    expect_both_backs(src, "the program linked from source", 0, 1, 1);
+    struct binary own = get_binary(src, 0), own_oes = get_binary(src, 1);
+    CHECK(own.format == foreign.format, "the driver's format (0x%x, 0x%x)", own.format,
+          foreign.format);
+    CHECK(own_oes.length == own.length && memcmp(own.bytes, own_oes.bytes, (size_t)own.length) == 0,
+          "glGetProgramBinaryOES gives the same binary");
+    p = load_binary(&own, own.length, 0, &linked);
+    CHECK(linked == GL_TRUE, "its binary loads (GL_LINK_STATUS %d)", linked);
+    if (linked) expect_both_backs(p, "a program loaded from its own binary", 1, 1, 0);
+    glDeleteProgram(p);
+    p = load_binary(&own, own.length, 1, &linked);
+    CHECK(linked == GL_TRUE, "and through glProgramBinaryOES (%d)", linked);
+    if (linked) expect_both_backs(p, "loaded through glProgramBinaryOES", 0, 0, 1);
+    /* A loaded program's binary loads again, with the copies. */
+    struct binary again = get_binary(p, 0);
+    glDeleteProgram(p);
+    p = load_binary(&again, again.length, 0, &linked);
+    CHECK(linked == GL_TRUE, "a loaded program's binary loads (%d)", linked);
+    if (linked) expect_both_backs(p, "loaded from a loaded program's binary", 1, 0, 0);
+    glDeleteProgram(p);
+    p = load_binary(&own, own.length - 1, 0, &linked);
+    CHECK(!linked, "a truncated binary fails to load (%d)", linked);
+    glDeleteProgram(p);
+    glDeleteProgram(src);
+
+    /* The mono context loads it (its copies write no buffer there). */
+    CHECK(glXMakeContextCurrent(d, w->win, w->win, mono), "the mono context");
+    p = load_binary(&own, own.length, 0, &linked);
+    CHECK(linked == GL_TRUE, "a mono context loads a binary made in the stereo one (%d)", linked);
+    glDeleteProgram(p);
+    CHECK(glXMakeContextCurrent(d, w->win, w->win, w->ctx), "the stereo context again");
+    glXDestroyContext(d, mono);
+    free(foreign.bytes);
+    free(foreign_loc1.bytes);
+    free(own.bytes);
+    free(own_oes.bytes);
+    free(again.bytes);
+    drain_errors("program binaries");
 }
 
 /* Immediate mode in a compatibility context, with a GLSL 1.30 `out`. */
@@ -919,10 +1203,10 @@ int main(int argc, char **argv)
     const char *mode = argc > 1 ? argv[1] : "";
     int core33 = strcmp(mode, "core33") == 0, core45 = strcmp(mode, "core45") == 0;
     int compat = strcmp(mode, "compat") == 0, mono45 = strcmp(mode, "mono45") == 0;
-    int kept = strcmp(mode, "kept") == 0;
+    int kept = strcmp(mode, "kept") == 0, binary = strcmp(mode, "binary") == 0;
     core33 |= kept;
-    if (!core33 && !core45 && !compat && !mono45) {
-        fprintf(stderr, "usage: glx_core_stereo core33|core45|compat|mono45|kept\n");
+    if (!core33 && !core45 && !compat && !mono45 && !binary) {
+        fprintf(stderr, "usage: glx_core_stereo core33|core45|compat|mono45|kept|binary\n");
         return 1;
     }
     Display *d = XOpenDisplay(NULL);
@@ -939,7 +1223,11 @@ int main(int argc, char **argv)
         CHECK(st == GL_TRUE, "GL_STEREO");
         if (!compat) geometry();
     }
-    if (kept) {
+    if (binary) {
+        GLXFBConfig mono_config = mono_fbconfig(d);
+        if (mono_config == NULL) return 2;
+        program_binaries(d, &w, mono_config);
+    } else if (kept) {
         kept_program();
     } else if (core33 || core45) {
         user_outputs(core45 ? 11 : 9);

@@ -13,7 +13,12 @@
  * window, sets the viewport as a reshape handler would, draws and presents
  * again; "wmresize W H" resizes it as a window manager would for a program
  * without a reshape handler (the viewport stays), draws and presents again;
- * anything else (or EOF) exits 0. With "single" the visual is
+ * "names" deletes every texture, renderbuffer and framebuffer name in
+ * 1..65536 and in the top 65536 names below 2^31 and 2^32 (a program
+ * cleaning up names it never made, or guessed), binds and fills texture
+ * names 1..64 it never generated (GL 1.x style), checks its own generated
+ * texture went with the deletes, then draws and presents again; anything
+ * else (or EOF) exits 0. With "single" the visual is
  * single-buffered: it draws GL_FRONT_LEFT / GL_FRONT_RIGHT and calls
  * glFlush instead of swapping. Without a stereo visual it says so on stderr
  * and exits 2, as the guide advises.
@@ -25,6 +30,52 @@
 #include <GL/gl.h>
 #include <GL/glx.h>
 #include <X11/Xlib.h>
+
+typedef void (*delete_fn)(GLsizei, const GLuint *);
+
+/* glDelete* of every name in [first, first + count). */
+static void delete_range(delete_fn del, GLuint first, GLuint count)
+{
+    static GLuint names[4096];
+    GLuint done = 0;
+    while (done < count) {
+        GLuint n = count - done < 4096 ? count - done : 4096, i;
+        for (i = 0; i < n; i++) {
+            names[i] = first + done + i;
+        }
+        del((GLsizei)n, names);
+        done += n;
+    }
+}
+
+/* A hostile cleanup: deletes names the program never made and binds
+ * texture names it never generated. Prints "names own_texture_deleted N". */
+static void hostile_names(void)
+{
+    delete_fn del_tex = glDeleteTextures, del_rb, del_fb;
+    void (*gen)(GLsizei, GLuint *) = glGenTextures;
+    const GLuint tops[3] = {1, 0x80000000u - 65536, 0xFFFFFFFFu - 65536};
+    GLuint own = 0, t, k;
+    int own_deleted;
+    unsigned char texel[16] = {0};
+    __GLXextFuncPtr p = glXGetProcAddressARB((const GLubyte *)"glDeleteRenderbuffers");
+    memcpy(&del_rb, &p, sizeof del_rb);
+    p = glXGetProcAddressARB((const GLubyte *)"glDeleteFramebuffers");
+    memcpy(&del_fb, &p, sizeof del_fb);
+    gen(1, &own);
+    for (k = 0; k < 3; k++) {
+        delete_range(del_tex, tops[k], 65536);
+        delete_range(del_rb, tops[k], 65536);
+        delete_range(del_fb, tops[k], 65536);
+    }
+    own_deleted = !glIsTexture(own);
+    for (t = 1; t <= 64; t++) {
+        glBindTexture(GL_TEXTURE_2D, t);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, texel);
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+    printf("names own_texture_deleted %d\n", own_deleted);
+}
 
 static void redblue_frame(int single)
 {
@@ -103,6 +154,10 @@ int main(int argc, char **argv)
         int w, h;
         if (fgets(line, sizeof line, stdin) == NULL) {
             break;
+        }
+        if (strncmp(line, "names", 5) == 0) {
+            hostile_names();
+            continue;
         }
         int reshape = sscanf(line, "resize %d %d", &w, &h) == 2;
         if (!reshape && sscanf(line, "wmresize %d %d", &w, &h) != 2) {

@@ -49,6 +49,8 @@
 
 /* Tokens newer than GL/gl.h (1.3) and GL/glx.h (1.4). */
 #define GL_FRAMEBUFFER_ 0x8D40u
+#define GL_READ_FRAMEBUFFER_ 0x8CA8u
+#define GL_FRAMEBUFFER_COMPLETE_ 0x8CD5u
 #define GL_DRAW_FRAMEBUFFER_BINDING_ 0x8CA6u
 #define GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_ 0x8CD0u
 #define GL_COLOR_ 0x1800u
@@ -60,6 +62,10 @@
 /* GLX protocol errors, from the extension's error base. */
 #define GLX_BAD_CONTEXT_ 0
 #define GLX_BAD_FBCONFIG_ 9
+#define GL_LINK_STATUS_ 0x8B82
+#define GL_PROGRAM_BINARY_FORMAT_MESA_ 0x875F
+#define GLX_BAD_PIXMAP_ 3
+#define GLX_BAD_PBUFFER_ 10
 
 #ifdef MISUSE_PRELOAD
 /* ---- the gls_ names onto the real GLX/GL names (glstereo-run) --------- */
@@ -71,6 +77,7 @@ typedef GLXContext (*create_context_sgix_fn)(Display *, void *, int, GLXContext,
 typedef GLXContext (*create_context_attribs_fn)(Display *, GLXFBConfig, GLXContext, Bool, const int *);
 typedef GLXPixmap (*create_pixmap_sgix_fn)(Display *, void *, Pixmap);
 typedef GLXPbuffer (*create_pbuffer_sgix_fn)(Display *, void *, unsigned, unsigned, int *);
+typedef void (*destroy_pbuffer_sgix_fn)(Display *, GLXPbuffer);
 typedef void (*draw_buffers_fn)(GLsizei, const GLenum *);
 typedef void (*bind_framebuffer_fn)(GLenum, GLuint);
 typedef void (*delete_framebuffers_fn)(GLsizei, const GLuint *);
@@ -104,6 +111,9 @@ typedef void (*named_attachment_fn)(GLuint, GLenum, GLenum, GLint *);
 typedef void (*parameter_fn)(GLuint, GLenum, GLint *);
 typedef void (*link_program_fn)(GLuint);
 typedef GLuint (*create_shader_programv_fn)(GLenum, GLsizei, const char *const *);
+typedef void (*get_programiv_fn)(GLuint, GLenum, GLint *);
+typedef void (*get_program_binary_fn)(GLuint, GLsizei, GLsizei *, GLenum *, void *);
+typedef void (*program_binary_fn)(GLuint, GLenum, const void *, GLsizei);
 
 static choose_fbconfig_sgix_fn p_choose_fbconfig_sgix;
 static get_fbconfig_attrib_sgix_fn p_get_fbconfig_attrib_sgix;
@@ -112,9 +122,12 @@ static create_context_sgix_fn p_create_context_sgix;
 static create_context_attribs_fn p_create_context_attribs;
 static create_pixmap_sgix_fn p_create_pixmap_sgix;
 static create_pbuffer_sgix_fn p_create_pbuffer_sgix;
+static destroy_pbuffer_sgix_fn p_destroy_pbuffer_sgix;
 static draw_buffers_fn p_draw_buffers, p_draw_buffers_arb;
 static bind_framebuffer_fn p_bind_framebuffer, p_bind_framebuffer_ext;
 static delete_framebuffers_fn p_delete_framebuffers, p_delete_framebuffers_ext;
+static delete_framebuffers_fn p_delete_textures, p_delete_textures_ext;
+static delete_framebuffers_fn p_delete_renderbuffers, p_delete_renderbuffers_ext;
 static attachment_fn p_attachment, p_attachment_ext;
 static clear_fv_fn p_clear_fv;
 static clear_iv_fn p_clear_iv;
@@ -140,10 +153,20 @@ static clear_color_ui_fn p_clear_color_iui;
 static blit_fn p_blit;
 static invalidate_fn p_invalidate;
 static invalidate_sub_fn p_invalidate_sub;
+typedef void (*invalidate_named_fn)(GLuint, GLsizei, const GLenum *);
+typedef void (*invalidate_named_sub_fn)(GLuint, GLsizei, const GLenum *, GLint, GLint, GLsizei,
+                                        GLsizei);
+typedef GLenum (*check_named_fn)(GLuint, GLenum);
+static invalidate_named_fn p_invalidate_named;
+static invalidate_named_sub_fn p_invalidate_named_sub;
+static check_named_fn p_check_named, p_check_named_ext;
 static named_attachment_fn p_named_attachment;
 static parameter_fn p_named_parameter, p_parameter;
 static link_program_fn p_link_program;
 static create_shader_programv_fn p_create_shader_programv;
+static get_programiv_fn p_get_programiv;
+static get_program_binary_fn p_get_program_binary, p_get_program_binary_oes;
+static program_binary_fn p_program_binary, p_program_binary_oes;
 
 /* Extension functions, looked up as programs do (the layer's for its names). */
 #define LOOKUP(var, name)                                                    \
@@ -161,12 +184,17 @@ static void load_procs(void) {
     LOOKUP(p_create_context_attribs, "glXCreateContextAttribsARB");
     LOOKUP(p_create_pixmap_sgix, "glXCreateGLXPixmapWithConfigSGIX");
     LOOKUP(p_create_pbuffer_sgix, "glXCreateGLXPbufferSGIX");
+    LOOKUP(p_destroy_pbuffer_sgix, "glXDestroyGLXPbufferSGIX");
     LOOKUP(p_draw_buffers, "glDrawBuffers");
     LOOKUP(p_draw_buffers_arb, "glDrawBuffersARB");
     LOOKUP(p_bind_framebuffer, "glBindFramebuffer");
     LOOKUP(p_bind_framebuffer_ext, "glBindFramebufferEXT");
     LOOKUP(p_delete_framebuffers, "glDeleteFramebuffers");
     LOOKUP(p_delete_framebuffers_ext, "glDeleteFramebuffersEXT");
+    LOOKUP(p_delete_textures, "glDeleteTextures");
+    LOOKUP(p_delete_textures_ext, "glDeleteTexturesEXT");
+    LOOKUP(p_delete_renderbuffers, "glDeleteRenderbuffers");
+    LOOKUP(p_delete_renderbuffers_ext, "glDeleteRenderbuffersEXT");
     LOOKUP(p_attachment, "glGetFramebufferAttachmentParameteriv");
     LOOKUP(p_attachment_ext, "glGetFramebufferAttachmentParameterivEXT");
     LOOKUP(p_clear_fv, "glClearBufferfv");
@@ -204,11 +232,20 @@ static void load_procs(void) {
     LOOKUP(p_blit, "glBlitFramebuffer");
     LOOKUP(p_invalidate, "glInvalidateFramebuffer");
     LOOKUP(p_invalidate_sub, "glInvalidateSubFramebuffer");
+    LOOKUP(p_invalidate_named, "glInvalidateNamedFramebufferData");
+    LOOKUP(p_invalidate_named_sub, "glInvalidateNamedFramebufferSubData");
+    LOOKUP(p_check_named, "glCheckNamedFramebufferStatus");
+    LOOKUP(p_check_named_ext, "glCheckNamedFramebufferStatusEXT");
     LOOKUP(p_named_attachment, "glGetNamedFramebufferAttachmentParameteriv");
     LOOKUP(p_named_parameter, "glGetNamedFramebufferParameteriv");
     LOOKUP(p_parameter, "glGetFramebufferParameteriv");
     LOOKUP(p_link_program, "glLinkProgram");
     LOOKUP(p_create_shader_programv, "glCreateShaderProgramv");
+    LOOKUP(p_get_programiv, "glGetProgramiv");
+    LOOKUP(p_get_program_binary, "glGetProgramBinary");
+    LOOKUP(p_get_program_binary_oes, "glGetProgramBinaryOES");
+    LOOKUP(p_program_binary, "glProgramBinary");
+    LOOKUP(p_program_binary_oes, "glProgramBinaryOES");
 }
 
 static void *proc_pointer(void (*f)(void)) {
@@ -248,6 +285,10 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_glx_create_glx_pixmap_with_config_sgix(d, c, p) p_create_pixmap_sgix(D(d), (c), (p))
 #define gls_glx_create_glx_pbuffer_sgix(d, c, w, h, a) \
     p_create_pbuffer_sgix(D(d), (c), (w), (h), (int *)(a))
+#define gls_glx_destroy_pbuffer(d, p) glXDestroyPbuffer(D(d), (p))
+#define gls_glx_destroy_glx_pbuffer_sgix(d, p) p_destroy_pbuffer_sgix(D(d), (p))
+#define gls_glx_destroy_pixmap(d, p) glXDestroyPixmap(D(d), (p))
+#define gls_glx_destroy_glx_pixmap(d, p) glXDestroyGLXPixmap(D(d), (p))
 #define gls_glx_get_proc_address(n) proc_pointer(glXGetProcAddressARB(n))
 #define gls_gl_draw_buffer(b) glDrawBuffer(b)
 #define gls_gl_draw_buffers(n, b) p_draw_buffers((n), (b))
@@ -262,6 +303,10 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_bind_framebuffer_ext(t, f) p_bind_framebuffer_ext((t), (f))
 #define gls_gl_delete_framebuffers(n, f) p_delete_framebuffers((n), (f))
 #define gls_gl_delete_framebuffers_ext(n, f) p_delete_framebuffers_ext((n), (f))
+#define gls_gl_delete_textures(n, t) p_delete_textures((n), (t))
+#define gls_gl_delete_textures_ext(n, t) p_delete_textures_ext((n), (t))
+#define gls_gl_delete_renderbuffers(n, r) p_delete_renderbuffers((n), (r))
+#define gls_gl_delete_renderbuffers_ext(n, r) p_delete_renderbuffers_ext((n), (r))
 #define gls_gl_get_framebuffer_attachment_parameteriv(t, a, p, v) p_attachment((t), (a), (p), (v))
 #define gls_gl_get_framebuffer_attachment_parameteriv_ext(t, a, p, v) \
     p_attachment_ext((t), (a), (p), (v))
@@ -311,12 +356,23 @@ static void *proc_pointer(void (*f)(void)) {
 #define gls_gl_invalidate_framebuffer(t, n, a) p_invalidate((t), (n), (a))
 #define gls_gl_invalidate_sub_framebuffer(t, n, a, x, y, w, h) \
     p_invalidate_sub((t), (n), (a), (x), (y), (w), (h))
+#define gls_gl_invalidate_named_framebuffer_data(f, n, a) p_invalidate_named((f), (n), (a))
+#define gls_gl_invalidate_named_framebuffer_sub_data(f, n, a, x, y, w, h) \
+    p_invalidate_named_sub((f), (n), (a), (x), (y), (w), (h))
+#define gls_gl_check_named_framebuffer_status(f, t) p_check_named((f), (t))
+#define gls_gl_check_named_framebuffer_status_ext(f, t) p_check_named_ext((f), (t))
 #define gls_gl_get_named_framebuffer_attachment_parameteriv(f, a, p, v) \
     p_named_attachment((f), (a), (p), (v))
 #define gls_gl_get_named_framebuffer_parameteriv(f, p, v) p_named_parameter((f), (p), (v))
 #define gls_gl_get_framebuffer_parameteriv(t, p, v) p_parameter((t), (p), (v))
 #define gls_gl_link_program(p) p_link_program(p)
 #define gls_gl_create_shader_programv(t, n, s) p_create_shader_programv((t), (n), (s))
+#define gls_gl_get_programiv(p, n, v) p_get_programiv((p), (n), (v))
+#define gls_gl_get_program_binary(p, n, l, f, b) p_get_program_binary((p), (n), (l), (f), (b))
+#define gls_gl_get_program_binary_oes(p, n, l, f, b) \
+    p_get_program_binary_oes((p), (n), (l), (f), (b))
+#define gls_gl_program_binary(p, f, b, n) p_program_binary((p), (f), (b), (n))
+#define gls_gl_program_binary_oes(p, f, b, n) p_program_binary_oes((p), (f), (b), (n))
 
 /* Messages go to stderr here, where tests/misuse.rs reads them. */
 static void sentinel(void) {}
@@ -560,6 +616,10 @@ static void null_display_cases(void *ctx) {
     EXPECT_RET(id == 0, 1, id, gls_glx_create_pbuffer, NULL, cfg, NULL);
     EXPECT_RET(id == 0, 1, id, gls_glx_create_glx_pixmap_with_config_sgix, NULL, cfg, win);
     EXPECT_RET(id == 0, 1, id, gls_glx_create_glx_pbuffer_sgix, NULL, cfg, 16, 16, NULL);
+    EXPECT_VOID(1, gls_glx_destroy_pbuffer, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_glx_pbuffer_sgix, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_pixmap, NULL, 0x7777);
+    EXPECT_VOID(1, gls_glx_destroy_glx_pixmap, NULL, 0x7777);
 
     /* With a stereo context current: nothing changes. */
     EXPECT_RET(ok == True, 0, ok, gls_glx_make_current, dpy, win, ctx);
@@ -631,6 +691,15 @@ static void null_pointer_cases(void) {
     EXPECT_RET(id == 0, 0, id, gls_glx_create_glx_pixmap_with_config_sgix, dpy, NULL, win);
     EXPECT_RET(id == 0, 0, id, gls_glx_create_glx_pbuffer_sgix, dpy, NULL, 16, 16, NULL);
     x_error(dpy);
+    /* Drawables GLX does not know: libGL's X errors. */
+    EXPECT_VOID(0, gls_glx_destroy_pbuffer, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PBUFFER_);
+    EXPECT_VOID(0, gls_glx_destroy_glx_pbuffer_sgix, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, 0); /* Mesa sends nothing for a pbuffer it does not know */
+    EXPECT_VOID(0, gls_glx_destroy_pixmap, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PIXMAP_);
+    EXPECT_VOID(0, gls_glx_destroy_glx_pixmap, dpy, 0x7777);
+    EXPECT_X_ERROR(dpy, glx_error_base + GLX_BAD_PIXMAP_);
 
     /* Bad screens and attributes: libGL's answers. */
     EXPECT_RET(v == NULL, 0, v, gls_glx_choose_visual, dpy, 99, VIS_STEREO);
@@ -752,6 +821,10 @@ static void no_context_cases(void) {
     EXPECT_VOID(0, gls_gl_bind_framebuffer_ext, GL_FRAMEBUFFER_, 0);
     EXPECT_VOID(0, gls_gl_delete_framebuffers, 1, &name);
     EXPECT_VOID(0, gls_gl_delete_framebuffers_ext, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_textures, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_textures_ext, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_renderbuffers, 1, &name);
+    EXPECT_VOID(0, gls_gl_delete_renderbuffers_ext, 1, &name);
     EXPECT_VOID(0, gls_gl_push_attrib, GL_COLOR_BUFFER_BIT);
     EXPECT_VOID0(0, gls_gl_pop_attrib);
     EXPECT_VOID(0, gls_gl_viewport, 0, 0, -1, -1);
@@ -846,6 +919,14 @@ static void null_gl_pointers(const char *where) {
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_delete_framebuffers_ext, 3, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_textures, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_textures_ext, 2, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_renderbuffers, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_delete_renderbuffers_ext, 4, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_get_framebuffer_attachment_parameteriv, GL_FRAMEBUFFER_, GL_BACK_LEFT,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
@@ -870,6 +951,10 @@ static void null_gl_pointers(const char *where) {
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_invalidate_sub_framebuffer, GL_FRAMEBUFFER_, 2, NULL, 0, 0, 1, 1);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_invalidate_named_framebuffer_data, 0, 1, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_invalidate_named_framebuffer_sub_data, 0, 3, NULL, 0, 0, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
     EXPECT_VOID(1, gls_gl_get_named_framebuffer_attachment_parameteriv, 0, GL_BACK_LEFT,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
@@ -880,6 +965,22 @@ static void null_gl_pointers(const char *where) {
     GLuint prog = 7;
     EXPECT_RET(prog == 0, 1, prog, gls_gl_create_shader_programv, GL_FRAGMENT_SHADER_, 1, NULL);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    GLsizei blen = -5;
+    GLenum bfmt = 7;
+    unsigned char bbuf[16];
+    EXPECT_VOID(1, gls_gl_get_programiv, 0x7777, GL_LINK_STATUS_, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary, 0x7777, 16, &blen, NULL, bbuf);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary, 0x7777, 16, &blen, &bfmt, NULL);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_get_program_binary_oes, 0x7777, 16, &blen, NULL, bbuf);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_program_binary, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, NULL, 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_VOID(1, gls_gl_program_binary_oes, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, NULL, 16);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    CHECK(blen == -5 && bfmt == 7, "program binary outputs written on a refusal");
     /* n = 0 needs no pointer. */
     EXPECT_VOID(0, gls_gl_draw_buffers, 0, NULL);
     EXPECT_VOID(0, gls_gl_delete_framebuffers, 0, NULL);
@@ -1050,11 +1151,26 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_VOID(0, gls_gl_clear_color, 0.0f, 0.0f, 0.0f, 0.0f);
     EXPECT_GL_ERROR(GL_NO_ERROR);
     const GLenum bad_attachment[1] = {0x7777};
+    GLenum status;
     EXPECT_VOID(0, gls_gl_invalidate_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
     EXPECT_VOID(0, gls_gl_invalidate_sub_framebuffer, GL_FRAMEBUFFER_, 1, bad_attachment, 0, 0,
                 1, 1);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_invalidate_named_framebuffer_data, 0, 1, bad_attachment);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_invalidate_named_framebuffer_sub_data, 0, 1, bad_attachment, 0, 0, 1, 1);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_VOID(0, gls_gl_invalidate_named_framebuffer_sub_data, 0, 0, bad_attachment, 0, 0, -1,
+                1);
+    EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    EXPECT_RET(status == 0, 0, status, gls_gl_check_named_framebuffer_status, 0, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_RET(status == 0, 0, status, gls_gl_check_named_framebuffer_status_ext, 0, 0x7777);
+    EXPECT_GL_ERROR(GL_INVALID_ENUM);
+    EXPECT_RET(status == GL_FRAMEBUFFER_COMPLETE_, 0, status, gls_gl_check_named_framebuffer_status,
+               0, GL_READ_FRAMEBUFFER_);
+    EXPECT_GL_ERROR(GL_NO_ERROR);
     EXPECT_VOID(0, gls_gl_get_named_framebuffer_attachment_parameteriv, 0, 0x7777,
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_, &iv);
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
@@ -1064,6 +1180,24 @@ static void stereo_gl_cases(void *ctx) {
     EXPECT_GL_ERROR(GL_INVALID_ENUM);
     EXPECT_VOID(0, gls_gl_link_program, 0x7777);
     EXPECT_GL_ERROR(GL_INVALID_VALUE);
+    {
+        GLint st = -5;
+        GLsizei blen = -5;
+        GLenum bfmt = 7;
+        unsigned char bbuf[16] = {0};
+        EXPECT_VOID(0, gls_gl_get_programiv, 0x7777, GL_LINK_STATUS_, &st);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_get_program_binary, 0x7777, 16, &blen, &bfmt, bbuf);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_get_program_binary_oes, 0x7777, -1, &blen, &bfmt, bbuf);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_program_binary, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, bbuf, 16);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        EXPECT_VOID(0, gls_gl_program_binary_oes, 0x7777, GL_PROGRAM_BINARY_FORMAT_MESA_, bbuf,
+                    -1);
+        EXPECT_GL_ERROR(GL_INVALID_VALUE);
+        CHECK(st == -5 && bfmt == 7, "program outputs written on an error");
+    }
     const char *src[1] = {"void main() {}"};
     GLuint sp = 7;
     EXPECT_RET(sp == 0, 0, sp, gls_gl_create_shader_programv, 0x7777, 1, src);

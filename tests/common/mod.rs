@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+pub mod clients;
 pub mod photo;
 pub mod preload;
 pub mod xvfb;

@@ -24,9 +24,20 @@ pub struct Built {
 /// target directory of this test binary, once per test binary. `cargo
 /// test` builds only what the root package's tests link; the preload
 /// library is a cdylib of another package, so it is built here, fresh.
+///
+/// `GLSTEREO_TEST_BUILD=DIR` uses the glstereo-run and preload library
+/// already built in DIR (e.g. an older build's target/debug) instead: how
+/// to see a test fail on the code before a fix.
 pub fn built() -> &'static Built {
     static BUILT: OnceLock<Built> = OnceLock::new();
     BUILT.get_or_init(|| {
+        if let Some(dir) = std::env::var_os("GLSTEREO_TEST_BUILD") {
+            let dir = PathBuf::from(dir);
+            return Built {
+                run: dir.join("glstereo-run"),
+                preload: dir.join("libglstereo_preload.so"),
+            };
+        }
         let deps = super::lib_dir();
         let profile_dir = deps.parent().expect("target/<profile>");
         let target = profile_dir.parent().expect("target");
@@ -155,14 +166,21 @@ impl Running {
 
     /// Lets the program exit (a line on stdin) and returns its stderr,
     /// failing unless it exits with status 0 within 60 s.
-    pub fn finish(mut self) -> String {
+    pub fn finish(self) -> String {
+        self.finish_with_stdout().1
+    }
+
+    /// [`Running::finish`], with every stdout line the program wrote.
+    pub fn finish_with_stdout(mut self) -> (Vec<String>, String) {
         if let Some(mut stdin) = self.stdin.take() {
             let _ = writeln!(stdin);
         }
         for _ in 0..600 {
             if let Some(status) = self.child.try_wait().expect("wait") {
                 let err = self.child.wait_with_output_now();
-                while let Ok(l) = self.lines.try_recv() {
+                // Up to the end of its stdout (the reader thread may still
+                // be passing the last lines on when the program has exited).
+                while let Ok(l) = self.lines.recv_timeout(Duration::from_secs(5)) {
                     self.stdout.push(l);
                 }
                 assert!(
@@ -170,7 +188,7 @@ impl Running {
                     "the program exited with {status}; stdout {:?}\nstderr:\n{err}",
                     self.stdout
                 );
-                return err;
+                return (std::mem::take(&mut self.stdout), err);
             }
             std::thread::sleep(Duration::from_millis(100));
         }
@@ -225,16 +243,31 @@ impl Screen {
     }
 
     /// The window's contents as the server has them (RGBA, alpha 255).
+    /// Waits (up to 30 s) for the window to be viewable: XGetImage of a
+    /// window not mapped yet is a BadMatch X error, which Xlib's default
+    /// handler turns into the exit of the whole test binary (a loaded
+    /// machine maps a program's window later than it says it is ready).
     pub fn grab(&self, window: u64) -> Image {
         let x = &self.xlib;
         // SAFETY: valid display; the window exists while the program waits.
         unsafe {
             let mut attrs: xlib::XWindowAttributes = std::mem::zeroed();
-            assert_ne!(
-                (x.XGetWindowAttributes)(self.display, window, &mut attrs),
-                0,
-                "window {window:#x} exists"
-            );
+            let deadline = std::time::Instant::now() + Duration::from_secs(30);
+            loop {
+                assert_ne!(
+                    (x.XGetWindowAttributes)(self.display, window, &mut attrs),
+                    0,
+                    "window {window:#x} exists"
+                );
+                if attrs.map_state == xlib::IsViewable {
+                    break;
+                }
+                assert!(
+                    std::time::Instant::now() < deadline,
+                    "window {window:#x} is not viewable within 30 s"
+                );
+                std::thread::sleep(Duration::from_millis(50));
+            }
             let (w, h) = (attrs.width as u32, attrs.height as u32);
             let img = (x.XGetImage)(self.display, window, 0, 0, w, h, !0, xlib::ZPixmap);
             assert!(!img.is_null(), "XGetImage of {window:#x}");
@@ -343,6 +376,75 @@ impl Screen {
                 (x.XSendEvent)(self.display, window, 0, mask, &mut ev);
             }
             (x.XFlush)(self.display);
+        }
+    }
+
+    /// Types `chords` into `window` as a user at the keyboard would: the
+    /// window gets the input focus, then for each chord `(modifiers, key)`
+    /// (keysyms, e.g. `&[XK_Control_L]`, `XK_F7`) the modifiers go down,
+    /// the key is pressed and released, and the modifiers go up — real key
+    /// events made by the server (the XTEST extension, libXtst), whose
+    /// state field the server fills from the modifiers held.
+    pub fn type_keys(&self, window: u64, chords: &[(&[u32], u32)]) {
+        let coded: Vec<(&[u32], u8)> = chords
+            .iter()
+            .map(|&(mods, key)| (mods, self.keycode(key)))
+            .collect();
+        self.type_keycodes(window, &coded);
+    }
+
+    /// The key (keycode) that has `keysym`, as this connection knows the
+    /// keyboard map.
+    pub fn keycode(&self, keysym: u32) -> u8 {
+        // SAFETY: valid display.
+        let c = unsafe { (self.xlib.XKeysymToKeycode)(self.display, keysym as xlib::KeySym) };
+        assert_ne!(c, 0, "no key has keysym {keysym:#x}");
+        c
+    }
+
+    /// [`Screen::type_keys`] with each chord's key given by its keycode.
+    pub fn type_keycodes(&self, window: u64, chords: &[(&[u32], u8)]) {
+        let x = &self.xlib;
+        let xtst = x11_dl::xtest::Xf86vmode::open().expect("libXtst.so.6 (package libxtst6)");
+        // SAFETY: valid display and window; XTEST requests only.
+        unsafe {
+            let (mut ev, mut er, mut major, mut minor) = (0, 0, 0, 0);
+            assert_ne!(
+                (xtst.XTestQueryExtension)(self.display, &mut ev, &mut er, &mut major, &mut minor),
+                0,
+                "the X server has no XTEST extension"
+            );
+            (x.XSetInputFocus)(
+                self.display,
+                window,
+                xlib::RevertToParent,
+                xlib::CurrentTime,
+            );
+            let key = |code: u8, down: bool| {
+                (xtst.XTestFakeKeyEvent)(self.display, u32::from(code), down as i32, 0);
+            };
+            for &(mods, code) in chords {
+                for &m in mods {
+                    key(self.keycode(m), true);
+                }
+                key(code, true);
+                key(code, false);
+                for &m in mods.iter().rev() {
+                    key(self.keycode(m), false);
+                }
+            }
+            (x.XSync)(self.display, 0);
+        }
+    }
+
+    /// Gives key `keycode` the single keysym `keysym` in the server's
+    /// keyboard map (as xmodmap does; the server tells the clients).
+    pub fn set_keysym(&self, keycode: u8, keysym: u32) {
+        let mut sym = keysym as xlib::KeySym;
+        // SAFETY: valid display; one keysym for one keycode.
+        unsafe {
+            (self.xlib.XChangeKeyboardMapping)(self.display, i32::from(keycode), 1, &mut sym, 1);
+            (self.xlib.XSync)(self.display, 0);
         }
     }
 }

@@ -15,6 +15,7 @@ use std::process::{Command, ExitCode};
 use glstereo::interpose::capture::{
     CaptureSettings, ENV_CAPTURE_DIR, ENV_CAPTURE_FORMAT, ENV_JPEG_QUALITY,
 };
+use glstereo::interpose::live;
 use glstereo::output::mode::{ALIASES, AliasSource};
 use glstereo::output::options::{ENV_MODE, ENV_SWAP_EYES, OutputSettings};
 use glstereo::output::{AnaglyphColors, AnaglyphMethod, OutputMode};
@@ -76,20 +77,36 @@ fn describe(mode: OutputMode) -> String {
 
 fn help() -> String {
     let mut s = String::from(
-        "Usage: glstereo-run [-m MODE] [-s] [-c DIR [-f FORMATS] [-q N]] [--] PROGRAM [ARGS...]\n\
+        "Usage: glstereo-run [-m MODE] [-s] [-a [--separation S] [--convergence C]] [-v]\n\
+         \x20                   [-c DIR [-f FORMATS] [-q N]] [--] PROGRAM [ARGS...]\n\
          \n\
          Runs PROGRAM, an unmodified OpenGL (GLX) program, with glstereo's stereo\n\
          layer preloaded. A program that asks for a stereo visual (GLX_STEREO,\n\
          GLUT_STEREO) gets one even where the X server has none, draws both eyes\n\
          (glDrawBuffer(GL_BACK_LEFT / GL_BACK_RIGHT)), and each glXSwapBuffers shows\n\
          them in its window in MODE. Programs that do not ask for stereo run as\n\
-         they would without the layer.\n\
+         they would without the layer, unless --auto is given.\n\
          \n\
          Options:\n\
          \x20 -m, --mode MODE     how the window shows the eyes (sets GLSTEREO_MODE;\n\
          \x20                     default: $GLSTEREO_MODE, else anaglyph-red-cyan;\n\
-         \x20                     -st MODE as in vglrun)\n\
+         \x20                     -st MODE as in vglrun). A format other than quad\n\
+         \x20                     also emulates the stereo a driver or a GL layer\n\
+         \x20                     below (VirtualGL) offers; without one, that\n\
+         \x20                     native stereo is used as it is\n\
          \x20 -s, --swap-eyes     exchange left and right (GLSTEREO_SWAP_EYES=1)\n\
+         \x20 -a, --auto          automatic stereo: a program that never asks for stereo\n\
+         \x20                     is shown in stereo all the same, every vertex moved\n\
+         \x20                     per eye as NVIDIA 3D Vision Automatic moved it\n\
+         \x20                     (GLSTEREO_AUTO=1)\n\
+         \x20     --separation S  automatic stereo's separation, percent 0..100: far\n\
+         \x20                     geometry S% of 7% of the width apart (default 15;\n\
+         \x20                     GLSTEREO_SEPARATION)\n\
+         \x20     --convergence C automatic stereo's convergence: the distance (clip w)\n\
+         \x20                     at the screen, > 0, or auto (default; GLSTEREO_CONVERGENCE)\n\
+         \x20 -v, --verbose       say on stderr which stereo the program got (native or\n\
+         \x20                     emulated, in which format) and how frames are\n\
+         \x20                     presented (GLSTEREO_VERBOSE=1)\n\
          \x20 -c, --capture DIR   write every presented frame to DIR as left-NNNNNN.png,\n\
          \x20                     right-NNNNNN.png and composite-NNNNNN.png (made if\n\
          \x20                     missing; sets GLSTEREO_CAPTURE_DIR)\n\
@@ -127,9 +144,15 @@ fn help() -> String {
         ));
     }
     s.push_str(
-        "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_CROSSTALK (0..1),\n\
+        "\nKeys in the program's window (never passed to it; GLSTEREO_KEYS=0: off):\n\
+         \x20 Ctrl+F7, Ctrl+Shift+F7  next, previous format      Ctrl+F8  exchange the eyes\n\
+         \x20 automatic stereo: Ctrl+F3/F4 separation, Ctrl+F5/F6 convergence, Ctrl+T on/off\n",
+    );
+    s.push_str(
+        "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_AUTO, GLSTEREO_SEPARATION,\n\
+         GLSTEREO_CONVERGENCE, GLSTEREO_VERBOSE, GLSTEREO_CROSSTALK (0..1),\n\
          GLSTEREO_SATURATION (0..1), GLSTEREO_CAPTURE_DIR, GLSTEREO_CAPTURE_FORMAT,\n\
-         GLSTEREO_JPEG_QUALITY (1..100); GLSTEREO_PRELOAD_LIB names\n\
+         GLSTEREO_JPEG_QUALITY (1..100), GLSTEREO_KEYS; GLSTEREO_PRELOAD_LIB names\n\
          the preload library when it is not installed beside glstereo-run.\n\
          \n\
          Exit status: PROGRAM's; 2 for a usage error; 126/127 when PROGRAM cannot be run.\n",
@@ -141,9 +164,13 @@ fn help() -> String {
 struct Request {
     mode: Option<OutputMode>,
     swap_eyes: bool,
+    auto: bool,
+    separation: Option<String>,
+    convergence: Option<String>,
     capture: Option<PathBuf>,
     capture_format: Option<String>,
     jpeg_quality: Option<String>,
+    verbose: bool,
     program: Vec<OsString>,
 }
 
@@ -157,9 +184,13 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
     let mut req = Request {
         mode: None,
         swap_eyes: false,
+        auto: false,
+        separation: None,
+        convergence: None,
         capture: None,
         capture_format: None,
         jpeg_quality: None,
+        verbose: false,
         program: Vec::new(),
     };
     let mut i = 0;
@@ -189,6 +220,18 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
                 req.mode = Some(mode);
             }
             "-s" | "--swap-eyes" => req.swap_eyes = true,
+            "-a" | "--auto" => req.auto = true,
+            "--separation" => {
+                let v = value(&flag)?.to_string_lossy().into_owned();
+                live::parse_separation(&v).map_err(|e| format!("--separation: {e}"))?;
+                req.separation = Some(v);
+            }
+            "--convergence" => {
+                let v = value(&flag)?.to_string_lossy().into_owned();
+                live::parse_convergence(&v).map_err(|e| format!("--convergence: {e}"))?;
+                req.convergence = Some(v);
+            }
+            "-v" | "--verbose" => req.verbose = true,
             "-c" | "--capture" => req.capture = Some(PathBuf::from(value(&flag)?)),
             "-f" | "--capture-format" => {
                 req.capture_format = Some(value(&flag)?.to_string_lossy().into_owned());
@@ -274,6 +317,35 @@ fn run(req: Request) -> Result<std::io::Error, String> {
     }
     if req.swap_eyes {
         cmd.env(ENV_SWAP_EYES, "1");
+    }
+    if req.auto {
+        cmd.env(live::ENV_AUTO, "1");
+    }
+    if let Some(s) = &req.separation {
+        cmd.env(live::ENV_SEPARATION, s);
+    }
+    if let Some(c) = &req.convergence {
+        cmd.env(live::ENV_CONVERGENCE, c);
+    }
+    // Automatic stereo's settings from the environment are checked too.
+    if req.separation.is_none() {
+        if let Some(v) = std::env::var(live::ENV_SEPARATION)
+            .ok()
+            .filter(|v| !v.trim().is_empty())
+        {
+            live::parse_separation(&v).map_err(|e| e.to_string())?;
+        }
+    }
+    if req.convergence.is_none() {
+        if let Some(v) = std::env::var(live::ENV_CONVERGENCE)
+            .ok()
+            .filter(|v| !v.trim().is_empty())
+        {
+            live::parse_convergence(&v).map_err(|e| e.to_string())?;
+        }
+    }
+    if req.verbose {
+        cmd.env(glstereo::interpose::settings::ENV_VERBOSE, "1");
     }
     if let Some(f) = &req.capture_format {
         cmd.env(ENV_CAPTURE_FORMAT, f);

@@ -1,0 +1,703 @@
+//! The eyes of an automatic-stereo context: the emulated default
+//! framebuffer's colour buffers and depth/stencil as 2-layer array
+//! textures, layer 0 the left eye and layer 1 the right ([`crate::auto`],
+//! "How a draw reaches both eyes"), attached layered to the framebuffer
+//! object the program draws into in place of framebuffer 0.
+//!
+//! The emulated framebuffer ([`crate::stereo::emulated`]) has its colour
+//! buffers in four slots, a front and a back pair (slots 0 and 2, 1 and
+//! 3; a swap exchanges the pairs' roles). Here each pair is one array:
+//! slot `s` is layer `s / 2` of pair `s % 2`'s array, attached at
+//! GL_COLOR_ATTACHMENT0 + `s % 2`, so a program's GL_BACK (both back
+//! buffers) is one attachment and a draw reaches both eyes by its layer.
+//! One depth/stencil array serves both pairs (a default framebuffer has
+//! one depth buffer; here one per eye).
+//!
+//! What presentation composes and captures is a 2D texture per slot:
+//! - where the driver takes memory from a file (llvmpipe,
+//!   [`crate::stereo::eye_memory`]), each pair's array and its two 2D
+//!   textures are the same memory: a memory object for the array and the
+//!   left eye's texture, and a second import of the same file whose data
+//!   starts at the second layer for the right eye's. Nothing is copied;
+//!   a composite reads the layers in place. Checked when made (markers
+//!   cleared into each layer are found in the 2D textures and at the
+//!   addresses predicted), else given up for the process;
+//! - elsewhere the 2D textures are ordinary ones, and each present copies
+//!   the pair's layers into them ([`LayeredEyes::resolve`],
+//!   glCopyImageSubData).
+
+use crate::auto::gl_fns;
+use crate::error::{Error, Result};
+use crate::gl::Gl;
+use crate::gl::enums::*;
+use crate::math::Eye;
+use crate::stereo::eye_memory::{self, EyePixels, MemoryObjectApi};
+
+const GL_TEXTURE_2D_ARRAY: u32 = 0x8C1A;
+const GL_DEPTH_STENCIL: u32 = 0x84F9;
+const GL_UNSIGNED_INT_24_8: u32 = 0x84FA;
+const GL_DEPTH_COMPONENT: u32 = 0x1902;
+const GL_UNSIGNED_INT: u32 = 0x1405;
+const GL_DEPTH_COMPONENT24: u32 = 0x81A6;
+const GL_DEPTH_ATTACHMENT: u32 = 0x8D00;
+const GL_DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
+
+gl_fns! {
+    /// The GL 3.2–4.3 functions layered eyes need, beyond [`Gl`]'s.
+    #[derive(Clone, Copy, Debug)]
+    pub struct LayeredApi {
+        tex_image_3d = c"glTexImage3D": fn(u32, i32, i32, i32, i32, i32, i32, u32, u32, *const std::ffi::c_void);
+        framebuffer_texture = c"glFramebufferTexture": fn(u32, u32, u32, i32);
+        framebuffer_texture_layer = c"glFramebufferTextureLayer": fn(u32, u32, u32, i32, i32);
+        copy_image_sub_data = c"glCopyImageSubData": fn(u32, u32, i32, i32, i32, i32, u32, u32, i32, i32, i32, i32, i32, i32, i32);
+    }
+}
+
+/// The layer of `eye`.
+pub fn layer(eye: Eye) -> i32 {
+    match eye {
+        Eye::Left => 0,
+        Eye::Right => 1,
+    }
+}
+
+/// The pair (array) of slot `slot`.
+pub fn pair(slot: usize) -> usize {
+    slot % 2
+}
+
+/// One pair's memory: a file mapped here, imported twice (data at the
+/// first layer, and at the second).
+#[derive(Debug)]
+struct PairMemory {
+    objects: [u32; 2],
+    map: *mut u8,
+    map_len: usize,
+    data_offset: usize,
+    layer_stride: usize,
+    stride: usize,
+}
+
+// SAFETY: plain shared memory; reads are ordered by GL synchronisation
+// (the present's glFinish), as for eye_memory's textures.
+unsafe impl Send for PairMemory {}
+
+impl PairMemory {
+    /// Gives `array` (2 layers) and the 2D textures `eyes` (left, right)
+    /// `width` × `height` RGBA8 storage in one new file. None when the
+    /// driver lacks glTexStorageMem3DEXT or refuses (the textures may then
+    /// have storage of no use: the caller replaces them).
+    unsafe fn create(
+        gl: &Gl,
+        api: &MemoryObjectApi,
+        uuid: &[u8; 16],
+        array: u32,
+        eyes: [u32; 2],
+        (width, height): (u32, u32),
+    ) -> Option<PairMemory> {
+        let storage_3d = api.tex_storage_mem_3d?;
+        let stride = eye_memory::cache_lines(eye_memory::predicted_stride(width));
+        let rows = (height as usize).div_ceil(4) * 4;
+        let layer_stride = stride.checked_mul(rows)?;
+        let page = 4096;
+        let data_offset = page;
+        let map_len = data_offset + 2 * layer_stride + page;
+        // SAFETY: plain libc calls on a file this function owns; GL calls
+        // in the current context (contract).
+        unsafe {
+            let fd = libc::memfd_create(c"glstereo eyes".as_ptr(), libc::MFD_CLOEXEC);
+            if fd < 0 {
+                return None;
+            }
+            let ok = libc::ftruncate(fd, map_len as libc::off_t) == 0;
+            let map = if ok {
+                libc::mmap(
+                    std::ptr::null_mut(),
+                    map_len,
+                    libc::PROT_READ | libc::PROT_WRITE,
+                    libc::MAP_SHARED,
+                    fd,
+                    0,
+                )
+            } else {
+                libc::MAP_FAILED
+            };
+            if map == libc::MAP_FAILED {
+                libc::close(fd);
+                return None;
+            }
+            let mut memory = PairMemory {
+                objects: [0; 2],
+                map: map.cast(),
+                map_len,
+                data_offset,
+                layer_stride,
+                stride,
+            };
+            // Each import reads the header as the file has it then: where
+            // its data starts.
+            for (i, start) in [data_offset, data_offset + layer_stride]
+                .into_iter()
+                .enumerate()
+            {
+                let head = eye_memory::header(map_len, start, uuid);
+                if libc::pwrite(fd, head.as_ptr().cast(), head.len(), 0) != head.len() as isize {
+                    break;
+                }
+                // The driver closes the descriptor it is given.
+                let given = libc::dup(fd);
+                if given < 0 {
+                    break;
+                }
+                (api.create)(1, &mut memory.objects[i]);
+                (api.import_fd)(
+                    memory.objects[i],
+                    map_len as u64,
+                    eye_memory::GL_HANDLE_TYPE_OPAQUE_FD_EXT,
+                    given,
+                );
+            }
+            libc::close(fd);
+            // The header the first import's data needs before it again.
+            let head = eye_memory::header(map_len, data_offset, uuid);
+            std::ptr::copy_nonoverlapping(head.as_ptr(), memory.map, head.len());
+            if memory.objects.contains(&0) {
+                memory.release(api);
+                return None;
+            }
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, array);
+            storage_3d(
+                GL_TEXTURE_2D_ARRAY,
+                1,
+                GL_RGBA8,
+                width as i32,
+                height as i32,
+                2,
+                memory.objects[0],
+                0,
+            );
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
+            for (i, &tex) in eyes.iter().enumerate() {
+                gl.BindTexture(GL_TEXTURE_2D, tex);
+                (api.tex_storage_mem_2d)(
+                    GL_TEXTURE_2D,
+                    1,
+                    GL_RGBA8,
+                    width as i32,
+                    height as i32,
+                    memory.objects[i],
+                    0,
+                );
+            }
+            gl.BindTexture(GL_TEXTURE_2D, 0);
+            if gl.take_error() != GL_NO_ERROR {
+                memory.release(api);
+                return None;
+            }
+            Some(memory)
+        }
+    }
+
+    /// Where the CPU reads layer `l` of this memory: `texture`'s pixels.
+    fn pixels(&self, l: usize, texture: u32, (width, height): (u32, u32)) -> EyePixels {
+        // SAFETY: the layer starts inside the mapping, which lives as long
+        // as the textures (EyePixels' contract).
+        unsafe {
+            EyePixels::new(
+                texture,
+                self.map.add(self.data_offset + l * self.layer_stride),
+                self.stride,
+                width,
+                height,
+            )
+        }
+    }
+
+    /// Writes where the driver finds the start of its view of the second
+    /// import when it frees it: the word before that import's data, inside
+    /// the first layer (whose contents are no longer needed: nothing may
+    /// render into it afterwards).
+    fn prepare_unmap(&self) {
+        let start = self.data_offset + self.layer_stride;
+        let word = std::mem::size_of::<usize>();
+        // SAFETY: inside the mapping (the first layer's last bytes).
+        unsafe {
+            std::ptr::copy_nonoverlapping(
+                start.to_ne_bytes().as_ptr(),
+                self.map.add(start - word),
+                word,
+            )
+        };
+    }
+
+    /// Deletes both memory objects and unmaps. The textures made from
+    /// them must be deleted and nothing render into them any more.
+    unsafe fn release(self, api: &MemoryObjectApi) {
+        self.prepare_unmap();
+        // SAFETY: contract.
+        unsafe {
+            for o in self.objects.iter().rev().filter(|&&o| o != 0) {
+                (api.delete)(1, o);
+            }
+            libc::munmap(self.map.cast(), self.map_len);
+        }
+    }
+}
+
+/// The layered colour and depth/stencil of one emulated framebuffer, and
+/// the 2D textures presentation reads (module docs).
+#[derive(Debug)]
+pub struct LayeredEyes {
+    api: LayeredApi,
+    /// The colour arrays by pair (0: the pair does not exist).
+    colour: [u32; 2],
+    /// The 2D texture of each slot (0: none).
+    textures: [u32; 4],
+    /// The depth (and stencil) array, 0 for a visual with neither.
+    depth: u32,
+    /// GL_DEPTH_STENCIL_ATTACHMENT or GL_DEPTH_ATTACHMENT.
+    depth_attachment: u32,
+    width: u32,
+    height: u32,
+    /// Each pair's memory, where its textures share it (else they are
+    /// copied into at each present).
+    memory: [Option<PairMemory>; 2],
+    memory_api: Option<MemoryObjectApi>,
+}
+
+/// The GL objects of [`LayeredEyes`] a draw attaches: copied out of the
+/// context's state for the length of one call.
+#[derive(Clone, Copy, Debug)]
+pub struct Attachments {
+    api: LayeredApi,
+    colour: [u32; 2],
+    depth: u32,
+    depth_attachment: u32,
+}
+
+impl LayeredEyes {
+    /// Makes the arrays and textures of `pairs` (pair 1 only for a
+    /// double-buffered framebuffer), `width` × `height` × 2, colour RGBA8
+    /// (cleared to transparent black, or opaque black when `opaque`),
+    /// depth in `depth_format` (GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT24
+    /// or 0 for none), in the context current (sharing the program's
+    /// objects); `memory`: the memory-object API, to share the textures'
+    /// storage (module docs); `fbo` a framebuffer object of the context
+    /// for the clears.
+    ///
+    /// # Safety
+    /// A context of `gl`'s backend must be current on this thread.
+    pub unsafe fn allocate(
+        gl: &Gl,
+        api: LayeredApi,
+        memory: Option<MemoryObjectApi>,
+        (width, height): (u32, u32),
+        (depth_format, opaque): (u32, bool),
+        pairs: [bool; 2],
+        fbo: u32,
+    ) -> Result<LayeredEyes> {
+        // SAFETY: contract; no data uploaded.
+        unsafe {
+            let mut eyes = LayeredEyes {
+                api,
+                colour: [0; 2],
+                textures: [0; 4],
+                depth: 0,
+                depth_attachment: if depth_format == GL_DEPTH_COMPONENT24 {
+                    GL_DEPTH_ATTACHMENT
+                } else {
+                    GL_DEPTH_STENCIL_ATTACHMENT
+                },
+                width,
+                height,
+                memory: [None, None],
+                memory_api: None,
+            };
+            let uuid = memory
+                .filter(|_| eye_memory::wanted())
+                .and_then(|m| eye_memory::llvmpipe_identity(gl).map(|u| (m, u)));
+            for p in (0..2).filter(|&p| pairs[p]) {
+                eyes.colour[p] = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
+                eyes.textures[p] = gl.gen_texture();
+                eyes.textures[p + 2] = gl.gen_texture();
+                let shared = uuid.as_ref().and_then(|(m, u)| {
+                    PairMemory::create(
+                        gl,
+                        m,
+                        u,
+                        eyes.colour[p],
+                        [eyes.textures[p], eyes.textures[p + 2]],
+                        (width, height),
+                    )
+                });
+                match shared {
+                    Some(s) => {
+                        eyes.memory[p] = Some(s);
+                        eyes.memory_api = memory;
+                    }
+                    None => {
+                        if uuid.is_some() {
+                            // Storage of no use may have been given: new names.
+                            gl.take_error();
+                            gl.delete_textures(&[
+                                eyes.colour[p],
+                                eyes.textures[p],
+                                eyes.textures[p + 2],
+                            ]);
+                            eyes.colour[p] = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
+                            eyes.textures[p] = gl.gen_texture();
+                            eyes.textures[p + 2] = gl.gen_texture();
+                        }
+                        eyes.plain_colour(gl, p);
+                    }
+                }
+            }
+            // Sampled and copied as single-level textures.
+            for &tex in eyes.textures.iter().filter(|&&t| t != 0) {
+                gl.BindTexture(GL_TEXTURE_2D, tex);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE as i32);
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+            }
+            gl.BindTexture(GL_TEXTURE_2D, 0);
+            if depth_format != 0 {
+                eyes.depth = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
+                let (format, ty) = if depth_format == GL_DEPTH_COMPONENT24 {
+                    (GL_DEPTH_COMPONENT, GL_UNSIGNED_INT)
+                } else {
+                    (GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8)
+                };
+                eyes.array_storage(gl, eyes.depth, depth_format, format, ty);
+            }
+            if let Err(e) = gl.check("allocating the layered eyes") {
+                eyes.release(gl);
+                return Err(e);
+            }
+            // New storage is undefined: clear both layers of each pair.
+            gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+            gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+            gl.Disable(GL_SCISSOR_TEST);
+            gl.ColorMask(1, 1, 1, 1);
+            gl.ClearColor(0.0, 0.0, 0.0, if opaque { 1.0 } else { 0.0 });
+            let mut complete = true;
+            for &array in eyes.colour.iter().filter(|&&a| a != 0) {
+                (api.framebuffer_texture)(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, array, 0);
+                complete &= gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+                if complete {
+                    gl.Clear(GL_COLOR_BUFFER_BIT);
+                }
+            }
+            (api.framebuffer_texture)(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+            if !complete {
+                eyes.release(gl);
+                return Err(Error::Gl(
+                    "the driver cannot render to a layered RGBA8 array texture".into(),
+                ));
+            }
+            if eyes.memory.iter().any(Option::is_some) && !eyes.verify(gl, fbo) {
+                eye_memory::give_up(
+                    "the driver laid out the layered eyes otherwise than predicted",
+                );
+                eyes.release(gl);
+                return Self::allocate(
+                    gl,
+                    api,
+                    None,
+                    (width, height),
+                    (depth_format, opaque),
+                    pairs,
+                    fbo,
+                );
+            }
+            Ok(eyes)
+        }
+    }
+
+    /// Ordinary storage for pair `p`: its array and its 2D textures.
+    unsafe fn plain_colour(&self, gl: &Gl, p: usize) {
+        // SAFETY: contract of the callers.
+        unsafe {
+            self.array_storage(gl, self.colour[p], GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
+            for tex in [self.textures[p], self.textures[p + 2]] {
+                gl.BindTexture(GL_TEXTURE_2D, tex);
+                gl.TexImage2D(
+                    GL_TEXTURE_2D,
+                    0,
+                    GL_RGBA8 as i32,
+                    self.width as i32,
+                    self.height as i32,
+                    0,
+                    GL_RGBA,
+                    GL_UNSIGNED_BYTE,
+                    std::ptr::null(),
+                );
+            }
+            gl.BindTexture(GL_TEXTURE_2D, 0);
+        }
+    }
+
+    unsafe fn array_storage(&self, gl: &Gl, tex: u32, internal: u32, format: u32, ty: u32) {
+        // SAFETY: contract of the callers; no data uploaded.
+        unsafe {
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, tex);
+            (self.api.tex_image_3d)(
+                GL_TEXTURE_2D_ARRAY,
+                0,
+                internal as i32,
+                self.width as i32,
+                self.height as i32,
+                2,
+                0,
+                format,
+                ty,
+                std::ptr::null(),
+            );
+            gl.TexParameteri(
+                GL_TEXTURE_2D_ARRAY,
+                GL_TEXTURE_MIN_FILTER,
+                GL_NEAREST as i32,
+            );
+            gl.TexParameteri(
+                GL_TEXTURE_2D_ARRAY,
+                GL_TEXTURE_MAG_FILTER,
+                GL_NEAREST as i32,
+            );
+            gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
+        }
+    }
+
+    /// Whether the shared storage is where it is predicted: a marker
+    /// cleared into each corner of each layer of each array is read back
+    /// through the layer's 2D texture and found at its address.
+    unsafe fn verify(&self, gl: &Gl, fbo: u32) -> bool {
+        let (w, h) = (self.width, self.height);
+        let corners = [(0, 0), (w - 1, 0), (0, h - 1), (w - 1, h - 1)];
+        let mut ok = true;
+        // SAFETY: contract of the callers; reads stay inside the mapping.
+        unsafe {
+            gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+            gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+            gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+            gl.Enable(GL_SCISSOR_TEST);
+            gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+            for p in 0..2 {
+                let Some(m) = &self.memory[p] else { continue };
+                for l in 0..2 {
+                    (self.api.framebuffer_texture_layer)(
+                        GL_FRAMEBUFFER,
+                        GL_COLOR_ATTACHMENT0,
+                        self.colour[p],
+                        0,
+                        l as i32,
+                    );
+                    for (i, &(x, y)) in corners.iter().enumerate() {
+                        let v = eye_memory::marker(i + 4 * l);
+                        gl.Scissor(x as i32, y as i32, 1, 1);
+                        gl.ClearColor(
+                            f32::from(v[0]) / 255.0,
+                            f32::from(v[1]) / 255.0,
+                            f32::from(v[2]) / 255.0,
+                            f32::from(v[3]) / 255.0,
+                        );
+                        gl.Clear(GL_COLOR_BUFFER_BIT);
+                    }
+                    gl.Finish();
+                    gl.FramebufferTexture2D(
+                        GL_FRAMEBUFFER,
+                        GL_COLOR_ATTACHMENT0,
+                        GL_TEXTURE_2D,
+                        self.textures[p + 2 * l],
+                        0,
+                    );
+                    for (i, &(x, y)) in corners.iter().enumerate() {
+                        let v = eye_memory::marker(i + 4 * l);
+                        let mut got = [0u8; 4];
+                        gl.ReadPixels(
+                            x as i32,
+                            y as i32,
+                            1,
+                            1,
+                            GL_RGBA,
+                            GL_UNSIGNED_BYTE,
+                            got.as_mut_ptr().cast(),
+                        );
+                        let at = m.data_offset
+                            + l * m.layer_stride
+                            + y as usize * m.stride
+                            + x as usize * 4;
+                        ok &= got == v && std::slice::from_raw_parts(m.map.add(at), 4) == v;
+                    }
+                    gl.FramebufferTexture2D(
+                        GL_FRAMEBUFFER,
+                        GL_COLOR_ATTACHMENT0,
+                        GL_TEXTURE_2D,
+                        0,
+                        0,
+                    );
+                }
+            }
+            gl.Disable(GL_SCISSOR_TEST);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+            ok &= gl.take_error() == GL_NO_ERROR;
+        }
+        ok
+    }
+
+    /// Width and height of each eye.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// The 2D texture presentation reads for slot `slot` (0: none).
+    pub fn texture(&self, slot: usize) -> u32 {
+        self.textures[slot]
+    }
+
+    /// Where the CPU reads slot `slot` in place (its pair's storage is
+    /// shared), else None.
+    pub fn pixels(&self, slot: usize) -> Option<EyePixels> {
+        let m = self.memory[pair(slot)].as_ref()?;
+        Some(m.pixels(slot / 2, self.textures[slot], (self.width, self.height)))
+    }
+
+    /// What a draw attaches.
+    pub fn attachments(&self) -> Attachments {
+        Attachments {
+            api: self.api,
+            colour: self.colour,
+            depth: self.depth,
+            depth_attachment: self.depth_attachment,
+        }
+    }
+
+    /// Copies pair `p`'s layers into its 2D textures, where they do not
+    /// share storage: what the present shows.
+    ///
+    /// # Safety
+    /// A context sharing the textures must be current.
+    pub unsafe fn resolve(&self, p: usize) {
+        if self.memory[p].is_some() || self.colour[p] == 0 {
+            return;
+        }
+        for l in 0..2 {
+            // SAFETY: contract; both are width × height.
+            unsafe {
+                (self.api.copy_image_sub_data)(
+                    self.colour[p],
+                    GL_TEXTURE_2D_ARRAY,
+                    0,
+                    0,
+                    0,
+                    l as i32,
+                    self.textures[p + 2 * l],
+                    GL_TEXTURE_2D,
+                    0,
+                    0,
+                    0,
+                    0,
+                    self.width as i32,
+                    self.height as i32,
+                    1,
+                )
+            }
+        }
+    }
+
+    /// Attaches the left eye's depth to the framebuffer bound at `target`
+    /// (`on` false: detaches it), for reading it back; false when there is
+    /// no depth.
+    ///
+    /// # Safety
+    /// A context sharing the arrays must be current.
+    pub unsafe fn attach_left_depth(&self, target: u32, on: bool) -> bool {
+        if self.depth == 0 {
+            return false;
+        }
+        // SAFETY: contract.
+        unsafe {
+            (self.api.framebuffer_texture_layer)(
+                target,
+                self.depth_attachment,
+                if on { self.depth } else { 0 },
+                0,
+                0,
+            )
+        };
+        true
+    }
+
+    /// Readies the shared memory to be freed by the driver with the share
+    /// group (the module docs): nothing may render into
+    /// these eyes afterwards.
+    pub fn prepare_unmap(&self) {
+        for m in self.memory.iter().flatten() {
+            m.prepare_unmap();
+        }
+    }
+
+    /// Deletes the arrays and textures, and frees shared memory (nothing
+    /// may render into it any more: the caller finished the contexts that
+    /// did).
+    ///
+    /// # Safety
+    /// A context sharing them must be current.
+    pub unsafe fn release(&mut self, gl: &Gl) {
+        // SAFETY: contract; names made here.
+        unsafe {
+            let names: Vec<u32> = self
+                .colour
+                .iter()
+                .chain(&self.textures)
+                .chain(std::iter::once(&self.depth))
+                .copied()
+                .filter(|&n| n != 0)
+                .collect();
+            gl.delete_textures(&names);
+            if self.memory.iter().any(Option::is_some) {
+                gl.Finish();
+            }
+            for m in self.memory.iter_mut().filter_map(Option::take) {
+                m.release(&self.memory_api.expect("memory came from this API"));
+            }
+        }
+        self.colour = [0; 2];
+        self.textures = [0; 4];
+        self.depth = 0;
+    }
+}
+
+impl Attachments {
+    /// Attaches both pairs' arrays, every layer (pair `p` at
+    /// GL_COLOR_ATTACHMENT0 + p), and the depth array, to the framebuffer
+    /// object bound at `target`; with `eye`, that eye's layers only (the
+    /// slow path: draws whose vertices cannot choose a layer).
+    ///
+    /// # Safety
+    /// A context sharing the arrays must be current with the object bound.
+    pub unsafe fn attach(&self, target: u32, eye: Option<Eye>) {
+        let one = |attachment: u32, tex: u32| {
+            // SAFETY: contract.
+            unsafe {
+                match eye {
+                    None => (self.api.framebuffer_texture)(target, attachment, tex, 0),
+                    Some(e) => {
+                        (self.api.framebuffer_texture_layer)(target, attachment, tex, 0, layer(e))
+                    }
+                }
+            }
+        };
+        for (p, &tex) in self.colour.iter().enumerate() {
+            if tex != 0 {
+                one(GL_COLOR_ATTACHMENT0 + p as u32, tex);
+            }
+        }
+        if self.depth != 0 {
+            one(self.depth_attachment, self.depth);
+        }
+    }
+}

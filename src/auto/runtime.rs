@@ -1,0 +1,823 @@
+//! Automatic stereo at run time: what a context given automatic stereo
+//! (glstereo-run --auto) does with each call of the families the preload
+//! library reports ([`crate::interpose::draws`]), following the design of
+//! [`crate::auto`]. The program draws into the layered eyes of its
+//! emulated framebuffer ([`crate::auto::eyes`]); each draw reaches both.
+//!
+//! - **Draws** (glDraw*, glMultiDraw*, glRect*, glEvalMesh*): made once per
+//!   eye, the eye chosen by the uniform `gls_auto_eye` at the reserved
+//!   location of the current program (rewritten at link time,
+//!   [`crate::auto::link`]), of the pipeline's last-stage program, or of
+//!   the layer's stand-in for fixed-function vertex processing
+//!   ([`crate::auto::standin`]) bound for the draw. Where the vertices
+//!   cannot choose a layer (fixed-function lighting or texture-coordinate
+//!   generation, ARB vertex programs, a program that was not rewritten)
+//!   each eye's layers are attached in turn, with the eye's projection for
+//!   fixed function ([`crate::auto::fixed`]) or the shift in a rewritten
+//!   program's uniform: the slow path. After the eyes the uniform holds
+//!   the neutral value (no shift, no layer), so draws the layer does not
+//!   see (glRasterPos through a vertex shader, a display list's own
+//!   program) are mono.
+//! - **Immediate mode**: glBegin opens a display list of the layer's (the
+//!   vertices are compiled, not drawn), glEnd closes it and calls it once
+//!   per eye as a draw. Inside a display list the program compiles,
+//!   nothing is done (the list is drawn when called).
+//! - **Display lists**: glCallList / glCallLists run the list once per eye
+//!   by the slow path (a list may change programs, lighting or matrices
+//!   inside), the matrices put back between the eyes; a list compiled
+//!   with GL_COMPILE_AND_EXECUTE is compiled, then called so.
+//! - **glDrawPixels, glBitmap, glCopyPixels**: once per eye into that
+//!   eye's layers, at the eye's raster position ([`crate::auto::fixed`]).
+//! - **Blits** into the default framebuffer: once per eye into that eye's
+//!   layers (from the default framebuffer: eye to eye).
+//! - **glClear**, **glClearBuffer***: once (a clear clears every layer).
+//! - **NV_3dvision_settings**: glEnable / glDisable / glIsEnabled of
+//!   GL_3DVISION_STEREO_NV turn automatic stereo on and off (both eyes
+//!   then drawn alike).
+//!
+//! Draws into the program's own framebuffer objects are made once, mono,
+//! with the neutral uniform.
+
+use std::collections::HashMap;
+use std::ffi::{CStr, c_void};
+use std::sync::{Mutex, OnceLock};
+
+use glam::DMat4;
+
+use crate::auto::entry_points::Family;
+use crate::auto::eyes::{Attachments, layer};
+use crate::auto::fixed;
+use crate::auto::gl_fns;
+use crate::auto::link::{self, LinkOutcome};
+use crate::auto::standin::{self, FixedVertexState};
+use crate::auto::vertex::LayerWrite;
+use crate::interpose::context::Current;
+use crate::interpose::draws::{Call, Returned};
+use crate::interpose::live;
+use crate::math::Eye;
+use crate::shims::nv3dvision::{
+    GL_3DVISION_STEREO_NV, GL_STEREO_CONVERGENCE_NV, GL_STEREO_SEPARATION_NV, StereoSettings,
+};
+use crate::stereo::outputs::LinkFns;
+
+const GL_CURRENT_PROGRAM: u32 = 0x8B8D;
+const GL_PROGRAM_PIPELINE_BINDING: u32 = 0x825A;
+const GL_DRAW_FRAMEBUFFER_BINDING: u32 = 0x8CA6;
+const GL_READ_FRAMEBUFFER_BINDING: u32 = 0x8CAA;
+const GL_DRAW_FRAMEBUFFER: u32 = 0x8CA9;
+const GL_READ_FRAMEBUFFER: u32 = 0x8CA8;
+const GL_MAX_UNIFORM_LOCATIONS: u32 = 0x826E;
+const GL_VERTEX_SHADER: u32 = 0x8B31;
+const GL_GEOMETRY_SHADER: u32 = 0x8DD9;
+const GL_TESS_EVALUATION_SHADER: u32 = 0x8E87;
+const GL_LIGHTING: u32 = 0x0B50;
+const GL_TEXTURE_GEN_S: u32 = 0x0C60;
+const GL_TEXTURE_GEN_T: u32 = 0x0C61;
+const GL_TEXTURE_GEN_R: u32 = 0x0C62;
+const GL_TEXTURE_GEN_Q: u32 = 0x0C63;
+const GL_VERTEX_PROGRAM_ARB: u32 = 0x8620;
+const GL_FOG: u32 = 0x0B60;
+const GL_FOG_COORD_SRC: u32 = 0x8450;
+const GL_FOG_COORD: u32 = 0x8451;
+const GL_MATRIX_MODE: u32 = 0x0BA0;
+const GL_MODELVIEW: u32 = 0x1700;
+const GL_PROJECTION: u32 = 0x1701;
+const GL_MODELVIEW_MATRIX: u32 = 0x0BA6;
+const GL_PROJECTION_MATRIX: u32 = 0x0BA7;
+const GL_COMPILE: u32 = 0x1300;
+const GL_COMPILE_AND_EXECUTE: u32 = 0x1301;
+const GL_CURRENT_RASTER_POSITION: u32 = 0x0B07;
+const GL_CURRENT_RASTER_POSITION_VALID: u32 = 0x0B08;
+const GL_VIEWPORT: u32 = 0x0BA2;
+const GL_LINK_STATUS: u32 = 0x8B82;
+
+gl_fns! {
+    /// The GL functions of automatic stereo at run time, below the layer.
+    pub struct AutoFns {
+        get_integerv = c"glGetIntegerv": fn(u32, *mut i32);
+        get_floatv = c"glGetFloatv": fn(u32, *mut f32);
+        get_doublev = c"glGetDoublev": fn(u32, *mut f64);
+        is_enabled = c"glIsEnabled": fn(u32) -> u8;
+        use_program = c"glUseProgram": fn(u32);
+        uniform4f = c"glUniform4f": fn(i32, f32, f32, f32, f32);
+        program_uniform4f = c"glProgramUniform4f": fn(u32, i32, f32, f32, f32, f32);
+        get_program_pipelineiv = c"glGetProgramPipelineiv": fn(u32, u32, *mut i32);
+        get_uniform_location = c"glGetUniformLocation": fn(u32, *const std::ffi::c_char) -> i32;
+        gen_lists = c"glGenLists": fn(i32) -> u32;
+        new_list = c"glNewList": fn(u32, u32);
+        end_list = c"glEndList": fn();
+        call_list = c"glCallList": fn(u32);
+        matrix_mode = c"glMatrixMode": fn(u32);
+        load_matrixd = c"glLoadMatrixd": fn(*const f64);
+        bitmap = c"glBitmap": fn(i32, i32, f32, f32, f32, f32, *const u8);
+    }
+}
+
+/// The tables, loaded once from the GL below the layer.
+struct Tables {
+    gl: AutoFns,
+    link: LinkFns,
+}
+
+fn tables() -> Option<&'static Tables> {
+    static TABLES: OnceLock<Option<Tables>> = OnceLock::new();
+    TABLES
+        .get_or_init(|| {
+            let get = |name: &CStr| {
+                // SAFETY: a NUL-terminated name.
+                unsafe { crate::interpose::real::get_proc_address(name.as_ptr()) }
+                    .map_or(std::ptr::null(), |f| f as *const c_void)
+            };
+            // SAFETY: `get` returns the named GL function or NULL.
+            let t = unsafe {
+                Some(Tables {
+                    gl: AutoFns::load(get)?,
+                    link: LinkFns::load(get)?,
+                })
+            };
+            if t.is_none() {
+                crate::interpose::warn(
+                    "automatic stereo needs GL 4.1's functions, which the GL library lacks: \
+                     programs stay mono",
+                );
+            }
+            t
+        })
+        .as_ref()
+}
+
+/// What the layer knows of a program after its link: the uniform's
+/// location when its last vertex stage was rewritten.
+static PROGRAMS: Mutex<Option<HashMap<(u64, u32), i32>>> = Mutex::new(None);
+
+fn record(group: u64, program: u32, location: Option<i32>) {
+    let mut p = PROGRAMS.lock().unwrap_or_else(|e| e.into_inner());
+    let map = p.get_or_insert_with(HashMap::new);
+    match location {
+        Some(l) => map.insert((group, program), l),
+        None => map.remove(&(group, program)),
+    };
+}
+
+fn location_of(group: u64, program: u32) -> Option<i32> {
+    let p = PROGRAMS.lock().unwrap_or_else(|e| e.into_inner());
+    p.as_ref()?.get(&(group, program)).copied()
+}
+
+/// The reserved uniform location: the last the driver offers.
+fn reserved_location(f: &AutoFns) -> Option<u32> {
+    static LOCATION: OnceLock<Option<u32>> = OnceLock::new();
+    *LOCATION.get_or_init(|| {
+        let mut max = 0;
+        // SAFETY: a context is current (callers); one value.
+        unsafe { (f.get_integerv)(GL_MAX_UNIFORM_LOCATIONS, &mut max) };
+        (max > 1).then(|| max as u32 - 1)
+    })
+}
+
+/// A context's automatic-stereo state.
+#[derive(Default)]
+pub struct AutoState {
+    /// The program's NV_3dvision_settings state beyond the live settings
+    /// (cutoff, projection method).
+    settings: Option<StereoSettings>,
+    /// The stand-in programs (fog from depth, fog coordinate); 0: not
+    /// made yet.
+    standin: [u32; 2],
+    /// A stand-in could not be made: fixed function takes the slow path.
+    standin_failed: bool,
+    /// The layer's display list for immediate mode (0: none yet).
+    list: u32,
+    /// Between glBegin and glEnd into the layer's list.
+    in_begin: bool,
+    /// The program compiles a display list: (list, convert to execute at
+    /// glEndList).
+    compiling: Option<(u32, bool)>,
+}
+
+impl AutoState {
+    /// The settings a draw uses now: the live separation, convergence and
+    /// on/off with this context's cutoff and method.
+    fn settings(&mut self) -> StereoSettings {
+        let mut s = *self
+            .settings
+            .get_or_insert_with(|| StereoSettings::new(true));
+        let separation = if live::auto_on() {
+            live::separation()
+        } else {
+            0.0
+        };
+        let _ = s.parameter_f(GL_STEREO_SEPARATION_NV, separation);
+        let _ = s.parameter_f(GL_STEREO_CONVERGENCE_NV, live::convergence().unwrap_or(0.0));
+        s
+    }
+
+    /// The program's NV_3dvision_settings state (cutoff, method).
+    pub fn nv_settings(&mut self) -> &mut StereoSettings {
+        self.settings
+            .get_or_insert_with(|| StereoSettings::new(true))
+    }
+}
+
+/// Where an eye's uniform goes.
+#[derive(Clone, Copy, Debug)]
+struct Target {
+    program: u32,
+    location: i32,
+    /// Set with glProgramUniform4f (a pipeline's stage), not glUniform4f.
+    separate: bool,
+}
+
+/// How one draw reaches the eyes.
+#[derive(Clone, Copy, Debug)]
+enum Path {
+    /// Once, as the program made it: not into the eyes.
+    Mono(Option<Target>),
+    /// The eye by the uniform of `target` (the stand-in's when `standin`
+    /// is its program, bound for the draw).
+    Uniform { target: Target, standin: bool },
+    /// Each eye's layers attached in turn, with the eye's projection
+    /// (`fixed`) and the shift in `target`'s uniform.
+    Layers { fixed: bool, target: Option<Target> },
+}
+
+/// The uniform's value for `eye` (None: neutral) with `settings`; `layer`
+/// whether the stage writes the eye's layer.
+fn eye_value(settings: &StereoSettings, eye: Option<Eye>, with_layer: bool) -> [f32; 4] {
+    let c = settings.convergence();
+    match eye {
+        None => [0.0, c, -1.0, 0.0],
+        Some(e) => [
+            (e.sign() * settings.effective_separation()) as f32,
+            c,
+            if with_layer { layer(e) as f32 } else { -1.0 },
+            0.0,
+        ],
+    }
+}
+
+unsafe fn set_uniform(f: &AutoFns, t: Target, v: [f32; 4]) {
+    // SAFETY: contract of the callers: the program's context is current
+    // and `t` a linked program with the uniform at its location.
+    unsafe {
+        if t.separate {
+            (f.program_uniform4f)(t.program, t.location, v[0], v[1], v[2], v[3]);
+        } else {
+            (f.uniform4f)(t.location, v[0], v[1], v[2], v[3]);
+        }
+    }
+}
+
+unsafe fn integer(f: &AutoFns, pname: u32) -> i32 {
+    let mut v = 0;
+    // SAFETY: a context is current (callers); one value.
+    unsafe { (f.get_integerv)(pname, &mut v) };
+    v
+}
+
+/// The program supplying the vertices' last stage now: Some((program,
+/// separate)), or None for fixed-function vertex processing.
+unsafe fn vertex_program(f: &AutoFns) -> Option<(u32, bool)> {
+    // SAFETY: contract of the callers.
+    unsafe {
+        let p = integer(f, GL_CURRENT_PROGRAM) as u32;
+        if p != 0 {
+            return Some((p, false));
+        }
+        let pipe = integer(f, GL_PROGRAM_PIPELINE_BINDING) as u32;
+        if pipe == 0 {
+            return None;
+        }
+        for stage in [
+            GL_GEOMETRY_SHADER,
+            GL_TESS_EVALUATION_SHADER,
+            GL_VERTEX_SHADER,
+        ] {
+            let mut prog = 0;
+            (f.get_program_pipelineiv)(pipe, stage, &mut prog);
+            if prog != 0 {
+                return Some((prog as u32, true));
+            }
+        }
+        None
+    }
+}
+
+/// The fixed-function state the stand-in must reproduce now, or None
+/// when it cannot (lighting, texture-coordinate generation on the active
+/// unit, an ARB vertex program).
+unsafe fn fixed_state(f: &AutoFns) -> Option<FixedVertexState> {
+    // SAFETY: contract of the callers.
+    unsafe {
+        let on = |cap| (f.is_enabled)(cap) != 0;
+        if on(GL_LIGHTING)
+            || on(GL_VERTEX_PROGRAM_ARB)
+            || [
+                GL_TEXTURE_GEN_S,
+                GL_TEXTURE_GEN_T,
+                GL_TEXTURE_GEN_R,
+                GL_TEXTURE_GEN_Q,
+            ]
+            .into_iter()
+            .any(on)
+        {
+            return None;
+        }
+        let fog_coord = on(GL_FOG) && integer(f, GL_FOG_COORD_SRC) as u32 == GL_FOG_COORD;
+        Some(FixedVertexState {
+            lighting: false,
+            texgen: false,
+            texture_units: 8,
+            fog_coord,
+        })
+    }
+}
+
+/// The stand-in program for `state` in this context, made the first time.
+unsafe fn standin_program(t: &Tables, st: &mut AutoState, state: FixedVertexState) -> Option<u32> {
+    if st.standin_failed {
+        return None;
+    }
+    let i = state.fog_coord as usize;
+    if st.standin[i] != 0 {
+        return Some(st.standin[i]);
+    }
+    let location = reserved_location(&t.gl)?;
+    let made = standin::source(state, location).ok().and_then(|src| {
+        // SAFETY: the program's context is current (callers).
+        unsafe {
+            let vs = t.link.compile_as(GL_VERTEX_SHADER, &src)?;
+            let p = (t.link.create_program)();
+            (t.link.attach_shader)(p, vs);
+            (t.link.link_program)(p);
+            (t.link.detach_shader)(p, vs);
+            (t.link.delete_shader)(vs);
+            if t.link.program_int(p, GL_LINK_STATUS) == 0 {
+                (t.link.delete_program)(p);
+                return None;
+            }
+            Some(p)
+        }
+    });
+    match made {
+        Some(p) => {
+            st.standin[i] = p;
+            Some(p)
+        }
+        None => {
+            st.standin_failed = true;
+            crate::interpose::warn(
+                "the fixed-function stand-in vertex shader does not build here: \
+                 fixed-function draws take the slow path (a framebuffer change per eye)",
+            );
+            None
+        }
+    }
+}
+
+/// How a draw of `kind` reaches the eyes now. `lists`: a display list is
+/// called (whatever it holds: the slow path).
+unsafe fn choose(t: &Tables, cur: &Current, st: &mut AutoState, app_fbo: u32, lists: bool) -> Path {
+    let f = &t.gl;
+    // SAFETY: the program's context is current (callers).
+    unsafe {
+        let program = vertex_program(f);
+        let target = program.and_then(|(p, separate)| {
+            let location = location_of(cur.sc.group(), p)?;
+            Some(Target {
+                program: p,
+                location,
+                separate,
+            })
+        });
+        if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+            return Path::Mono(target);
+        }
+        if lists {
+            return Path::Layers {
+                fixed: program.is_none(),
+                target,
+            };
+        }
+        match (program, target) {
+            (Some(_), Some(target)) => Path::Uniform {
+                target,
+                standin: false,
+            },
+            (Some(_), None) => Path::Layers {
+                fixed: false,
+                target: None,
+            },
+            (None, _) => {
+                let standin = fixed_state(f).and_then(|state| standin_program(t, st, state));
+                match (standin, reserved_location(f)) {
+                    (Some(p), Some(l)) => Path::Uniform {
+                        target: Target {
+                            program: p,
+                            location: l as i32,
+                            separate: false,
+                        },
+                        standin: true,
+                    },
+                    _ => Path::Layers {
+                        fixed: true,
+                        target: None,
+                    },
+                }
+            }
+        }
+    }
+}
+
+const EYES: [Eye; 2] = [Eye::Left, Eye::Right];
+
+/// The program's matrices a display list may change, to put back between
+/// the eyes.
+struct Matrices {
+    mode: u32,
+    modelview: [f64; 16],
+    projection: [f64; 16],
+}
+
+unsafe fn matrices(f: &AutoFns) -> Matrices {
+    let mut m = Matrices {
+        mode: 0,
+        modelview: [0.0; 16],
+        projection: [0.0; 16],
+    };
+    // SAFETY: a compatibility context is current (callers); 16 values each.
+    unsafe {
+        m.mode = integer(f, GL_MATRIX_MODE) as u32;
+        (f.get_doublev)(GL_MODELVIEW_MATRIX, m.modelview.as_mut_ptr());
+        (f.get_doublev)(GL_PROJECTION_MATRIX, m.projection.as_mut_ptr());
+    }
+    m
+}
+
+/// Loads `projection` (column-major) and puts back the program's matrix
+/// mode `mode`.
+unsafe fn load_projection(f: &AutoFns, projection: &[f64; 16], mode: u32) {
+    // SAFETY: as above.
+    unsafe {
+        (f.matrix_mode)(GL_PROJECTION);
+        (f.load_matrixd)(projection.as_ptr());
+        (f.matrix_mode)(mode);
+    }
+}
+
+/// Draws `draw` into both eyes by `path` with `settings`; `restore`: put
+/// the matrices back between the eyes (a display list may change them).
+unsafe fn eyes(
+    t: &Tables,
+    path: Path,
+    settings: &StereoSettings,
+    layered: &Attachments,
+    restore: bool,
+    draw: &mut dyn FnMut(),
+) {
+    let f = &t.gl;
+    // SAFETY: the program's context is current with the layered eyes'
+    // framebuffer object bound for drawing (checked by `choose`).
+    unsafe {
+        match path {
+            Path::Mono(target) => {
+                if let Some(target) = target {
+                    set_uniform(f, target, eye_value(settings, None, false));
+                }
+                draw();
+            }
+            Path::Uniform { target, standin } => {
+                if standin {
+                    (f.use_program)(target.program);
+                }
+                for eye in EYES {
+                    set_uniform(f, target, eye_value(settings, Some(eye), true));
+                    draw();
+                }
+                set_uniform(f, target, eye_value(settings, None, false));
+                if standin {
+                    (f.use_program)(0);
+                }
+            }
+            Path::Layers { fixed, target } => {
+                let saved = (fixed || restore).then(|| matrices(f));
+                for (i, eye) in EYES.into_iter().enumerate() {
+                    if i == 1 && restore {
+                        let m = saved.as_ref().expect("saved");
+                        (f.matrix_mode)(GL_MODELVIEW);
+                        (f.load_matrixd)(m.modelview.as_ptr());
+                        load_projection(f, &m.projection, m.mode);
+                    }
+                    layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
+                    if let Some(m) = saved.as_ref().filter(|_| fixed) {
+                        let mono = DMat4::from_cols_array(&m.projection);
+                        if let Some(p) = fixed::eye_projection(settings, &mono, eye) {
+                            load_projection(f, &p.to_cols_array(), m.mode);
+                        }
+                    }
+                    if let Some(target) = target {
+                        set_uniform(f, target, eye_value(settings, Some(eye), false));
+                    }
+                    draw();
+                }
+                layered.attach(GL_DRAW_FRAMEBUFFER, None);
+                if let Some(target) = target {
+                    set_uniform(f, target, eye_value(settings, None, false));
+                }
+                if let Some(m) = saved.as_ref().filter(|_| fixed) {
+                    // Put the program's projection back, unless the list
+                    // loaded one of its own.
+                    let mut now = [0.0f64; 16];
+                    (f.get_doublev)(GL_PROJECTION_MATRIX, now.as_mut_ptr());
+                    let mono = DMat4::from_cols_array(&m.projection);
+                    let right = fixed::eye_projection(settings, &mono, Eye::Right)
+                        .map_or(m.projection, |p| p.to_cols_array());
+                    if now == right.map(|v| v as f32 as f64) || now == right {
+                        load_projection(f, &m.projection, integer(f, GL_MATRIX_MODE) as u32);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The hook of a context given automatic stereo (module docs).
+pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R {
+    let Some(t) = tables() else {
+        return draw();
+    };
+    match call.family {
+        Family::Settings => settings_call(call, draw),
+        Family::Draw
+        | Family::BeginEnd
+        | Family::DisplayList
+        | Family::RasterPixels
+        | Family::Blit => {
+            let mut out = None;
+            drawing(t, cur, call, &mut || out = Some(draw()));
+            out.unwrap_or_else(|| R::from_bits(0))
+        }
+        _ => draw(),
+    }
+}
+
+/// glEnable / glDisable / glIsEnabled of GL_3DVISION_STEREO_NV.
+fn settings_call<R: Returned>(call: Call, draw: impl Fn() -> R) -> R {
+    if call.u32(0) != GL_3DVISION_STEREO_NV || call.args.len() != 1 {
+        return draw();
+    }
+    match call.name {
+        "glEnable" => live::set_auto_on(true),
+        "glDisable" => live::set_auto_on(false),
+        "glIsEnabled" => return R::from_bits(live::auto_on() as u64),
+        _ => return draw(),
+    }
+    R::from_bits(0)
+}
+
+/// A call of the drawing families (module docs).
+fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
+    let f = &t.gl;
+    cur.sc.with_auto(cur.draw, |st, eyes_of| {
+        let Some((app_fbo, layered)) = eyes_of else {
+            return draw();
+        };
+        // SAFETY: the program's context is current on this thread.
+        unsafe {
+            match (call.family, call.name) {
+                (Family::DisplayList, "glNewList") => {
+                    let (list, mode) = (call.u32(0), call.u32(1));
+                    if mode == GL_COMPILE_AND_EXECUTE && st.compiling.is_none() {
+                        (f.new_list)(list, GL_COMPILE);
+                        st.compiling = Some((list, true));
+                    } else {
+                        draw();
+                        st.compiling = Some((list, false));
+                    }
+                    return;
+                }
+                (Family::DisplayList, "glEndList") => {
+                    draw();
+                    let Some((list, execute)) = st.compiling.take() else {
+                        return;
+                    };
+                    if execute {
+                        let settings = st.settings();
+                        let path = choose(t, cur, st, app_fbo, true);
+                        eyes(t, path, &settings, &layered, true, &mut || {
+                            (f.call_list)(list)
+                        });
+                    }
+                    return;
+                }
+                _ if st.compiling.is_some() => return draw(),
+                (Family::BeginEnd, "glBegin") => {
+                    if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+                        return draw();
+                    }
+                    if st.list == 0 {
+                        st.list = (f.gen_lists)(1);
+                    }
+                    if st.list == 0 {
+                        return draw();
+                    }
+                    (f.new_list)(st.list, GL_COMPILE);
+                    st.in_begin = true;
+                    return draw();
+                }
+                (Family::BeginEnd, "glEnd") => {
+                    if !st.in_begin {
+                        return draw();
+                    }
+                    draw();
+                    (f.end_list)();
+                    st.in_begin = false;
+                    let settings = st.settings();
+                    let path = choose(t, cur, st, app_fbo, false);
+                    let list = st.list;
+                    eyes(t, path, &settings, &layered, false, &mut || {
+                        (f.call_list)(list)
+                    });
+                    return;
+                }
+                _ if st.in_begin => return draw(),
+                (Family::RasterPixels, name) => {
+                    let settings = st.settings();
+                    return pixels(t, &settings, app_fbo, &layered, name, call, draw);
+                }
+                (Family::Blit, _) => {
+                    if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+                        return draw();
+                    }
+                    for eye in EYES {
+                        layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
+                        draw();
+                    }
+                    layered.attach(GL_DRAW_FRAMEBUFFER, None);
+                    return;
+                }
+                _ => {}
+            }
+            let lists = call.family == Family::DisplayList;
+            let settings = st.settings();
+            let path = choose(t, cur, st, app_fbo, lists);
+            eyes(t, path, &settings, &layered, lists, draw);
+        }
+    })
+}
+
+/// glDrawPixels, glBitmap, glCopyPixels (`name`) into each eye at the
+/// eye's raster position ([`crate::auto::fixed`]).
+unsafe fn pixels(
+    t: &Tables,
+    settings: &StereoSettings,
+    app_fbo: u32,
+    layered: &Attachments,
+    name: &str,
+    call: Call,
+    draw: &mut dyn FnMut(),
+) {
+    let f = &t.gl;
+    // SAFETY: the program's context is current (callers).
+    unsafe {
+        if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+            return draw();
+        }
+        let valid = integer(f, GL_CURRENT_RASTER_POSITION_VALID) != 0;
+        let mut raster = [0.0f32; 4];
+        (f.get_floatv)(GL_CURRENT_RASTER_POSITION, raster.as_mut_ptr());
+        let mut viewport = [0i32; 4];
+        (f.get_integerv)(GL_VIEWPORT, viewport.as_mut_ptr());
+        let shifts = EYES.map(|e| {
+            if valid {
+                fixed::raster_shift(settings, raster, viewport[2] as f64, e)
+            } else {
+                0.0
+            }
+        });
+        let nudge = |dx: f64, dy: f64| {
+            if dx != 0.0 || dy != 0.0 {
+                (f.bitmap)(0, 0, 0.0, 0.0, dx as f32, dy as f32, std::ptr::null());
+            }
+        };
+        // The read framebuffer follows the eye (glCopyPixels) when it is
+        // the eyes' too.
+        let read_too = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32 == app_fbo;
+        let (xmove, ymove) = if name.starts_with("glBitmap") && valid {
+            (call.f32(4) as f64, call.f32(5) as f64)
+        } else {
+            (0.0, 0.0)
+        };
+        for (i, eye) in EYES.into_iter().enumerate() {
+            layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
+            if read_too {
+                layered.attach(GL_READ_FRAMEBUFFER, Some(eye));
+            }
+            nudge(shifts[i], 0.0);
+            draw();
+            // glBitmap moved the raster position by (xmove, ymove): once,
+            // as in mono.
+            if i == 0 {
+                nudge(-shifts[i] - xmove, -ymove);
+            } else {
+                nudge(-shifts[i], 0.0);
+            }
+        }
+        layered.attach(GL_DRAW_FRAMEBUFFER, None);
+        if read_too {
+            layered.attach(GL_READ_FRAMEBUFFER, None);
+        }
+    }
+}
+
+/// After glLinkProgram of `program` in a context given automatic stereo:
+/// its last vertex stage relinked with the eye's shift
+/// ([`crate::auto::link`]), and what came of it recorded for its draws.
+/// Said once per reason on stderr when a program keeps its stage.
+///
+/// # Safety
+/// The program's context is current on this thread; GL errors the relink
+/// raises are the caller's to drop.
+pub unsafe fn linked(group: u64, program: u32) {
+    let Some(t) = tables() else {
+        return;
+    };
+    let Some(location) = reserved_location(&t.gl) else {
+        return;
+    };
+    // SAFETY: contract.
+    let outcome = unsafe {
+        link::shift_last_stage(&t.link, program, LayerWrite::FromUniform, Some(location))
+    };
+    // SAFETY: contract.
+    let at = unsafe { located(t, program, &outcome) };
+    record(group, program, at);
+}
+
+/// Where the eye's uniform of `program` is after `outcome`.
+unsafe fn located(t: &Tables, program: u32, outcome: &LinkOutcome) -> Option<i32> {
+    match outcome {
+        LinkOutcome::Shifted(s) => match s.location {
+            Some(l) => Some(l as i32),
+            // SAFETY: contract of the callers.
+            None => unsafe { uniform_location(t, program) },
+        },
+        LinkOutcome::Kept(why) => {
+            crate::interpose::warn(&format!(
+                "a program is drawn unshifted in both eyes (automatic stereo): {why}"
+            ));
+            None
+        }
+        LinkOutcome::NotNeeded(_) => None,
+    }
+}
+
+unsafe fn uniform_location(t: &Tables, program: u32) -> Option<i32> {
+    let name = std::ffi::CString::new(crate::auto::vertex::EYE_UNIFORM).expect("no NUL");
+    // SAFETY: contract of the callers.
+    let l = unsafe { (t.gl.get_uniform_location)(program, name.as_ptr()) };
+    (l >= 0).then_some(l)
+}
+
+/// glCreateShaderProgramv in a context given automatic stereo: the source
+/// a vertex-processing stage's separable program is made from (None: the
+/// program's own), and, after the call, [`created`].
+pub fn separable_source(kind: u32, strings: &[&str]) -> Option<String> {
+    let t = tables()?;
+    let location = reserved_location(&t.gl)?;
+    match link::shift_separable(kind, strings, LayerWrite::FromUniform, Some(location)) {
+        Ok(s) => s,
+        Err(why) => {
+            crate::interpose::warn(&format!(
+                "a program is drawn unshifted in both eyes (automatic stereo): {}",
+                why.0
+            ));
+            None
+        }
+    }
+}
+
+/// Records a program made by glCreateShaderProgramv (or loaded from a
+/// binary): where its eye uniform is, if it has one.
+///
+/// # Safety
+/// The program's context is current on this thread.
+pub unsafe fn created(group: u64, program: u32) {
+    let Some(t) = tables() else {
+        return;
+    };
+    // SAFETY: contract.
+    let at = unsafe { uniform_location(t, program) };
+    record(group, program, at);
+}
+
+/// GL_3DVISION_STEREO_NV and the STEREO_*_NV values of a context given
+/// automatic stereo, for glGet* (None: not one of them).
+pub fn query(st: &mut AutoState, pname: u32) -> Option<crate::shims::nv3dvision::StateValue> {
+    let mut s = st.settings();
+    if !live::auto_on() {
+        s.set_enabled(false);
+    }
+    let _ = s.parameter_f(GL_STEREO_SEPARATION_NV, live::separation());
+    s.query(pname)
+}

@@ -1,0 +1,170 @@
+//! The program's draws, as the preload library's wrappers generated from
+//! gl.xml report them (`preload/build.rs`: the commands of the families of
+//! [`crate::auto::entry_points`] that draw into the default framebuffer,
+//! and the state automatic stereo watches), and the hand-written
+//! replacements that also draw (glClear, glClearBuffer, blits). A call
+//! passes through [`around`], which costs a thread-local test when nothing
+//! watches the thread's draws.
+//!
+//! What watches them:
+//! - after a stereo context presents, its drawable's size is checked
+//!   again at the first draw (as Mesa's own software framebuffer takes a
+//!   resized window's size at the first draw after a swap), so a program
+//!   that resizes its window and draws with its old viewport draws the
+//!   frame at the new size (0 frames lost);
+//! - while a context given automatic stereo is current on the thread,
+//!   every call goes to [`crate::auto::runtime`], which sends draws to
+//!   both eyes.
+
+use std::cell::Cell;
+
+use crate::auto::entry_points::Family;
+
+use super::context::current;
+
+/// What a generated wrapper reports of its command.
+#[derive(Clone, Copy, Debug)]
+pub struct Call<'a> {
+    /// The command's family.
+    pub family: Family,
+    /// Its name.
+    pub name: &'static str,
+    /// Its arguments, in gl.xml's order, each as 64 bits: integers and
+    /// enums widened (`as u64`), floats by their bits (`to_bits`),
+    /// pointers by address.
+    pub args: &'a [u64],
+}
+
+impl Call<'_> {
+    /// Argument `i` as a GLenum / GLuint (0 when missing).
+    pub fn u32(&self, i: usize) -> u32 {
+        self.args.get(i).map_or(0, |&a| a as u32)
+    }
+
+    /// Argument `i` as a GLfloat.
+    pub fn f32(&self, i: usize) -> f32 {
+        self.args.get(i).map_or(0.0, |&a| f32::from_bits(a as u32))
+    }
+
+    /// Argument `i` as a pointer.
+    pub fn ptr<T>(&self, i: usize) -> *mut T {
+        self.args
+            .get(i)
+            .map_or(std::ptr::null_mut(), |&a| a as usize as *mut T)
+    }
+}
+
+/// A return type of a generated wrapper: what the hook gives back for a
+/// call it answers itself (glIsEnabled of GL_3DVISION_STEREO_NV).
+pub trait Returned: Sized {
+    /// The value from its 64 bits (the integer widened, as
+    /// [`Call::args`] has arguments).
+    fn from_bits(bits: u64) -> Self;
+}
+
+macro_rules! returned {
+    ($($t:ty),*) => {$(
+        impl Returned for $t {
+            fn from_bits(bits: u64) -> Self {
+                bits as $t
+            }
+        }
+    )*};
+}
+returned!(u8, i8, u16, i16, u32, i32, u64, i64, usize, isize);
+
+impl Returned for () {
+    fn from_bits(_: u64) -> Self {}
+}
+
+impl Returned for f32 {
+    fn from_bits(bits: u64) -> Self {
+        f32::from_bits(bits as u32)
+    }
+}
+
+impl Returned for f64 {
+    fn from_bits(bits: u64) -> Self {
+        f64::from_bits(bits)
+    }
+}
+
+impl<T> Returned for *mut T {
+    fn from_bits(bits: u64) -> Self {
+        bits as usize as *mut T
+    }
+}
+
+impl<T> Returned for *const T {
+    fn from_bits(bits: u64) -> Self {
+        bits as usize as *const T
+    }
+}
+
+/// [`WATCH`]: check the drawable's size at the next draw.
+const SIZE: u8 = 1;
+/// [`WATCH`]: a context given automatic stereo is current.
+const AUTO: u8 = 2;
+
+thread_local! {
+    /// What watches this thread's draws (bits): 0, the fast path.
+    static WATCH: Cell<u8> = const { Cell::new(0) };
+}
+
+/// Runs `draw` (the call to the next definition), with what the thread's
+/// state asks for around it.
+pub fn around<R: Returned>(call: Call, draw: impl Fn() -> R) -> R {
+    let watch = WATCH.with(Cell::get);
+    if watch == 0 {
+        return draw();
+    }
+    if watch & SIZE != 0 {
+        check_size(call.family);
+    }
+    if watch & AUTO != 0 {
+        if let Some(cur) = current() {
+            return crate::auto::runtime::around(&cur, call, draw);
+        }
+    }
+    draw()
+}
+
+/// Before a draw of `family` by a hand-written replacement (glClear,
+/// glClearBuffer*, the blits): a size check asked for by
+/// [`check_size_at_next_draw`].
+pub fn notice(family: Family) {
+    if WATCH.with(Cell::get) & SIZE != 0 {
+        check_size(family);
+    }
+}
+
+fn check_size(family: Family) {
+    if !matches!(
+        family,
+        Family::Draw
+            | Family::BeginEnd
+            | Family::DisplayList
+            | Family::Clear
+            | Family::RasterPixels
+            | Family::Blit
+    ) {
+        return;
+    }
+    WATCH.with(|c| c.set(c.get() & !SIZE));
+    if let Some(cur) = current() {
+        if let Err(e) = cur.sc.follow_drawable_size(&cur) {
+            super::warn(&format!("following a resized window: {e}"));
+        }
+    }
+}
+
+/// Asks the next draw on this thread to check the drawable's size.
+pub fn check_size_at_next_draw() {
+    WATCH.with(|c| c.set(c.get() | SIZE));
+}
+
+/// Says whether a context given automatic stereo is now current on this
+/// thread ([`super::context::set_current`]).
+pub fn watch_auto(on: bool) {
+    WATCH.with(|c| c.set(if on { c.get() | AUTO } else { c.get() & !AUTO }));
+}

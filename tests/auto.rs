@@ -1,0 +1,266 @@
+//! Automatic stereo (glstereo-run --auto, issue 23) of unmodified mono
+//! programs, against an oracle: tests/c/auto_oracle.c draws one scene as a
+//! mono program (under the layer, whose captures are the eyes), and draws
+//! each eye itself with 3D Vision's rule applied by hand to its projection
+//! (without the layer, read back by the program). The eyes must be those
+//! pixel for pixel, in a compatibility context (fixed function: immediate
+//! mode, client arrays, a display list, glRectf, lighting, bitmaps,
+//! glDrawPixels, an orthographic HUD) and in a core one (one shader
+//! program; glDrawArrays, glDrawElements, instanced and multi draws).
+//! Without --auto the same program is left alone.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use common::clients::build_once;
+use common::preload::{built, compile_plain, grab_ready};
+use common::xvfb::Xvfb;
+use glstereo::image::Image;
+
+const W: u32 = 200;
+const H: u32 = 150;
+/// The settings of the runs: the largest separation (s = 0.07) and the
+/// convergence at w = 4, so near and far objects move visibly.
+const SEPARATION: &str = "100";
+const CONVERGENCE: &str = "4";
+
+fn oracle() -> PathBuf {
+    build_once("auto_oracle", |out| {
+        compile_plain(
+            &common::root().join("tests/c/auto_oracle.c"),
+            out,
+            &["-lGL", "-lX11"],
+        )
+    })
+}
+
+/// The eyes glstereo-run --auto makes of the mono program (its captures),
+/// and its stdout. `in_place`: the eyes' layers share their memory with
+/// the textures presentation reads (llvmpipe), else they are copied.
+fn under_auto(x: &Xvfb, profile: &str, dir: &Path, in_place: bool) -> ([Image; 2], String) {
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .env("GLSTEREO_EYE_MEMORY", if in_place { "1" } else { "0" })
+            .args([
+                "--auto",
+                "--separation",
+                SEPARATION,
+                "--convergence",
+                CONVERGENCE,
+            ])
+            .arg("--capture")
+            .arg(dir)
+            .arg(oracle())
+            .args([profile, "mono"])
+            .env("DISPLAY", &x.display),
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !stderr.contains("glstereo:"),
+        "the layer complained: {stderr}"
+    );
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+    (eyes, String::from_utf8_lossy(&o.stdout).into_owned())
+}
+
+/// The eye the program draws itself with the rule applied by hand, with
+/// no layer.
+fn by_hand(x: &Xvfb, profile: &str, eye: &str, dir: &Path) -> Image {
+    let out = dir.join(format!("hand-{eye}.rgba"));
+    common::run_ok(
+        Command::new(oracle())
+            .args([profile, eye, SEPARATION, CONVERGENCE])
+            .arg(&out)
+            .env("DISPLAY", &x.display),
+    );
+    Image::from_pixels(W, H, std::fs::read(&out).unwrap()).unwrap()
+}
+
+fn differing(a: &Image, b: &Image) -> Vec<(u32, u32, [u8; 4], [u8; 4])> {
+    let mut d = Vec::new();
+    for y in 0..H {
+        for x in 0..W {
+            let (p, q) = (a.get(x, y), b.get(x, y));
+            if (0..3).any(|c| p[c].abs_diff(q[c]) > 2) {
+                d.push((x, y, p, q));
+            }
+        }
+    }
+    d
+}
+
+/// The centre of the pixels of `colour` (None: none of it).
+fn centre(img: &Image, colour: [u8; 3]) -> Option<(f64, f64)> {
+    let (mut sx, mut sy, mut n) = (0.0, 0.0, 0.0);
+    for y in 0..img.height() {
+        for x in 0..img.width() {
+            let p = img.get(x, y);
+            if p[..3] == colour {
+                sx += x as f64;
+                sy += y as f64;
+                n += 1.0;
+            }
+        }
+    }
+    (n > 0.0).then(|| (sx / n, sy / n))
+}
+
+/// The scene's objects: colour, clip w (None: the HUD, w = 1).
+const OBJECTS_LEGACY: [([u8; 3], Option<f64>); 5] = [
+    ([255, 0, 0], Some(2.0)),
+    ([255, 255, 0], Some(4.0)),
+    ([0, 255, 0], Some(8.0)),
+    ([0, 0, 255], Some(6.0)),
+    ([255, 255, 255], None),
+];
+
+/// The eyes differ by horizontal shifts only, each object's by the
+/// parallax the rule gives its depth: s·(1 − C/w)·W pixels (right eye
+/// minus left), negative for near objects (w < C), zero at the
+/// convergence and for the HUD, positive for far ones.
+fn check_parallax(eyes: &[Image; 2], objects: &[([u8; 3], Option<f64>)], what: &str) {
+    let s = 0.07 * SEPARATION.parse::<f64>().unwrap() / 100.0;
+    let c: f64 = CONVERGENCE.parse().unwrap();
+    for &(colour, w) in objects {
+        let l = centre(&eyes[0], colour).unwrap_or_else(|| panic!("{what}: no {colour:?} left"));
+        let r = centre(&eyes[1], colour).unwrap_or_else(|| panic!("{what}: no {colour:?} right"));
+        let want = w.map_or(0.0, |w| s * (1.0 - c / w) * W as f64);
+        assert!(
+            (r.0 - l.0 - want).abs() < 1.0 && (r.1 - l.1).abs() < 0.5,
+            "{what}: the {colour:?} object (w {w:?}) moved by ({:.2}, {:.2}) from the left eye \
+             to the right, want ({want:.2}, 0)",
+            r.0 - l.0,
+            r.1 - l.1
+        );
+    }
+}
+
+fn compare_with_the_oracle(profile: &str, objects: &[([u8; 3], Option<f64>)]) {
+    let _one = common::clients::one_renderer_at_a_time();
+    let x = Xvfb::start(W + 40, H + 40);
+    let dir = common::scratch(&format!("auto-{profile}"));
+    let hand = ["left", "right"].map(|eye| by_hand(&x, profile, eye, &dir));
+    let copied = common::scratch(&format!("auto-{profile}-copied"));
+    let (eyes, stdout) = under_auto(&x, profile, &dir, true);
+    let (eyes_copied, _) = under_auto(&x, profile, &copied, false);
+    for (n, eye) in ["left", "right"].into_iter().enumerate() {
+        for (how, got) in [("in place", &eyes[n]), ("copied", &eyes_copied[n])] {
+            let d = differing(got, &hand[n]);
+            assert!(
+                d.is_empty(),
+                "{profile}, {eye} eye ({how}): {} pixels differ from the eye drawn by hand, \
+                 e.g. (x, y, --auto, by hand) {:?}",
+                d.len(),
+                &d[..d.len().min(8)]
+            );
+        }
+    }
+    assert!(
+        differing(&eyes[0], &eyes[1]).len() > 500,
+        "{profile}: the eyes are alike"
+    );
+    check_parallax(&eyes, objects, profile);
+    // glReadPixels reads the left eye (seed 004), as the mono program
+    // would read its one buffer; the program saw no GL error.
+    let p = eyes[0].get(50, H - 1 - 75);
+    assert!(
+        stdout.contains(&format!("read {} {} {}\n", p[0], p[1], p[2])),
+        "{profile}: glReadPixels gave {stdout:?}, the left eye has {p:?}"
+    );
+    assert!(stdout.contains("error 0x0"), "{profile}: {stdout}");
+}
+
+#[test]
+fn a_mono_fixed_function_program_under_auto_equals_each_eye_drawn_by_hand() {
+    compare_with_the_oracle("legacy", &OBJECTS_LEGACY);
+}
+
+#[test]
+fn a_mono_core_profile_program_under_auto_equals_each_eye_drawn_by_hand() {
+    compare_with_the_oracle(
+        "core",
+        &[
+            ([255, 0, 0], Some(2.0)),
+            ([255, 255, 0], Some(4.0)),
+            ([0, 0, 255], Some(6.0)),
+            ([255, 255, 255], None),
+        ],
+    );
+}
+
+/// Without --auto the mono program's window holds exactly what it holds
+/// without the layer, and nothing is captured (no stereo context).
+#[test]
+fn without_auto_a_mono_program_is_left_alone() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let x = Xvfb::start(W + 40, H + 40);
+    for profile in ["legacy", "core"] {
+        let dir = common::scratch(&format!("auto-off-{profile}"));
+        let mut layered = Command::new(&built().run);
+        layered
+            .arg("--capture")
+            .arg(&dir)
+            .arg(oracle())
+            .args([profile, "mono", "wait"])
+            .env("DISPLAY", &x.display);
+        let (with, _, stderr) = grab_ready(layered, &x.display);
+        assert!(!stderr.contains("glstereo:"), "{stderr}");
+        let mut plain = Command::new(oracle());
+        plain
+            .args([profile, "mono", "wait"])
+            .env("DISPLAY", &x.display);
+        let (without, _, _) = grab_ready(plain, &x.display);
+        assert_eq!(
+            differing(&with, &without).len(),
+            0,
+            "{profile}: the window differs under glstereo-run without --auto"
+        );
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            0,
+            "{profile}: frames were captured without --auto"
+        );
+    }
+}
+
+/// Under --auto the window shows both eyes in the format asked for:
+/// side-by-side (the 2W x H composite scaled by 1/2, centred) holds the
+/// captured eyes half by half.
+#[test]
+fn the_window_shows_both_eyes_in_the_format_asked_for() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let x = Xvfb::start(W + 40, H + 40);
+    let dir = common::scratch("auto-window");
+    let mut cmd = Command::new(&built().run);
+    cmd.args(["--auto", "-m", "side-by-side"])
+        .args(["--separation", SEPARATION, "--convergence", CONVERGENCE])
+        .arg("--capture")
+        .arg(&dir)
+        .arg(oracle())
+        .args(["legacy", "mono", "wait"])
+        .env("DISPLAY", &x.display);
+    let (shot, _, stderr) = grab_ready(cmd, &x.display);
+    assert!(!stderr.contains("glstereo:"), "{stderr}");
+    let composite = common::png(&dir.join("composite-000001.png"));
+    assert_eq!((composite.width(), composite.height()), (2 * W, H));
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+    for (half, eye) in eyes.iter().enumerate() {
+        for y in 0..H {
+            for x in 0..W {
+                assert_eq!(
+                    composite.get(half as u32 * W + x, y),
+                    eye.get(x, y),
+                    "composite ({x}, {y}) of eye {half}"
+                );
+            }
+        }
+    }
+    // The window: the composite scaled to W x H/2, rows H/4..3H/4. Flat
+    // areas (the HUD bar, the background) match the eyes there.
+    let bar = shot.get(25 / 2, H / 4 + (H - 10) / 2);
+    assert_eq!(bar[..3], [255, 255, 255], "the HUD bar in the left half");
+    let bar = shot.get(W / 2 + 25 / 2, H / 4 + (H - 10) / 2);
+    assert_eq!(bar[..3], [255, 255, 255], "the HUD bar in the right half");
+}

@@ -1,0 +1,333 @@
+/*
+ * The oracle of automatic stereo (glstereo-run --auto, issue 23): one scene,
+ * drawn by a mono program, and by the same program drawing one eye with
+ * 3D Vision's rule applied by hand (REFERENCE.md): every perspective
+ * projection P gets row 0 + k * row 3 - k * C * (0, 0, 0, 1), k = e * s
+ * (e = -1 left, +1 right; s = 0.07 * S / 100), C the convergence;
+ * orthographic projections (w = 1) are left as they are.
+ *
+ *   auto_oracle legacy|core mono [wait]       draws a frame and swaps (run
+ *                                             under glstereo-run --auto
+ *                                             --capture: the eyes are the
+ *                                             captures); prints "read R G B"
+ *                                             of glReadPixels at (50, 75);
+ *                                             with wait, then "ready 0xWIN"
+ *                                             and waits for a line on stdin
+ *   auto_oracle legacy|core left|right S C OUT  draws that eye by hand and
+ *                                             writes its pixels to OUT
+ *                                             (RGBA, rows top first)
+ *
+ * legacy: a compatibility context, fixed function, every way of drawing:
+ * immediate mode, client arrays (glDrawArrays, glDrawElements), a display
+ * list, glRectf, a lit quad, glBitmap at a perspective raster position, and
+ * an orthographic HUD (glRecti, glBitmap, glDrawPixels). core: a GL 3.3 core
+ * context, one program, a vertex buffer drawn with glDrawArrays,
+ * glDrawElements, glDrawArraysInstanced and glMultiDrawArrays, and a HUD.
+ */
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/glx.h>
+#include <X11/Xlib.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W 200
+#define H 150
+
+typedef GLXContext (*create_context_fn)(Display *, GLXFBConfig, GLXContext, Bool, const int *);
+
+/* Applies the rule to the current projection matrix (GL_PROJECTION mode). */
+static void eye_projection(double k, double c)
+{
+    double m[16];
+    glGetDoublev(GL_PROJECTION_MATRIX, m);
+    /* Column-major: row 0 is m[0], m[4], m[8], m[12]; row 3 m[3], m[7], m[11], m[15]. */
+    m[0] += k * m[3];
+    m[4] += k * m[7];
+    m[8] += k * m[11];
+    m[12] += k * m[15] - k * c;
+    glLoadMatrixd(m);
+}
+
+static void legacy_scene(double k, double c)
+{
+    static const GLubyte pattern[8] = {0xFF, 0x81, 0xBD, 0xA5, 0xA5, 0xBD, 0x81, 0xFF};
+    static GLubyte pixels[8 * 8 * 4];
+    static const GLfloat tri[] = {-0.5f, -0.5f, -8.0f, 1.5f, -0.5f, -8.0f, 0.5f, 1.0f, -8.0f};
+    static const GLfloat quad[] = {0.2f, -1.8f, -6.0f, 1.2f, -1.8f, -6.0f, 1.2f, -1.0f, -6.0f,
+                                   0.2f, -1.0f, -6.0f};
+    static const GLushort idx[] = {0, 1, 2, 0, 2, 3};
+    for (int i = 0; i < 8 * 8; i++) {
+        pixels[4 * i] = 0;
+        pixels[4 * i + 1] = 200;
+        pixels[4 * i + 2] = 255;
+        pixels[4 * i + 3] = 255;
+    }
+    glViewport(0, 0, W, H);
+    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glFrustum(-1.0, 1.0, -0.75, 0.75, 1.0, 50.0);
+    if (k != 0.0) eye_projection(k, c);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+
+    /* Immediate mode, near (w = 2). */
+    glColor3f(1.0f, 0.0f, 0.0f);
+    glBegin(GL_QUADS);
+    glVertex3f(-1.6f, -0.2f, -2.0f);
+    glVertex3f(-0.9f, -0.2f, -2.0f);
+    glVertex3f(-0.9f, 0.6f, -2.0f);
+    glVertex3f(-1.6f, 0.6f, -2.0f);
+    glEnd();
+
+    /* Client arrays, far (w = 8, 6). */
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glColor3f(0.0f, 1.0f, 0.0f);
+    glVertexPointer(3, GL_FLOAT, 0, tri);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glColor3f(0.0f, 0.0f, 1.0f);
+    glVertexPointer(3, GL_FLOAT, 0, quad);
+    glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, idx);
+    glDisableClientState(GL_VERTEX_ARRAY);
+
+    /* A display list, at the convergence (w = 4). */
+    GLuint list = glGenLists(1);
+    glNewList(list, GL_COMPILE);
+    glColor3f(1.0f, 1.0f, 0.0f);
+    glBegin(GL_TRIANGLES);
+    glVertex3f(-2.5f, -2.5f, -4.0f);
+    glVertex3f(-1.0f, -2.5f, -4.0f);
+    glVertex3f(-1.75f, -1.2f, -4.0f);
+    glEnd();
+    glEndList();
+    glCallList(list);
+    glDeleteLists(list, 1);
+
+    /* glRectf through the modelview (w = 3). */
+    glPushMatrix();
+    glTranslatef(0.0f, 0.0f, -3.0f);
+    glColor3f(1.0f, 0.0f, 1.0f);
+    glRectf(0.3f, 0.5f, 0.9f, 1.0f);
+    glPopMatrix();
+
+    /* A lit quad (w = 5): fixed-function lighting. */
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glNormal3f(0.0f, 0.0f, 1.0f);
+    glBegin(GL_QUADS);
+    glVertex3f(-3.0f, 1.5f, -5.0f);
+    glVertex3f(-1.5f, 1.5f, -5.0f);
+    glVertex3f(-1.5f, 3.0f, -5.0f);
+    glVertex3f(-3.0f, 3.0f, -5.0f);
+    glEnd();
+    glDisable(GL_LIGHTING);
+
+    /* A bitmap at a perspective raster position (w = 10). */
+    glColor3f(1.0f, 0.5f, 0.0f);
+    glRasterPos3f(3.0f, 3.0f, -10.0f);
+    glBitmap(8, 8, 0.0f, 0.0f, 12.0f, 0.0f, pattern);
+    glBitmap(8, 8, 0.0f, 0.0f, 12.0f, 0.0f, pattern);
+
+    /* The HUD: orthographic, w = 1, at the screen in both eyes. */
+    glDisable(GL_DEPTH_TEST);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glOrtho(0.0, W, 0.0, H, -1.0, 1.0);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    glColor3f(1.0f, 1.0f, 1.0f);
+    glRecti(5, 5, 45, 15);
+    glRasterPos2i(150, 130);
+    glBitmap(8, 8, 0.0f, 0.0f, 10.0f, 0.0f, pattern);
+    glRasterPos2i(170, 130);
+    glDrawPixels(8, 8, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+}
+
+static GLuint shader(GLenum type, const char *src)
+{
+    GLuint s = glCreateShader(type);
+    glShaderSource(s, 1, &src, NULL);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[1024];
+        glGetShaderInfoLog(s, sizeof log, NULL, log);
+        fprintf(stderr, "shader: %s\n", log);
+        exit(4);
+    }
+    return s;
+}
+
+static void core_scene(double k, double c)
+{
+    static const char *vs =
+        "#version 330 core\n"
+        "layout(location = 0) in vec3 p;\n"
+        "uniform mat4 m;\n"
+        "void main() {\n"
+        "    gl_Position = m * vec4(p + vec3(float(gl_InstanceID) * 0.7, 0.0, 0.0), 1.0);\n"
+        "}\n";
+    static const char *fs =
+        "#version 330 core\n"
+        "uniform vec4 colour;\n"
+        "out vec4 c;\n"
+        "void main() { c = colour; }\n";
+    /* Quads (two triangles each) at z = -2, -4, -8, -6 and a HUD quad. */
+    static const GLfloat v[] = {
+        -1.6f, -0.2f, -2.0f, -0.9f, -0.2f, -2.0f, -0.9f, 0.6f, -2.0f,
+        -1.6f, -0.2f, -2.0f, -0.9f, 0.6f,  -2.0f, -1.6f, 0.6f, -2.0f,
+        -2.5f, -2.5f, -4.0f, -1.0f, -2.5f, -4.0f, -1.0f, -1.2f, -4.0f,
+        -2.5f, -2.5f, -4.0f, -1.0f, -1.2f, -4.0f, -2.5f, -1.2f, -4.0f,
+        -0.5f, -0.5f, -8.0f, 1.5f,  -0.5f, -8.0f, 1.5f,  1.0f,  -8.0f,
+        -0.5f, -0.5f, -8.0f, 1.5f,  1.0f,  -8.0f, -0.5f, 1.0f,  -8.0f,
+        0.2f,  -1.8f, -6.0f, 1.2f,  -1.8f, -6.0f, 1.2f,  -1.0f, -6.0f,
+        0.2f,  -1.8f, -6.0f, 1.2f,  -1.0f, -6.0f, 0.2f,  -1.0f, -6.0f,
+        5.0f,  5.0f,  0.0f,  45.0f, 5.0f,  0.0f,  45.0f, 15.0f, 0.0f,
+        5.0f,  5.0f,  0.0f,  45.0f, 15.0f, 0.0f,  5.0f,  15.0f, 0.0f,
+    };
+    static const GLuint idx[] = {6, 7, 8, 9, 10, 11};
+    GLuint prog = glCreateProgram();
+    glAttachShader(prog, shader(GL_VERTEX_SHADER, vs));
+    glAttachShader(prog, shader(GL_FRAGMENT_SHADER, fs));
+    glLinkProgram(prog);
+    GLint ok = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        fprintf(stderr, "link failed\n");
+        exit(4);
+    }
+    GLuint vao, vbo, ibo;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof v, v, GL_STATIC_DRAW);
+    glGenBuffers(1, &ibo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof idx, idx, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    glEnableVertexAttribArray(0);
+
+    glViewport(0, 0, W, H);
+    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glUseProgram(prog);
+    GLint lm = glGetUniformLocation(prog, "m"), lc = glGetUniformLocation(prog, "colour");
+    /* glFrustum(-1, 1, -0.75, 0.75, 1, 50), column-major, with the rule. */
+    double n = 1.0, f = 50.0;
+    double p[16] = {0};
+    p[0] = 2.0 * n / 2.0;
+    p[5] = 2.0 * n / 1.5;
+    p[10] = -(f + n) / (f - n);
+    p[11] = -1.0;
+    p[14] = -2.0 * f * n / (f - n);
+    p[0] += k * p[3];
+    p[4] += k * p[7];
+    p[8] += k * p[11];
+    p[12] += k * p[15] - k * c;
+    float pf[16];
+    for (int i = 0; i < 16; i++) pf[i] = (float)p[i];
+    glUniformMatrix4fv(lm, 1, GL_FALSE, pf);
+    glUniform4f(lc, 1.0f, 0.0f, 0.0f, 1.0f);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    glUniform4f(lc, 1.0f, 1.0f, 0.0f, 1.0f);
+    glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_INT, (const void *)0);
+    glUniform4f(lc, 0.0f, 1.0f, 0.0f, 1.0f);
+    glDrawArraysInstanced(GL_TRIANGLES, 12, 6, 2);
+    GLint first[] = {18};
+    GLsizei count[] = {6};
+    glUniform4f(lc, 0.0f, 0.0f, 1.0f, 1.0f);
+    glMultiDrawArrays(GL_TRIANGLES, first, count, 1);
+    /* The HUD: glOrtho(0, W, 0, H, -1, 1), w = 1. */
+    float o[16] = {2.0f / W, 0, 0, 0, 0, 2.0f / H, 0, 0, 0, 0, -1.0f, 0, -1.0f, -1.0f, 0, 1.0f};
+    glDisable(GL_DEPTH_TEST);
+    glUniformMatrix4fv(lm, 1, GL_FALSE, o);
+    glUniform4f(lc, 1.0f, 1.0f, 1.0f, 1.0f);
+    glDrawArrays(GL_TRIANGLES, 24, 6);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 3) {
+        fprintf(stderr, "usage: auto_oracle legacy|core mono|left|right [S C OUT]\n");
+        return 2;
+    }
+    int core = strcmp(argv[1], "core") == 0;
+    int mono = strcmp(argv[2], "mono") == 0;
+    double k = 0.0, c = 0.0;
+    const char *out = NULL;
+    if (!mono) {
+        if (argc < 6) return 2;
+        double s = 0.07 * atof(argv[3]) / 100.0;
+        k = strcmp(argv[2], "left") == 0 ? -s : s;
+        c = atof(argv[4]);
+        out = argv[5];
+    }
+    Display *dpy = XOpenDisplay(NULL);
+    if (!dpy) return 1;
+    int attrs[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT, GLX_RENDER_TYPE,
+                   GLX_RGBA_BIT, GLX_DOUBLEBUFFER, True, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8,
+                   GLX_BLUE_SIZE, 8, GLX_DEPTH_SIZE, 24, None};
+    int n = 0;
+    GLXFBConfig *configs = glXChooseFBConfig(dpy, DefaultScreen(dpy), attrs, &n);
+    if (!configs || n == 0) return 1;
+    XVisualInfo *vi = glXGetVisualFromFBConfig(dpy, configs[0]);
+    Window root = RootWindow(dpy, vi->screen);
+    XSetWindowAttributes wa = {0};
+    wa.colormap = XCreateColormap(dpy, root, vi->visual, AllocNone);
+    Window win = XCreateWindow(dpy, root, 0, 0, W, H, 0, vi->depth, InputOutput, vi->visual,
+                               CWColormap, &wa);
+    XStoreName(dpy, win, "auto_oracle");
+    XMapWindow(dpy, win);
+    XSync(dpy, False);
+    GLXContext ctx;
+    if (core) {
+        create_context_fn create = (create_context_fn)glXGetProcAddressARB(
+            (const GLubyte *)"glXCreateContextAttribsARB");
+        int ca[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
+                    GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, None};
+        ctx = create(dpy, configs[0], NULL, True, ca);
+    } else {
+        ctx = glXCreateNewContext(dpy, configs[0], GLX_RGBA_TYPE, NULL, True);
+    }
+    if (!ctx || !glXMakeCurrent(dpy, win, ctx)) return 1;
+    if (core)
+        core_scene(k, c);
+    else
+        legacy_scene(k, c);
+    if (mono) {
+        GLubyte px[4] = {0};
+        glReadPixels(50, 75, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+        printf("read %d %d %d\n", px[0], px[1], px[2]);
+        glXSwapBuffers(dpy, win);
+        if (argc > 3 && strcmp(argv[3], "wait") == 0) {
+            glFinish();
+            printf("ready 0x%lx\n", (unsigned long)win);
+            fflush(stdout);
+            char line[16];
+            if (!fgets(line, sizeof line, stdin)) return 1;
+        }
+    } else {
+        static GLubyte img[W * H * 4];
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, img);
+        FILE *f = fopen(out, "wb");
+        if (!f) return 1;
+        for (int y = H - 1; y >= 0; y--) fwrite(img + (size_t)y * W * 4, 1, W * 4, f);
+        fclose(f);
+    }
+    GLenum err = glGetError();
+    printf("error 0x%x\n", err);
+    glXMakeCurrent(dpy, None, NULL);
+    glXDestroyContext(dpy, ctx);
+    XDestroyWindow(dpy, win);
+    XCloseDisplay(dpy);
+    return err == GL_NO_ERROR ? 0 : 3;
+}
