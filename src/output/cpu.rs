@@ -1,5 +1,5 @@
 //! Every composite output mode on the CPU: [`compose`] / [`compose_into`]
-//! (fast: the row kernels of [`super::rows`]) and [`reference`], the
+//! (fast: the row kernels of `output/rows.rs`) and [`reference()`], the
 //! "oracle": pure Rust, no GL, one pixel at a time, the rules below taken
 //! literally. The fast path gives the reference's bytes (but for `-dubois`
 //! of eyes changed by saturation or crosstalk, within 1 unit); the GL

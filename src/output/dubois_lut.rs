@@ -27,7 +27,7 @@
 //!
 //! The tables are built once per process (a few milliseconds). With AVX2
 //! the reads are gathers, 8 pixels at a time. Runs of equal pixels (flat
-//! backgrounds) are composed once per run of [`N`].
+//! backgrounds) are composed once ([`Memo`]).
 //!
 //! Unit tests check the bytes against the reference on every grey pair,
 //! 100 000 random pixel pairs per pair of glasses, and the encoding on
@@ -128,6 +128,12 @@ enum Pixels<'a> {
     Planes(&'a Planes, &'a Planes),
 }
 
+/// The last [`N`] pixel pairs composed and their anaglyph: runs of equal
+/// pixels (flat backgrounds, within a row and from row to row) are
+/// composed once.
+#[derive(Debug, Default)]
+pub(crate) struct Memo(Option<([u32; N], [u32; N], [u32; N])>);
+
 /// The Dubois anaglyph of one pair of glasses.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Dubois {
@@ -155,18 +161,21 @@ impl Dubois {
     }
 
     /// One row: `out[x]` the anaglyph of `a[x]` (left) and `b[x]` (right)
-    /// after `stage`, through `px`.
+    /// after `stage`, through `px`; `memo` holds the last [`N`] pixels
+    /// composed (clear it when the anaglyph or the stage changes).
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn row(
         &self,
         avx2: bool,
         stage: Stage,
+        memo: &mut Memo,
         a: &[u32],
         b: &[u32],
         out: &mut [u32],
         px: impl Fn(u32) -> u32,
     ) {
-        let mut last: Option<([u32; N], [u32; N], [u32; N])> = None;
+        let last = &mut memo.0;
         chunks(
             a,
             b,
@@ -186,7 +195,7 @@ impl Dubois {
                     stage.apply(&mut lp, &mut rp);
                     self.chunk(avx2, Pixels::Planes(&lp, &rp))
                 };
-                last = Some((*l, *r, o));
+                *last = Some((*l, *r, o));
                 o
             },
         );

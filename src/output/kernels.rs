@@ -25,7 +25,7 @@
 //! written goes through the caller's `px` (a window's byte order).
 
 use super::anaglyph::LUMA;
-use super::dubois_lut::Dubois;
+use super::dubois_lut::{Dubois, Memo};
 use super::mode::{AnaglyphColors, AnaglyphMethod};
 
 /// Alpha 255 and black, as an RGBA8 word.
@@ -198,12 +198,14 @@ impl PairOp {
 
     /// `out[x] = op(a[x], b[x])` along a row (the same length, x counted
     /// from column 0), each word through `px`; `avx2` as [`with_simd`]
-    /// passes it.
+    /// passes it; `memo` as [`Dubois::row`] takes it.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn row(
         &self,
         avx2: bool,
         stage: Stage,
+        memo: &mut Memo,
         a: &[u32],
         b: &[u32],
         out: &mut [u32],
@@ -249,7 +251,7 @@ impl PairOp {
                     },
                 );
             }
-            PairOp::Dubois(d) => d.row(avx2, stage, a, b, out, px),
+            PairOp::Dubois(d) => d.row(avx2, stage, memo, a, b, out, px),
             op => chunks(
                 a,
                 b,

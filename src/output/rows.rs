@@ -34,6 +34,7 @@ use crate::math::Eye;
 use crate::stereo::eye_memory::Rows;
 
 use super::cpu::{Tap, tap};
+use super::dubois_lut::Memo;
 use super::kernels::{ALPHA, PairOp, Planes, Stage, average2, average4, chunks, with_simd};
 use super::layout::{Placement, WindowFit, composite_size, placements, window_fit};
 use super::mode::OutputMode;
@@ -125,6 +126,8 @@ pub(crate) struct Scratch {
     rows: [(Option<u32>, Vec<u32>); 2],
     /// A black composite row.
     black: Vec<u32>,
+    /// The last pixels `-dubois` composed (cleared by every [`Frame::write`]).
+    memo: Memo,
 }
 
 /// A composite row that need not be composed (see [`Frame::verbatim`]).
@@ -320,6 +323,7 @@ impl Frame {
         scratch: &mut Scratch,
         px: impl Fn(u32) -> u32 + Copy,
     ) {
+        scratch.memo = Memo::default();
         with_simd(
             #[inline(always)]
             |avx2| self.write_rows(avx2, eyes, rows, target, scratch, px),
@@ -511,7 +515,8 @@ impl Frame {
                     },
                     op => op,
                 };
-                op.row(avx2, self.stage, eye(a).row(y), eye(b).row(y), out, px);
+                let (a, b) = (eye(a).row(y), eye(b).row(y));
+                op.row(avx2, self.stage, &mut scratch.memo, a, b, out, px);
             }
             Source::Places(places) => {
                 let inside = |p: &Placement| p.width > 0 && y >= p.y && y < p.y + p.height;
