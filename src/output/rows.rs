@@ -154,14 +154,13 @@ fn row_of<'a>(
 }
 
 /// The taps of `dst` pixels over `src` texels, kept while they stay the
-/// same; also as arrays of f32 offsets (4 per texel) and weights, for
-/// gathers.
+/// same; also as arrays of texel indices and weights, for gathers.
 #[derive(Debug, Default)]
 struct TapCache {
     key: (u32, u32),
     taps: Vec<Tap>,
-    at0: Vec<i32>,
-    at1: Vec<i32>,
+    i0: Vec<i32>,
+    i1: Vec<i32>,
     f: Vec<f32>,
 }
 
@@ -170,10 +169,10 @@ impl TapCache {
         if self.key != (src, dst) || self.taps.len() != dst as usize {
             self.taps.clear();
             self.taps.extend((0..dst).map(|i| tap(i, src, dst)));
-            self.at0.clear();
-            self.at0.extend(self.taps.iter().map(|t| 4 * t.i0 as i32));
-            self.at1.clear();
-            self.at1.extend(self.taps.iter().map(|t| 4 * t.i1 as i32));
+            self.i0.clear();
+            self.i0.extend(self.taps.iter().map(|t| t.i0 as i32));
+            self.i1.clear();
+            self.i1.extend(self.taps.iter().map(|t| t.i1 as i32));
             self.f.clear();
             self.f.extend(self.taps.iter().map(|t| t.f));
             self.key = (src, dst);
@@ -375,12 +374,18 @@ impl Frame {
             let vt = tap(y, ch, fit.height);
             let (i0, i1) = (vt.i0 as u32, vt.i1 as u32);
             let (v0, v1) = (self.verbatim(eyes, i0), self.verbatim(eyes, i1));
-            let s0 = v0
-                .is_none()
-                .then(|| self.cached_row(avx2, eyes, i0, scratch));
-            let s1 = v1
-                .is_none()
-                .then(|| self.cached_row_besides(avx2, eyes, i1, s0.unwrap_or(0), scratch));
+            // (No closures around the composing: they would not be
+            // inlined into the vector code.)
+            let s0 = if v0.is_none() {
+                Some(self.cached_row(avx2, eyes, i0, scratch))
+            } else {
+                None
+            };
+            let s1 = if v1.is_none() {
+                Some(self.cached_row_besides(avx2, eyes, i1, s0.unwrap_or(0), scratch))
+            } else {
+                None
+            };
             if scratch.black.len() != cw as usize {
                 scratch.black.clear();
                 scratch.black.resize(cw as usize, ALPHA);
@@ -415,7 +420,6 @@ impl Frame {
                     avx2,
                     (r0, r1, vt.f),
                     window_taps.get(cw, fit.width),
-                    tmp,
                     out,
                     px,
                 );
@@ -559,9 +563,9 @@ impl Frame {
         // Whole-pixel ways, exactly the reference's bytes: a copy, and 2:1
         // averages (a tap halfway between two texels).
         if k == 0.0 && p.width == w && one_row {
-            out.iter_mut()
-                .zip(r0)
-                .for_each(|(o, &v)| *o = px(v | ALPHA));
+            for (o, &v) in out.iter_mut().zip(r0) {
+                *o = px(v | ALPHA);
+            }
             return;
         }
         if k == 0.0 && p.width == w && vt.f == 0.5 && vt.i1 == vt.i0 + 1 {
@@ -606,7 +610,7 @@ impl Frame {
         } = scratch;
         let ht = (p.width != w).then(|| span_taps.get(w, p.width));
         if let (Some(ht), 0.0) = (ht, k) {
-            sample_store(avx2, (r0, r1, vt.f), ht, tmp, out, px);
+            sample_store(avx2, (r0, r1, vt.f), ht, out, px);
             return;
         }
         let ht = ht.map(|t| &t.taps[..]);
@@ -643,78 +647,89 @@ fn sample(
     }
 }
 
-/// [`sample`] then [`store`], without the row of samples in between (with
-/// AVX2 gathers when `avx2`).
+/// [`sample`] then [`store`], pixel by pixel from the two rows (with AVX2
+/// gathers when `avx2`): each output pixel's two columns are sampled
+/// between the rows, then between each other, as the reference does.
 #[inline(always)]
 fn sample_store(
     avx2: bool,
     (r0, r1, f): (&[u32], &[u32], f32),
     ht: &TapCache,
-    tmp: &mut Vec<[f32; 4]>,
     out: &mut [u32],
     px: impl Fn(u32) -> u32 + Copy,
 ) {
-    lerp_rows(r0, r1, f, tmp);
     let mut done = 0;
     #[cfg(target_arch = "x86_64")]
     if avx2 {
         // SAFETY: `avx2` says the processor has AVX2 (see with_simd).
-        done = unsafe { gather_store(tmp, ht, out, px) };
+        done = unsafe { gather_store((r0, r1, f), ht, out, px) };
     }
     let _ = avx2;
+    let column = |i: usize| lerp(unpack(r0[i]), unpack(r1[i]), f);
     for (o, t) in out.iter_mut().zip(&ht.taps).skip(done) {
-        *o = px(pack(lerp(tmp[t.i0], tmp[t.i1], t.f)));
+        *o = px(pack(lerp(column(t.i0), column(t.i1), t.f)));
     }
 }
 
-/// The horizontal step of [`sample_store`] 8 pixels at a time: the same
-/// operations, so the same bytes. Returns how many pixels it wrote (a
-/// multiple of 8; the caller does the rest).
+/// [`sample_store`] 8 pixels at a time: the same operations, so the same
+/// bytes. Returns how many pixels it wrote (a multiple of 8; the caller
+/// does the rest).
 ///
 /// # Safety
 /// The processor has AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn gather_store(
-    row: &[[f32; 4]],
+    (r0, r1, fy): (&[u32], &[u32], f32),
     ht: &TapCache,
     out: &mut [u32],
     px: impl Fn(u32) -> u32,
 ) -> usize {
     use std::arch::x86_64::*;
     let whole = out.len().min(ht.taps.len()) / 8 * 8;
-    let base: *const f32 = row.as_ptr().cast();
-    let last = 4 * row.len() as i32 - 4;
+    let (p0, p1): (*const i32, *const i32) = (r0.as_ptr().cast(), r1.as_ptr().cast());
+    let fy = _mm256_set1_ps(fy);
+    let lerp =
+        |a: __m256, b: __m256, f: __m256| _mm256_add_ps(a, _mm256_mul_ps(f, _mm256_sub_ps(b, a)));
     for x in (0..whole).step_by(8) {
-        // SAFETY: 8 entries at x < whole of arrays at least that long.
-        let (at0, at1, f) = unsafe {
+        debug_assert!(
+            ht.i0[x..x + 8]
+                .iter()
+                .chain(&ht.i1[x..x + 8])
+                .all(|&i| (i as usize) < r0.len())
+        );
+        // SAFETY: 8 entries at x < whole of arrays at least that long; the
+        // taps index texels of the rows (clamped to their edge), as long as
+        // both rows.
+        let (fx, w) = unsafe {
+            let i0 = _mm256_loadu_si256(ht.i0[x..].as_ptr().cast());
+            let i1 = _mm256_loadu_si256(ht.i1[x..].as_ptr().cast());
             (
-                _mm256_loadu_si256(ht.at0[x..].as_ptr().cast()),
-                _mm256_loadu_si256(ht.at1[x..].as_ptr().cast()),
                 _mm256_loadu_ps(ht.f[x..].as_ptr()),
+                [
+                    _mm256_i32gather_epi32::<4>(p0, i0),
+                    _mm256_i32gather_epi32::<4>(p1, i0),
+                    _mm256_i32gather_epi32::<4>(p0, i1),
+                    _mm256_i32gather_epi32::<4>(p1, i1),
+                ],
             )
         };
-        debug_assert!(
-            ht.at0[x..x + 8]
-                .iter()
-                .chain(&ht.at1[x..x + 8])
-                .all(|&a| a <= last)
-        );
         let mut word = _mm256_set1_epi32(ALPHA as i32);
         for c in 0..3 {
-            // SAFETY: taps index texels of the row (clamped to its edge),
-            // channel c < 4 of each.
-            let (a, b) = unsafe {
-                (
-                    _mm256_i32gather_ps::<4>(base.add(c), at0),
-                    _mm256_i32gather_ps::<4>(base.add(c), at1),
-                )
+            let shift = _mm256_set1_epi32(8 * c);
+            let ch = |w: __m256i| {
+                _mm256_cvtepi32_ps(_mm256_and_si256(
+                    _mm256_srlv_epi32(w, shift),
+                    _mm256_set1_epi32(0xFF),
+                ))
             };
-            let v = _mm256_add_ps(a, _mm256_mul_ps(f, _mm256_sub_ps(b, a)));
+            let a = lerp(ch(w[0]), ch(w[1]), fy);
+            let b = lerp(ch(w[2]), ch(w[3]), fy);
+            let v = lerp(a, b, fx);
             // kernels::unorm: clamp to 0…255, + 0.5, truncate.
             let v = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(255.0));
             let v = _mm256_cvttps_epi32(_mm256_add_ps(v, _mm256_set1_ps(0.5)));
-            word = _mm256_or_si256(word, _mm256_sllv_epi32(v, _mm256_set1_epi32(8 * c as i32)));
+            word = _mm256_or_si256(word, _mm256_sllv_epi32(v, shift));
         }
         let mut words = [0u32; 8];
         // SAFETY: 8 words into an array of 8.
