@@ -34,7 +34,7 @@
 //! another size, windows of another size on a GL window, and hardware
 //! renderers are left to the shaders.
 
-use crate::backend::PixelTarget;
+use crate::backend::{PixelLayout, PixelTarget};
 use crate::error::Result;
 use crate::gl::Gl;
 use crate::gl::enums::*;
@@ -381,8 +381,16 @@ impl WindowPaths {
         // SAFETY: contract.
         unsafe {
             let fbo = self.read_fbo(gl);
-            let px = |v| layout.convert(v);
-            self.rows.write(gl, fbo, job, options, &mut target, px)
+            // One copy of the kernels per layout, each converting with
+            // constants (a layout read per pixel keeps them scalar).
+            match layout {
+                PixelLayout::Bgrx => self.rows.write(gl, fbo, job, options, &mut target, |v| {
+                    PixelLayout::Bgrx.convert(v)
+                }),
+                PixelLayout::Rgbx => self.rows.write(gl, fbo, job, options, &mut target, |v| {
+                    PixelLayout::Rgbx.convert(v)
+                }),
+            }
         }
     }
 
