@@ -10,6 +10,11 @@
 #
 #   benches/glx_formats.sh [ROUNDS [FORMAT...]]       (default 3, every format)
 #
+# BASE_RUN=/path/to/another/glstereo-run measures that build's ratio too,
+# in the same rounds (its own anaglyph-red-cyan and format runs next to
+# this build's, the order alternating from round to round): a before /
+# after table from one run.
+#
 # SCENES="light:1280x1024:200 light:400x300:800 heavy:1280x1024:6" (the
 # default) chooses the scenes, sizes and frames per run. RUN=/path/to/
 # glstereo-run measures another build (default: this tree's release build,
@@ -22,6 +27,7 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 ROUNDS=${1:-3}
 [ $# -gt 0 ] && shift
 RUN=${RUN:-"$ROOT/target/release/glstereo-run"}
+BASE=${BASE_RUN:-}
 SCENES=${SCENES:-"light:1280x1024:200 light:400x300:800 heavy:1280x1024:6"}
 [ -x "$RUN" ] || { echo "build first: cargo build --release -p glstereo-preload" >&2; exit 1; }
 if [ $# -gt 0 ]; then
@@ -39,9 +45,24 @@ XVFB=$!
 while [ ! -s "$TMP/display" ]; do sleep 0.05; done
 export DISPLAY=":$(cat "$TMP/display")"
 
-# The median frame time (ms) of one run in MODE: run MODE SCENE W H FRAMES.
+# The median frame time (ms) of one run of BUILD in MODE:
+# run BUILD MODE SCENE W H FRAMES ("failed" when it did not finish).
 run() {
-    "$RUN" -m "$1" "$TMP/loop" stereo "$3" "$4" "$5" "$2" | sed 's/.*median \([0-9.]*\) ms.*/\1/'
+    out=$("$1" -m "$2" "$TMP/loop" stereo "$4" "$5" "$6" "$3" 2>&1) || true
+    case $out in
+    *median*) echo "$out" | sed 's/.*median \([0-9.]*\) ms.*/\1/' ;;
+    *) echo "failed: $2: $out" >&2; echo failed ;;
+    esac
+}
+# ratio REF FMT: REF / FMT (the fps ratio), nan for a failed run.
+ratio() { echo "$1 $2" | awk '$1 + 0 > 0 && $2 + 0 > 0 { printf "%.3f\n", $1 / $2; next } { print "nan" }'; }
+# pair BUILD SCENE W H FRAMES FORMAT SUFFIX: one alternated pair of runs.
+pair() {
+    a=$(run "$1" anaglyph-red-cyan "$2" "$3" "$4" "$5")
+    b=$(run "$1" "$6" "$2" "$3" "$4" "$5")
+    echo "$a" >>"$TMP/r$7"
+    echo "$b" >>"$TMP/f$7"
+    ratio "$a" "$b" >>"$TMP/q$7"
 }
 med() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 
@@ -55,22 +76,27 @@ for s in $SCENES; do
     w=${size%x*}
     h=${size#*x}
     echo "## $scene $size, $frames frames a run"
-    printf '%-30s %10s %10s %8s %14s\n' format "ref ms" "fmt ms" ratio "ratio range"
+    if [ -n "$BASE" ]; then
+        printf '%-30s %10s %10s %8s %14s %10s %14s\n' format "ref ms" "fmt ms" ratio "ratio range" "base" "base range"
+    else
+        printf '%-30s %10s %10s %8s %14s\n' format "ref ms" "fmt ms" ratio "ratio range"
+    fi
     for f in $FORMATS; do
-        : >"$TMP/r"
-        : >"$TMP/f"
-        : >"$TMP/q"
+        rm -f "$TMP"/[rfq]*
         i=1
         while [ "$i" -le "$ROUNDS" ]; do
-            a=$(run anaglyph-red-cyan "$scene" "$w" "$h" "$frames")
-            b=$(run "$f" "$scene" "$w" "$h" "$frames")
-            echo "$a" >>"$TMP/r"
-            echo "$b" >>"$TMP/f"
-            echo "$a $b" | awk '{ printf "%.3f\n", $1 / $2 }' >>"$TMP/q"
+            # The base build goes first in even rounds.
+            [ -n "$BASE" ] && [ $((i % 2)) -eq 0 ] && pair "$BASE" "$scene" "$w" "$h" "$frames" "$f" b
+            pair "$RUN" "$scene" "$w" "$h" "$frames" "$f" n
+            [ -n "$BASE" ] && [ $((i % 2)) -eq 1 ] && pair "$BASE" "$scene" "$w" "$h" "$frames" "$f" b
             i=$((i + 1))
         done
-        printf '%-30s %10s %10s %8s %14s\n' "$f" "$(med <"$TMP/r")" "$(med <"$TMP/f")" \
-            "$(med <"$TMP/q")" "$(sort -g "$TMP/q" | sed -n '1p;$p' | paste -sd-)"
+        line=$(printf '%-30s %10s %10s %8s %14s' "$f" "$(med <"$TMP/rn")" "$(med <"$TMP/fn")" \
+            "$(med <"$TMP/qn")" "$(sort -g "$TMP/qn" | sed -n '1p;$p' | paste -sd-)")
+        if [ -n "$BASE" ]; then
+            line="$line $(printf '%10s %14s' "$(med <"$TMP/qb")" "$(sort -g "$TMP/qb" | sed -n '1p;$p' | paste -sd-)")"
+        fi
+        echo "$line"
     done
 done
 echo "# $(uptime)"
