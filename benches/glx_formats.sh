@@ -6,7 +6,12 @@
 # takes the ratio of their median frame times. Prints, per scene and size,
 # one line per format: the medians over the rounds of both frame times and
 # the range and median of the per-round ratios (fps of the format / fps of
-# anaglyph-red-cyan: 1 = as fast, 0.5 = half the frame rate).
+# anaglyph-red-cyan: 1 = as fast, 0.5 = half the frame rate), then the
+# same ratio of the program's CPU time a frame ("cpu": every thread of the
+# program's process, llvmpipe's and the layer's composing included, the X
+# server's not). On a machine shared with other jobs the frame times move
+# with the load by more than the formats differ; the CPU-time ratio does
+# not.
 #
 #   benches/glx_formats.sh [ROUNDS [FORMAT...]]       (default 3, every format)
 #
@@ -45,13 +50,14 @@ XVFB=$!
 while [ ! -s "$TMP/display" ]; do sleep 0.05; done
 export DISPLAY=":$(cat "$TMP/display")"
 
-# The median frame time (ms) of one run of BUILD in MODE:
-# run BUILD MODE SCENE W H FRAMES ("failed" when it did not finish).
+# The median frame time and the CPU time a frame (ms) of one run of BUILD
+# in MODE: run BUILD MODE SCENE W H FRAMES ("failed failed" when it did
+# not finish).
 run() {
     out=$("$1" -m "$2" "$TMP/loop" stereo "$4" "$5" "$6" "$3" 2>&1) || true
     case $out in
-    *median*) echo "$out" | sed 's/.*median \([0-9.]*\) ms.*/\1/' ;;
-    *) echo "failed: $2: $out" >&2; echo failed ;;
+    *median*cpu*) echo "$out" | sed -n 's/.*median \([0-9.]*\) ms.*cpu \([0-9.]*\) ms.*/\1 \2/p' ;;
+    *) echo "failed: $2 (exit or signal, output: $out)" >&2; echo failed failed ;;
     esac
 }
 # ratio REF FMT: REF / FMT (the fps ratio), nan for a failed run.
@@ -60,10 +66,13 @@ ratio() { echo "$1 $2" | awk '$1 + 0 > 0 && $2 + 0 > 0 { printf "%.3f\n", $1 / $
 pair() {
     a=$(run "$1" anaglyph-red-cyan "$2" "$3" "$4" "$5")
     b=$(run "$1" "$6" "$2" "$3" "$4" "$5")
-    echo "$a" >>"$TMP/r$7"
-    echo "$b" >>"$TMP/f$7"
-    ratio "$a" "$b" >>"$TMP/q$7"
+    echo "${a% *}" >>"$TMP/r$7"
+    echo "${b% *}" >>"$TMP/f$7"
+    ratio "${a% *}" "${b% *}" >>"$TMP/q$7"
+    ratio "${a#* }" "${b#* }" >>"$TMP/c$7"
 }
+# stats FILE: the median and the range of the ratios in FILE.
+stats() { printf '%8s %12s' "$(med <"$1")" "$(sort -g "$1" | sed -n '1p;$p' | paste -sd-)"; }
 med() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 
 echo "# $(uptime)"
@@ -76,13 +85,11 @@ for s in $SCENES; do
     w=${size%x*}
     h=${size#*x}
     echo "## $scene $size, $frames frames a run"
-    if [ -n "$BASE" ]; then
-        printf '%-30s %10s %10s %8s %14s %10s %14s\n' format "ref ms" "fmt ms" ratio "ratio range" "base" "base range"
-    else
-        printf '%-30s %10s %10s %8s %14s\n' format "ref ms" "fmt ms" ratio "ratio range"
-    fi
+    head=$(printf '%-30s %8s %8s %8s %12s %8s %12s' format "ref ms" "fmt ms" ratio range cpu range)
+    [ -n "$BASE" ] && head="$head $(printf '%8s %12s %8s %12s' base range "base cpu" range)"
+    echo "$head"
     for f in $FORMATS; do
-        rm -f "$TMP"/[rfq]*
+        rm -f "$TMP"/[rfqc][nb]
         i=1
         while [ "$i" -le "$ROUNDS" ]; do
             # The base build goes first in even rounds.
@@ -91,11 +98,8 @@ for s in $SCENES; do
             [ -n "$BASE" ] && [ $((i % 2)) -eq 1 ] && pair "$BASE" "$scene" "$w" "$h" "$frames" "$f" b
             i=$((i + 1))
         done
-        line=$(printf '%-30s %10s %10s %8s %14s' "$f" "$(med <"$TMP/rn")" "$(med <"$TMP/fn")" \
-            "$(med <"$TMP/qn")" "$(sort -g "$TMP/qn" | sed -n '1p;$p' | paste -sd-)")
-        if [ -n "$BASE" ]; then
-            line="$line $(printf '%10s %14s' "$(med <"$TMP/qb")" "$(sort -g "$TMP/qb" | sed -n '1p;$p' | paste -sd-)")"
-        fi
+        line="$(printf '%-30s %8s %8s' "$f" "$(med <"$TMP/rn")" "$(med <"$TMP/fn")") $(stats "$TMP/qn") $(stats "$TMP/cn")"
+        [ -n "$BASE" ] && line="$line $(stats "$TMP/qb") $(stats "$TMP/cb")"
         echo "$line"
     done
 done
