@@ -213,6 +213,17 @@ impl PairOp {
     ) {
         let plain = stage.is_identity();
         match *self {
+            PairOp::Pick {
+                columns: false,
+                row,
+            } if plain => {
+                // The whole row from one eye: a copy, which reads one row
+                // where the select below reads both.
+                let src = if row == 0 { a } else { b };
+                for (o, &p) in out.iter_mut().zip(src) {
+                    *o = px(p | ALPHA);
+                }
+            }
             PairOp::Pick { columns, row } if plain => {
                 // All ones where the second eye shows: a select the compiler vectorises.
                 let odd = |x: usize| ((x as u32 & u32::from(columns)) ^ row).wrapping_neg();
