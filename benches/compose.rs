@@ -5,6 +5,7 @@
 //! ```sh
 //! cargo bench --bench compose                 # everything (about 6 minutes)
 //! cargo bench --bench compose -- cpu/1280     # one group (criterion filter)
+//! cargo bench --bench compose -- ratios-only  # the ratio table alone (a filter matching nothing)
 //! ```
 //!
 //! - `cpu/WxH/MODE`: [`compose_into`] of two in-memory eyes into a reused
@@ -16,7 +17,11 @@
 //!   side-by-side and top-bottom), between two preallocated buffers.
 //!
 //! After criterion's report, a table gives each mode's median time divided
-//! by the median memcpy of its composite's bytes (same run).
+//! by the median memcpy of its composite's bytes (same run), in wall-clock
+//! time and in the thread's CPU time (on a machine shared with other jobs
+//! a composition that outlasts a scheduler slice waits for a core more
+//! often than a short copy does, which inflates the wall-clock ratio; the
+//! CPU-time ratio is what the machine's load leaves alone).
 
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
@@ -250,25 +255,45 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Median milliseconds of `compose` and of `copy`, timed in alternating
-/// blocks (4 copies, 4 compositions, …; the first of each block only warms
-/// the caches) so that the machine's drift hits both alike and each runs
-/// as warm as its own working set allows.
-fn alternated(rounds: usize, mut compose: impl FnMut(), mut copy: impl FnMut()) -> (f64, f64) {
-    let block = |f: &mut dyn FnMut(), into: &mut Vec<f64>| {
+/// This thread's CPU time: on a machine shared with other jobs, the time
+/// the thread actually ran (not the time it waited for a core).
+fn thread_time() -> Duration {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: a valid clock id and a timespec to write.
+    let r = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    assert_eq!(r, 0, "CLOCK_THREAD_CPUTIME_ID");
+    Duration::new(t.tv_sec as u64, t.tv_nsec as u32)
+}
+
+/// Medians of `compose` and of `copy`, timed in alternating blocks (4
+/// copies, 4 compositions, …; the first of each block only warms the
+/// caches) so that the machine's drift hits both alike and each runs as
+/// warm as its own working set allows: (compose, copy) in wall-clock
+/// milliseconds, then in milliseconds of this thread's CPU time.
+fn alternated(
+    rounds: usize,
+    mut compose: impl FnMut(),
+    mut copy: impl FnMut(),
+) -> ((f64, f64), (f64, f64)) {
+    let block = |f: &mut dyn FnMut(), into: &mut (Vec<f64>, Vec<f64>)| {
         f();
         for _ in 0..3 {
-            let t = Instant::now();
+            let (t, c) = (Instant::now(), thread_time());
             f();
-            into.push(t.elapsed().as_secs_f64() * 1e3);
+            let c = thread_time() - c;
+            into.0.push(t.elapsed().as_secs_f64() * 1e3);
+            into.1.push(c.as_secs_f64() * 1e3);
         }
     };
-    let (mut a, mut b) = (Vec::new(), Vec::new());
+    let (mut a, mut b) = ((Vec::new(), Vec::new()), (Vec::new(), Vec::new()));
     for _ in 0..rounds {
         block(&mut copy, &mut b);
         block(&mut compose, &mut a);
     }
-    (median(a), median(b))
+    ((median(a.0), median(b.0)), (median(a.1), median(b.1)))
 }
 
 /// The targets' table: every mode's CPU composition against a memcpy of
@@ -277,11 +302,20 @@ fn alternated(rounds: usize, mut compose: impl FnMut(), mut copy: impl FnMut()) 
 fn ratio_table(rounds: usize) {
     println!(
         "\nratio to a memcpy of the composite's bytes: CPU alternated with the copy \
-         in blocks, {rounds} rounds, medians; GL from criterion's samples above"
+         in blocks, {rounds} rounds, medians (wall clock; \"on-CPU\": this thread's CPU \
+         time, what a loaded machine does not inflate); GL from criterion's samples above"
     );
     println!(
-        "{:<36} {:>10} {:>10} {:>8} {:>10} {:>8}",
-        "mode @ eyes", "memcpy ms", "cpu ms", "cpu ×", "gl ms", "gl ×"
+        "{:<36} {:>10} {:>10} {:>8} {:>10} {:>10} {:>8} {:>10} {:>8}",
+        "mode @ eyes",
+        "memcpy ms",
+        "cpu ms",
+        "cpu ×",
+        "on-CPU cp",
+        "on-CPU ms",
+        "on-CPU ×",
+        "gl ms",
+        "gl ×"
     );
     let options = OutputOptions::default();
     for (w, h) in SIZES {
@@ -292,7 +326,7 @@ fn ratio_table(rounds: usize) {
             let src = vec![7u8; bytes];
             let mut dst = vec![0u8; bytes];
             let mut out = Image::new(1, 1);
-            let (cpu, copy) = alternated(
+            let ((cpu, copy), (cpu_t, copy_t)) = alternated(
                 rounds,
                 || {
                     compose_into(mode, &options, &left, &right, 0, &mut out).unwrap();
@@ -305,11 +339,14 @@ fn ratio_table(rounds: usize) {
             );
             let gl = median_ns(&format!("gl/{w}x{h}/{}", mode.canonical_name())).map(|v| v / 1e6);
             println!(
-                "{:<36} {:>10.3} {:>10.3} {:>8.2} {:>10} {:>8}",
+                "{:<36} {:>10.3} {:>10.3} {:>8.2} {:>10.3} {:>10.3} {:>8.2} {:>10} {:>8}",
                 format!("{} @ {w}x{h}", mode.canonical_name()),
                 copy,
                 cpu,
                 cpu / copy,
+                copy_t,
+                cpu_t,
+                cpu_t / copy_t,
                 gl.map_or("-".into(), |v| format!("{v:.3}")),
                 gl.map_or("-".into(), |v| format!("{:.2}", v / copy)),
             );
@@ -323,7 +360,7 @@ fn main() {
     gl_benches(&mut c);
     math_benches(&mut c);
     c.final_summary();
-    // `--ratios-only` skips criterion's runs (any filter that matches
-    // nothing does the same): the table alone takes about 20 s.
+    // A filter that matches nothing (`ratios-only`) skips criterion's
+    // runs: the table alone takes about 20 s on a quiet machine.
     ratio_table(15);
 }

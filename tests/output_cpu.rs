@@ -1,7 +1,8 @@
-//! The CPU reference of the output formats, checked three ways: cases worked
+//! The CPU composite of the output formats, checked four ways: cases worked
 //! out by hand (the and more), properties that must hold in every
 //! mode (swap, crosstalk, alpha, sizes), and agreement with a slow per-pixel
-//! model written straight from the documented rules.
+//! model written straight from the documented rules, and byte for byte
+//! against the reference (`cpu::reference`, the oracle) it is fast beside.
 
 use glstereo::Error;
 use glstereo::image::Image;
@@ -760,6 +761,46 @@ fn model(m: OutputMode, o: &OutputOptions, left: &Image, right: &Image, frame: u
         let q = |f: f32| (f * 255.0).round().clamp(0.0, 255.0) as u8;
         [q(rgb[0]), q(rgb[1]), q(rgb[2]), 255]
     })
+}
+
+#[test]
+fn the_fast_composite_is_the_reference_byte_for_byte() {
+    // Widths around the kernels' 16-pixel steps; heights odd and even.
+    let sizes = [(37, 23), (16, 12), (1, 1), (3, 40), (64, 33), (50, 2)];
+    let options = [
+        plain(),
+        with(true, 0.0, 1.0),
+        with(false, 0.35, 1.0),
+        with(false, 0.0, 0.5),
+        with(true, 0.2, 0.65),
+    ];
+    for (w, h) in sizes {
+        let eyes = [
+            (gradient(w, h, 0), gradient(w, h, 90)),
+            (noise(w, h, 7), noise(w, h, 8)),
+            (solid(w, h, [255, 255, 255]), solid(w, h, [0, 0, 0])),
+        ];
+        for (l, r) in &eyes {
+            for o in &options {
+                for m in composites() {
+                    for frame in [0, 1] {
+                        let got = compose(m, o, l, r, frame).unwrap();
+                        let want = glstereo::output::cpu::reference(m, o, l, r, frame).unwrap();
+                        // -dubois of changed eyes interpolates the sRGB curve.
+                        let changed = o.crosstalk != 0.0 || o.saturation != 1.0;
+                        let dubois = matches!(m, OutputMode::Anaglyph(_, AnaglyphMethod::Dubois));
+                        let tol = u8::from(changed && dubois);
+                        assert_within(
+                            &got,
+                            &want,
+                            tol,
+                            &format!("{m} {w}x{h} frame {frame} {o:?}"),
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
 
 #[test]

@@ -1,5 +1,9 @@
-//! The CPU reference ("oracle") of every composite output mode: pure Rust,
-//! no GL. The GL compositor must reproduce it within 1 unit per channel.
+//! Every composite output mode on the CPU: [`compose`] / [`compose_into`]
+//! (fast: the row kernels of `output/rows.rs`) and [`reference()`], the
+//! "oracle": pure Rust, no GL, one pixel at a time, the rules below taken
+//! literally. The fast path gives the reference's bytes (but for `-dubois`
+//! of eyes changed by saturation or crosstalk, within 1 unit); the GL
+//! compositor reproduces it within 1 unit per channel.
 //!
 //! # Numbers
 //!
@@ -64,14 +68,14 @@
 //! falls back on configs without native stereo.
 
 use crate::error::{Error, Result};
-use crate::image::{Image, MAX_DIMENSION, as_words, as_words_mut, check_size};
+use crate::image::{Image, MAX_DIMENSION, as_words_mut, check_size};
 use crate::math::Eye;
 
-use super::anaglyph::{DuboisMatrices, LUMA, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
-use super::dubois_lut::{Products, dubois_row};
+use super::anaglyph::{DuboisMatrices, dubois_matrices, dubois_pixel, luma, srgb_to_linear};
 use super::layout::{Placement, composite_size, leaves_gaps, placements};
 use super::mode::{AnaglyphColors, AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
+use super::rows::{EyeRows, Frame, Scratch, Target};
 
 /// One pixel's R, G, B in 0…255 units (f32, unrounded), and its alpha,
 /// carried along only so rows convert four bytes at a time (it is ignored).
@@ -117,6 +121,106 @@ pub fn compose_into(
     out: &mut Image,
 ) -> Result<()> {
     let (w, h) = (left.width(), left.height());
+    let size = composite_size(mode, w, h);
+    compose_fitted(mode, options, left, right, frame_index, size, out)
+}
+
+/// The composite as a window of `size` shows it: placed by
+/// [`super::layout::window_fit`] (scaled bilinearly as [`resample`] does,
+/// or for the interleaved modes cropped, centred on black), in one pass
+/// from the eyes. At the composite's size this is [`compose_into`]. `out`
+/// is resized to `size`; on error it is unchanged.
+///
+/// # Errors
+/// As [`compose`]; also [`Error::InvalidValue`] for a `size` outside
+/// 1…[`MAX_DIMENSION`].
+pub fn compose_fitted(
+    mode: OutputMode,
+    options: &OutputOptions,
+    left: &Image,
+    right: &Image,
+    frame_index: u64,
+    size: (u32, u32),
+    out: &mut Image,
+) -> Result<()> {
+    let (options, _) = check_eyes(mode, options, left, right)?;
+    check_size(size.0, size.1)?;
+    // Nothing can fail past this point, so `out` is untouched on error.
+    out.resize(size.0, size.1, "composite")?;
+    let eyes = [EyeRows::image(left), EyeRows::image(right)];
+    let frame = Frame::new(
+        mode,
+        &options,
+        frame_index,
+        (left.width(), left.height()),
+        size,
+    );
+    match (eyes, as_words_mut(out.pixels_mut())) {
+        ([Some(l), Some(r)], Some(words)) => {
+            let mut target = Target {
+                words,
+                stride: size.0 as usize,
+                size,
+            };
+            with_scratch(|scratch| {
+                frame.write([Some(l), Some(r)], 0..size.1, &mut target, scratch, |v| v);
+            });
+        }
+        // Buffers that are not aligned words (never from the system
+        // allocator) or a big-endian machine: the reference, placed.
+        _ => {
+            *out = fitted(
+                &reference(mode, &options, left, right, frame_index)?,
+                mode,
+                size,
+            )
+        }
+    }
+    Ok(())
+}
+
+/// `composite` placed in a window of `size` by [`super::layout::window_fit`]
+/// (the reference's way: [`resample`] when scaled).
+pub fn fitted(composite: &Image, mode: OutputMode, size: (u32, u32)) -> Image {
+    let (cw, ch) = (composite.width(), composite.height());
+    let fit = super::layout::window_fit(mode, cw, ch, size.0, size.1);
+    let shown = if (fit.width, fit.height) == (cw, ch) {
+        composite.clone()
+    } else {
+        resample(composite, 0, 0, cw, ch, fit.width, fit.height)
+    };
+    Image::from_fn(size.0, size.1, |x, y| {
+        let (sx, sy) = (x as i32 - fit.x, y as i32 - fit.y);
+        if sx >= 0 && sy >= 0 && (sx as u32) < shown.width() && (sy as u32) < shown.height() {
+            shown.get(sx as u32, sy as u32)
+        } else {
+            [0, 0, 0, 255]
+        }
+    })
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
+}
+
+/// Runs `f` with this thread's row buffers (fresh ones if they are in use
+/// further up the stack), so that a frame loop allocates nothing.
+fn with_scratch<T>(f: impl FnOnce(&mut Scratch) -> T) -> T {
+    SCRATCH.with(|s| match s.try_borrow_mut() {
+        Ok(mut s) => f(&mut s),
+        Err(_) => f(&mut Scratch::default()),
+    })
+}
+
+/// The checks of [`compose_into`]: eyes of one size, and
+/// [`check_composite`]'s.
+fn check_eyes(
+    mode: OutputMode,
+    options: &OutputOptions,
+    left: &Image,
+    right: &Image,
+) -> Result<(OutputOptions, (u32, u32))> {
+    let (w, h) = (left.width(), left.height());
     if (right.width(), right.height()) != (w, h) {
         return Err(Error::invalid_value(format!(
             "the left eye is {w}x{h} but the right eye is {}x{}: both eyes must be the same size",
@@ -124,139 +228,7 @@ pub fn compose_into(
             right.height()
         )));
     }
-    let (options, (cw, ch)) = check_composite(mode, options, w, h)?;
-    // Nothing can fail past this point, so `out` is untouched on error.
-
-    let (l, r) = if options.swap_eyes {
-        (right, left)
-    } else {
-        (left, right)
-    };
-    let stage = Stage {
-        saturation: if mode.is_anaglyph() {
-            options.saturation
-        } else {
-            1.0
-        },
-        crosstalk: if mode.shows_both_eyes() {
-            options.crosstalk
-        } else {
-            0.0
-        },
-    };
-
-    // Every mode writes every pixel (or fills first).
-    out.resize(cw, ch, "composite")?;
-    with_scratch(|scratch| {
-        compose_mode(
-            mode,
-            &options,
-            l,
-            r,
-            (left, right),
-            frame_index,
-            stage,
-            out,
-            scratch,
-        )
-    });
-    Ok(())
-}
-
-/// The mode's pixels, once checked (see [`compose_into`]): `l`, `r` are the
-/// eyes after the swap, `unswapped` before it.
-#[allow(clippy::too_many_arguments)]
-fn compose_mode(
-    mode: OutputMode,
-    options: &OutputOptions,
-    l: &Image,
-    r: &Image,
-    (left, right): (&Image, &Image),
-    frame_index: u64,
-    stage: Stage,
-    out: &mut Image,
-    scratch: &mut Scratch,
-) {
-    let (w, h) = (left.width(), left.height());
-    match mode {
-        OutputMode::Quad => {} // refused above
-        OutputMode::Left => copy_opaque(l.pixels(), out.pixels_mut()),
-        OutputMode::Right => copy_opaque(r.pixels(), out.pixels_mut()),
-        OutputMode::FrameSequential => {
-            // `frame_sequential_eye` already accounts for the swap, so pick
-            // from the unswapped inputs.
-            let eye = options.frame_sequential_eye(frame_index);
-            let (shown, other) = match eye {
-                Eye::Left => (left, right),
-                Eye::Right => (right, left),
-            };
-            let full = Placement {
-                eye,
-                x: 0,
-                y: 0,
-                width: w,
-                height: h,
-            };
-            draw_placement(&full, shown, other, stage, out, scratch);
-        }
-        OutputMode::Anaglyph(colors, method) => {
-            anaglyph(Anaglyph::Masked(colors, method), l, r, stage, out, scratch);
-        }
-        OutputMode::AnaglyphRedBlue => anaglyph(Anaglyph::RedBlue, l, r, stage, out, scratch),
-        OutputMode::Rows | OutputMode::Columns | OutputMode::Checkerboard => {
-            interleave(mode, l, r, stage, out, scratch);
-        }
-        OutputMode::SideBySide
-        | OutputMode::TopBottom
-        | OutputMode::SideBySideHalf
-        | OutputMode::TopBottomHalf
-        | OutputMode::HdmiFramePacking
-        | OutputMode::Starbase
-        | OutputMode::StrRect => {
-            // Always Some for these modes (a layout test checks it).
-            let places = placements(mode, w, h);
-            if leaves_gaps(mode, w, h) {
-                fill(out.pixels_mut(), ALPHA);
-            }
-            for p in places.iter().flatten() {
-                let (eye, other) = match p.eye {
-                    Eye::Left => (l, r),
-                    Eye::Right => (r, l),
-                };
-                draw_placement(p, eye, other, stage, out, scratch);
-            }
-        }
-    }
-}
-
-/// Row buffers the float paths reuse from call to call (per thread), so
-/// that a frame loop composing every frame allocates nothing.
-#[derive(Default)]
-struct Scratch {
-    a: Vec<Rgb>,
-    b: Vec<Rgb>,
-    tmp: Vec<Rgb>,
-    taps: Vec<Tap>,
-}
-
-thread_local! {
-    static SCRATCH: std::cell::RefCell<Scratch> = const {
-        std::cell::RefCell::new(Scratch {
-            a: Vec::new(),
-            b: Vec::new(),
-            tmp: Vec::new(),
-            taps: Vec::new(),
-        })
-    };
-}
-
-/// Runs `f` with this thread's scratch buffers (fresh ones if they are in
-/// use further up the stack).
-fn with_scratch<T>(f: impl FnOnce(&mut Scratch) -> T) -> T {
-    SCRATCH.with(|s| match s.try_borrow_mut() {
-        Ok(mut s) => f(&mut s),
-        Err(_) => f(&mut Scratch::default()),
-    })
+    check_composite(mode, options, w, h)
 }
 
 /// The checks every composite passes, on the CPU and on GL alike: valid
@@ -287,6 +259,89 @@ pub(crate) fn check_composite(
     Ok((options, (cw, ch)))
 }
 
+/// The oracle: [`compose`] by this module's rules taken literally, one
+/// pixel at a time in f32 (slow; for tests and as the fallback of
+/// [`compose_into`]). Same errors as [`compose`].
+pub fn reference(
+    mode: OutputMode,
+    options: &OutputOptions,
+    left: &Image,
+    right: &Image,
+    frame_index: u64,
+) -> Result<Image> {
+    let (options, (cw, ch)) = check_eyes(mode, options, left, right)?;
+    let (w, h) = (left.width(), left.height());
+    let (l, r) = if options.swap_eyes {
+        (right, left)
+    } else {
+        (left, right)
+    };
+    let stage = Stage {
+        saturation: if mode.is_anaglyph() {
+            options.saturation
+        } else {
+            1.0
+        },
+        crosstalk: if mode.shows_both_eyes() {
+            options.crosstalk
+        } else {
+            0.0
+        },
+    };
+    let mut out = Image::new(cw, ch);
+    match mode {
+        OutputMode::Quad => {} // refused above
+        OutputMode::Left | OutputMode::Right | OutputMode::FrameSequential => {
+            // `frame_sequential_eye` accounts for the swap: pick from the
+            // unswapped inputs.
+            let (eye, shown, other) = match mode {
+                OutputMode::Left => (Eye::Left, l, r),
+                OutputMode::Right => (Eye::Right, r, l),
+                _ => match options.frame_sequential_eye(frame_index) {
+                    Eye::Left => (Eye::Left, left, right),
+                    Eye::Right => (Eye::Right, right, left),
+                },
+            };
+            let full = Placement {
+                eye,
+                x: 0,
+                y: 0,
+                width: w,
+                height: h,
+            };
+            draw_placement(&full, shown, other, stage, &mut out);
+        }
+        OutputMode::Anaglyph(colors, method) => {
+            anaglyph(Anaglyph::Masked(colors, method), l, r, stage, &mut out);
+        }
+        OutputMode::AnaglyphRedBlue => anaglyph(Anaglyph::RedBlue, l, r, stage, &mut out),
+        OutputMode::Rows | OutputMode::Columns | OutputMode::Checkerboard => {
+            interleave(mode, l, r, stage, &mut out);
+        }
+        OutputMode::SideBySide
+        | OutputMode::TopBottom
+        | OutputMode::SideBySideHalf
+        | OutputMode::TopBottomHalf
+        | OutputMode::HdmiFramePacking
+        | OutputMode::Starbase
+        | OutputMode::StrRect => {
+            // Always Some for these modes (a layout test checks it).
+            let places = placements(mode, w, h);
+            if leaves_gaps(mode, w, h) {
+                out = Image::from_fn(cw, ch, |_, _| [0, 0, 0, 255]);
+            }
+            for p in places.iter().flatten() {
+                let (eye, other) = match p.eye {
+                    Eye::Left => (l, r),
+                    Eye::Right => (r, l),
+                };
+                draw_placement(p, eye, other, stage, &mut out);
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// The per-eye colour steps before the mode, with their effective values
 /// (1 and 0 where the mode ignores them).
 #[derive(Clone, Copy)]
@@ -296,10 +351,6 @@ struct Stage {
 }
 
 impl Stage {
-    fn is_identity(self) -> bool {
-        self.saturation == 1.0 && self.crosstalk == 0.0
-    }
-
     /// Saturation then crosstalk on two rows sampled at the same coordinates.
     fn apply(self, l: &mut [Rgb], r: &mut [Rgb]) {
         if self.saturation != 1.0 {
@@ -328,53 +379,6 @@ fn desaturate(row: &mut [Rgb], s: f32) {
     }
 }
 
-/// Alpha 255 and black, as a little-endian RGBA8 word.
-const ALPHA: u32 = 0xFF00_0000;
-
-#[inline]
-fn word(p: &[u8]) -> u32 {
-    u32::from_le_bytes([p[0], p[1], p[2], p[3]])
-}
-
-/// The per-byte average of two RGBA8 words, halves rounded up:
-/// ⌈(a + b)/2⌉ = (a | b) − ((a ^ b) >> 1), masked so no bit crosses bytes.
-#[inline]
-fn average_up(a: u32, b: u32) -> u32 {
-    (a | b) - (((a ^ b) >> 1) & 0x7F7F_7F7F)
-}
-
-/// Fills every pixel with one RGBA8 word.
-fn fill(dst: &mut [u8], rgba: u32) {
-    if let Some(d) = as_words_mut(dst) {
-        d.fill(rgba);
-        return;
-    }
-    for d in dst.chunks_exact_mut(4) {
-        d.copy_from_slice(&rgba.to_le_bytes());
-    }
-}
-
-/// `dst[i] = f(a[i], b[i])` over RGBA8 words: on word slices when all three
-/// are aligned (vectorised), else pixel by pixel.
-#[inline(always)]
-fn zip_words(dst: &mut [u8], a: &[u8], b: &[u8], f: impl Fn(u32, u32) -> u32) {
-    if let (Some(x), Some(y)) = (as_words(a), as_words(b)) {
-        if let Some(d) = as_words_mut(dst) {
-            for ((d, &x), &y) in d.iter_mut().zip(x).zip(y) {
-                *d = f(x, y);
-            }
-            return;
-        }
-    }
-    for ((d, p), q) in dst
-        .chunks_exact_mut(4)
-        .zip(a.chunks_exact(4))
-        .zip(b.chunks_exact(4))
-    {
-        d.copy_from_slice(&f(word(p), word(q)).to_le_bytes());
-    }
-}
-
 #[inline]
 fn unorm(v: f32) -> u8 {
     // Clamp, then round half up; `as` truncates the non-negative sum.
@@ -398,19 +402,6 @@ fn store(src: &[Rgb], dst: &mut [u8]) {
     }
 }
 
-/// Copies RGB and sets alpha to 255.
-fn copy_opaque(src: &[u8], dst: &mut [u8]) {
-    if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
-        for (d, &s) in d.iter_mut().zip(s) {
-            *d = s | ALPHA;
-        }
-        return;
-    }
-    for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
-        d.copy_from_slice(&(word(s) | ALPHA).to_le_bytes());
-    }
-}
-
 fn row_mut(img: &mut Image, y: u32) -> &mut [u8] {
     let stride = img.width() as usize * 4;
     let start = y as usize * stride;
@@ -419,15 +410,15 @@ fn row_mut(img: &mut Image, y: u32) -> &mut [u8] {
 
 /// One bilinear tap along an axis: texels i0 and i1 weighted (1 − f) and f.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Tap {
-    i0: usize,
-    i1: usize,
-    f: f32,
+pub(crate) struct Tap {
+    pub(crate) i0: usize,
+    pub(crate) i1: usize,
+    pub(crate) f: f32,
 }
 
 /// The tap of output pixel `i` when `src_len` texels are scaled onto
 /// `dst_len` pixels: centre `(i + 0.5)·src_len/dst_len`, clamp-to-edge.
-fn tap(i: u32, src_len: u32, dst_len: u32) -> Tap {
+pub(crate) fn tap(i: u32, src_len: u32, dst_len: u32) -> Tap {
     let c = (f64::from(i) + 0.5) * f64::from(src_len) / f64::from(dst_len) - 0.5;
     let base = c.floor();
     let last = i64::from(src_len) - 1;
@@ -439,7 +430,6 @@ fn tap(i: u32, src_len: u32, dst_len: u32) -> Tap {
         f: (c - base) as f32,
     }
 }
-
 /// Samples one row of an eye for a placement: vertical tap `vt`, horizontal
 /// taps `ht` (None = the placement has the eye's width: copy columns).
 fn sample_row(img: &Image, vt: Tap, ht: Option<&[Tap]>, tmp: &mut Vec<Rgb>, dst: &mut Vec<Rgb>) {
@@ -480,12 +470,6 @@ pub fn resample(src: &Image, x: u32, y: u32, w: u32, h: u32, out_w: u32, out_h: 
         row_mut(&mut sub, row).copy_from_slice(s);
     }
     let mut out = Image::new(out_w, out_h);
-    if (w, h) == (out_w, out_h) {
-        for row in 0..h {
-            copy_opaque(sub.row(row), row_mut(&mut out, row));
-        }
-        return out;
-    }
     let ht: Vec<Tap> = (0..out_w).map(|i| tap(i, w, out_w)).collect();
     let ht = (w != out_w).then_some(&ht[..]);
     let (mut tmp, mut line) = (Vec::new(), Vec::new());
@@ -498,14 +482,7 @@ pub fn resample(src: &Image, x: u32, y: u32, w: u32, h: u32, out_w: u32, out_h: 
 
 /// Draws `eye` scaled into placement `p`, with crosstalk against `other`
 /// sampled at the same coordinates.
-fn draw_placement(
-    p: &Placement,
-    eye: &Image,
-    other: &Image,
-    stage: Stage,
-    out: &mut Image,
-    scratch: &mut Scratch,
-) {
+fn draw_placement(p: &Placement, eye: &Image, other: &Image, stage: Stage, out: &mut Image) {
     if p.width == 0 || p.height == 0 {
         return;
     }
@@ -514,73 +491,26 @@ fn draw_placement(
     let span = p.width as usize * 4;
     let k = stage.crosstalk;
 
-    // Integer fast paths, bit-identical to the float path below: an exact
-    // copy, and exact 2:1 halving, where bilinear sampling is the average
-    // of two texels rounded half up.
-    if k == 0.0 {
-        if (p.width, p.height) == (w, h) {
-            for y in 0..h {
-                copy_opaque(eye.row(y), &mut row_mut(out, p.y + y)[x0..x0 + span]);
-            }
-            return;
-        }
-        if p.width == w && 2 * p.height == h {
-            for y in 0..p.height {
-                let (a, b) = (eye.row(2 * y), eye.row(2 * y + 1));
-                let dst = &mut row_mut(out, p.y + y)[x0..x0 + span];
-                zip_words(dst, a, b, |s, t| average_up(s, t) | ALPHA);
-            }
-            return;
-        }
-        if p.height == h && 2 * p.width == w {
-            for y in 0..h {
-                let dst = &mut row_mut(out, p.y + y)[x0..x0 + span];
-                let src = eye.row(y);
-                if let (Some(s), Some(d)) = (as_words(src), as_words_mut(dst)) {
-                    for (d, pair) in d.iter_mut().zip(s.chunks_exact(2)) {
-                        *d = average_up(pair[0], pair[1]) | ALPHA;
-                    }
-                    continue;
-                }
-                for (d, pair) in dst.chunks_exact_mut(4).zip(src.chunks_exact(8)) {
-                    let v = average_up(word(&pair[..4]), word(&pair[4..]));
-                    d.copy_from_slice(&(v | ALPHA).to_le_bytes());
-                }
-            }
-            return;
-        }
-    }
-
-    let Scratch { a, b, tmp, taps } = scratch;
-    taps.clear();
-    if p.width != w {
-        taps.extend((0..p.width).map(|i| tap(i, w, p.width)));
-    }
+    let taps: Vec<Tap> = (0..p.width).map(|i| tap(i, w, p.width)).collect();
     let ht = (p.width != w).then_some(&taps[..]);
+    let (mut a, mut b, mut tmp) = (Vec::new(), Vec::new(), Vec::new());
     for y in 0..p.height {
         let vt = tap(y, h, p.height);
-        sample_row(eye, vt, ht, tmp, a);
+        sample_row(eye, vt, ht, &mut tmp, &mut a);
         if k != 0.0 {
-            sample_row(other, vt, ht, tmp, b);
+            sample_row(other, vt, ht, &mut tmp, &mut b);
             for (e, o) in a.iter_mut().zip(b.iter()) {
                 for c in 0..3 {
                     e[c] = (e[c] - k * o[c]).max(0.0);
                 }
             }
         }
-        store(a, &mut row_mut(out, p.y + y)[x0..x0 + span]);
+        store(&a, &mut row_mut(out, p.y + y)[x0..x0 + span]);
     }
 }
 
 /// Rows, columns or checkerboard.
-fn interleave(
-    mode: OutputMode,
-    l: &Image,
-    r: &Image,
-    stage: Stage,
-    out: &mut Image,
-    scratch: &mut Scratch,
-) {
+fn interleave(mode: OutputMode, l: &Image, r: &Image, stage: Stage, out: &mut Image) {
     let (w, h) = (l.width(), l.height());
     // Which eye pixel x of row y shows: left when (x·cx + y·cy) is even.
     let (cx, cy) = match mode {
@@ -588,59 +518,20 @@ fn interleave(
         OutputMode::Columns => (1, 0),
         _ => (1, 1),
     };
-    let Scratch { a, b, .. } = scratch;
+    let (mut a, mut b) = (Vec::new(), Vec::new());
     for y in 0..h {
+        load(l.row(y), &mut a);
+        load(r.row(y), &mut b);
+        stage.apply(&mut a, &mut b);
         let dst = row_mut(out, y);
-        if stage.is_identity() {
-            let (lr, rr) = (l.row(y), r.row(y));
-            if cx == 0 {
-                copy_opaque(if y % 2 == 0 { lr } else { rr }, dst);
-                continue;
-            }
-            // Columns and checkerboard: even columns of this row from the
-            // first eye, odd ones from the second.
-            let (first, second) = if (y as usize * cy) % 2 == 0 {
-                (lr, rr)
+        for x in 0..w as usize {
+            let src = if (x * cx + y as usize * cy) % 2 == 0 {
+                &a
             } else {
-                (rr, lr)
+                &b
             };
-            interleave_columns(dst, first, second);
-        } else {
-            load(l.row(y), a);
-            load(r.row(y), b);
-            stage.apply(a, b);
-            for x in 0..w as usize {
-                let src = if (x * cx + y as usize * cy) % 2 == 0 {
-                    &a
-                } else {
-                    &b
-                };
-                store(&src[x..x + 1], &mut dst[x * 4..x * 4 + 4]);
-            }
+            store(&src[x..x + 1], &mut dst[x * 4..x * 4 + 4]);
         }
-    }
-}
-
-/// Pixel x of `dst` from `even` when x is even, else from `odd`; alpha 255.
-fn interleave_columns(dst: &mut [u8], even: &[u8], odd: &[u8]) {
-    if let (Some(e), Some(o)) = (as_words(even), as_words(odd)) {
-        if let Some(d) = as_words_mut(dst) {
-            for (x, ((d, &p), &q)) in d.iter_mut().zip(e).zip(o).enumerate() {
-                // All ones on odd columns: a select the compiler vectorises.
-                let odd = (x as u32 & 1).wrapping_neg();
-                *d = (p & !odd) | (q & odd) | ALPHA;
-            }
-            return;
-        }
-    }
-    for (x, ((d, p), q)) in dst
-        .chunks_exact_mut(4)
-        .zip(even.chunks_exact(4))
-        .zip(odd.chunks_exact(4))
-        .enumerate()
-    {
-        let src = if x % 2 == 0 { p } else { q };
-        d.copy_from_slice(&(word(src) | ALPHA).to_le_bytes());
     }
 }
 
@@ -656,90 +547,19 @@ fn decode_table() -> [f32; 256] {
     std::array::from_fn(|v| srgb_to_linear(v as f32 / 255.0))
 }
 
-fn anaglyph(
-    kind: Anaglyph,
-    l: &Image,
-    r: &Image,
-    stage: Stage,
-    out: &mut Image,
-    scratch: &mut Scratch,
-) {
+fn anaglyph(kind: Anaglyph, l: &Image, r: &Image, stage: Stage, out: &mut Image) {
     let h = l.height();
-    // Fast path: a plain mask of untouched eyes is a byte shuffle.
-    if let (Anaglyph::Masked(colors, AnaglyphMethod::FullColor), true) = (kind, stage.is_identity())
-    {
-        let m = colors
-            .left_channels()
-            .map(|from_left| if from_left { 0xFF } else { 0 });
-        let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
-        let right_mask = !left_mask & !ALPHA;
-        zip_words(out.pixels_mut(), l.pixels(), r.pixels(), |p, q| {
-            (p & left_mask) | (q & right_mask) | ALPHA
-        });
-        return;
-    }
-
-    // Luminance modes of untouched eyes: the luma of three bytes by tables
-    // of the same f32 products, summed in the same order: the same bytes.
-    let grey = match kind {
-        Anaglyph::Masked(colors, AnaglyphMethod::HalfColor) => Some((colors, true, false)),
-        Anaglyph::Masked(colors, AnaglyphMethod::Monochrome) => Some((colors, true, true)),
-        Anaglyph::RedBlue => Some((AnaglyphColors::RedCyan, true, true)),
-        _ => None,
-    };
-    if let (Some((colors, left_grey, right_grey)), true) = (grey, stage.is_identity()) {
-        let t: [[f32; 256]; 3] =
-            std::array::from_fn(|c| std::array::from_fn(|v| LUMA[c] * v as f32));
-        let y = |w: u32| {
-            let [r, g, b, _] = w.to_le_bytes();
-            u32::from(unorm(
-                t[0][r as usize] + t[1][g as usize] + t[2][b as usize],
-            ))
-        };
-        let m = colors
-            .left_channels()
-            .map(|from_left| if from_left { 0xFF } else { 0 });
-        let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
-        let right_mask = !left_mask & !ALPHA;
-        // Red-blue keeps no green: red from the left luma, blue from the right.
-        let keep = if matches!(kind, Anaglyph::RedBlue) {
-            0x00FF_00FF
-        } else {
-            0x00FF_FFFF
-        };
-        let right_mask = if matches!(kind, Anaglyph::RedBlue) {
-            0x00FF_0000
-        } else {
-            right_mask
-        };
-        zip_words(out.pixels_mut(), l.pixels(), r.pixels(), |p, q| {
-            let lv = if left_grey { y(p) * 0x01_0101 } else { p };
-            let rv = if right_grey { y(q) * 0x01_0101 } else { q };
-            ((lv & left_mask) | (rv & right_mask)) & keep | ALPHA
-        });
-        return;
-    }
-
-    // Dubois of untouched eyes: by tables, the same bytes (dubois_lut.rs).
-    if let (Anaglyph::Masked(colors, AnaglyphMethod::Dubois), true) = (kind, stage.is_identity()) {
-        let products = Products::new(colors);
-        for y in 0..h {
-            dubois_row(&products, l.row(y), r.row(y), row_mut(out, y));
-        }
-        return;
-    }
-
     // Integral inputs (no saturation, no crosstalk) decode by table.
-    let table = stage.is_identity().then(decode_table);
+    let table = (stage.saturation == 1.0 && stage.crosstalk == 0.0).then(decode_table);
     let decode = |v: f32| match &table {
         Some(t) => t[v as usize],
         None => srgb_to_linear(v / 255.0),
     };
-    let Scratch { a, b, .. } = scratch;
+    let (mut a, mut b) = (Vec::new(), Vec::new());
     for y in 0..h {
-        load(l.row(y), a);
-        load(r.row(y), b);
-        stage.apply(a, b);
+        load(l.row(y), &mut a);
+        load(r.row(y), &mut b);
+        stage.apply(&mut a, &mut b);
         let dst = row_mut(out, y);
         match kind {
             Anaglyph::RedBlue => {
@@ -817,20 +637,6 @@ mod tests {
         // Magnifying 1 texel onto 2 pixels: both sides clamp to texel 0.
         for i in 0..2 {
             assert_eq!((tap(i, 1, 2).i0, tap(i, 1, 2).i1), (0, 0), "pixel {i}");
-        }
-    }
-
-    #[test]
-    fn average_up_is_the_rounded_mean_of_each_byte() {
-        for a in 0..=255u32 {
-            for b in 0..=255u32 {
-                let want = (a + b).div_ceil(2);
-                // The same pair in every lane, with neighbours that differ.
-                let (x, y) = (a * 0x0101_0101, b * 0x0101_0101);
-                assert_eq!(average_up(x, y), want * 0x0101_0101, "bytes {a} and {b}");
-                let (x, y) = (a << 8 | 0xFF, b << 8);
-                assert_eq!(average_up(x, y), want << 8 | 0x80, "lane 1 with {a}, {b}");
-            }
         }
     }
 

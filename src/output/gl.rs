@@ -169,57 +169,28 @@ pub enum ComposePath {
 }
 
 /// The faster way to capture the composite of `mode` with `options`, on a
-/// software renderer (`software`: llvmpipe, softpipe, swrast — what EGL
-/// surfaceless and OSMesa give on a machine without a GPU) or a hardware
-/// one.
+/// software renderer (`software`: llvmpipe, softpipe, swrast, zink over
+/// lavapipe — what EGL surfaceless, OSMesa and Xvfb give on a machine
+/// without a GPU) or a hardware one.
 ///
-/// Measured with `examples/compose_paths.rs` (release, 1280x1024 eyes,
-/// Mesa 22.3.6 llvmpipe on 2 shared cores, EGL and OSMesa alike; capture =
-/// the composite in memory, rows top first; milliseconds, uncontended
-/// minimums with the allocator reusing memory):
-///
-/// | family                              | CPU  | GL   | CPU, crosstalk 0.3 + saturation 0.65 | GL, same |
-/// |-------------------------------------|------|------|------|------|
-/// | left, right                         | 2.5  | 5.3  | 2.5  | 5.3  |
-/// | frame-sequential                    | 2.3  | 5.3  | 11–15| 8.2  |
-/// | anaglyph plain masks                | 2.5  | 10.3 | 14.5 | 10.4 |
-/// | anaglyph -half, -mono, red-blue     | 8.3–10 | 10.3 | 14–16 | 10.4 |
-/// | anaglyph -dubois                    | 67   | 24   | 139  | 24.7 |
-/// | rows, columns, checkerboard         | 2.3–2.8 | 7.9 | 11 | 8.5 |
-/// | side-by-side, top-bottom (full)     | 2.9–3.2 | 11.7 | 20 | 16.6 |
-/// | hdmi-frame-packing                  | 3.2  | 12.8 | 20   | 18.6 |
-/// | side-by-side-half, top-bottom-half, starbase | 2.4–3.3 | 13.8 | 16–18 | 19–22 |
-/// | str-rect                            | 11.5 | 13.8 | 17.6 | 20   |
-///
-/// Since then the CPU compositions got faster (BENCHMARKS.md; composition
-/// alone, no read-back): plain masks and copies at memory speed (0.2–0.3
-/// ms), `-half` 2.9, `-mono` and red-blue ≈ 5, `-dubois` 22–25 (exact
-/// tables instead of 65); the choices below stand (GL's Dubois, 24 ms,
-/// runs on both cores while the CPU's runs on one).
-///
-/// So on a software renderer: GL for `-dubois` always, and for every mode
-/// but the squeezed ones (`-half`, `starbase`, `str-rect`) when crosstalk
-/// or saturation is in effect; the CPU otherwise (its integer fast paths
-/// are byte shuffles, while llvmpipe runs a full-screen shader pass in
-/// 3–8 ms). On a hardware renderer, always GL (not measured here: a GPU
-/// composes in well under a millisecond, and one image is read back
-/// instead of two).
+/// On a software renderer, the CPU for every mode and option: its row
+/// kernels compose any mode in 0.3–3 ms at 1280x1024 (`benches/compose.rs`),
+/// from the eyes where llvmpipe drew them or read back (0.3–1 ms for both),
+/// while the renderer's own shader pass takes 8–29 ms on llvmpipe
+/// (`examples/compose_paths.rs`, Mesa 22.3.6, 2 shared cores; softpipe and
+/// zink over lavapipe are slower still: BENCHMARKS.md). On a hardware
+/// renderer, always GL (not measured here: a GPU composes in well under a
+/// millisecond, and one image is read back instead of two). `mode` and
+/// `options` no longer change the choice; they stay for callers that ask
+/// per mode.
 ///
 /// Both paths give the same image within 1 unit per channel.
 pub fn preferred_path(software: bool, mode: OutputMode, options: &OutputOptions) -> ComposePath {
-    if !software {
-        return ComposePath::Gl;
-    }
-    let staged = (mode.shows_both_eyes() && options.crosstalk > 0.0)
-        || (mode.is_anaglyph() && options.saturation < 1.0);
-    match mode {
-        OutputMode::Anaglyph(_, AnaglyphMethod::Dubois) => ComposePath::Gl,
-        OutputMode::SideBySideHalf
-        | OutputMode::TopBottomHalf
-        | OutputMode::Starbase
-        | OutputMode::StrRect => ComposePath::Cpu,
-        _ if staged => ComposePath::Gl,
-        _ => ComposePath::Cpu,
+    let _ = (mode, options);
+    if software {
+        ComposePath::Cpu
+    } else {
+        ComposePath::Gl
     }
 }
 
@@ -783,14 +754,8 @@ impl GlCompositor {
             let software = self.software(gl);
             gl.take_error();
             if unscaled && preferred_path(software, job.mode, &options) == ComposePath::Cpu {
-                let (img, bottom_first) = self.window.cpu_image(gl, job, &options)?;
+                self.window.cpu_image(gl, job, &options, out)?;
                 gl.check("reading the eyes back")?;
-                out.resize(cw, ch, "composite")?;
-                let stride = cw as usize * 4;
-                for y in 0..ch {
-                    let src = img.row(if bottom_first { ch - 1 - y } else { y });
-                    out.pixels_mut()[y as usize * stride..][..stride].copy_from_slice(src);
-                }
                 return Ok(true);
             }
             if cw > self.max_side(gl) || ch > self.max_side(gl) {
@@ -803,11 +768,14 @@ impl GlCompositor {
         Ok(true)
     }
 
-    /// How `job` can reach a window that shows pixels from memory
-    /// ([`crate::backend::PlatformSurface::present_pixels`]) on a software
-    /// renderer: None on a hardware renderer (its GL composite into the
-    /// window is cheaper), for `quad`, and when the composite is not the
-    /// window's `width` × `height`. See `output/window.rs`.
+    /// How `job` can reach a window of `width` × `height` that shows pixels
+    /// from memory ([`crate::backend::PlatformSurface::present_pixels`]) on
+    /// a software renderer: composed on the CPU at the window's size (any
+    /// mode, any options, fitted as [`super::layout::window_fit`] says), or,
+    /// for eyes in framing rectangles of another size, by GL when the
+    /// composite is the window's size. None on a hardware renderer (its GL
+    /// composite into the window is cheaper), for `quad`, and otherwise.
+    /// See `output/window.rs`.
     ///
     /// # Errors
     /// As [`GlCompositor::compose_capture`] for a bad job.
@@ -825,17 +793,18 @@ impl GlCompositor {
         if job.mode == OutputMode::Quad {
             return Ok(None);
         }
-        let (options, size) = check_composite(job.mode, &job.options, w, h)?;
+        let (_, size) = check_composite(job.mode, &job.options, w, h)?;
         // SAFETY: contract.
-        if size != (width, height) || !unsafe { self.software(gl) } {
+        if cfg!(target_endian = "big") || !unsafe { self.software(gl) } {
             return Ok(None);
         }
         let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
-        Ok(Some(PixelPlan(pixel_plan(job.mode, &options, unscaled))))
+        let plan = pixel_plan(unscaled);
+        Ok((plan == Plan::Rows || size == (width, height)).then_some(PixelPlan(plan)))
     }
 
-    /// Writes the composite of `job` into `target` as `plan` says, with
-    /// buffers reused from frame to frame.
+    /// Writes the composite of `job` into `target` (fitted to its size) as
+    /// `plan` says, with buffers reused from frame to frame.
     ///
     /// # Errors
     /// As [`GlCompositor::compose_capture`].
@@ -862,7 +831,7 @@ impl GlCompositor {
                         profile::span(Stage::ReadBack, || self.window.read_canvas(gl, &canvas))?;
                     profile::span(Stage::Compose, || target.write_image(img, true));
                 }
-                plan => self.window.fill(gl, plan, job, &options, &mut target)?,
+                Plan::Rows => self.window.fill(gl, plan.0, job, &options, &mut target)?,
             }
             gl.check("composing the eyes for the window")
         }

@@ -11,7 +11,7 @@
 //!   [`OutputSettings::from_env_with`] for `GLSTEREO_*`.
 //! - [`layout`]: [`composite_size`] and where each eye goes.
 //! - [`anaglyph`]: luminance weights, sRGB curves, Dubois matrices.
-//! - [`cpu`]: [`compose`], the reference of every mode.
+//! - [`cpu`]: [`compose`] of every mode, and [`cpu::reference`], the oracle.
 //! - [`pattern`]: deterministic gradient and noise test images.
 //! - [`gl`]: [`GlCompositor`], the same modes drawn by GL in a surface's
 //!   compositor context (captures and windows).
@@ -20,13 +20,15 @@ pub mod anaglyph;
 pub mod cpu;
 mod dubois_lut;
 pub mod gl;
+mod kernels;
 pub mod layout;
 pub mod mode;
 pub mod options;
 pub mod pattern;
+mod rows;
 mod window;
 
-pub use cpu::{compose, compose_into};
+pub use cpu::{compose, compose_fitted, compose_into};
 pub use gl::{ComposePath, GlCompositor};
 pub use layout::{Placement, composite_size, placements};
 pub use mode::{ALIASES, Alias, AliasSource, AnaglyphColors, AnaglyphMethod, OutputMode};

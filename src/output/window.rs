@@ -1,38 +1,44 @@
-//! The cheap ways to put a composite into a window, used by
-//! [`super::gl::GlCompositor::compose_window`] before its shader passes.
+//! The cheap ways to put a composite into a window: as pixels from memory
+//! ([`WindowPaths::fill`], a software renderer's MIT-SHM image), or by
+//! blits and one upload into the window's GL back buffer
+//! ([`WindowPaths::compose`], used by
+//! [`super::gl::GlCompositor::compose_window`] before its shader passes).
 //!
 //! On a software renderer a full-screen shader pass is the expensive part
 //! of a frame: llvmpipe takes 2.6–3.9 ms for the simplest one at
-//! 1280x1024 and 5–10 ms for the compositor's kernels, while a same-size
+//! 1280x1024 and 5–29 ms for the compositor's kernels, while a same-size
 //! glBlitFramebuffer, a glReadPixels and a glTexSubImage2D each take about
-//! 0.2 ms and a CPU channel mask 0.3 ms (`examples/compose_paths.rs`,
-//! `benches/compose.rs`). So, when the composite fills the window exactly
-//! and every eye is a rectangle of the eye's size:
+//! 0.2 ms and the CPU composes any mode in 0.3–3 ms
+//! (`examples/compose_paths.rs`, `benches/compose.rs`). So:
 //!
-//! - **Blit** (every renderer): `left`, `right`, `frame-sequential`,
-//!   `side-by-side`, `top-bottom` and `hdmi-frame-packing` without
-//!   crosstalk are copies of whole eyes, so each eye is one same-size
-//!   glBlitFramebuffer (plus a clear of the gap for HDMI frame packing).
-//!   A blit copies alpha, so this path is taken only when the window has
-//!   no alpha bits (what a window shows has no alpha anyway).
-//! - **CPU** (software renderers, where [`preferred_path`] picks the CPU):
-//!   read the eyes back, compose them with [`cpu::compose_into`] into a
-//!   reused image, upload it with one glTexSubImage2D and blit it. Modes
-//!   whose pixels depend only on their own row (the anaglyphs, `columns`,
-//!   the side-by-side ones) and the row-interleaved ones are composed in
-//!   GL's bottom-first row order directly, so nothing is flipped; the
-//!   others are flipped to the reference's top-first order and back.
+//! - **Pixels** (software renderers whose window shows pixels from
+//!   memory): every mode, with any options, composed on the CPU row by row
+//!   straight into the window's buffer at the window's size
+//!   ([`super::rows`]: letterboxed, scaled or cropped as
+//!   [`super::layout::window_fit`] says, in the window's byte order), from
+//!   the eyes where llvmpipe drew them ([`crate::stereo::eye_memory`]) or
+//!   read back: in bands that stay in cache when every window row needs
+//!   only its own eye rows, else whole.
+//! - **Blit** (every renderer, GL windows): `left`, `right`,
+//!   `frame-sequential`, `side-by-side`, `top-bottom` and
+//!   `hdmi-frame-packing` without crosstalk are copies of whole eyes, so
+//!   each eye is one same-size glBlitFramebuffer (plus a clear of the gap
+//!   for HDMI frame packing). A blit copies alpha, so this path is taken
+//!   only when the window has no alpha bits.
+//! - **CPU** (software renderers, GL windows the composite's size): the
+//!   composite made as for Pixels into a reused image, uploaded with one
+//!   glTexSubImage2D and blitted.
 //!
-//! Both give exactly [`cpu::compose`]'s pixels: a blit of an unscaled eye
-//! is a copy, and the CPU path is the reference itself. Everything else
-//! (Dubois, crosstalk and saturation on same-size modes, a window of
-//! another size, hardware renderers' composites) is left to the shaders.
+//! All give [`cpu::compose`]'s pixels (a blit of an unscaled eye is a
+//! copy; the others are its kernels). Eyes in framing rectangles of
+//! another size, windows of another size on a GL window, and hardware
+//! renderers are left to the shaders.
 
-use crate::backend::{PixelTarget, convert_row};
+use crate::backend::{PixelLayout, PixelTarget};
 use crate::error::Result;
 use crate::gl::Gl;
 use crate::gl::enums::*;
-use crate::image::{Image, as_words, as_words_mut, flip_rows};
+use crate::image::{Image, as_words_mut, flip_rows};
 use crate::math::Eye;
 use crate::profile::{self, Stage};
 use crate::stereo::eye_memory::Rows;
@@ -40,8 +46,9 @@ use crate::stereo::eye_memory::Rows;
 use super::cpu;
 use super::gl::{Canvas, ComposePath, Job, TexRect, preferred_path};
 use super::layout::{Placement, composite_size, leaves_gaps, placements};
-use super::mode::{AnaglyphMethod, OutputMode};
+use super::mode::OutputMode;
 use super::options::OutputOptions;
+use super::rows::{EyeRows, Frame, Scratch, Target};
 
 /// Bytes of each eye read back at a time by the window paths that write
 /// straight into the window's buffer: a band of both eyes stays in cache
@@ -94,52 +101,17 @@ pub(crate) fn window_path(
 /// How a composite reaches a window that shows pixels from memory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Plan {
-    /// A plain channel mask of untouched eyes, written straight into the
-    /// window's buffer from the eyes read back (one pass).
-    Mask,
-    /// Whole eyes copied into their places in the window's buffer.
-    Copies,
-    /// Composed on the CPU from the eyes read back, then written.
-    Cpu,
-    /// Composed by GL, read back, then written.
+    /// Composed on the CPU straight into the window's buffer.
+    Rows,
+    /// Composed by GL, read back, then written (eyes in framing rectangles
+    /// of another size than the eye, which GL resamples first).
     Gl,
 }
 
-/// The plan for `mode` with validated `options` on a software renderer;
-/// `unscaled`: every eye is a rectangle of the eye's size.
-pub(crate) fn pixel_plan(mode: OutputMode, options: &OutputOptions, unscaled: bool) -> Plan {
-    if !unscaled {
-        return Plan::Gl;
-    }
-    let untouched = options.crosstalk == 0.0 && options.saturation == 1.0;
-    match mode {
-        OutputMode::Anaglyph(_, AnaglyphMethod::FullColor) if untouched => Plan::Mask,
-        _ if window_path(mode, options, false, false) == Some(WindowPath::Blit) => Plan::Copies,
-        _ if preferred_path(true, mode, options) == ComposePath::Cpu => Plan::Cpu,
-        _ => Plan::Gl,
-    }
-}
-
-/// How the CPU path orders rows: Some(swap) when composing GL's bottom-first
-/// rows gives the bottom-first composite (swapping the eyes when `swap`,
-/// which keeps the top-row parity of the interleaved modes on an even
-/// height); None when the rows must be flipped to top-first and back.
-fn bottom_first(mode: OutputMode, eye_height: u32) -> Option<bool> {
-    match mode {
-        OutputMode::Anaglyph(..)
-        | OutputMode::AnaglyphRedBlue
-        | OutputMode::Columns
-        | OutputMode::Left
-        | OutputMode::Right
-        | OutputMode::FrameSequential
-        | OutputMode::SideBySide
-        | OutputMode::SideBySideHalf => Some(false),
-        // Row 0 is the top row: counted from the bottom, its parity is that
-        // of height − 1. compose(swap, L, R) == compose(R, L) in every mode,
-        // crosstalk included.
-        OutputMode::Rows | OutputMode::Checkerboard => Some(eye_height % 2 == 0),
-        _ => None,
-    }
+/// The plan on a software renderer; `unscaled`: every eye is a rectangle
+/// of the eye's size.
+pub(crate) fn pixel_plan(unscaled: bool) -> Plan {
+    if unscaled { Plan::Rows } else { Plan::Gl }
 }
 
 /// Where the eyes of a copy mode (see [`window_path`]'s Blit) go: each
@@ -186,8 +158,8 @@ fn copies(job: &Job, options: &OutputOptions) -> [Option<(Placement, TexRect)>; 
 pub(crate) struct WindowPaths {
     read_fbo: u32,
     upload: Canvas,
-    eyes: [Image; 2],
     out: Image,
+    rows: RowPaths,
 }
 
 impl Default for WindowPaths {
@@ -195,10 +167,21 @@ impl Default for WindowPaths {
         WindowPaths {
             read_fbo: 0,
             upload: Canvas::default(),
-            eyes: [Image::new(1, 1), Image::new(1, 1)],
             out: Image::new(1, 1),
+            rows: RowPaths {
+                eyes: [Image::new(1, 1), Image::new(1, 1)],
+                scratch: Scratch::default(),
+            },
         }
     }
+}
+
+/// What composing on the CPU reuses: the eyes read back (GL's row order,
+/// whole or a band at a time) and the row kernels' buffers.
+#[derive(Debug)]
+struct RowPaths {
+    eyes: [Image; 2],
+    scratch: Scratch,
 }
 
 /// Binds `texture` as the colour buffer of `fbo`, bound for reading.
@@ -318,8 +301,8 @@ impl WindowPaths {
         Ok(())
     }
 
-    /// Reads the eyes back and composes them on the CPU into the reused
-    /// image; returns it and whether its rows are bottom first.
+    /// Composes `job` on the CPU into `out` (rows top first, resized to
+    /// the composite), from the eyes in place or read back.
     ///
     /// # Safety
     /// As [`WindowPaths::compose`]; the job's eyes are of the eye size.
@@ -328,56 +311,13 @@ impl WindowPaths {
         gl: &Gl,
         job: &Job,
         options: &OutputOptions,
-    ) -> Result<(&Image, bool)> {
-        let (w, h) = job.eye_size;
-        let order = bottom_first(job.mode, h);
-        let same = job.eyes[1] == job.eyes[0];
+        out: &mut Image,
+    ) -> Result<()> {
         // SAFETY: contract.
-        let fbo = unsafe { self.read_fbo(gl) };
-        for (i, rect) in job.eyes.iter().enumerate().take(if same { 1 } else { 2 }) {
-            let img = &mut self.eyes[i];
-            img.resize(w, h, "read-back eye")?;
-            // SAFETY: the present (or capture) finished the rendering into
-            // the eyes, and the rows are used here, before any resize
-            // (contract).
-            if let Some(rows) = unsafe { job.rows_in_place(rect, w, h) } {
-                // One copy from where the driver drew, flipped on the way
-                // when the composite wants rows top first.
-                profile::span(Stage::ReadBack, || {
-                    rows.copy_to(img.pixels_mut(), order.is_none())
-                });
-                continue;
-            }
-            // SAFETY: the compositor context is current (contract); the
-            // image holds w×h×4 bytes.
-            profile::span(Stage::ReadBack, || unsafe {
-                read_from(gl, fbo, rect.texture);
-                gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-                gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-                gl.ReadPixels(
-                    rect.x as i32,
-                    rect.y as i32,
-                    w as i32,
-                    h as i32,
-                    GL_RGBA,
-                    GL_UNSIGNED_BYTE,
-                    img.pixels_mut().as_mut_ptr().cast(),
-                );
-            });
-            if order.is_none() {
-                flip_rows(img.pixels_mut(), w as usize * 4);
-            }
+        unsafe {
+            let fbo = self.read_fbo(gl);
+            self.rows.image(gl, fbo, job, options, out)
         }
-        let mut opts = *options;
-        if order == Some(true) {
-            opts.swap_eyes = !opts.swap_eyes;
-        }
-        let [l, r] = &self.eyes;
-        let r = if same { l } else { r };
-        profile::span(Stage::Compose, || {
-            cpu::compose_into(job.mode, &opts, l, r, job.frame_index, &mut self.out)
-        })?;
-        Ok((&self.out, order.is_some()))
     }
 
     /// Reads the compositor's capture framebuffer (`canvas`) into the
@@ -407,83 +347,12 @@ impl WindowPaths {
         Ok(&self.out)
     }
 
-    /// Reads the eye rectangles `rects` (each of `w` × `h`; None: not
-    /// needed) back in bands of rows, bottom first, and calls `each` with
-    /// the first GL row of the band and the bands (the same buffer for two
-    /// equal rectangles). A band may hold more rows than remain. When
-    /// every rectangle needed is one of the job's eyes in place
-    /// ([`Job::in_place`]), nothing is read back: `each` is called once
-    /// with the whole rectangles.
+    /// Writes the composite of `job` into a window's buffer, fitted to the
+    /// window's size, by `plan` (not [`Plan::Gl`], which the compositor
+    /// does itself).
     ///
     /// # Safety
-    /// As [`WindowPaths::compose`].
-    unsafe fn bands(
-        &mut self,
-        gl: &Gl,
-        job: &Job,
-        rects: [Option<TexRect>; 2],
-        w: u32,
-        h: u32,
-        mut each: impl FnMut(u32, [Option<Rows<'_>>; 2]),
-    ) -> Result<()> {
-        // SAFETY: the present finished the rendering into the eyes, and the
-        // rows are used here, before any resize (contract).
-        let placed = rects.map(|r| r.and_then(|r| unsafe { job.rows_in_place(&r, w, h) }));
-        if rects
-            .iter()
-            .zip(&placed)
-            .all(|(r, p)| r.is_none() || p.is_some())
-        {
-            profile::span(Stage::Compose, || each(0, placed));
-            return Ok(());
-        }
-        let rows = ((BAND_BYTES / (w as usize * 4)).max(1) as u32).min(h);
-        let same = rects[0].is_some() && rects[0] == rects[1];
-        // SAFETY: contract.
-        let fbo = unsafe {
-            gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-            self.read_fbo(gl)
-        };
-        for img in &mut self.eyes {
-            img.resize(w, rows, "band of an eye")?;
-        }
-        let mut y0 = 0;
-        while y0 < h {
-            let n = rows.min(h - y0);
-            for (i, rect) in rects.iter().enumerate() {
-                let Some(rect) = rect else { continue };
-                if i == 1 && same {
-                    continue;
-                }
-                // SAFETY: contract; the band holds w × rows × 4 bytes ≥ n rows.
-                profile::span(Stage::ReadBack, || unsafe {
-                    read_from(gl, fbo, rect.texture);
-                    gl.ReadPixels(
-                        rect.x as i32,
-                        (rect.y + y0) as i32,
-                        w as i32,
-                        n as i32,
-                        GL_RGBA,
-                        GL_UNSIGNED_BYTE,
-                        self.eyes[i].pixels_mut().as_mut_ptr().cast(),
-                    );
-                });
-            }
-            let band =
-                |i: usize| rects[i].map(|_| Rows::of_image(&self.eyes[if same { 0 } else { i }]));
-            profile::span(Stage::Compose, || each(y0, [band(0), band(1)]));
-            y0 += n;
-        }
-        Ok(())
-    }
-
-    /// Writes the composite into a window's buffer by `plan` (not
-    /// [`Plan::Gl`], which the compositor does itself).
-    ///
-    /// # Safety
-    /// As [`WindowPaths::compose`]; the job's eyes are of the eye size and
-    /// the target of the composite's size.
+    /// As [`WindowPaths::compose`]; the job's eyes are of the eye size.
     pub(crate) unsafe fn fill(
         &mut self,
         gl: &Gl,
@@ -492,67 +361,37 @@ impl WindowPaths {
         options: &OutputOptions,
         target: &mut PixelTarget<'_>,
     ) -> Result<()> {
-        let (w, h) = job.eye_size;
-        match plan {
-            Plan::Mask => {
-                let OutputMode::Anaglyph(colors, _) = job.mode else {
-                    unreachable!("a mask plan is made for anaglyphs only")
-                };
-                let m = colors.left_channels().map(|b| if b { 0xFF } else { 0 });
-                let left_mask = u32::from_le_bytes([m[0], m[1], m[2], 0]);
-                let [mut l, mut r] = job.eyes;
-                if options.swap_eyes {
-                    std::mem::swap(&mut l, &mut r);
-                }
-                let layout = target.layout;
-                // SAFETY: contract.
-                unsafe {
-                    self.bands(gl, job, [Some(l), Some(r)], w, h, |y0, [lb, rb]| {
-                        let (lb, rb) = (lb.expect("left band"), rb.expect("right band"));
-                        for k in 0..lb.height().min(h - y0) {
-                            // GL rows count from the bottom, the window's from the top.
-                            let dst = target.row_mut(h - 1 - (y0 + k));
-                            mask_row(lb.row(k), rb.row(k), dst, left_mask, |v| layout.convert(v));
-                        }
-                    })?
-                };
+        debug_assert_eq!(plan, Plan::Rows, "the compositor composes GL plans");
+        let layout = target.layout;
+        let size = target.size;
+        let stride = target.stride / 4;
+        let words = match as_words_mut(target.data) {
+            Some(words) if target.stride % 4 == 0 => words,
+            _ => {
+                return Err(crate::error::Error::Gl(
+                    "the window's image is not made of aligned 32-bit pixels".into(),
+                ));
             }
-            Plan::Copies => {
-                let draws = copies(job, options);
-                let places = draws.map(|d| d.map(|(p, _)| p));
-                let sources = draws.map(|d| d.map(|(_, rect)| rect));
-                if leaves_gaps(job.mode, w, h) {
-                    let black = target.layout.convert(0);
-                    for y in 0..target.size.1 {
-                        fill_words(target.row_mut(y), black);
-                    }
-                }
-                let layout = target.layout;
-                // SAFETY: contract.
-                unsafe {
-                    self.bands(gl, job, sources, w, h, |y0, bands| {
-                        for (p, band) in places.iter().zip(bands) {
-                            let (Some(p), Some(band)) = (p, band) else {
-                                continue;
-                            };
-                            let x0 = p.x as usize * 4;
-                            for k in 0..band.height().min(h - y0) {
-                                let row = p.y + (h - 1 - (y0 + k));
-                                let dst = &mut target.row_mut(row)[x0..x0 + w as usize * 4];
-                                convert_row(band.row(k), dst, layout);
-                            }
-                        }
-                    })?
-                };
+        };
+        let mut target = Target {
+            words,
+            stride,
+            size,
+        };
+        // SAFETY: contract.
+        unsafe {
+            let fbo = self.read_fbo(gl);
+            // One copy of the kernels per layout, each converting with
+            // constants (a layout read per pixel keeps them scalar).
+            match layout {
+                PixelLayout::Bgrx => self.rows.write(gl, fbo, job, options, &mut target, |v| {
+                    PixelLayout::Bgrx.convert(v)
+                }),
+                PixelLayout::Rgbx => self.rows.write(gl, fbo, job, options, &mut target, |v| {
+                    PixelLayout::Rgbx.convert(v)
+                }),
             }
-            Plan::Cpu => {
-                // SAFETY: contract.
-                let (img, bottom_first) = unsafe { self.cpu_image(gl, job, options)? };
-                profile::span(Stage::Compose, || target.write_image(img, bottom_first));
-            }
-            Plan::Gl => unreachable!("the compositor composes GL plans"),
         }
-        Ok(())
     }
 
     unsafe fn cpu(
@@ -564,11 +403,12 @@ impl WindowPaths {
         buffer: u32,
     ) -> Result<()> {
         // SAFETY: contract.
-        let bottom = unsafe { self.cpu_image(gl, job, options)?.1 };
-        let (cw, ch) = (self.out.width(), self.out.height());
-        if !bottom {
-            flip_rows(self.out.pixels_mut(), cw as usize * 4);
+        unsafe {
+            let fbo = self.read_fbo(gl);
+            self.rows.image(gl, fbo, job, options, &mut self.out)?;
         }
+        let (cw, ch) = (self.out.width(), self.out.height());
+        flip_rows(self.out.pixels_mut(), cw as usize * 4);
         // SAFETY: as above; the image holds cw×ch×4 bytes.
         unsafe {
             self.upload.ensure(gl, cw, ch)?;
@@ -609,77 +449,150 @@ impl WindowPaths {
     }
 }
 
-/// One row of a plain channel-mask anaglyph: R, G, B from the left eye
-/// where `left_mask` has ones, else from the right; each result word
-/// (alpha 255) passed through `out` (a window's pixel layout).
-fn mask_row(l: &[u8], r: &[u8], dst: &mut [u8], left_mask: u32, out: impl Fn(u32) -> u32) {
-    let right_mask = !left_mask & 0x00FF_FFFF;
-    let pixel = |p: u32, q: u32| out((p & left_mask) | (q & right_mask) | 0xFF00_0000);
-    if let (Some(a), Some(b)) = (as_words(l), as_words(r)) {
-        if let Some(d) = as_words_mut(dst) {
-            for ((d, &p), &q) in d.iter_mut().zip(a).zip(b) {
-                *d = pixel(p, q);
-            }
-            return;
+impl RowPaths {
+    /// Composes `job` into `target` (of any size: the composite is fitted
+    /// to it) row by row, each word through `px`. The eyes the frame reads
+    /// are taken in place when they are; else read back in bands of
+    /// [`BAND_BYTES`] when every target row needs only its own eye rows
+    /// (a band of both eyes stays in cache until it is composed), whole
+    /// otherwise.
+    ///
+    /// # Safety
+    /// As [`WindowPaths::compose`]; the job's eyes are of the eye size;
+    /// `fbo` is a framebuffer of the compositor context.
+    unsafe fn write(
+        &mut self,
+        gl: &Gl,
+        fbo: u32,
+        job: &Job,
+        options: &OutputOptions,
+        target: &mut Target<'_>,
+        px: impl Fn(u32) -> u32 + Copy,
+    ) -> Result<()> {
+        let (w, h) = job.eye_size;
+        let frame = Frame::new(job.mode, options, job.frame_index, (w, h), target.size);
+        let reads = frame.reads();
+        let rects = [0, 1].map(|i| reads[i].then_some(job.eyes[i]));
+        let all = 0..target.size.1;
+        // SAFETY: the present (or capture) finished the rendering into the
+        // eyes, and the rows are used here, before any resize (contract).
+        let placed = rects.map(|r| r.and_then(|r| unsafe { job.rows_in_place(&r, w, h) }));
+        let eyes = placed.map(|p| p.and_then(|rows| EyeRows::gl(rows, 0, h)));
+        if rects
+            .iter()
+            .zip(&eyes)
+            .all(|(r, e)| r.is_none() || e.is_some())
+        {
+            profile::span(Stage::Compose, || {
+                frame.write(eyes, all, target, &mut self.scratch, px)
+            });
+            return Ok(());
         }
+        let band = if frame.row_local() {
+            ((BAND_BYTES / (w as usize * 4)).max(1) as u32).min(h)
+        } else {
+            h
+        };
+        let same = rects[0].is_some() && rects[0] == rects[1];
+        for img in &mut self.eyes {
+            img.resize(w, band, "eye rows read back")?;
+        }
+        let mut y0 = 0;
+        while y0 < h {
+            let n = band.min(h - y0);
+            for (i, rect) in rects.iter().enumerate() {
+                if let (Some(rect), false) = (rect, i == 1 && same) {
+                    // SAFETY: contract; the image holds w × band ≥ n rows.
+                    unsafe { read_back(gl, fbo, rect, y0, n, &mut self.eyes[i]) };
+                }
+            }
+            let view = |i: usize| {
+                let img = &self.eyes[if same { 0 } else { i }];
+                rects[i].and_then(|_| EyeRows::gl(Rows::of_image(img), y0, h))
+            };
+            let rows = if band == h {
+                all.clone()
+            } else {
+                frame.rows_of_band(y0..y0 + n)
+            };
+            let eyes = [view(0), view(1)];
+            profile::span(Stage::Compose, || {
+                frame.write(eyes, rows, target, &mut self.scratch, px)
+            });
+            y0 += n;
+        }
+        Ok(())
     }
-    for ((d, p), q) in dst
-        .chunks_exact_mut(4)
-        .zip(l.chunks_exact(4))
-        .zip(r.chunks_exact(4))
-    {
-        let w = |s: &[u8]| u32::from_le_bytes([s[0], s[1], s[2], s[3]]);
-        d.copy_from_slice(&pixel(w(p), w(q)).to_le_bytes());
+
+    /// [`WindowPaths::cpu_image`] (`fbo` as for [`RowPaths::write`]).
+    ///
+    /// # Safety
+    /// As [`RowPaths::write`].
+    unsafe fn image(
+        &mut self,
+        gl: &Gl,
+        fbo: u32,
+        job: &Job,
+        options: &OutputOptions,
+        out: &mut Image,
+    ) -> Result<()> {
+        let (w, h) = job.eye_size;
+        let size = composite_size(job.mode, w, h);
+        out.resize(size.0, size.1, "composite")?;
+        let stride = size.0 as usize;
+        match as_words_mut(out.pixels_mut()) {
+            Some(words) => {
+                let mut target = Target {
+                    words,
+                    stride,
+                    size,
+                };
+                // SAFETY: contract.
+                unsafe { self.write(gl, fbo, job, options, &mut target, |v| v) }
+            }
+            None => {
+                // Not aligned words (a big-endian machine): the eyes read
+                // back top first and composed by cpu::compose.
+                let [l, r] = job.eyes.map(|rect| {
+                    let mut img = Image::new(w, h);
+                    // SAFETY: contract; the image holds w × h pixels.
+                    unsafe { read_back(gl, fbo, &rect, 0, h, &mut img) };
+                    flip_rows(img.pixels_mut(), w as usize * 4);
+                    img
+                });
+                *out = cpu::compose(job.mode, options, &l, &r, job.frame_index)?;
+                Ok(())
+            }
+        }
     }
 }
 
-/// Every pixel of a row set to one word.
-fn fill_words(dst: &mut [u8], word: u32) {
-    match as_words_mut(dst) {
-        Some(d) => d.fill(word),
-        None => dst
-            .chunks_exact_mut(4)
-            .for_each(|d| d.copy_from_slice(&word.to_le_bytes())),
-    }
+/// Reads `n` rows of `rect` (of the image's width) from GL row `y0` into
+/// `img` (at least that large), in GL's order.
+///
+/// # Safety
+/// The compositor context is current; `fbo` is one of its framebuffers.
+unsafe fn read_back(gl: &Gl, fbo: u32, rect: &TexRect, y0: u32, n: u32, img: &mut Image) {
+    // SAFETY: contract; the image holds at least width × n × 4 bytes.
+    profile::span(Stage::ReadBack, || unsafe {
+        read_from(gl, fbo, rect.texture);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+        gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+        gl.ReadPixels(
+            rect.x as i32,
+            (rect.y + y0) as i32,
+            img.width() as i32,
+            n as i32,
+            GL_RGBA,
+            GL_UNSIGNED_BYTE,
+            img.pixels_mut().as_mut_ptr().cast(),
+        );
+    });
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::pattern::noise;
-
-    /// Composing bottom-first rows (eyes swapped where `bottom_first` says)
-    /// gives the bottom-first composite, for every mode it allows, at odd
-    /// and even heights.
-    #[test]
-    fn bottom_first_composition_is_the_flipped_composite() {
-        for (w, h) in [(6, 4), (5, 7)] {
-            let (l, r) = (noise(w, h, 3), noise(w, h, 4));
-            let flipped = |img: &Image| {
-                let mut f = img.clone();
-                f.flip_vertical();
-                f
-            };
-            for mode in OutputMode::all().filter(|&m| m != OutputMode::Quad) {
-                let Some(swap) = bottom_first(mode, h) else {
-                    continue;
-                };
-                for crosstalk in [0.0, 0.25] {
-                    let options = OutputOptions {
-                        crosstalk,
-                        ..OutputOptions::default()
-                    };
-                    let want = flipped(&cpu::compose(mode, &options, &l, &r, 1).unwrap());
-                    let opts = OutputOptions {
-                        swap_eyes: swap,
-                        ..options
-                    };
-                    let got = cpu::compose(mode, &opts, &flipped(&l), &flipped(&r), 1).unwrap();
-                    assert_eq!(got, want, "{mode} at {w}x{h}, crosstalk {crosstalk}");
-                }
-            }
-        }
-    }
 
     #[test]
     fn copies_blit_only_without_alpha_and_crosstalk() {
@@ -714,8 +627,12 @@ mod tests {
             window_path(OutputMode::SideBySide, &staged, false, false),
             None
         );
+        // A software renderer composes every other mode on the CPU.
         let dubois = OutputMode::from_name("anaglyph-red-cyan-dubois").unwrap();
-        assert_eq!(window_path(dubois, &plain, true, false), None);
+        assert_eq!(
+            window_path(dubois, &staged, true, false),
+            Some(WindowPath::Cpu)
+        );
         let red_cyan = OutputMode::from_name("anaglyph-red-cyan").unwrap();
         assert_eq!(
             window_path(red_cyan, &plain, true, false),

@@ -1,0 +1,882 @@
+//! The composite of every mode, row by row, straight from the eyes into
+//! wherever it goes: an [`Image`] ([`super::cpu::compose_into`]), or a
+//! window's buffer at the window's size ([`super::window`]), letterboxed,
+//! scaled or cropped by [`super::layout::window_fit`] in the same pass.
+//!
+//! The eyes are rows wherever they are ([`EyeRows`]): an image (top row
+//! first), an eye texture mapped in place or a band of rows read back
+//! (GL's order, bottom row first). A window row is made from the rows of
+//! the composite it shows, and each composite row from the rows of the
+//! eyes it shows:
+//!
+//! - **pair modes** (left, right, frame-sequential, the anaglyphs, the
+//!   interleaves): composite row y from row y of both eyes, pixel by pixel
+//!   ([`PairOp`]);
+//! - **placement modes** (side-by-side, top-bottom, their halves, HDMI
+//!   frame packing, starbase, str-rect): each eye sampled into its
+//!   rectangle ([`super::layout::placements`]): copied, averaged 2:1 (whole
+//!   pixels, exact), or filtered bilinearly in f32 as the reference does;
+//!   black where no eye goes.
+//!
+//! A window of the composite's size gets the composite rows written
+//! straight into it. Otherwise the rows a window row needs are composed
+//! into reused row buffers and resampled as the reference's
+//! [`super::cpu::resample`] does (2:1 in both directions: [`average4`],
+//! exact). Every word goes through the caller's `px` (a window's byte
+//! order). The result is byte for byte [`super::cpu::reference`] (and its
+//! resampling), but for `-dubois` of eyes changed by saturation or
+//! crosstalk (within 1, see [`super::dubois_lut`]).
+
+use std::ops::Range;
+
+use crate::image::{Image, as_words};
+use crate::math::Eye;
+use crate::stereo::eye_memory::Rows;
+
+use super::cpu::{Tap, tap};
+use super::dubois_lut::Memo;
+use super::kernels::{ALPHA, PairOp, Planes, Stage, average2, average4, chunks, with_simd};
+use super::layout::{Placement, WindowFit, composite_size, placements, window_fit};
+use super::mode::OutputMode;
+use super::options::OutputOptions;
+
+/// One eye's rows, as RGBA8 words.
+#[derive(Clone, Copy)]
+pub(crate) struct EyeRows<'a> {
+    rows: Rows<'a>,
+    /// GL's order: stored row k is eye row `height − 1 − first − k`.
+    bottom_first: bool,
+    /// The first stored row's index in its order.
+    first: u32,
+    /// The eye's height.
+    height: u32,
+}
+
+impl<'a> EyeRows<'a> {
+    /// An image's rows (top first); None where they are not aligned words.
+    pub(crate) fn image(img: &'a Image) -> Option<EyeRows<'a>> {
+        EyeRows::new(Rows::of_image(img), false, 0, img.height())
+    }
+
+    /// Rows in GL's order of an eye `height` rows high, the first of them
+    /// GL row `first` (a band, or 0 for the whole eye); None where they are
+    /// not aligned words.
+    pub(crate) fn gl(rows: Rows<'a>, first: u32, height: u32) -> Option<EyeRows<'a>> {
+        EyeRows::new(rows, true, first, height)
+    }
+
+    fn new(rows: Rows<'a>, bottom_first: bool, first: u32, height: u32) -> Option<EyeRows<'a>> {
+        // Rows are evenly spaced: two aligned rows make them all aligned.
+        let aligned = (0..rows.height().min(2)).all(|k| as_words(rows.row(k)).is_some());
+        (aligned && rows.height() > 0).then_some(EyeRows {
+            rows,
+            bottom_first,
+            first,
+            height,
+        })
+    }
+
+    /// Eye row `y` (0 = top), which must be stored here.
+    #[inline(always)]
+    fn row(&self, y: u32) -> &'a [u32] {
+        let k = if self.bottom_first {
+            self.height - 1 - y - self.first
+        } else {
+            y - self.first
+        };
+        as_words(self.rows.row(k)).expect("aligned rows (checked when made)")
+    }
+
+    /// The rows a vertical tap reads: the second only when it weighs (a
+    /// band may not hold it), else the first twice.
+    #[inline(always)]
+    fn tap_rows(&self, vt: &Tap) -> (&'a [u32], &'a [u32]) {
+        let r0 = self.row(vt.i0 as u32);
+        let one = vt.f == 0.0 || vt.i0 == vt.i1;
+        (r0, if one { r0 } else { self.row(vt.i1 as u32) })
+    }
+}
+
+/// Rows of RGBA8 words to write into (an image or a window's buffer).
+pub(crate) struct Target<'a> {
+    pub(crate) words: &'a mut [u32],
+    /// Words from one row to the next.
+    pub(crate) stride: usize,
+    pub(crate) size: (u32, u32),
+}
+
+impl Target<'_> {
+    fn row(&mut self, y: u32) -> &mut [u32] {
+        let at = y as usize * self.stride;
+        &mut self.words[at..at + self.size.0 as usize]
+    }
+}
+
+/// Buffers reused from frame to frame (nothing is allocated once they
+/// have grown to a frame's size).
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    a: Vec<[f32; 4]>,
+    b: Vec<[f32; 4]>,
+    tmp: Vec<[f32; 4]>,
+    /// Horizontal taps of spans and of the window's scaling, by key.
+    span_taps: TapCache,
+    window_taps: TapCache,
+    /// Composite rows a scaled or cropped window samples (row index, words).
+    rows: [(Option<u32>, Vec<u32>); 2],
+    /// A black composite row.
+    black: Vec<u32>,
+    /// The last pixels `-dubois` composed (cleared by every [`Frame::write`]).
+    memo: Memo,
+}
+
+/// A composite row that need not be composed (see [`Frame::verbatim`]).
+#[derive(Clone, Copy)]
+enum Verbatim<'e> {
+    Row(&'e [u32]),
+    Black,
+}
+
+/// A composite row: `v` when it need not be composed, else the cache's
+/// slot `s`.
+#[inline(always)]
+fn row_of<'a>(
+    v: Option<Verbatim<'a>>,
+    s: Option<usize>,
+    black: &'a [u32],
+    cache: &'a [(Option<u32>, Vec<u32>); 2],
+) -> &'a [u32] {
+    match v {
+        Some(Verbatim::Row(r)) => r,
+        Some(Verbatim::Black) => black,
+        None => &cache[s.expect("composed")].1,
+    }
+}
+
+/// The taps of `dst` pixels over `src` texels, kept while they stay the
+/// same; also as arrays of texel indices and weights, for gathers.
+#[derive(Debug, Default)]
+struct TapCache {
+    key: (u32, u32),
+    taps: Vec<Tap>,
+    i0: Vec<i32>,
+    i1: Vec<i32>,
+    f: Vec<f32>,
+}
+
+impl TapCache {
+    fn get(&mut self, src: u32, dst: u32) -> &TapCache {
+        if self.key != (src, dst) || self.taps.len() != dst as usize {
+            self.taps.clear();
+            self.taps.extend((0..dst).map(|i| tap(i, src, dst)));
+            self.i0.clear();
+            self.i0.extend(self.taps.iter().map(|t| t.i0 as i32));
+            self.i1.clear();
+            self.i1.extend(self.taps.iter().map(|t| t.i1 as i32));
+            self.f.clear();
+            self.f.extend(self.taps.iter().map(|t| t.f));
+            self.key = (src, dst);
+        }
+        self
+    }
+}
+
+/// Where composite rows come from.
+#[derive(Clone, Copy, Debug)]
+enum Source {
+    /// Row y of eyes `eyes[0]` and `eyes[1]` (indices into the delivered
+    /// pair) through `op`; with `row_parity`, Pick's row parity is y's.
+    Pair {
+        op: PairOp,
+        eyes: [usize; 2],
+        row_parity: bool,
+    },
+    /// Each placement from eye `index` (crosstalk against the other).
+    Places([(Placement, usize); 2]),
+}
+
+/// One frame of a mode, as it goes into a target of some size.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame {
+    source: Source,
+    stage: Stage,
+    eye: (u32, u32),
+    composite: (u32, u32),
+    target: (u32, u32),
+    fit: WindowFit,
+}
+
+impl Frame {
+    /// The frame of `mode` (not `quad`) with validated `options` for eyes
+    /// of `eye` size, into a target of `target` size; `frame_index` as in
+    /// [`super::cpu::compose`].
+    pub(crate) fn new(
+        mode: OutputMode,
+        options: &OutputOptions,
+        frame_index: u64,
+        eye: (u32, u32),
+        target: (u32, u32),
+    ) -> Frame {
+        let (w, h) = eye;
+        let composite = composite_size(mode, w, h);
+        // Eye indices after the swap: the left eye shown is delivered eye `l`.
+        let (l, r) = if options.swap_eyes { (1, 0) } else { (0, 1) };
+        let stage = Stage {
+            saturation: if mode.is_anaglyph() {
+                options.saturation
+            } else {
+                1.0
+            },
+            crosstalk: if mode.shows_both_eyes() {
+                options.crosstalk
+            } else {
+                0.0
+            },
+        };
+        let pick = |columns| PairOp::Pick { columns, row: 0 };
+        let pair = |op, eyes, row_parity| Source::Pair {
+            op,
+            eyes,
+            row_parity,
+        };
+        let source = match mode {
+            OutputMode::Quad | OutputMode::Left => pair(pick(false), [l, l], false),
+            OutputMode::Right => pair(pick(false), [r, r], false),
+            OutputMode::FrameSequential => {
+                // The eye accounts for the swap: index the delivered eyes.
+                let shown = usize::from(options.frame_sequential_eye(frame_index) == Eye::Right);
+                let other = if stage.crosstalk == 0.0 {
+                    shown
+                } else {
+                    1 - shown
+                };
+                pair(pick(false), [shown, other], false)
+            }
+            OutputMode::Anaglyph(colors, method) => {
+                pair(PairOp::anaglyph(colors, method), [l, r], false)
+            }
+            OutputMode::AnaglyphRedBlue => pair(PairOp::RED_BLUE, [l, r], false),
+            OutputMode::Rows => pair(pick(false), [l, r], true),
+            OutputMode::Columns => pair(pick(true), [l, r], false),
+            OutputMode::Checkerboard => pair(pick(true), [l, r], true),
+            _ => {
+                let places = placements(mode, w, h).expect("a placement mode");
+                Source::Places(places.map(|p| (p, if p.eye == Eye::Left { l } else { r })))
+            }
+        };
+        Frame {
+            source,
+            stage,
+            eye,
+            composite,
+            target,
+            fit: window_fit(mode, composite.0, composite.1, target.0, target.1),
+        }
+    }
+
+    /// Which of the delivered eyes (left, right) the frame reads.
+    pub(crate) fn reads(&self) -> [bool; 2] {
+        let mut reads = [false; 2];
+        match self.source {
+            Source::Pair { eyes, .. } => eyes.iter().for_each(|&i| reads[i] = true),
+            Source::Places(places) => {
+                for (p, i) in places {
+                    if p.width > 0 && p.height > 0 {
+                        reads[i] = true;
+                        reads[1 - i] |= self.stage.crosstalk != 0.0;
+                    }
+                }
+            }
+        }
+        reads
+    }
+
+    /// Whether target row y needs only eye row y: the target is the
+    /// composite's size and no eye is scaled vertically. Such frames can be
+    /// made from bands of eye rows.
+    pub(crate) fn row_local(&self) -> bool {
+        let vertical = match self.source {
+            Source::Pair { .. } => true,
+            Source::Places(places) => places
+                .iter()
+                .all(|(p, _)| p.height == self.eye.1 && p.y == 0),
+        };
+        vertical && self.composite == self.target
+    }
+
+    /// The target rows that eye rows `gl` (GL's order, bottom first) make
+    /// in a [`Frame::row_local`] frame.
+    pub(crate) fn rows_of_band(&self, gl: Range<u32>) -> Range<u32> {
+        let h = self.eye.1;
+        h - gl.end.min(h)..h - gl.start.min(h)
+    }
+
+    /// Writes target rows `rows` from `eyes` (the delivered left and right
+    /// eye; those [`Frame::reads`] must be Some and hold the rows needed),
+    /// each word through `px`.
+    pub(crate) fn write(
+        &self,
+        eyes: [Option<EyeRows<'_>>; 2],
+        rows: Range<u32>,
+        target: &mut Target<'_>,
+        scratch: &mut Scratch,
+        px: impl Fn(u32) -> u32 + Copy,
+    ) {
+        scratch.memo = Memo::default();
+        with_simd(
+            #[inline(always)]
+            |avx2| self.write_rows(avx2, eyes, rows, target, scratch, px),
+        )
+    }
+
+    #[inline(always)]
+    fn write_rows(
+        &self,
+        avx2: bool,
+        eyes: [Option<EyeRows<'_>>; 2],
+        rows: Range<u32>,
+        target: &mut Target<'_>,
+        scratch: &mut Scratch,
+        px: impl Fn(u32) -> u32 + Copy,
+    ) {
+        let (cw, ch) = self.composite;
+        let (tw, _) = self.target;
+        let fit = self.fit;
+        let black_px = px(ALPHA);
+        let scaled = (fit.width, fit.height) != (cw, ch);
+        let ty = |t: u32| i64::from(t) - i64::from(fit.y);
+        for t in rows {
+            let y = ty(t);
+            if y < 0 || y >= i64::from(fit.height) {
+                target.row(t).fill(black_px);
+                continue;
+            }
+            let y = y as u32;
+            if !scaled && fit.x == 0 && cw == tw {
+                self.composite_row(avx2, eyes, y, target.row(t), scratch, px);
+                continue;
+            }
+            if !scaled {
+                // Cropped or centred, pixel for pixel.
+                let slot = self.cached_row(avx2, eyes, y, scratch);
+                let line = &scratch.rows[slot].1;
+                let out = target.row(t);
+                out.fill(black_px);
+                let x0 = fit.x.max(0) as usize;
+                let skip = (-fit.x).max(0) as usize;
+                let n = (cw as usize - skip).min(tw as usize - x0);
+                for (o, &v) in out[x0..x0 + n].iter_mut().zip(&line[skip..skip + n]) {
+                    *o = px(v);
+                }
+                continue;
+            }
+            // Scaled: the composite rows of this row's tap, resampled.
+            let vt = tap(y, ch, fit.height);
+            let (i0, i1) = (vt.i0 as u32, vt.i1 as u32);
+            let (v0, v1) = (self.verbatim(eyes, i0), self.verbatim(eyes, i1));
+            // (No closures around the composing: they would not be
+            // inlined into the vector code.)
+            let s0 = if v0.is_none() {
+                Some(self.cached_row(avx2, eyes, i0, scratch))
+            } else {
+                None
+            };
+            let s1 = if v1.is_none() {
+                Some(self.cached_row_besides(avx2, eyes, i1, s0.unwrap_or(0), scratch))
+            } else {
+                None
+            };
+            if scratch.black.len() != cw as usize {
+                scratch.black.clear();
+                scratch.black.resize(cw as usize, ALPHA);
+            }
+            let Scratch {
+                rows: cache,
+                black,
+                a,
+                tmp,
+                window_taps,
+                ..
+            } = scratch;
+            let (r0, r1) = (row_of(v0, s0, black, cache), row_of(v1, s1, black, cache));
+            let (x0, n) = (fit.x as usize, fit.width as usize);
+            let out = target.row(t);
+            out[..x0].fill(black_px);
+            out[x0 + n..].fill(black_px);
+            let out = &mut out[x0..x0 + n];
+            if 2 * fit.width == cw && 2 * fit.height == ch {
+                for ((o, a), b) in out
+                    .iter_mut()
+                    .zip(r0.chunks_exact(2))
+                    .zip(r1.chunks_exact(2))
+                {
+                    *o = px(average4(a[0], a[1], b[0], b[1]) | ALPHA);
+                }
+            } else if fit.width == cw {
+                sample(r0, r1, vt.f, None, tmp, a);
+                store(a, out, px);
+            } else {
+                sample_store(
+                    avx2,
+                    (r0, r1, vt.f),
+                    window_taps.get(cw, fit.width),
+                    out,
+                    px,
+                );
+            }
+        }
+    }
+
+    /// Composite row `y` when it is an eye's row as it is (but for alpha)
+    /// or black: rows of the full-width unscaled placements without
+    /// crosstalk (top-bottom, HDMI frame packing), and the rows between
+    /// placements. None when it must be composed.
+    #[inline(always)]
+    fn verbatim<'e>(&self, eyes: [Option<EyeRows<'e>>; 2], y: u32) -> Option<Verbatim<'e>> {
+        let Source::Places(places) = self.source else {
+            return None;
+        };
+        let (w, h) = self.eye;
+        let mut inside = places
+            .iter()
+            .filter(|(p, _)| p.width > 0 && y >= p.y && y < p.y + p.height);
+        match inside.next() {
+            None => Some(Verbatim::Black),
+            Some((p, i))
+                if (p.width, p.height) == (w, h)
+                    && w == self.composite.0
+                    && self.stage.crosstalk == 0.0 =>
+            {
+                Some(Verbatim::Row(eyes[*i]?.row(y - p.y)))
+            }
+            Some(_) => None,
+        }
+    }
+
+    /// Composite row `y` in a row buffer of `scratch` (composed unless it
+    /// is there already, in the other slot than `keep`); returns the slot.
+    #[inline(always)]
+    fn cached_row_besides(
+        &self,
+        avx2: bool,
+        eyes: [Option<EyeRows<'_>>; 2],
+        y: u32,
+        keep: usize,
+        scratch: &mut Scratch,
+    ) -> usize {
+        if let Some(slot) = scratch.rows.iter().position(|(i, _)| *i == Some(y)) {
+            return slot;
+        }
+        let slot = 1 - keep;
+        let mut line = std::mem::take(&mut scratch.rows[slot].1);
+        line.resize(self.composite.0 as usize, 0);
+        scratch.rows[slot].0 = None;
+        self.composite_row(avx2, eyes, y, &mut line, scratch, |v| v);
+        scratch.rows[slot] = (Some(y), line);
+        slot
+    }
+
+    /// [`Frame::cached_row_besides`] with either slot free for it.
+    #[inline(always)]
+    fn cached_row(
+        &self,
+        avx2: bool,
+        eyes: [Option<EyeRows<'_>>; 2],
+        y: u32,
+        scratch: &mut Scratch,
+    ) -> usize {
+        // Prefer to overwrite the slot holding the lower row (rows go down).
+        let keep = match scratch.rows.each_ref().map(|r| r.0) {
+            [Some(a), Some(b)] if a < b => 1,
+            [Some(_), Some(_)] | [Some(_), None] => 0,
+            _ => 1,
+        };
+        self.cached_row_besides(avx2, eyes, y, keep, scratch)
+    }
+
+    /// Composite row `y` into `out` (the composite's width).
+    #[inline(always)]
+    fn composite_row(
+        &self,
+        avx2: bool,
+        eyes: [Option<EyeRows<'_>>; 2],
+        y: u32,
+        out: &mut [u32],
+        scratch: &mut Scratch,
+        px: impl Fn(u32) -> u32 + Copy,
+    ) {
+        let eye = |i: usize| eyes[i].expect("an eye the frame reads");
+        match self.source {
+            Source::Pair {
+                op,
+                eyes: [a, b],
+                row_parity,
+            } => {
+                let op = match op {
+                    PairOp::Pick { columns, .. } if row_parity => PairOp::Pick {
+                        columns,
+                        row: y & 1,
+                    },
+                    op => op,
+                };
+                let (a, b) = (eye(a).row(y), eye(b).row(y));
+                op.row(avx2, self.stage, &mut scratch.memo, a, b, out, px);
+            }
+            Source::Places(places) => {
+                let inside = |p: &Placement| p.width > 0 && y >= p.y && y < p.y + p.height;
+                let covered: u32 = places
+                    .iter()
+                    .filter(|(p, _)| inside(p))
+                    .map(|(p, _)| p.width)
+                    .sum();
+                if covered < self.composite.0 {
+                    out.fill(px(ALPHA));
+                }
+                for (p, i) in places.iter().filter(|(p, _)| inside(p)) {
+                    let other = eyes[1 - i];
+                    let span = &mut out[p.x as usize..(p.x + p.width) as usize];
+                    self.span(avx2, p, eye(*i), other, y - p.y, span, scratch, px);
+                }
+            }
+        }
+    }
+
+    /// Row `y` of placement `p`: `e` sampled into it, crosstalk against `o`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn span(
+        &self,
+        avx2: bool,
+        p: &Placement,
+        e: EyeRows<'_>,
+        o: Option<EyeRows<'_>>,
+        y: u32,
+        out: &mut [u32],
+        scratch: &mut Scratch,
+        px: impl Fn(u32) -> u32 + Copy,
+    ) {
+        let (w, h) = self.eye;
+        let vt = tap(y, h, p.height);
+        let one_row = vt.f == 0.0 || vt.i0 == vt.i1;
+        let (r0, r1) = e.tap_rows(&vt);
+        let k = self.stage.crosstalk;
+        // Whole-pixel ways, exactly the reference's bytes: a copy, and 2:1
+        // averages (a tap halfway between two texels).
+        if k == 0.0 && p.width == w && one_row {
+            for (o, &v) in out.iter_mut().zip(r0) {
+                *o = px(v | ALPHA);
+            }
+            return;
+        }
+        if k == 0.0 && p.width == w && vt.f == 0.5 && vt.i1 == vt.i0 + 1 {
+            for ((o, &a), &b) in out.iter_mut().zip(r0).zip(r1) {
+                *o = px(average2(a, b) | ALPHA);
+            }
+            return;
+        }
+        if k == 0.0 && 2 * p.width == w && one_row {
+            for (o, pair) in out.iter_mut().zip(r0.chunks_exact(2)) {
+                *o = px(average2(pair[0], pair[1]) | ALPHA);
+            }
+            return;
+        }
+        if k == 0.0 && p.width == w {
+            // Between two rows: the reference's f32 steps, 16 pixels at a time.
+            let f = vt.f;
+            chunks(
+                r0,
+                r1,
+                out,
+                px,
+                #[inline(always)]
+                |a, b| {
+                    let (mut a, b) = (Planes::of(a), Planes::of(b));
+                    for (a, b) in a.0.iter_mut().zip(&b.0) {
+                        for (a, b) in a.iter_mut().zip(b) {
+                            *a += f * (b - *a);
+                        }
+                    }
+                    a.pack()
+                },
+            );
+            return;
+        }
+        let Scratch {
+            a,
+            b,
+            tmp,
+            span_taps,
+            ..
+        } = scratch;
+        let ht = (p.width != w).then(|| span_taps.get(w, p.width));
+        if let (Some(ht), 0.0) = (ht, k) {
+            sample_store(avx2, (r0, r1, vt.f), ht, out, px);
+            return;
+        }
+        let ht = ht.map(|t| &t.taps[..]);
+        sample(r0, r1, vt.f, ht, tmp, a);
+        if k != 0.0 {
+            let (o0, o1) = o.expect("the other eye, for crosstalk").tap_rows(&vt);
+            sample(o0, o1, vt.f, ht, tmp, b);
+            self.stage.subtract(a, b);
+        }
+        store(a, out, px);
+    }
+}
+
+/// Samples between rows `r0` and `r1` (weight `f` of `r1`; the same slice
+/// twice for one row), then along the row by taps `ht` (None: every
+/// pixel), as the reference does: f32, the rows first. (`p + f·(q − p)`
+/// is `p` for f = 0 or q = p, so the reference's skipping of those is the
+/// same numbers.)
+#[inline(always)]
+fn sample(
+    r0: &[u32],
+    r1: &[u32],
+    f: f32,
+    ht: Option<&[Tap]>,
+    tmp: &mut Vec<[f32; 4]>,
+    dst: &mut Vec<[f32; 4]>,
+) {
+    lerp_rows(r0, r1, f, if ht.is_some() { &mut *tmp } else { &mut *dst });
+    if let Some(ht) = ht {
+        dst.resize(ht.len(), [0.0; 4]);
+        for (d, t) in dst.iter_mut().zip(ht) {
+            *d = lerp(tmp[t.i0], tmp[t.i1], t.f);
+        }
+    }
+}
+
+/// [`sample`] then [`store`], pixel by pixel from the two rows (with AVX2
+/// gathers when `avx2`): each output pixel's two columns are sampled
+/// between the rows, then between each other, as the reference does.
+#[inline(always)]
+fn sample_store(
+    avx2: bool,
+    (r0, r1, f): (&[u32], &[u32], f32),
+    ht: &TapCache,
+    out: &mut [u32],
+    px: impl Fn(u32) -> u32 + Copy,
+) {
+    let mut done = 0;
+    #[cfg(target_arch = "x86_64")]
+    if avx2 {
+        // SAFETY: `avx2` says the processor has AVX2 (see with_simd).
+        done = unsafe { gather_store((r0, r1, f), ht, out, px) };
+    }
+    let _ = avx2;
+    let column = |i: usize| lerp(unpack(r0[i]), unpack(r1[i]), f);
+    for (o, t) in out.iter_mut().zip(&ht.taps).skip(done) {
+        *o = px(pack(lerp(column(t.i0), column(t.i1), t.f)));
+    }
+}
+
+/// [`sample_store`] 8 pixels at a time: the same operations, so the same
+/// bytes. Returns how many pixels it wrote (a multiple of 8; the caller
+/// does the rest).
+///
+/// # Safety
+/// The processor has AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn gather_store(
+    (r0, r1, fy): (&[u32], &[u32], f32),
+    ht: &TapCache,
+    out: &mut [u32],
+    px: impl Fn(u32) -> u32,
+) -> usize {
+    use std::arch::x86_64::*;
+    let whole = out.len().min(ht.taps.len()) / 8 * 8;
+    let (p0, p1): (*const i32, *const i32) = (r0.as_ptr().cast(), r1.as_ptr().cast());
+    let fy = _mm256_set1_ps(fy);
+    let lerp =
+        |a: __m256, b: __m256, f: __m256| _mm256_add_ps(a, _mm256_mul_ps(f, _mm256_sub_ps(b, a)));
+    for x in (0..whole).step_by(8) {
+        debug_assert!(
+            ht.i0[x..x + 8]
+                .iter()
+                .chain(&ht.i1[x..x + 8])
+                .all(|&i| (i as usize) < r0.len())
+        );
+        // SAFETY: 8 entries at x < whole of arrays at least that long; the
+        // taps index texels of the rows (clamped to their edge), as long as
+        // both rows.
+        let (fx, w) = unsafe {
+            let i0 = _mm256_loadu_si256(ht.i0[x..].as_ptr().cast());
+            let i1 = _mm256_loadu_si256(ht.i1[x..].as_ptr().cast());
+            (
+                _mm256_loadu_ps(ht.f[x..].as_ptr()),
+                [
+                    _mm256_i32gather_epi32::<4>(p0, i0),
+                    _mm256_i32gather_epi32::<4>(p1, i0),
+                    _mm256_i32gather_epi32::<4>(p0, i1),
+                    _mm256_i32gather_epi32::<4>(p1, i1),
+                ],
+            )
+        };
+        let mut word = _mm256_set1_epi32(ALPHA as i32);
+        for c in 0..3 {
+            let shift = _mm256_set1_epi32(8 * c);
+            let ch = |w: __m256i| {
+                _mm256_cvtepi32_ps(_mm256_and_si256(
+                    _mm256_srlv_epi32(w, shift),
+                    _mm256_set1_epi32(0xFF),
+                ))
+            };
+            let a = lerp(ch(w[0]), ch(w[1]), fy);
+            let b = lerp(ch(w[2]), ch(w[3]), fy);
+            let v = lerp(a, b, fx);
+            // kernels::unorm: clamp to 0…255, + 0.5, truncate.
+            let v = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(255.0));
+            let v = _mm256_cvttps_epi32(_mm256_add_ps(v, _mm256_set1_ps(0.5)));
+            word = _mm256_or_si256(word, _mm256_sllv_epi32(v, shift));
+        }
+        let mut words = [0u32; 8];
+        // SAFETY: 8 words into an array of 8.
+        unsafe { _mm256_storeu_si256(words.as_mut_ptr().cast(), word) };
+        for (o, w) in out[x..x + 8].iter_mut().zip(words) {
+            *o = px(w);
+        }
+    }
+    whole
+}
+
+/// `rows[x]` between `r0[x]` and `r1[x]` (weight `f` of `r1`). (Plain
+/// loops: `Vec::extend` is not always inlined into the vector code.)
+#[inline(always)]
+fn lerp_rows(r0: &[u32], r1: &[u32], f: f32, rows: &mut Vec<[f32; 4]>) {
+    rows.resize(r0.len(), [0.0; 4]);
+    for ((t, &p), &q) in rows.iter_mut().zip(r0).zip(r1) {
+        *t = lerp(unpack(p), unpack(q), f);
+    }
+}
+
+#[inline(always)]
+fn unpack(v: u32) -> [f32; 4] {
+    let b = v.to_le_bytes();
+    [b[0], b[1], b[2], b[3]].map(f32::from)
+}
+
+/// `a + f·(b − a)` per channel.
+#[inline(always)]
+fn lerp(mut a: [f32; 4], b: [f32; 4], f: f32) -> [f32; 4] {
+    for c in 0..4 {
+        a[c] += f * (b[c] - a[c]);
+    }
+    a
+}
+
+#[inline(always)]
+fn pack(s: [f32; 4]) -> u32 {
+    use super::kernels::unorm;
+    unorm(s[0]) | unorm(s[1]) << 8 | unorm(s[2]) << 16 | ALPHA
+}
+
+/// Rounds f32 pixels into words, alpha 255, through `px`.
+#[inline(always)]
+fn store(src: &[[f32; 4]], out: &mut [u32], px: impl Fn(u32) -> u32) {
+    for (o, &s) in out.iter_mut().zip(src) {
+        *o = px(pack(s));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::image::as_words_mut;
+    use crate::output::cpu::{fitted, reference};
+    use crate::output::mode::AnaglyphMethod;
+    use crate::output::pattern::{gradient, noise};
+
+    /// Writes the frame from the eyes stored bottom row first (as GL
+    /// keeps them), in bands of `band` rows when the frame allows it.
+    fn written(
+        mode: OutputMode,
+        o: &OutputOptions,
+        l: &Image,
+        r: &Image,
+        size: (u32, u32),
+        band: u32,
+    ) -> Image {
+        let (w, h) = (l.width(), l.height());
+        let frame = Frame::new(mode, o, 1, (w, h), size);
+        let flipped = |img: &Image| {
+            let mut f = img.clone();
+            f.flip_vertical();
+            f
+        };
+        let (fl, fr) = (flipped(l), flipped(r));
+        let mut out = Image::new(size.0, size.1);
+        let mut target = Target {
+            words: as_words_mut(out.pixels_mut()).unwrap(),
+            stride: size.0 as usize,
+            size,
+        };
+        let mut scratch = Scratch::default();
+        let band = if frame.row_local() { band } else { h };
+        let mut y0 = 0;
+        while y0 < h {
+            let n = band.min(h - y0);
+            // Only this band's rows, as a band read back holds them.
+            let rows = |img: &Image| {
+                let len = w as usize * 4;
+                let mut b = Image::new(w, n);
+                let at = y0 as usize * len;
+                b.pixels_mut()
+                    .copy_from_slice(&img.pixels()[at..at + n as usize * len]);
+                b
+            };
+            let (bl, br) = (rows(&fl), rows(&fr));
+            let eyes = [&bl, &br].map(|b| EyeRows::gl(Rows::of_image(b), y0, h));
+            let out_rows = if band == h {
+                0..size.1
+            } else {
+                frame.rows_of_band(y0..y0 + n)
+            };
+            frame.write(eyes, out_rows, &mut target, &mut scratch, |v| v);
+            y0 += n;
+        }
+        out
+    }
+
+    #[test]
+    fn every_mode_fits_any_target_as_the_reference_resampled() {
+        let options = [
+            OutputOptions::default(),
+            OutputOptions {
+                swap_eyes: true,
+                crosstalk: 0.3,
+                saturation: 0.6,
+            },
+        ];
+        for (w, h) in [(16, 12), (17, 13), (70, 41)] {
+            let (l, r) = (noise(w, h, 5), gradient(w, h, 40));
+            for o in &options {
+                for mode in OutputMode::all().filter(|&m| m != OutputMode::Quad) {
+                    let (cw, ch) = composite_size(mode, w, h);
+                    let reference = reference(mode, o, &l, &r, 1).unwrap();
+                    // The composite's size, the eye's (glstereo-run's window),
+                    // larger, smaller, and 2:1 in both directions.
+                    for size in [(cw, ch), (w, h), (40, 31), (9, 7), (cw / 2, ch / 2)] {
+                        let size = (size.0.max(1), size.1.max(1));
+                        let want = fitted(&reference, mode, size);
+                        for band in [h, 5] {
+                            let got = written(mode, o, &l, &r, size, band);
+                            let (d, x, y, c) = got.max_difference(&want).unwrap();
+                            let changed = *o != OutputOptions::default();
+                            let dubois =
+                                matches!(mode, OutputMode::Anaglyph(_, AnaglyphMethod::Dubois));
+                            assert!(
+                                d <= u8::from(changed && dubois),
+                                "{mode} {w}x{h} into {size:?} (bands of {band}), {o:?}: ({x}, {y}) \
+                                 channel {c} is {:?}, want {:?}",
+                                got.get(x, y),
+                                want.get(x, y)
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
