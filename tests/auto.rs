@@ -272,6 +272,37 @@ fn automatic_convergence_puts_the_middle_of_the_view_at_the_screen() {
     }
 }
 
+/// A frame drawn into a framebuffer object of the window's size and
+/// blitted into the window (as VTK shows its scene) is in stereo: each
+/// eye of the window equals the eye drawn by hand, pixel for pixel.
+#[test]
+fn a_scene_drawn_off_screen_and_blitted_into_the_window_is_in_stereo() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let x = Xvfb::start(W + 40, H + 40);
+    for profile in ["legacy", "core"] {
+        let dir = common::scratch(&format!("auto-blit-{profile}"));
+        let hand = ["left", "right"].map(|eye| by_hand(&x, profile, eye, &dir));
+        let blitted = common::scratch(&format!("auto-blit-{profile}-run"));
+        let (eyes, stdout) = run_auto(
+            &x,
+            &["--separation", SEPARATION, "--convergence", CONVERGENCE],
+            &[profile, "mono", "blit"],
+            &blitted,
+            true,
+        );
+        for (n, eye) in ["left", "right"].into_iter().enumerate() {
+            let d = differing(&eyes[n], &hand[n]);
+            assert!(
+                d.is_empty(),
+                "{profile}, {eye} eye: {} pixels differ from the eye drawn by hand, e.g. {:?}",
+                d.len(),
+                &d[..d.len().min(8)]
+            );
+        }
+        assert!(stdout.contains("error 0x0"), "{profile}: {stdout}");
+    }
+}
+
 /// Transform feedback captures what the mono program captures: each
 /// vertex once and unshifted (the draw once with rasterizer discard, then
 /// both eyes with the capture paused), a draw under rasterizer discard

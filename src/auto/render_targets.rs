@@ -18,7 +18,11 @@
 //!   for ReadPixels. In the right eye's draws, texture units holding the
 //!   program's texture hold the view instead (a binding does not end
 //!   llvmpipe's scene).
-//! - glReadPixels from the framebuffer reads layer 0: the left eye.
+//! - glReadPixels from the framebuffer reads layer 0: the left eye; a blit
+//!   from it into the window copies each eye's layer into that eye
+//!   ([`known`]).
+//! - Both layers start as copies of the program's buffers, which hold
+//!   what was made before the first draw (the first frame's glClear).
 //!
 //! Not covered: framebuffers with more than one colour attachment, a
 //! colour renderbuffer, multisampled attachments, a separate stencil
@@ -222,6 +226,22 @@ pub unsafe fn eyes_of(
             }
         }
     }
+}
+
+/// The eye arrays of `fbo` of `context` when it is a stereoized target
+/// already (to read from it eye by eye: a blit out of it), else None.
+/// `eyes`: the window's eyes (their API).
+pub fn known(
+    targets: &Targets,
+    context: usize,
+    fbo: u32,
+    eyes: &Attachments,
+) -> Option<Attachments> {
+    targets
+        .targets
+        .iter()
+        .find(|t| t.context == context && t.fbo == fbo)
+        .map(|t| eyes.of_target(t.colour, t.depth, t.depth_attachment))
 }
 
 /// Before a draw of `context` into `drawing` (its draw framebuffer): the
@@ -490,6 +510,42 @@ unsafe fn stereoize(f: &TargetFns, context: usize, fbo: u32, eyes: &Attachments)
             put_back(f, &t);
             release(f, t);
             return None;
+        }
+        // Both eyes start from what the program's buffers hold: a clear
+        // (glClear is no draw, so it went to them) or anything else made
+        // before this first draw.
+        let copies = [(texture, GL_TEXTURE_2D, t.colour)].into_iter().chain(
+            depth_of_program
+                .filter(|_| t.depth != 0)
+                .map(|(_, kind, name)| {
+                    let target = if kind == GL_RENDERBUFFER {
+                        GL_RENDERBUFFER as u32
+                    } else {
+                        GL_TEXTURE_2D
+                    };
+                    (name, target, t.depth)
+                }),
+        );
+        for (source, target, array) in copies {
+            for layer in 0..2 {
+                (f.copy_image_sub_data)(
+                    source,
+                    target,
+                    0,
+                    0,
+                    0,
+                    0,
+                    array,
+                    GL_TEXTURE_2D_ARRAY,
+                    0,
+                    0,
+                    0,
+                    layer,
+                    width,
+                    height,
+                    1,
+                );
+            }
         }
         Some(t)
     }

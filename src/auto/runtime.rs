@@ -28,8 +28,10 @@
 //!   with GL_COMPILE_AND_EXECUTE is compiled, then called so.
 //! - **glDrawPixels, glBitmap, glCopyPixels**: once per eye into that
 //!   eye's layers, at the eye's raster position ([`crate::auto::fixed`]).
-//! - **Blits** into the default framebuffer: once per eye into that eye's
-//!   layers (from the default framebuffer: eye to eye).
+//! - **Blits** into the default framebuffer (glBlitFramebuffer too,
+//!   which the layer exports by hand): once per eye into that eye's
+//!   layers, from the same eye of the default framebuffer or of a
+//!   stereoized render target, else from the one picture.
 //! - **glClear**, **glClearBuffer***: once (a clear clears every layer).
 //! - **Transform feedback**: once the program has begun it, a draw while
 //!   it captures is made once with the neutral eye under rasterizer
@@ -704,6 +706,7 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
         let Some((mut app_fbo, mut layered)) = eyes_of else {
             return draw();
         };
+        let (window_fbo, window_eyes) = (app_fbo, layered);
         render_targets::with_group(group, |targets| {
             // SAFETY: the program's context is current on this thread.
             unsafe {
@@ -785,11 +788,27 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                         if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
                             return draw();
                         }
+                        // Each eye from the same eye of the source where it
+                        // has eyes: the window's, or a stereoized target's
+                        // (a scene drawn off screen and blitted into the
+                        // window, as VTK does); else the one picture.
+                        let read = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32;
+                        let source = if read == window_fbo {
+                            Some(window_eyes)
+                        } else {
+                            render_targets::known(targets, context, read, &window_eyes)
+                        };
                         for eye in EYES {
                             layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
+                            if let Some(s) = &source {
+                                s.attach(GL_READ_FRAMEBUFFER, Some(eye));
+                            }
                             draw();
                         }
                         layered.attach(GL_DRAW_FRAMEBUFFER, None);
+                        if let Some(s) = &source {
+                            s.attach(GL_READ_FRAMEBUFFER, None);
+                        }
                         return;
                     }
                     _ => {}

@@ -1535,14 +1535,34 @@ pub unsafe fn get_indexed<T>(
 /// opaque emulated framebuffer has its alpha put back to 1.0.
 #[allow(clippy::too_many_arguments)]
 pub fn blit_framebuffer(src: [i32; 4], dst: [i32; 4], mask: u32, filter: u32) -> Result<()> {
-    super::draws::notice(crate::auto::entry_points::Family::Blit);
     let r = loaded()?;
-    // SAFETY: forwarded call.
-    unsafe {
-        r.gl.BlitFramebuffer(
-            src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter,
-        )
+    let args = [
+        src[0] as u64,
+        src[1] as u64,
+        src[2] as u64,
+        src[3] as u64,
+        dst[0] as u64,
+        dst[1] as u64,
+        dst[2] as u64,
+        dst[3] as u64,
+        u64::from(mask),
+        u64::from(filter),
+    ];
+    let call = super::draws::Call {
+        family: crate::auto::entry_points::Family::Blit,
+        name: "glBlitFramebuffer",
+        args: &args,
     };
+    // Through the draws' hook: the size check after a present, and under
+    // --auto a blit into the window reaches each eye.
+    super::draws::around(call, || {
+        // SAFETY: forwarded call.
+        unsafe {
+            r.gl.BlitFramebuffer(
+                src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter,
+            )
+        }
+    });
     if mask & GL_COLOR_BUFFER_BIT != 0 {
         if let Some(cur) = current() {
             // SAFETY: the program's context is current.

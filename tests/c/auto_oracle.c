@@ -13,6 +13,9 @@
  *                                             of glReadPixels at (50, 75);
  *                                             with wait, then "ready 0xWIN"
  *                                             and waits for a line on stdin
+ *   auto_oracle legacy|core mono blit         as mono, the frame drawn into a
+ *                                             framebuffer object and blitted
+ *                                             into the window
  *   auto_oracle legacy|core mono frames N     as mono, drawing and swapping
  *                                             the frame N times
  *   auto_oracle legacy|core tuned S C [wait]  as mono, the program setting
@@ -348,10 +351,37 @@ int main(int argc, char **argv)
             legacy_scene(k, c);
         glXSwapBuffers(dpy, win);
     }
+    /* mono blit: the frame drawn into a framebuffer object of the window's
+     * size, then blitted into the window (as VTK shows its scene). */
+    int blit = mono && argc > 3 && strcmp(argv[3], "blit") == 0;
+    GLuint fbo = 0, tex = 0, depth = 0;
+    if (blit) {
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glGenRenderbuffers(1, &depth);
+        glBindRenderbuffer(GL_RENDERBUFFER, depth);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, W, H);
+        glGenFramebuffers(1, &fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                  depth);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return 5;
+    }
     if (core)
         core_scene(k, c);
     else
         legacy_scene(k, c);
+    if (blit) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        glBlitFramebuffer(0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
     if (mono) {
         GLubyte px[4] = {0};
         glReadPixels(50, 75, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
