@@ -20,10 +20,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "x_window.h"
+
 #define W 200
 #define H 150
-
-typedef GLXContext (*create_context_fn)(Display *, GLXFBConfig, GLXContext, Bool, const int *);
 
 static GLuint shader(GLenum type, const char *src)
 {
@@ -41,28 +41,10 @@ static GLuint shader(GLenum type, const char *src)
 
 int main(void)
 {
-    Display *dpy = XOpenDisplay(NULL);
-    if (!dpy) return 1;
-    int attrs[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT, GLX_RENDER_TYPE,
-                   GLX_RGBA_BIT, GLX_DOUBLEBUFFER, True, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8,
-                   GLX_BLUE_SIZE, 8, GLX_DEPTH_SIZE, 24, None};
-    int n = 0;
-    GLXFBConfig *configs = glXChooseFBConfig(dpy, DefaultScreen(dpy), attrs, &n);
-    if (!configs || n == 0) return 1;
-    XVisualInfo *vi = glXGetVisualFromFBConfig(dpy, configs[0]);
-    Window root = RootWindow(dpy, vi->screen);
-    XSetWindowAttributes wa = {0};
-    wa.colormap = XCreateColormap(dpy, root, vi->visual, AllocNone);
-    Window win = XCreateWindow(dpy, root, 0, 0, W, H, 0, vi->depth, InputOutput, vi->visual,
-                               CWColormap, &wa);
-    XMapWindow(dpy, win);
-    XSync(dpy, False);
-    create_context_fn create =
-        (create_context_fn)glXGetProcAddressARB((const GLubyte *)"glXCreateContextAttribsARB");
-    int ca[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
-                GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, None};
-    GLXContext ctx = create(dpy, configs[0], NULL, True, ca);
-    if (!ctx || !glXMakeCurrent(dpy, win, ctx)) return 1;
+    static const int core33[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
+                                 GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB,
+                                 None};
+    struct x_window x = open_x_window_config(core33, W, H);
 
     const char *vs = "#version 330 core\n"
                      "layout(location = 0) in vec4 pos;\n"
@@ -120,12 +102,9 @@ int main(void)
     glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, sizeof out, out);
     for (int i = 0; i < 6; i++)
         printf("v %g %g %g %g\n", out[4 * i], out[4 * i + 1], out[4 * i + 2], out[4 * i + 3]);
-    glXSwapBuffers(dpy, win);
+    glXSwapBuffers(x.display, x.window);
     GLenum err = glGetError();
     printf("error 0x%x\n", err);
-    glXMakeCurrent(dpy, None, NULL);
-    glXDestroyContext(dpy, ctx);
-    XDestroyWindow(dpy, win);
-    XCloseDisplay(dpy);
+    close_x_window(&x);
     return err == GL_NO_ERROR ? 0 : 3;
 }

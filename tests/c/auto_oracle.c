@@ -49,6 +49,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "x_window.h"
+
 #define W 200
 #define H 150
 
@@ -57,8 +59,6 @@
 #define GL_STEREO_SEPARATION_NV 0x90F5
 #define GL_STEREO_CONVERGENCE_NV 0x90F6
 typedef void (*stereo_parameter_fn)(GLenum, GLfloat);
-
-typedef GLXContext (*create_context_fn)(Display *, GLXFBConfig, GLXContext, Bool, const int *);
 
 /* Applies the rule to the current projection matrix (GL_PROJECTION mode). */
 static void eye_projection(double k, double c)
@@ -295,34 +295,13 @@ int main(int argc, char **argv)
         c = atof(argv[4]);
         out = argv[5];
     }
-    Display *dpy = XOpenDisplay(NULL);
-    if (!dpy) return 1;
-    int attrs[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT, GLX_RENDER_TYPE,
-                   GLX_RGBA_BIT, GLX_DOUBLEBUFFER, True, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8,
-                   GLX_BLUE_SIZE, 8, GLX_DEPTH_SIZE, 24, None};
-    int n = 0;
-    GLXFBConfig *configs = glXChooseFBConfig(dpy, DefaultScreen(dpy), attrs, &n);
-    if (!configs || n == 0) return 1;
-    XVisualInfo *vi = glXGetVisualFromFBConfig(dpy, configs[0]);
-    Window root = RootWindow(dpy, vi->screen);
-    XSetWindowAttributes wa = {0};
-    wa.colormap = XCreateColormap(dpy, root, vi->visual, AllocNone);
-    Window win = XCreateWindow(dpy, root, 0, 0, W, H, 0, vi->depth, InputOutput, vi->visual,
-                               CWColormap, &wa);
+    static const int core33[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
+                                 GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB,
+                                 None};
+    struct x_window x = open_x_window_config(core ? core33 : NULL, W, H);
+    Display *dpy = x.display;
+    Window win = x.window;
     XStoreName(dpy, win, "auto_oracle");
-    XMapWindow(dpy, win);
-    XSync(dpy, False);
-    GLXContext ctx;
-    if (core) {
-        create_context_fn create = (create_context_fn)glXGetProcAddressARB(
-            (const GLubyte *)"glXCreateContextAttribsARB");
-        int ca[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
-                    GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, None};
-        ctx = create(dpy, configs[0], NULL, True, ca);
-    } else {
-        ctx = glXCreateNewContext(dpy, configs[0], GLX_RGBA_TYPE, NULL, True);
-    }
-    if (!ctx || !glXMakeCurrent(dpy, win, ctx)) return 1;
     if (tuned) {
         stereo_parameter_fn set = (stereo_parameter_fn)glXGetProcAddressARB(
             (const GLubyte *)"glStereoParameterfNV");
@@ -405,9 +384,6 @@ int main(int argc, char **argv)
     }
     GLenum err = glGetError();
     printf("error 0x%x\n", err);
-    glXMakeCurrent(dpy, None, NULL);
-    glXDestroyContext(dpy, ctx);
-    XDestroyWindow(dpy, win);
-    XCloseDisplay(dpy);
+    close_x_window(&x);
     return err == GL_NO_ERROR ? 0 : 3;
 }
