@@ -230,6 +230,13 @@ impl PairMemory {
         };
     }
 
+    /// Unmaps the layer's own view of the memory, leaving the memory
+    /// objects to the driver (their share group ends, or ended).
+    fn unmap(self) {
+        // SAFETY: the layer's own mapping, read by nothing after this.
+        unsafe { libc::munmap(self.map.cast(), self.map_len) };
+    }
+
     /// Deletes both memory objects and unmaps. The textures made from
     /// them must be deleted and nothing render into them any more.
     unsafe fn release(self, api: &MemoryObjectApi) {
@@ -698,6 +705,17 @@ impl LayeredEyes {
     pub fn prepare_unmap(&self) {
         for m in self.memory.iter().flatten() {
             m.prepare_unmap();
+        }
+    }
+
+    /// After the contexts that drew into and composed these eyes are gone
+    /// (the driver frees the memory objects with the share group,
+    /// [`Self::prepare_unmap`]): unmaps the layer's own view of the memory,
+    /// which nothing reads any more. Without this each destroyed context
+    /// kept its eyes' memory mapped (2 memfd mappings, ~5 MB at 640x480).
+    pub fn unmap(&mut self) {
+        for m in self.memory.iter_mut().filter_map(Option::take) {
+            m.unmap();
         }
     }
 

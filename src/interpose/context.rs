@@ -621,6 +621,10 @@ impl StereoContext {
                 )
             };
         }
+        // Neither context reads the layered eyes' memory any more.
+        for drawn in self.lock().fbs.values_mut() {
+            drawn.fb.unmap_layers();
+        }
     }
 
     /// Makes the layer's context current on `drawable`.

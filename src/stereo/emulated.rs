@@ -550,6 +550,19 @@ impl EmulatedFramebuffer {
         }
     }
 
+    /// Once the share group's contexts that used them are destroyed:
+    /// unmaps the layer's own view of the layered eyes' shared memory
+    /// ([`LayeredEyes::unmap`]).
+    pub fn unmap_layers(&mut self) {
+        for eyes in self
+            .layered
+            .iter_mut()
+            .chain(self.retired_layers.iter_mut())
+        {
+            eyes.unmap();
+        }
+    }
+
     /// The layered eyes of automatic stereo, if this framebuffer has them.
     pub fn layered(&self) -> Option<&LayeredEyes> {
         self.layered.as_ref()

@@ -1,0 +1,89 @@
+/*
+ * Context churn under automatic stereo (glstereo-run --auto): a mono
+ * program makes a window and a GL context, draws three frames (a triangle,
+ * a swap), destroys both, forty times on one display connection, and
+ * prints "sample N rss_kb memfd fds" after contexts 10 and 40. Each
+ * automatic-stereo context's eyes must go with it: the samples stay flat.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <GL/gl.h>
+#include <dirent.h>
+#include <string.h>
+
+#include "x_window.h"
+
+static long rss_kb(void)
+{
+    FILE *f = fopen("/proc/self/statm", "r");
+    long size = 0, resident = 0;
+    if (f != NULL) {
+        if (fscanf(f, "%ld %ld", &size, &resident) != 2) resident = 0;
+        fclose(f);
+    }
+    return resident * 4;
+}
+
+static int memfd_mappings(void)
+{
+    FILE *f = fopen("/proc/self/maps", "r");
+    char line[512];
+    int n = 0;
+    while (f != NULL && fgets(line, sizeof line, f) != NULL)
+        if (strstr(line, "memfd:") != NULL) n++;
+    if (f != NULL) fclose(f);
+    return n;
+}
+
+static int open_fds(void)
+{
+    DIR *d = opendir("/proc/self/fd");
+    int n = 0;
+    while (d != NULL && readdir(d) != NULL) n++;
+    if (d != NULL) closedir(d);
+    return n;
+}
+
+int main(void)
+{
+    struct x_window first = open_x_window_config(NULL, 320, 240);
+    static const int attributes[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT,
+                                     GLX_RENDER_TYPE, GLX_RGBA_BIT, GLX_DOUBLEBUFFER, True,
+                                     GLX_RED_SIZE, 8, GLX_DEPTH_SIZE, 24, None};
+    int n = 0;
+    GLXFBConfig *configs = glXChooseFBConfig(first.display, DefaultScreen(first.display),
+                                             attributes, &n);
+    if (configs == NULL || n == 0) return 1;
+    Window root = RootWindow(first.display, first.visual->screen);
+    XSetWindowAttributes wa = {0};
+    wa.colormap = XCreateColormap(first.display, root, first.visual->visual, AllocNone);
+    for (int i = 1; i <= 40; i++) {
+        Window w = XCreateWindow(first.display, root, 0, 0, 320, 240, 0, first.visual->depth,
+                                 InputOutput, first.visual->visual, CWColormap, &wa);
+        XMapWindow(first.display, w);
+        XSync(first.display, False);
+        GLXContext c = glXCreateNewContext(first.display, configs[0], GLX_RGBA_TYPE, NULL, True);
+        if (c == NULL || !glXMakeCurrent(first.display, w, c)) return 1;
+        for (int f = 0; f < 3; f++) {
+            glClearColor(0.2f, 0.2f, 0.2f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            glMatrixMode(GL_PROJECTION);
+            glLoadIdentity();
+            glFrustum(-1, 1, -0.75, 0.75, 1, 50);
+            glColor3f(1.0f, 0.0f, 0.0f);
+            glBegin(GL_TRIANGLES);
+            glVertex3f(-1, -1, -4);
+            glVertex3f(1, -1, -4);
+            glVertex3f(0, 1, -4);
+            glEnd();
+            glXSwapBuffers(first.display, w);
+        }
+        glXMakeCurrent(first.display, None, NULL);
+        glXDestroyContext(first.display, c);
+        XDestroyWindow(first.display, w);
+        if (i == 10 || i == 40)
+            printf("sample %d %ld %d %d\n", i, rss_kb(), memfd_mappings(), open_fds());
+    }
+    XFree(configs);
+    close_x_window(&first);
+    return 0;
+}
