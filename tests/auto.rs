@@ -300,6 +300,21 @@ fn a_scene_drawn_off_screen_and_blitted_into_the_window_is_in_stereo() {
             );
         }
         assert!(stdout.contains("error 0x0"), "{profile}: {stdout}");
+        // Its window's depth is never written (the scene's depth is the
+        // framebuffer object's): automatic convergence measures nothing
+        // there, instead of converging on unwritten depth.
+        let o = common::run_ok(
+            Command::new(&built().run)
+                .args(["--auto", "-v"])
+                .arg(oracle())
+                .args([profile, "mono", "blit"])
+                .env("DISPLAY", &x.display),
+        );
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !stderr.contains("automatic convergence at"),
+            "{profile}: converged on the window's unwritten depth: {stderr}"
+        );
     }
 }
 

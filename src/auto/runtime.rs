@@ -224,6 +224,10 @@ pub struct AutoState {
     /// The program has begun transform feedback: draws check whether it
     /// is capturing.
     feedback: bool,
+    /// A draw reached the window's eyes since the last present: their
+    /// depth holds this frame's scene (a program that draws off screen
+    /// and blits leaves it unwritten, and is not measured).
+    window_drawn: bool,
 }
 
 impl AutoState {
@@ -646,7 +650,9 @@ fn learn_projection(cur: &Current, call: &Call) {
 /// What automatic convergence reads of a frame at its present, in the
 /// program's context; None when this frame is not measured (the user set
 /// the convergence, automatic stereo is off, it is not a
-/// [`converge::PERIOD`]th frame, or no perspective projection is known).
+/// [`converge::PERIOD`]th frame, nothing was drawn into the window's eyes
+/// this frame — their depth is not the scene's — or no perspective
+/// projection is known).
 ///
 /// # Safety
 /// The program's context is current on this thread.
@@ -655,7 +661,9 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
     // measured.
     st.unmeasured = (frame + 1) % converge::PERIOD != 0;
     let fixed = st.fixed.take();
-    if live::convergence().is_some() || !live::auto_on() || frame % converge::PERIOD != 0 {
+    let drawn = std::mem::take(&mut st.window_drawn);
+    if live::convergence().is_some() || !live::auto_on() || frame % converge::PERIOD != 0 || !drawn
+    {
         return None;
     }
     let t = tables()?;
@@ -716,6 +724,9 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                 let context = std::sync::Arc::as_ptr(&cur.sc) as usize;
                 if st.compiling.is_none() {
                     let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+                    if fbo == window_fbo && call.family != Family::Blit {
+                        st.window_drawn = true;
+                    }
                     if fbo != app_fbo {
                         if let Some(a) = render_targets::eyes_of(targets, context, fbo, &layered) {
                             (app_fbo, layered) = (fbo, a);
