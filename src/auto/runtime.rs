@@ -82,11 +82,18 @@ const GL_GEOMETRY_SHADER: u32 = 0x8DD9;
 const GL_TESS_EVALUATION_SHADER: u32 = 0x8E87;
 const GL_LIGHTING: u32 = 0x0B50;
 const GL_TEXTURE_GEN_S: u32 = 0x0C60;
-const GL_TEXTURE_GEN_T: u32 = 0x0C61;
-const GL_TEXTURE_GEN_R: u32 = 0x0C62;
-const GL_TEXTURE_GEN_Q: u32 = 0x0C63;
 const GL_VERTEX_PROGRAM_ARB: u32 = 0x8620;
 const GL_FOG: u32 = 0x0B60;
+const GL_ACTIVE_TEXTURE: u32 = 0x84E0;
+const GL_TEXTURE0: u32 = 0x84C0;
+const GL_MAX_TEXTURE_UNITS: u32 = 0x84E2;
+const GL_MAX_TEXTURE_COORDS: u32 = 0x8871;
+const GL_MAX_CLIP_PLANES: u32 = 0x0D32;
+const GL_CLIP_PLANE0: u32 = 0x3000;
+const GL_COLOR_SUM: u32 = 0x8458;
+const GL_PROGRAM_POINT_SIZE: u32 = 0x8642;
+/// The fixed-function texture targets a unit may enable.
+const TEXTURE_TARGETS: [u32; 5] = [0x0DE0, 0x0DE1, 0x806F, 0x8513, 0x84F5];
 const GL_FOG_COORD_SRC: u32 = 0x8450;
 const GL_FOG_COORD: u32 = 0x8451;
 const GL_MATRIX_MODE: u32 = 0x0BA0;
@@ -126,6 +133,7 @@ gl_fns! {
         load_matrixd = c"glLoadMatrixd": fn(*const f64);
         bitmap = c"glBitmap": fn(i32, i32, f32, f32, f32, f32, *const u8);
         enable = c"glEnable": fn(u32);
+        active_texture = c"glActiveTexture": fn(u32);
         disable = c"glDisable": fn(u32);
         pause_transform_feedback = c"glPauseTransformFeedback": fn();
         resume_transform_feedback = c"glResumeTransformFeedback": fn();
@@ -200,9 +208,12 @@ pub struct AutoState {
     /// The program's NV_3dvision_settings state beyond the live settings
     /// (cutoff, projection method).
     settings: Option<StereoSettings>,
-    /// The stand-in programs (fog from depth, fog coordinate); 0: not
-    /// made yet.
-    standin: [u32; 2],
+    /// The stand-in programs made so far, by the state they reproduce.
+    standin: Vec<(FixedVertexState, u32)>,
+    /// The enables the stand-in depends on, as last read ([`fixed_state`]);
+    /// None: to be read again (glEnable, glDisable, glPopAttrib or a
+    /// display list ran since).
+    fixed_enables: Option<FixedVertexState>,
     /// A stand-in could not be made: fixed function takes the slow path.
     standin_failed: bool,
     /// The layer's display list for immediate mode (0: none yet).
@@ -248,6 +259,13 @@ impl AutoState {
             .unwrap_or(0.0);
         let _ = s.parameter_f(GL_STEREO_CONVERGENCE_NV, convergence);
         s
+    }
+
+    /// The enables the fixed-function stand-in depends on may have
+    /// changed (glEnable, glDisable, glPopAttrib, a display list): read
+    /// them again at the next fixed-function draw.
+    pub fn forget_enables(&mut self, _: Option<(u32, Attachments)>) {
+        self.fixed_enables = None;
     }
 
     /// The program's NV_3dvision_settings state (cutoff, method).
@@ -342,32 +360,66 @@ unsafe fn vertex_program(f: &AutoFns) -> Option<(u32, bool)> {
 }
 
 /// The fixed-function state the stand-in must reproduce now, or None
-/// when it cannot (lighting, texture-coordinate generation on the active
-/// unit, an ARB vertex program).
-unsafe fn fixed_state(f: &AutoFns) -> Option<FixedVertexState> {
+/// when it cannot (lighting, texture-coordinate generation on a unit with
+/// a texture, an ARB vertex program). The per-unit enables are read only
+/// after something may have changed them (`AutoState::fixed_enables`): a
+/// unit's enables are read by making it active, a dozen calls per unit.
+unsafe fn fixed_state(f: &AutoFns, st: &mut AutoState) -> Option<FixedVertexState> {
     // SAFETY: contract of the callers.
     unsafe {
         let on = |cap| (f.is_enabled)(cap) != 0;
-        if on(GL_LIGHTING)
-            || on(GL_VERTEX_PROGRAM_ARB)
-            || [
-                GL_TEXTURE_GEN_S,
-                GL_TEXTURE_GEN_T,
-                GL_TEXTURE_GEN_R,
-                GL_TEXTURE_GEN_Q,
-            ]
-            .into_iter()
-            .any(on)
-        {
+        if on(GL_LIGHTING) || on(GL_VERTEX_PROGRAM_ARB) {
             return None;
         }
-        let fog_coord = on(GL_FOG) && integer(f, GL_FOG_COORD_SRC) as u32 == GL_FOG_COORD;
+        let enables = match st.fixed_enables {
+            Some(e) => e,
+            None => {
+                let e = read_enables(f);
+                st.fixed_enables = Some(e);
+                e
+            }
+        };
+        if enables.texgen {
+            return None;
+        }
+        // glFog's source is not an enable: read at every draw under fog.
+        let fog_coord = enables.fog && integer(f, GL_FOG_COORD_SRC) as u32 == GL_FOG_COORD;
         Some(FixedVertexState {
-            lighting: false,
-            texgen: false,
-            texture_units: 8,
             fog_coord,
+            ..enables
         })
+    }
+}
+
+/// The enables [`fixed_state`] keeps between changes.
+unsafe fn read_enables(f: &AutoFns) -> FixedVertexState {
+    // SAFETY: contract of the callers.
+    unsafe {
+        let on = |cap| (f.is_enabled)(cap) != 0;
+        let active = integer(f, GL_ACTIVE_TEXTURE) as u32;
+        let units = integer(f, GL_MAX_TEXTURE_UNITS)
+            .min(integer(f, GL_MAX_TEXTURE_COORDS))
+            .clamp(0, 32) as u32;
+        let (mut texture_units, mut texgen) = (0u32, false);
+        for unit in 0..units {
+            (f.active_texture)(GL_TEXTURE0 + unit);
+            if TEXTURE_TARGETS.into_iter().any(on) {
+                texture_units |= 1 << unit;
+                texgen |= (GL_TEXTURE_GEN_S..=GL_TEXTURE_GEN_S + 3).any(on);
+            }
+        }
+        (f.active_texture)(active);
+        let planes = integer(f, GL_MAX_CLIP_PLANES).clamp(0, 64) as u32;
+        FixedVertexState {
+            lighting: false,
+            texgen,
+            texture_units,
+            fog: on(GL_FOG),
+            fog_coord: false,
+            color_sum: on(GL_COLOR_SUM),
+            clip_planes: (0..planes).any(|i| on(GL_CLIP_PLANE0 + i)),
+            program_point_size: on(GL_PROGRAM_POINT_SIZE),
+        }
     }
 }
 
@@ -376,9 +428,8 @@ unsafe fn standin_program(t: &Tables, st: &mut AutoState, state: FixedVertexStat
     if st.standin_failed {
         return None;
     }
-    let i = state.fog_coord as usize;
-    if st.standin[i] != 0 {
-        return Some(st.standin[i]);
+    if let Some(&(_, p)) = st.standin.iter().find(|(s, _)| *s == state) {
+        return Some(p);
     }
     let location = reserved_location(&t.gl)?;
     let made = standin::source(state, location).ok().and_then(|src| {
@@ -399,7 +450,7 @@ unsafe fn standin_program(t: &Tables, st: &mut AutoState, state: FixedVertexStat
     });
     match made {
         Some(p) => {
-            st.standin[i] = p;
+            st.standin.push((state, p));
             Some(p)
         }
         None => {
@@ -456,7 +507,7 @@ unsafe fn choose(t: &Tables, cur: &Current, st: &mut AutoState, app_fbo: u32, li
                 target: None,
             },
             (None, _) => {
-                let standin = fixed_state(f).and_then(|state| standin_program(t, st, state));
+                let standin = fixed_state(f, st).and_then(|state| standin_program(t, st, state));
                 match (standin, reserved_location(f)) {
                     (Some(p), Some(l)) => Path::Uniform {
                         target: Target {
@@ -599,7 +650,15 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
         return draw();
     };
     match call.family {
-        Family::Settings => settings_call(call, draw),
+        Family::Settings => {
+            if matches!(
+                call.name,
+                "glEnable" | "glDisable" | "glEnablei" | "glDisablei"
+            ) {
+                cur.sc.with_auto(cur.draw, AutoState::forget_enables);
+            }
+            settings_call(call, draw)
+        }
         Family::Projection => {
             learn_projection(cur, &call);
             draw()
@@ -615,8 +674,13 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
         | Family::DisplayList
         | Family::RasterPixels
         | Family::Blit => {
+            // A display list may change any enable.
+            let list = call.name.starts_with("glCallList");
             let mut out = None;
             drawing(t, cur, call, &mut || out = Some(draw()));
+            if list {
+                cur.sc.with_auto(cur.draw, AutoState::forget_enables);
+            }
             out.unwrap_or_else(|| R::from_bits(0))
         }
         _ => draw(),
@@ -694,7 +758,7 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
 
 /// glEnable / glDisable / glIsEnabled of GL_3DVISION_STEREO_NV.
 fn settings_call<R: Returned>(call: Call, draw: impl Fn() -> R) -> R {
-    if call.u32(0) != GL_3DVISION_STEREO_NV || call.args.len() != 1 {
+    if call.args.len() != 1 || call.u32(0) != GL_3DVISION_STEREO_NV {
         return draw();
     }
     match call.name {

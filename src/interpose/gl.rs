@@ -974,6 +974,10 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
     };
     // SAFETY: forwarded call; its GL error stays the driver's.
     unsafe { pop() };
+    // Enables may be back on: automatic stereo's fixed-function stand-in
+    // reads them again.
+    cur.sc
+        .with_auto(cur.draw, crate::auto::runtime::AutoState::forget_enables);
     let after = stack_depth(gl, &cur);
     if before.is_none() || after.map(|d| d + 1) != before {
         // Stack underflow, or a core context: GL popped nothing.

@@ -35,8 +35,10 @@
  *
  * legacy: a compatibility context, fixed function, every way of drawing:
  * immediate mode, client arrays (glDrawArrays, glDrawElements), a display
- * list, glRectf, a lit quad, glBitmap at a perspective raster position, and
- * an orthographic HUD (glRecti, glBitmap, glDrawPixels). core: a GL 3.3 core
+ * list, glRectf, a lit quad, glBitmap at a perspective raster position,
+ * texturing on unit 1 through its texture matrix (enabled by a display list,
+ * toggled by glPushAttrib / glPopAttrib), fog, a clip plane, the secondary
+ * colour, and an orthographic HUD (glRecti, glBitmap, glDrawPixels). core: a GL 3.3 core
  * context, one program, a vertex buffer drawn with glDrawArrays,
  * glDrawElements, glDrawArraysInstanced and glMultiDrawArrays, and a HUD.
  */
@@ -154,6 +156,101 @@ static void legacy_scene(double k, double c)
     glRasterPos3f(3.0f, 3.0f, -10.0f);
     glBitmap(8, 8, 0.0f, 0.0f, 12.0f, 0.0f, pattern);
     glBitmap(8, 8, 0.0f, 0.0f, 12.0f, 0.0f, pattern);
+
+    /* Fixed-function state the layer's stand-in vertex shader must carry
+     * to the fragments: fog from the eye distance, a user clip plane, the
+     * secondary colour (GL_COLOR_SUM), then a texture on unit 1 only
+     * through its texture matrix (enabled by a display list, disabled and
+     * enabled again by glPushAttrib / glPopAttrib). */
+    GLfloat fog_colour[] = {0.5f, 0.5f, 0.5f, 1.0f};
+    glEnable(GL_FOG);
+    glFogi(GL_FOG_MODE, GL_LINEAR);
+    glFogf(GL_FOG_START, 1.0f);
+    glFogf(GL_FOG_END, 20.0f);
+    glFogfv(GL_FOG_COLOR, fog_colour);
+    glColor3f(0.0f, 0.2f, 0.9f);
+    glPushMatrix();
+    glTranslatef(0.0f, 0.0f, -7.0f);
+    glRectf(5.04f, -1.575f, 6.44f, -0.2625f);
+    glPopMatrix();
+    glDisable(GL_FOG);
+
+    GLdouble plane[] = {-1.0, 0.0, 0.0, 2.75};
+    glClipPlane(GL_CLIP_PLANE0, plane);
+    glEnable(GL_CLIP_PLANE0);
+    glColor3f(0.5f, 0.5f, 0.0f);
+    glBegin(GL_TRIANGLE_FAN);
+    glVertex3f(2.25f, -2.4375f, -5.0f);
+    glVertex3f(3.25f, -2.4375f, -5.0f);
+    glVertex3f(3.25f, -1.5f, -5.0f);
+    glVertex3f(2.25f, -1.5f, -5.0f);
+    glEnd();
+    glDisable(GL_CLIP_PLANE0);
+
+    glEnable(GL_COLOR_SUM);
+    glColor3f(0.6f, 0.0f, 0.0f);
+    glSecondaryColor3f(0.0f, 0.3f, 0.5f);
+    glBegin(GL_QUADS);
+    glVertex3f(3.6f, -2.4375f, -5.0f);
+    glVertex3f(4.6f, -2.4375f, -5.0f);
+    glVertex3f(4.6f, -1.5f, -5.0f);
+    glVertex3f(3.6f, -1.5f, -5.0f);
+    glEnd();
+    glDisable(GL_COLOR_SUM);
+
+    /* After those fixed-function draws without a texture: */
+    static GLuint texture;
+    static const GLubyte checker[] = {128, 0, 255, 255, 0, 128, 128, 255, 0, 128, 128, 255, 128, 0, 255, 255};
+    if (texture == 0) {
+        glGenTextures(1, &texture);
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, checker);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glMatrixMode(GL_TEXTURE);
+    glLoadIdentity();
+    glScalef(2.0f, 2.0f, 1.0f);
+    glMatrixMode(GL_MODELVIEW);
+    /* An untextured quad, then the texture enabled by a display list and
+     * a textured one; then under glPushAttrib the texture disabled and the
+     * untextured quad again, and after glPopAttrib a textured one. */
+    GLuint enable_list = glGenLists(1);
+    glNewList(enable_list, GL_COMPILE);
+    glEnable(GL_TEXTURE_2D);
+    glEndList();
+    for (int pass = 0; pass < 4; pass++) {
+        int textured = pass == 1 || pass == 3;
+        float x0 = textured ? 2.7f : 4.32f, y0 = pass == 3 ? -1.35f : 0.225f;
+        if (pass == 1) glCallList(enable_list);
+        if (pass == 2) {
+            glPushAttrib(GL_ENABLE_BIT);
+            glDisable(GL_TEXTURE_2D);
+        }
+        if (pass == 3) glPopAttrib();
+        if (textured)
+            glColor3f(1.0f, 1.0f, 1.0f);
+        else
+            glColor3f(0.8f, 0.4f, 0.2f);
+        glBegin(GL_QUADS);
+        glMultiTexCoord2f(GL_TEXTURE1, 0.0f, 0.0f);
+        glVertex3f(x0, y0, -6.0f);
+        glMultiTexCoord2f(GL_TEXTURE1, 1.0f, 0.0f);
+        glVertex3f(x0 + 1.2f, y0, -6.0f);
+        glMultiTexCoord2f(GL_TEXTURE1, 1.0f, 1.0f);
+        glVertex3f(x0 + 1.2f, y0 + 1.125f, -6.0f);
+        glMultiTexCoord2f(GL_TEXTURE1, 0.0f, 1.0f);
+        glVertex3f(x0, y0 + 1.125f, -6.0f);
+        glEnd();
+    }
+    glDeleteLists(enable_list, 1);
+    glDisable(GL_TEXTURE_2D);
+    glMatrixMode(GL_TEXTURE);
+    glLoadIdentity();
+    glMatrixMode(GL_MODELVIEW);
+    glActiveTexture(GL_TEXTURE0);
 
     /* The HUD: orthographic, w = 1, at the screen in both eyes. */
     glDisable(GL_DEPTH_TEST);
