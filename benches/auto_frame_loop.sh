@@ -1,6 +1,7 @@
 #!/bin/sh
 # Automatic stereo's cost (issue 23 item 7), with benches/glx_frame_loop.c
-# on a private Xvfb. For the light and heavy scenes at 400x300 and
+# on a private Xvfb. For the light, heavy, heavy3d (perspective) and shader3d
+# (perspective, a GLSL program) scenes at 400x300 and
 # 1280x1024, ROUNDS rounds each alternate, in an order that turns each
 # round:
 #
@@ -31,7 +32,7 @@ set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 ROUNDS=${1:-5}
 SIZES=${SIZES:-"400x300 1280x1024"}
-SCENES=${SCENES:-"light heavy"}
+SCENES=${SCENES:-"light heavy heavy3d shader3d"}
 RUN="$ROOT/target/release/glstereo-run"
 BASE=${BASE_RUN:-}
 [ -x "$RUN" ] || { echo "build first: cargo build --release -p glstereo-preload" >&2; exit 1; }
@@ -81,7 +82,7 @@ for wh in $SIZES; do
         case "$scene $wh" in
         "light 400x300") frames=400 ;;
         "light 1280x1024") frames=100 ;;
-        "heavy 400x300") frames=20 ;;
+        "heavy 400x300" | "heavy3d 400x300" | "shader3d 400x300") frames=20 ;;
         *) frames=10 ;;
         esac
         echo "# $scene $wh, $frames frames a run; $(uptime)"

@@ -5,13 +5,15 @@
  * benches/glx_frame_loop.sh does: mono without the layer, mono and stereo
  * under glstereo-run, stereo with --capture.
  *
- *   glx_frame_loop mono|stereo [WIDTH HEIGHT [FRAMES]]
- *
- *   glx_frame_loop mono|stereo [WIDTH HEIGHT [FRAMES [light|heavy]]]
+ *   glx_frame_loop mono|stereo [WIDTH HEIGHT [FRAMES [light|heavy|heavy3d|shader3d]]]
  *
  * Light scene: per eye a clear and three rectangles. Heavy scene: per eye
  * a clear and a depth-tested grid of 512 x 512 quads (524 288 triangles)
- * drawn from a vertex buffer. Prints
+ * drawn from a vertex buffer, with identity matrices (w = 1: automatic
+ * stereo leaves it at the screen). heavy3d: the same grid seen through a
+ * perspective projection (glFrustum, w about 2), fixed function;
+ * shader3d: heavy3d drawn by a GLSL program (gl_ModelViewProjectionMatrix,
+ * the vertex colour), which automatic stereo rewrites. Prints
  * "<mode> <scene> WxH frames N: mean M ms, median D ms, p90 P ms, cpu C ms"
  * (C: the process's CPU time a frame over the timed frames, every thread:
  * what a machine shared with other jobs does not inflate, unlike the
@@ -87,13 +89,53 @@ static void make_heavy(void)
     glEnable(GL_DEPTH_TEST);
 }
 
+/* The heavy grid's distance from the eye in heavy3d and shader3d (0: the
+ * heavy scene's identity matrices). */
+static float heavy_z;
+
 static void heavy(float shift)
 {
     glClearColor(0.2f, 0.2f, 0.2f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glLoadIdentity();
-    glTranslatef(shift, 0.0f, 0.0f);
+    glTranslatef(shift, 0.0f, -heavy_z);
     glDrawArrays(GL_TRIANGLES, 0, heavy_vertices);
+}
+
+/* heavy3d's projection; with `shader`, shader3d's program. */
+static int make_3d(int shader)
+{
+    heavy_z = 2.0f;
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glFrustum(-0.5, 0.5, -0.4, 0.4, 1.0, 10.0);
+    glMatrixMode(GL_MODELVIEW);
+    if (!shader) return 1;
+    static const char *vs = "#version 130\n"
+                            "out vec3 colour;\n"
+                            "void main() {\n"
+                            "    gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex;\n"
+                            "    colour = gl_Color.rgb;\n"
+                            "}\n";
+    static const char *fs = "#version 130\n"
+                            "in vec3 colour;\n"
+                            "out vec4 fragment;\n"
+                            "void main() { fragment = vec4(colour, 1.0); }\n";
+    GLuint p = glCreateProgram();
+    const char *src[2] = {vs, fs};
+    GLenum type[2] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER};
+    for (int i = 0; i < 2; i++) {
+        GLuint sh = glCreateShader(type[i]);
+        glShaderSource(sh, 1, &src[i], NULL);
+        glCompileShader(sh);
+        glAttachShader(p, sh);
+    }
+    glLinkProgram(p);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) return 0;
+    glUseProgram(p);
+    return 1;
 }
 
 static void light(float shift)
@@ -114,7 +156,9 @@ int main(int argc, char **argv)
     int width = argc > 3 ? atoi(argv[2]) : 1280;
     int height = argc > 3 ? atoi(argv[3]) : 1024;
     int frames = argc > 4 ? atoi(argv[4]) : 200;
-    int is_heavy = argc > 5 && strcmp(argv[5], "heavy") == 0;
+    const char *scene_name = argc > 5 ? argv[5] : "light";
+    int is_3d = strcmp(scene_name, "heavy3d") == 0 || strcmp(scene_name, "shader3d") == 0;
+    int is_heavy = strcmp(scene_name, "heavy") == 0 || is_3d;
     void (*scene)(float) = is_heavy ? heavy : light;
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_DEPTH_SIZE, 16, None, None};
     if (stereo) attributes[4] = GLX_STEREO;
@@ -136,6 +180,10 @@ int main(int argc, char **argv)
     if (ctx == NULL || !glXMakeCurrent(display, win, ctx)) return 1;
 
     if (is_heavy) make_heavy();
+    if (is_3d && !make_3d(strcmp(scene_name, "shader3d") == 0)) {
+        fprintf(stderr, "shader3d: the program does not link\n");
+        return 3;
+    }
     double *t = malloc(sizeof(double) * (size_t)frames);
     for (int warm = 0; warm < 10; warm++) {
         scene(0.0f);
@@ -163,7 +211,7 @@ int main(int argc, char **argv)
     for (int i = 0; i < frames; i++) sum += t[i];
     qsort(t, (size_t)frames, sizeof t[0], cmp);
     printf("%s %s %dx%d frames %d: mean %.2f ms, median %.2f ms, p90 %.2f ms, cpu %.3f ms\n",
-           stereo ? "stereo" : "mono", is_heavy ? "heavy" : "light", width, height, frames, sum / frames, t[frames / 2],
+           stereo ? "stereo" : "mono", is_heavy ? scene_name : "light", width, height, frames, sum / frames, t[frames / 2],
            t[frames * 9 / 10], cpu);
     free(t);
     glXMakeCurrent(display, None, NULL);
