@@ -228,53 +228,65 @@ fn automatic_convergence_puts_the_middle_of_the_view_at_the_screen() {
     let _one = common::clients::one_renderer_at_a_time();
     let x = Xvfb::start(W + 40, H + 40);
     for profile in ["legacy", "core"] {
-        let dir = common::scratch(&format!("auto-converge-{profile}"));
-        let o = common::run_ok(
-            Command::new(&built().run)
-                .args(["--auto", "-v", "--separation", SEPARATION, "--capture"])
-                .arg(&dir)
-                .arg(oracle())
-                .args([profile, "mono", "frames", "3"])
-                .env("DISPLAY", &x.display),
-        );
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        let c: f64 = stderr
-            .lines()
-            .find_map(|l| l.strip_prefix("glstereo: automatic convergence at "))
-            .and_then(|l| l.split_whitespace().next())
-            .and_then(|v| v.parse().ok())
-            .unwrap_or_else(|| panic!("{profile}: no automatic convergence said: {stderr}"));
-        let objects: &[([u8; 3], Option<f64>)] = if profile == "legacy" {
-            &OBJECTS_LEGACY
-        } else {
-            &OBJECTS_CORE
-        };
-        // The median distance in the middle is a distance the scene has
-        // there: one of its flat objects'.
-        assert!(
-            objects
-                .iter()
-                .any(|&(_, w)| w.is_some_and(|w| (w - c).abs() < 1e-2)),
-            "{profile}: converged at {c}, no object is at that distance"
-        );
-        let eyes =
-            |n: u32| ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-{n:06}.png"))));
-        // Frame 1, at convergence 0, is the whole picture shifted (its
-        // objects partly out of the window): not the frames after.
-        let first = eyes(1);
-        assert!(
-            differing(&first[1], &eyes(2)[1]).len() > 100,
-            "{profile}: the first frame's right eye is the converged one's"
-        );
-        for n in [2, 3] {
-            check_parallax_at(&eyes(n), objects, c, 1.0, &format!("{profile}, frame {n}"));
-        }
+        converges_at_the_middle(&x, profile, &[], "converge");
+    }
+}
+
+/// Runs the oracle's `profile` scene for three frames (drawn as `how`
+/// says: [] into the window, ["blit"] off screen and blitted) under
+/// `--auto -v` and checks that the convergence said is one of the
+/// scene's distances and frames 2 and 3 have each object's parallax.
+fn converges_at_the_middle(x: &Xvfb, profile: &str, how: &[&str], name: &str) {
+    let dir = common::scratch(&format!("auto-{name}-{profile}"));
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .args(["--auto", "-v", "--separation", SEPARATION, "--capture"])
+            .arg(&dir)
+            .arg(oracle())
+            .args([profile, "mono"])
+            .args(how)
+            .args(["frames", "3"])
+            .env("DISPLAY", &x.display),
+    );
+    let what = format!("{profile} {how:?}");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let c: f64 = stderr
+        .lines()
+        .find_map(|l| l.strip_prefix("glstereo: automatic convergence at "))
+        .and_then(|l| l.split_whitespace().next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("{what}: no automatic convergence said: {stderr}"));
+    let objects: &[([u8; 3], Option<f64>)] = if profile == "legacy" {
+        &OBJECTS_LEGACY
+    } else {
+        &OBJECTS_CORE
+    };
+    // The median distance in the middle is a distance the scene has
+    // there: one of its flat objects'.
+    assert!(
+        objects
+            .iter()
+            .any(|&(_, w)| w.is_some_and(|w| (w - c).abs() < 1e-2)),
+        "{what}: converged at {c}, no object is at that distance"
+    );
+    let eyes =
+        |n: u32| ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-{n:06}.png"))));
+    // Frame 1, at convergence 0, is the whole picture shifted (its
+    // objects partly out of the window): not the frames after.
+    let first = eyes(1);
+    assert!(
+        differing(&first[1], &eyes(2)[1]).len() > 100,
+        "{what}: the first frame's right eye is the converged one's"
+    );
+    for n in [2, 3] {
+        check_parallax_at(&eyes(n), objects, c, 1.0, &format!("{what}, frame {n}"));
     }
 }
 
 /// A frame drawn into a framebuffer object of the window's size and
 /// blitted into the window (as VTK shows its scene) is in stereo: each
-/// eye of the window equals the eye drawn by hand, pixel for pixel.
+/// eye of the window equals the eye drawn by hand, pixel for pixel; and
+/// automatic convergence measures it in the framebuffer object.
 #[test]
 fn a_scene_drawn_off_screen_and_blitted_into_the_window_is_in_stereo() {
     let _one = common::clients::one_renderer_at_a_time();
@@ -301,20 +313,10 @@ fn a_scene_drawn_off_screen_and_blitted_into_the_window_is_in_stereo() {
         }
         assert!(stdout.contains("error 0x0"), "{profile}: {stdout}");
         // Its window's depth is never written (the scene's depth is the
-        // framebuffer object's): automatic convergence measures nothing
-        // there, instead of converging on unwritten depth.
-        let o = common::run_ok(
-            Command::new(&built().run)
-                .args(["--auto", "-v"])
-                .arg(oracle())
-                .args([profile, "mono", "blit"])
-                .env("DISPLAY", &x.display),
-        );
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(
-            !stderr.contains("automatic convergence at"),
-            "{profile}: converged on the window's unwritten depth: {stderr}"
-        );
+        // framebuffer object's): automatic convergence measures the
+        // stereoized framebuffer object's left depth instead, and
+        // converges as for a scene drawn into the window.
+        converges_at_the_middle(&x, profile, &["blit"], "converge-blit");
     }
 }
 

@@ -1,7 +1,10 @@
 //! Automatic convergence: where automatic stereo puts the screen when the
 //! user has not (`GLSTEREO_CONVERGENCE=auto`, the default). Every
 //! [`PERIOD`] frames the layer reads the left eye's depth in the central
-//! window of the program's viewport ([`CONVERGENCE_WINDOW`]: the middle
+//! window of the program's viewport (the window's eyes when the frame drew
+//! into them, else the stereoized render target it drew into last: a
+//! program that draws its scene off screen and blits it or shows it as a
+//! texture) ([`CONVERGENCE_WINDOW`]: the middle
 //! half of its width and height), maps it back to distance with the
 //! perspective projection the frame was drawn with, and converges at the
 //! median: the centre of interest, as `gls_stereo_auto_converge` computes
@@ -19,7 +22,7 @@
 
 use crate::analysis::depth::{DepthCapture, DepthImage, DepthMapping};
 use crate::analysis::parallax::CONVERGENCE_WINDOW;
-use crate::auto::eyes::LayeredEyes;
+use crate::auto::eyes::{Attachments, LayeredEyes};
 use crate::gl::Gl;
 use crate::interpose::live;
 use crate::math::frustum::Frustum;
@@ -39,6 +42,13 @@ pub struct Frame {
     pub depth_range: (f64, f64),
     /// glClearDepth.
     pub clear_depth: f64,
+    /// Something was drawn into the window's eyes.
+    pub window: bool,
+    /// The stereoized render target drawn into last (its arrays and
+    /// size): measured when the window's eyes were not drawn or hold no
+    /// geometry where the viewer looks (a program that draws off screen
+    /// and blits, or shows its scene as a textured quad without depth).
+    pub target: Option<(Attachments, (u32, u32))>,
 }
 
 /// Measures `frame` in `eyes` (the layered eyes of an automatic-stereo
@@ -50,28 +60,14 @@ pub struct Frame {
 /// # Safety
 /// A context sharing the eyes' objects is current on this thread.
 pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame) {
-    let (x, y, w, h) = window(frame.viewport);
-    let (x0, y0) = (x.max(0), y.max(0));
-    let (x1, y1) = (
-        (x + w).min(eyes.width() as i32),
-        (y + h).min(eyes.height() as i32),
-    );
-    if x1 <= x0 || y1 <= y0 {
-        return;
-    }
-    let rect = (x0, y0, x1 - x0, y1 - y0);
-    // SAFETY: contract; the rectangle is inside the eyes.
-    let Some(depth) = (unsafe { eyes.read_left_depth(gl, fbo, rect) }) else {
-        return;
-    };
-    let size = (rect.2 as u32, rect.3 as u32);
-    let Some(c) = centre(
-        depth,
-        size,
-        &frame.perspective,
-        frame.depth_range,
-        frame.clear_depth,
-    ) else {
+    let window = frame.window.then(|| (None, (eyes.width(), eyes.height())));
+    let target = frame.target.map(|(t, size)| (Some(t), size));
+    // SAFETY: contract.
+    let Some(c) = window
+        .into_iter()
+        .chain(target)
+        .find_map(|(source, size)| unsafe { centre_of(gl, eyes, fbo, frame, source, size) })
+    else {
         return;
     };
     let before = live::automatic_convergence();
@@ -81,6 +77,42 @@ pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame) {
             "automatic convergence at {c:.3} (the centre of interest; Ctrl+F5/F6 set it by hand)"
         ));
     }
+}
+
+/// The convergence [`centre`] finds in the left eye's depth of the
+/// window's eyes (`source` None) or of a render target, `size` pixels.
+///
+/// # Safety
+/// As [`measure`].
+unsafe fn centre_of(
+    gl: &Gl,
+    eyes: &LayeredEyes,
+    fbo: u32,
+    frame: &Frame,
+    source: Option<Attachments>,
+    (width, height): (u32, u32),
+) -> Option<f64> {
+    let (x, y, w, h) = window(frame.viewport);
+    let (x0, y0) = (x.max(0), y.max(0));
+    let (x1, y1) = ((x + w).min(width as i32), (y + h).min(height as i32));
+    if x1 <= x0 || y1 <= y0 {
+        return None;
+    }
+    let rect = (x0, y0, x1 - x0, y1 - y0);
+    // SAFETY: contract; the rectangle is inside what is read.
+    let depth = unsafe {
+        match source {
+            Some(target) => target.read_left_depth(gl, fbo, rect)?,
+            None => eyes.read_left_depth(gl, fbo, rect)?,
+        }
+    };
+    centre(
+        depth,
+        (rect.2 as u32, rect.3 as u32),
+        &frame.perspective,
+        frame.depth_range,
+        frame.clear_depth,
+    )
 }
 
 /// The depth terms of a perspective projection: clip z = `a`·z_eye + `b`,

@@ -488,54 +488,19 @@ impl LayeredEyes {
     }
 
     /// The left eye's depth (layer 0 of the depth array) in `(x, y, w, h)`
-    /// as window depths, rows bottom first, read through `fbo`, a
-    /// framebuffer object of the current context (its depth attachment
-    /// is left empty and GL_READ_FRAMEBUFFER at 0). None without depth.
+    /// as window depths, rows bottom first, read through `fbo`
+    /// ([`Attachments::read_left_depth`]). None without depth.
     ///
     /// # Safety
-    /// A context sharing the arrays is current; the rectangle is inside
-    /// the eyes; the context's pixel-pack state is the layer's own.
+    /// As [`Attachments::read_left_depth`].
     pub unsafe fn read_left_depth(
         &self,
         gl: &Gl,
         fbo: u32,
-        (x, y, w, h): (i32, i32, i32, i32),
+        rect: (i32, i32, i32, i32),
     ) -> Option<Vec<f32>> {
-        if self.depth == 0 || w <= 0 || h <= 0 {
-            return None;
-        }
-        let mut out = vec![0.0f32; w as usize * h as usize];
-        // SAFETY: contract; `out` holds w × h floats at alignment 4.
-        unsafe {
-            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-            (self.api.framebuffer_texture_layer)(
-                GL_READ_FRAMEBUFFER,
-                self.depth_attachment,
-                self.depth,
-                0,
-                0,
-            );
-            gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-            gl.ReadPixels(
-                x,
-                y,
-                w,
-                h,
-                GL_DEPTH_COMPONENT,
-                GL_FLOAT,
-                out.as_mut_ptr().cast(),
-            );
-            (self.api.framebuffer_texture_layer)(
-                GL_READ_FRAMEBUFFER,
-                self.depth_attachment,
-                0,
-                0,
-                0,
-            );
-            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-        }
-        Some(out)
+        // SAFETY: contract.
+        unsafe { self.attachments().read_left_depth(gl, fbo, rect) }
     }
 
     /// Whether the shared storage is where it is predicted: a marker
@@ -762,6 +727,58 @@ impl Attachments {
             depth,
             depth_attachment,
         }
+    }
+
+    /// The left eye's depth (layer 0 of the depth array: the window's eyes or a
+    /// stereoized render target) in `(x, y, w, h)`
+    /// as window depths, rows bottom first, read through `fbo`, a
+    /// framebuffer object of the current context (its depth attachment
+    /// is left empty and GL_READ_FRAMEBUFFER at 0). None without depth.
+    ///
+    /// # Safety
+    /// A context sharing the arrays is current; the rectangle is inside
+    /// the eyes; the context's pixel-pack state is the layer's own.
+    pub unsafe fn read_left_depth(
+        &self,
+        gl: &Gl,
+        fbo: u32,
+        (x, y, w, h): (i32, i32, i32, i32),
+    ) -> Option<Vec<f32>> {
+        if self.depth == 0 || w <= 0 || h <= 0 {
+            return None;
+        }
+        let mut out = vec![0.0f32; w as usize * h as usize];
+        // SAFETY: contract; `out` holds w × h floats at alignment 4.
+        unsafe {
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+            (self.api.framebuffer_texture_layer)(
+                GL_READ_FRAMEBUFFER,
+                self.depth_attachment,
+                self.depth,
+                0,
+                0,
+            );
+            gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+            gl.ReadPixels(
+                x,
+                y,
+                w,
+                h,
+                GL_DEPTH_COMPONENT,
+                GL_FLOAT,
+                out.as_mut_ptr().cast(),
+            );
+            (self.api.framebuffer_texture_layer)(
+                GL_READ_FRAMEBUFFER,
+                self.depth_attachment,
+                0,
+                0,
+                0,
+            );
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        }
+        Some(out)
     }
 
     /// The first pair's colour array (the eyes' size is its size).

@@ -44,6 +44,8 @@
 //!   differ by orders of magnitude between programs, so no number is a
 //!   good default. Every 30 frames (the first at the first present) the
 //!   layer puts C at the centre of interest of the left eye's depth layer
+//!   (of the window's eyes, else of the stereoized render target the frame
+//!   drew into last)
 //!   ([`converge`]: the median distance in the middle half of the view's
 //!   width and height, what `gls_stereo_auto_converge` computes for
 //!   programs that ask, [`crate::analysis::centre_of_interest`]). Depth

@@ -244,6 +244,15 @@ pub fn known(
         .map(|t| eyes.of_target(t.colour, t.depth, t.depth_attachment))
 }
 
+/// The size of `context`'s stereoized target `fbo` (None: not one).
+pub fn size(targets: &Targets, context: usize, fbo: u32) -> Option<(u32, u32)> {
+    targets
+        .targets
+        .iter()
+        .find(|t| t.context == context && t.fbo == fbo)
+        .map(|t| (t.width.max(0) as u32, t.height.max(0) as u32))
+}
+
 /// Before a draw of `context` into `drawing` (its draw framebuffer): the
 /// program's textures of the other targets drawn into since, given their
 /// left eye.

@@ -239,6 +239,10 @@ pub struct AutoState {
     /// depth holds this frame's scene (a program that draws off screen
     /// and blits leaves it unwritten, and is not measured).
     window_drawn: bool,
+    /// The stereoized render target a draw reached last since the last
+    /// present (its arrays and size): where automatic convergence
+    /// measures a frame that left the window's eyes undrawn.
+    target_drawn: Option<(Attachments, (u32, u32))>,
 }
 
 impl AutoState {
@@ -715,8 +719,9 @@ fn learn_projection(cur: &Current, call: &Call) {
 /// program's context; None when this frame is not measured (the user set
 /// the convergence, automatic stereo is off, it is not a
 /// [`converge::PERIOD`]th frame, nothing was drawn into the window's eyes
-/// this frame — their depth is not the scene's — or no perspective
-/// projection is known).
+/// or a stereoized render target this frame — the window's depth is not
+/// the scene's then — or no perspective projection is known). A frame
+/// that drew only into render targets is measured in the last of them.
 ///
 /// # Safety
 /// The program's context is current on this thread.
@@ -726,7 +731,11 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
     st.unmeasured = (frame + 1) % converge::PERIOD != 0;
     let fixed = st.fixed.take();
     let drawn = std::mem::take(&mut st.window_drawn);
-    if live::convergence().is_some() || !live::auto_on() || frame % converge::PERIOD != 0 || !drawn
+    let target = st.target_drawn.take();
+    if live::convergence().is_some()
+        || !live::auto_on()
+        || frame % converge::PERIOD != 0
+        || (!drawn && target.is_none())
     {
         return None;
     }
@@ -752,6 +761,8 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
             viewport: (vp[0], vp[1], vp[2], vp[3]),
             depth_range: (range[0], range[1]),
             clear_depth: clear,
+            window: drawn,
+            target,
         })
     }
 }
@@ -794,6 +805,10 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                     if fbo != app_fbo {
                         if let Some(a) = render_targets::eyes_of(targets, context, fbo, &layered) {
                             (app_fbo, layered) = (fbo, a);
+                            if call.family != Family::Blit {
+                                let size = render_targets::size(targets, context, fbo);
+                                st.target_drawn = size.map(|s| (a, s));
+                            }
                         }
                     }
                     render_targets::resolve(targets, context, fbo);

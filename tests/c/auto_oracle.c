@@ -13,9 +13,9 @@
  *                                             of glReadPixels at (50, 75);
  *                                             with wait, then "ready 0xWIN"
  *                                             and waits for a line on stdin
- *   auto_oracle legacy|core mono blit         as mono, the frame drawn into a
- *                                             framebuffer object and blitted
- *                                             into the window
+ *   auto_oracle legacy|core mono blit [frames N]  as mono, each frame drawn
+ *                                             into a framebuffer object and
+ *                                             blitted into the window
  *   auto_oracle legacy|core mono frames N     as mono, drawing and swapping
  *                                             the frame N times
  *   auto_oracle legacy|core tuned S C [wait]  as mono, the program setting
@@ -418,16 +418,7 @@ int main(int argc, char **argv)
         glDisable(GL_3DVISION_STEREO_NV);
         printf("nv-off %d\n", glIsEnabled(GL_3DVISION_STEREO_NV));
     }
-    /* mono frames N: N - 1 frames drawn and swapped before the last. */
-    int frames = mono && argc > 4 && strcmp(argv[3], "frames") == 0 ? atoi(argv[4]) : 1;
-    for (int i = 1; i < frames; i++) {
-        if (core)
-            core_scene(k, c);
-        else
-            legacy_scene(k, c);
-        glXSwapBuffers(dpy, win);
-    }
-    /* mono blit: the frame drawn into a framebuffer object of the window's
+    /* mono blit: each frame drawn into a framebuffer object of the window's
      * size, then blitted into the window (as VTK shows its scene). */
     int blit = mono && argc > 3 && strcmp(argv[3], "blit") == 0;
     GLuint fbo = 0, tex = 0, depth = 0;
@@ -447,16 +438,24 @@ int main(int argc, char **argv)
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
                                   depth);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return 5;
-    }
-    if (core)
-        core_scene(k, c);
-    else
-        legacy_scene(k, c);
-    if (blit) {
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        glBlitFramebuffer(0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+    /* mono [blit] frames N: N - 1 frames drawn and swapped before the last. */
+    int at = blit ? 4 : 3;
+    int frames = mono && argc > at + 1 && strcmp(argv[at], "frames") == 0 ? atoi(argv[at + 1]) : 1;
+    for (int i = 0; i < frames; i++) {
+        if (blit) glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        if (core)
+            core_scene(k, c);
+        else
+            legacy_scene(k, c);
+        if (blit) {
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+            glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+            glBlitFramebuffer(0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        }
+        if (i + 1 < frames) glXSwapBuffers(dpy, win);
     }
     if (mono) {
         GLubyte px[4] = {0};
