@@ -528,3 +528,54 @@ fn the_window_shows_both_eyes_in_the_format_asked_for() {
     let bar = shot.get(W / 2 + 25 / 2, H / 4 + (H - 10) / 2);
     assert_eq!(bar[..3], [255, 255, 255], "the HUD bar in the right half");
 }
+
+/// Queries count what the mono program's draws produce, not the second
+/// eye's (issue 23 item 4): samples passed (one draw and three in one
+/// query), primitives generated, any samples passed of a hidden and a seen
+/// quad, their availability, and conditional rendering on them — the same
+/// lines as without the layer (the counted quads sit at the convergence,
+/// where both eyes have them as mono does).
+#[test]
+fn queries_count_the_mono_draws_once() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = build_once("auto_queries", |out| {
+        compile_plain(
+            &common::root().join("tests/c/auto_queries.c"),
+            out,
+            &["-lGL", "-lX11"],
+        )
+    });
+    let x = Xvfb::start(W + 40, H + 40);
+    let plain = common::run_ok(Command::new(&exe).env("DISPLAY", &x.display));
+    let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
+    assert!(
+        plain.contains("primitives 5\n") && plain.contains("any-hidden 0\n"),
+        "without the layer: {plain}"
+    );
+    let dir = common::scratch("auto-queries");
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .args([
+                "--auto",
+                "--separation",
+                SEPARATION,
+                "--convergence",
+                CONVERGENCE,
+            ])
+            .arg("--capture")
+            .arg(&dir)
+            .arg(&exe)
+            .env("DISPLAY", &x.display),
+    );
+    let auto = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        auto, plain,
+        "the counts under --auto are not the mono program's"
+    );
+    // Both eyes were drawn: the background (w = 8) is shifted between them.
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+    assert!(
+        differing(&eyes[0], &eyes[1]).len() > 100,
+        "the eyes are alike"
+    );
+}

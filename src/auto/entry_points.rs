@@ -206,6 +206,8 @@ const PREFIXES: &[(&str, &[&str], Family)] = &[
     ("glPauseTransformFeedback", &[], Family::SideEffect),
     ("glResumeTransformFeedback", &[], Family::SideEffect),
     ("glBindTransformFeedback", &[], Family::SideEffect),
+    ("glGetQueryObject", &[], Family::SideEffect),
+    ("glDeleteQueries", &[], Family::SideEffect),
     ("glGetBooleani_v", &[], Family::Settings),
     ("glGetIntegeri_v", &[], Family::Settings),
     ("glGetInteger64i_v", &[], Family::Settings),
@@ -385,11 +387,11 @@ mod tests {
             (Family::Introspection, 16),
             (Family::Framebuffer, 34),
             (Family::Texture, 8),
-            (Family::SideEffect, 25),
+            (Family::SideEffect, 35),
             (Family::Settings, 18),
             (Family::Projection, 4),
         ];
-        assert_eq!(total, 912);
+        assert_eq!(total, 922);
         for (f, n) in want {
             assert_eq!(counts.get(&f).copied().unwrap_or(0), n, "{f:?}");
         }

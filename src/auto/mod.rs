@@ -8,9 +8,9 @@
 //! on llvmpipe against a program that draws each eye itself with the rule
 //! applied by hand, pixel by pixel. [`runtime`] wires them to the preload
 //! library's generated wrappers and says which parts of this design run
-//! today; the rest below is design (queries and shader stores of the
-//! second eye's draws are not kept single yet, README, "Automatic
-//! stereo"; render targets are [`render_targets`]).
+//! today; the rest below is design (shader stores of the second eye's
+//! draws are not kept single, README, "Automatic stereo"; render targets
+//! are [`render_targets`]).
 //!
 //! # The rule
 //!
@@ -225,15 +225,19 @@
 //!   the layer draws once with the neutral eye and rasterizer discard (the
 //!   capture is the mono one), pauses it, draws both eyes, and resumes it.
 //!   With GL_RASTERIZER_DISCARD on, nothing reaches the eyes: one draw.
-//! - **Queries**: GL_TIME_ELAPSED and GL_TIMESTAMP measure what really
-//!   runs (both eyes); GL_ANY_SAMPLES_PASSED(_CONSERVATIVE) gives the same
-//!   answer for two eyes as for one. GL_SAMPLES_PASSED,
-//!   GL_PRIMITIVES_GENERATED and GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN
-//!   must not count the right eye: the layer ends the query's current
-//!   segment before a right-eye draw and begins a new segment after it, and
-//!   answers glGetQueryObject* with the sum of the segments; conditional
-//!   rendering on such a query is done by the layer itself (it sees every
-//!   draw), waiting for the sum.
+//! - **Queries** (built: `runtime::Counting`): GL_TIME_ELAPSED and
+//!   GL_TIMESTAMP measure what really runs (both eyes).
+//!   GL_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED(_CONSERVATIVE) and
+//!   GL_PRIMITIVES_GENERATED must not count the right eye: the layer ends
+//!   the query's current segment before a right-eye draw and begins a
+//!   segment of its own after it (with transform feedback, the eyes'
+//!   primitives are kept out of GL_PRIMITIVES_GENERATED too: the mono
+//!   draw made them), answers glGetQueryObject* with the sum of the
+//!   segments (any, for the boolean targets; available when all are), and
+//!   begins conditional rendering on a segment whose own result says what
+//!   the sum says (waiting for them). GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN
+//!   counts only the mono draw already (the capture is paused for the
+//!   eyes). Not covered: results written into a query buffer object.
 //! - **Atomic counters, image and buffer stores**: a shader with them runs
 //!   once per eye and stores twice. In the rewritten vertex stage,
 //!   `atomicCounter*` and `image*` calls can be guarded by the eye (a
@@ -296,11 +300,11 @@
 //! | Introspection | 16 | the layer's uniform hidden from the program |
 //! | Framebuffer | 34 | the eyes, a stereoized target, or mono |
 //! | Texture | 8 | a stereoized texture's twin in the right eye |
-//! | SideEffect | 25 | queries segmented, transform feedback paused |
+//! | SideEffect | 35 | queries segmented and summed, transform feedback paused |
 //! | Settings | 18 | GL_3DVISION_STEREO_NV and the STEREO_*_NV pnames |
 //! | Projection | 4 | glUniformMatrix4fv & co.: automatic convergence's projection |
 //!
-//! 912 in all (most are the per-vertex commands of immediate mode and
+//! 922 in all (most are the per-vertex commands of immediate mode and
 //! their extension forms); glStereoParameterfNV / glStereoParameteriNV are
 //! an OpenGL ES extension, not in gl.xml's desktop set: two hand-typed
 //! exports. Without `--auto` each wrapper is one thread-local test and the

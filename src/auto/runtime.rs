@@ -135,6 +135,13 @@ gl_fns! {
         enable = c"glEnable": fn(u32);
         active_texture = c"glActiveTexture": fn(u32);
         disable = c"glDisable": fn(u32);
+        gen_queries = c"glGenQueries": fn(i32, *mut u32);
+        delete_queries = c"glDeleteQueries": fn(i32, *const u32);
+        begin_query_indexed = c"glBeginQueryIndexed": fn(u32, u32, u32);
+        end_query_indexed = c"glEndQueryIndexed": fn(u32, u32);
+        get_query_objectui64v = c"glGetQueryObjectui64v": fn(u32, u32, *mut u64);
+        begin_conditional_render = c"glBeginConditionalRender": fn(u32, u32);
+        get_query_indexediv = c"glGetQueryIndexediv": fn(u32, u32, u32, *mut i32);
         pause_transform_feedback = c"glPauseTransformFeedback": fn();
         resume_transform_feedback = c"glResumeTransformFeedback": fn();
     }
@@ -243,6 +250,75 @@ pub struct AutoState {
     /// present (its arrays and size): where automatic convergence
     /// measures a frame that left the window's eyes undrawn.
     target_drawn: Option<(Attachments, (u32, u32))>,
+    /// The program's counting queries active now ([`Counting`]).
+    queries: Vec<Counting>,
+    /// Ended counting queries that have segments: (the program's name,
+    /// its target, the segments), read by glGetQueryObject* and
+    /// glBeginConditionalRender as one.
+    segmented: Vec<(u32, u32, Vec<u32>)>,
+}
+
+/// A query of the program's that counts what draws produce
+/// (GL_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED(_CONSERVATIVE),
+/// GL_PRIMITIVES_GENERATED): it must not count the right eye's draws, so
+/// it is ended before them and a segment of the layer's own begun after;
+/// its result is the sum of its segments (any, for the boolean ones).
+#[derive(Debug)]
+pub struct Counting {
+    target: u32,
+    index: u32,
+    /// The program's name for it.
+    id: u32,
+    /// The layer's queries begun after the program's, in order.
+    segments: Vec<u32>,
+    /// Ended for draws it must not count.
+    paused: bool,
+}
+
+const GL_SAMPLES_PASSED: u32 = 0x8914;
+const GL_ANY_SAMPLES_PASSED: u32 = 0x8C2F;
+const GL_ANY_SAMPLES_PASSED_CONSERVATIVE: u32 = 0x8D6A;
+const GL_PRIMITIVES_GENERATED: u32 = 0x8C87;
+const GL_QUERY_RESULT: u32 = 0x8866;
+const GL_QUERY_RESULT_AVAILABLE: u32 = 0x8867;
+const GL_QUERY_RESULT_NO_WAIT: u32 = 0x9194;
+const GL_QUERY_BUFFER_BINDING: u32 = 0x9193;
+const GL_CURRENT_QUERY: u32 = 0x8865;
+
+/// Whether a query of `target` counts what draws produce.
+fn counts(target: u32) -> bool {
+    matches!(
+        target,
+        GL_SAMPLES_PASSED
+            | GL_ANY_SAMPLES_PASSED
+            | GL_ANY_SAMPLES_PASSED_CONSERVATIVE
+            | GL_PRIMITIVES_GENERATED
+    )
+}
+
+/// Ends the active counting queries `which` selects, before draws they
+/// must not count.
+unsafe fn pause_counting(f: &AutoFns, queries: &mut [Counting], which: impl Fn(u32) -> bool) {
+    for q in queries.iter_mut().filter(|q| !q.paused && which(q.target)) {
+        // SAFETY: the program's context is current (callers); the query
+        // is active on (target, index).
+        unsafe { (f.end_query_indexed)(q.target, q.index) };
+        q.paused = true;
+    }
+}
+
+/// Begins a new segment of every paused counting query.
+unsafe fn resume_counting(f: &AutoFns, queries: &mut [Counting]) {
+    for q in queries.iter_mut().filter(|q| q.paused) {
+        let mut seg = 0;
+        // SAFETY: the program's context is current (callers).
+        unsafe {
+            (f.gen_queries)(1, &mut seg);
+            (f.begin_query_indexed)(q.target, q.index, seg);
+        }
+        q.segments.push(seg);
+        q.paused = false;
+    }
 }
 
 impl AutoState {
@@ -568,7 +644,9 @@ unsafe fn load_projection(f: &AutoFns, projection: &[f64; 16], mode: u32) {
 }
 
 /// Draws `draw` into both eyes by `path` with `settings`; `restore`: put
-/// the matrices back between the eyes (a display list may change them).
+/// the matrices back between the eyes (a display list may change them);
+/// `queries`: the counting queries, kept off the right eye's draws.
+#[allow(clippy::too_many_arguments)] // the state of one draw, taken apart by its callers
 unsafe fn eyes(
     t: &Tables,
     path: Path,
@@ -576,6 +654,7 @@ unsafe fn eyes(
     layered: &Attachments,
     targets: &Targets,
     restore: bool,
+    queries: &mut [Counting],
     draw: &mut dyn FnMut(),
 ) {
     let f = &t.gl;
@@ -594,11 +673,15 @@ unsafe fn eyes(
                     (f.use_program)(target.program);
                 }
                 for eye in EYES {
+                    if eye == Eye::Right {
+                        pause_counting(f, queries, |_| true);
+                    }
                     set_uniform(f, target, eye_value(settings, Some(eye), true));
                     let bound = render_targets::bind_eye(targets, eye);
                     draw();
                     bound.restore();
                 }
+                resume_counting(f, queries);
                 set_uniform(f, target, eye_value(settings, None, false));
                 if standin {
                     (f.use_program)(0);
@@ -607,6 +690,9 @@ unsafe fn eyes(
             Path::Layers { fixed, target } => {
                 let saved = (fixed || restore).then(|| matrices(f));
                 for (i, eye) in EYES.into_iter().enumerate() {
+                    if i == 1 {
+                        pause_counting(f, queries, |_| true);
+                    }
                     if i == 1 && restore {
                         let m = saved.as_ref().expect("saved");
                         (f.matrix_mode)(GL_MODELVIEW);
@@ -628,6 +714,7 @@ unsafe fn eyes(
                     bound.restore();
                 }
                 layered.attach(GL_DRAW_FRAMEBUFFER, None);
+                resume_counting(f, queries);
                 if let Some(target) = target {
                     set_uniform(f, target, eye_value(settings, None, false));
                 }
@@ -670,8 +757,10 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
         Family::SideEffect => {
             if call.name.starts_with("glBeginTransformFeedback") {
                 cur.sc.with_auto(cur.draw, |st, _| st.feedback = true);
+                return draw();
             }
-            draw()
+            // SAFETY: the program's context is current on this thread.
+            unsafe { queries(&t.gl, cur, call, draw) }
         }
         Family::Draw
         | Family::BeginEnd
@@ -688,6 +777,210 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
             out.unwrap_or_else(|| R::from_bits(0))
         }
         _ => draw(),
+    }
+}
+
+/// The program's queries under automatic stereo ([`Counting`]):
+/// glBeginQuery*, glEndQuery*, glGetQueryObject*, glDeleteQueries*,
+/// glBeginConditionalRender*; the other commands of the family as they are.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn queries<R: Returned>(f: &AutoFns, cur: &Current, call: Call, draw: impl Fn() -> R) -> R {
+    let name = call.name;
+    let indexed = name.contains("QueryIndexed");
+    // SAFETY: contract (every GL call below is in the program's context).
+    unsafe {
+        if name.starts_with("glBeginQuery") {
+            let (target, index, id) = if indexed {
+                (call.u32(0), call.u32(1), call.u32(2))
+            } else {
+                (call.u32(0), 0, call.u32(1))
+            };
+            let r = draw();
+            if counts(target) {
+                // Only a query GL began (an error leaves none).
+                let mut current = 0;
+                (f.get_query_indexediv)(target, index, GL_CURRENT_QUERY, &mut current);
+                if current as u32 == id && id != 0 {
+                    cur.sc.with_auto(cur.draw, |st, _| {
+                        forget_segments(f, st, id);
+                        st.queries
+                            .retain(|q| (q.target, q.index) != (target, index));
+                        st.queries.push(Counting {
+                            target,
+                            index,
+                            id,
+                            segments: Vec::new(),
+                            paused: false,
+                        });
+                    });
+                }
+            }
+            return r;
+        }
+        if name.starts_with("glEndQuery") {
+            let (target, index) = (call.u32(0), if indexed { call.u32(1) } else { 0 });
+            let r = draw();
+            cur.sc.with_auto(cur.draw, |st, _| {
+                if let Some(i) = st
+                    .queries
+                    .iter()
+                    .position(|q| (q.target, q.index) == (target, index))
+                {
+                    let q = st.queries.remove(i);
+                    if !q.segments.is_empty() {
+                        st.segmented.push((q.id, q.target, q.segments));
+                    }
+                }
+            });
+            return r;
+        }
+        if name.starts_with("glDeleteQueries") {
+            let (n, ids) = (call.u32(0) as i32, call.ptr::<u32>(1));
+            if n > 0 && !ids.is_null() {
+                // SAFETY: GL's contract: n names at ids.
+                let ids = std::slice::from_raw_parts(ids, n as usize);
+                cur.sc.with_auto(cur.draw, |st, _| {
+                    for &id in ids {
+                        forget_segments(f, st, id);
+                        if let Some(i) = st.queries.iter().position(|q| q.id == id) {
+                            // Deleting the program's active query ends it: the
+                            // segment active in its place ends with it.
+                            let q = st.queries.remove(i);
+                            if !q.paused && !q.segments.is_empty() {
+                                (f.end_query_indexed)(q.target, q.index);
+                            }
+                            (f.delete_queries)(q.segments.len() as i32, q.segments.as_ptr());
+                        }
+                    }
+                });
+            }
+            return draw();
+        }
+        if name.starts_with("glGetQueryObject") {
+            return query_object(f, cur, call, draw);
+        }
+        if name.starts_with("glBeginConditionalRender") {
+            let (id, mode) = (call.u32(0), call.u32(1));
+            // The condition is the sum of the segments: render under an
+            // object whose own result says the same (waiting for them).
+            let chosen = cur.sc.with_auto(cur.draw, |st, _| {
+                let (_, _, segments) = st.segmented.iter().find(|(i, ..)| *i == id)?;
+                let result = |q: u32| {
+                    let mut v = 0u64;
+                    (f.get_query_objectui64v)(q, GL_QUERY_RESULT, &mut v);
+                    v
+                };
+                if result(id) != 0 {
+                    return Some(id);
+                }
+                Some(
+                    segments
+                        .iter()
+                        .copied()
+                        .find(|&q| result(q) != 0)
+                        .unwrap_or(id),
+                )
+            });
+            if let Some(q) = chosen {
+                (f.begin_conditional_render)(q, mode);
+                return R::from_bits(0);
+            }
+        }
+        draw()
+    }
+}
+
+/// Deletes the segments of the program's ended query `id`.
+unsafe fn forget_segments(f: &AutoFns, st: &mut AutoState, id: u32) {
+    if let Some(i) = st.segmented.iter().position(|(q, ..)| *q == id) {
+        let (_, _, segments) = st.segmented.swap_remove(i);
+        // SAFETY: the program's context is current (callers).
+        unsafe { (f.delete_queries)(segments.len() as i32, segments.as_ptr()) };
+    }
+}
+
+/// glGetQueryObject{iv,uiv,i64v,ui64v}(ARB, EXT) of a query with
+/// segments: its result is their sum (any, for the boolean targets), and
+/// it is available when all are.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn query_object<R: Returned>(
+    f: &AutoFns,
+    cur: &Current,
+    call: Call,
+    draw: impl Fn() -> R,
+) -> R {
+    let (id, pname, params) = (call.u32(0), call.u32(1), call.ptr::<u8>(2));
+    let name = call.name.trim_end_matches("ARB").trim_end_matches("EXT");
+    let width = if name.ends_with("64v") { 8 } else { 4 };
+    let signed = !name.ends_with("uiv") && !name.ends_with("ui64v");
+    // SAFETY: contract; GL's: params holds one value of the command's type.
+    unsafe {
+        let wanted = matches!(
+            pname,
+            GL_QUERY_RESULT | GL_QUERY_RESULT_NO_WAIT | GL_QUERY_RESULT_AVAILABLE
+        );
+        let mut before = [0u8; 8];
+        if wanted && !params.is_null() {
+            std::ptr::copy_nonoverlapping(params, before.as_mut_ptr(), width);
+        }
+        let r = draw();
+        if !wanted || params.is_null() || integer(f, GL_QUERY_BUFFER_BINDING) != 0 {
+            return r;
+        }
+        cur.sc.with_auto(cur.draw, |st, _| {
+            let Some((_, target, segments)) = st.segmented.iter().find(|(i, ..)| *i == id) else {
+                return;
+            };
+            let value = |q: u32, p: u32| {
+                let mut v = 0u64;
+                (f.get_query_objectui64v)(q, p, &mut v);
+                v
+            };
+            let available = segments
+                .iter()
+                .all(|&q| value(q, GL_QUERY_RESULT_AVAILABLE) != 0);
+            let mut own = [0u8; 8];
+            std::ptr::copy_nonoverlapping(params, own.as_mut_ptr(), width);
+            let own = if width == 8 {
+                u64::from_ne_bytes(own)
+            } else {
+                u64::from(u32::from_ne_bytes([own[0], own[1], own[2], own[3]]))
+            };
+            let out = match pname {
+                GL_QUERY_RESULT_AVAILABLE => u64::from(own != 0 && available),
+                GL_QUERY_RESULT_NO_WAIT if !available => {
+                    // Not available: params as the program left it.
+                    std::ptr::copy_nonoverlapping(before.as_ptr(), params, width);
+                    return;
+                }
+                _ => {
+                    let sum = segments
+                        .iter()
+                        .fold(own, |a, &q| a.saturating_add(value(q, GL_QUERY_RESULT)));
+                    if *target == GL_PRIMITIVES_GENERATED || *target == GL_SAMPLES_PASSED {
+                        sum
+                    } else {
+                        u64::from(sum != 0)
+                    }
+                }
+            };
+            if width == 8 {
+                std::ptr::copy_nonoverlapping(out.to_ne_bytes().as_ptr(), params, 8);
+            } else {
+                let max = if signed {
+                    i32::MAX as u64
+                } else {
+                    u32::MAX as u64
+                };
+                let v = out.min(max) as u32;
+                std::ptr::copy_nonoverlapping(v.to_ne_bytes().as_ptr(), params, 4);
+            }
+        });
+        r
     }
 }
 
@@ -833,9 +1126,16 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                         if execute {
                             let settings = st.settings();
                             let path = choose(t, cur, st, app_fbo, true);
-                            eyes(t, path, &settings, &layered, targets, true, &mut || {
-                                (f.call_list)(list)
-                            });
+                            eyes(
+                                t,
+                                path,
+                                &settings,
+                                &layered,
+                                targets,
+                                true,
+                                &mut st.queries,
+                                &mut || (f.call_list)(list),
+                            );
                         }
                         return;
                     }
@@ -864,15 +1164,23 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                         let settings = st.settings();
                         let path = choose(t, cur, st, app_fbo, false);
                         let list = st.list;
-                        eyes(t, path, &settings, &layered, targets, false, &mut || {
-                            (f.call_list)(list)
-                        });
+                        eyes(
+                            t,
+                            path,
+                            &settings,
+                            &layered,
+                            targets,
+                            false,
+                            &mut st.queries,
+                            &mut || (f.call_list)(list),
+                        );
                         return;
                     }
                     _ if st.in_begin => return draw(),
                     (Family::RasterPixels, name) => {
                         let settings = st.settings();
-                        return pixels(t, &settings, app_fbo, &layered, name, call, draw);
+                        let q = &mut st.queries;
+                        return pixels(t, &settings, app_fbo, &layered, name, call, q, draw);
                     }
                     (Family::Blit, _) => {
                         if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
@@ -920,21 +1228,36 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                         _ => None,
                     });
                     if (f.is_enabled)(GL_RASTERIZER_DISCARD) != 0 {
-                        return eyes(t, mono, &settings, &layered, targets, false, draw);
+                        let q = &mut st.queries;
+                        return eyes(t, mono, &settings, &layered, targets, false, q, draw);
                     }
                     if integer(f, GL_TRANSFORM_FEEDBACK_ACTIVE) != 0
                         && integer(f, GL_TRANSFORM_FEEDBACK_PAUSED) == 0
                     {
+                        let q = &mut st.queries;
                         (f.enable)(GL_RASTERIZER_DISCARD);
-                        eyes(t, mono, &settings, &layered, targets, false, draw);
+                        eyes(t, mono, &settings, &layered, targets, false, q, draw);
                         (f.disable)(GL_RASTERIZER_DISCARD);
                         (f.pause_transform_feedback)();
-                        eyes(t, path, &settings, &layered, targets, false, draw);
+                        // The mono draw generated the primitives: the eyes'
+                        // are not counted again.
+                        pause_counting(f, q, |t| t == GL_PRIMITIVES_GENERATED);
+                        eyes(t, path, &settings, &layered, targets, false, q, draw);
+                        resume_counting(f, q);
                         (f.resume_transform_feedback)();
                         return;
                     }
                 }
-                eyes(t, path, &settings, &layered, targets, lists, draw);
+                eyes(
+                    t,
+                    path,
+                    &settings,
+                    &layered,
+                    targets,
+                    lists,
+                    &mut st.queries,
+                    draw,
+                );
             }
         })
     })
@@ -942,6 +1265,7 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
 
 /// glDrawPixels, glBitmap, glCopyPixels (`name`) into each eye at the
 /// eye's raster position ([`crate::auto::fixed`]).
+#[allow(clippy::too_many_arguments)] // as eyes()
 unsafe fn pixels(
     t: &Tables,
     settings: &StereoSettings,
@@ -949,6 +1273,7 @@ unsafe fn pixels(
     layered: &Attachments,
     name: &str,
     call: Call,
+    queries: &mut [Counting],
     draw: &mut dyn FnMut(),
 ) {
     let f = &t.gl;
@@ -983,6 +1308,9 @@ unsafe fn pixels(
             (0.0, 0.0)
         };
         for (i, eye) in EYES.into_iter().enumerate() {
+            if i == 1 {
+                pause_counting(f, queries, |_| true);
+            }
             layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
             if read_too {
                 layered.attach(GL_READ_FRAMEBUFFER, Some(eye));
@@ -998,6 +1326,7 @@ unsafe fn pixels(
             }
         }
         layered.attach(GL_DRAW_FRAMEBUFFER, None);
+        resume_counting(f, queries);
         if read_too {
             layered.attach(GL_READ_FRAMEBUFFER, None);
         }
