@@ -320,8 +320,13 @@ impl LayeredEyes {
                 memory: [None, None],
                 memory_api: None,
             };
+            // A side of one pixel (Qt's 1x1 surface for making contexts):
+            // llvmpipe lays the array out otherwise than predicted
+            // (measured: 1x1, 64x1, 1x64; 2x2 and larger as predicted), and
+            // giving up would give up for every later window of the
+            // process. Such eyes are read back; they are never shown.
             let uuid = memory
-                .filter(|_| eye_memory::wanted())
+                .filter(|_| eye_memory::wanted() && width > 1 && height > 1)
                 .and_then(|m| eye_memory::llvmpipe_identity(gl).map(|u| (m, u)));
             for p in (0..2).filter(|&p| pairs[p]) {
                 eyes.colour[p] = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
