@@ -579,3 +579,63 @@ fn queries_count_the_mono_draws_once() {
         "the eyes are alike"
     );
 }
+
+/// Render targets smaller than the window (shadow and reflection maps,
+/// picking) stay mono, as 3D Vision left them; a target of the window's
+/// size is drawn in stereo. The same program shows its target's picture
+/// (a red quad at w = 2) on a quad of the window at the convergence
+/// (w = 4): a 64x64 target gives both eyes the same pixels there, a
+/// window-sized one shifts the red quad between the eyes.
+#[test]
+fn small_render_targets_stay_mono_and_window_sized_ones_are_stereo() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = build_once("auto_targets", |out| {
+        compile_plain(
+            &common::root().join("tests/c/auto_targets.c"),
+            out,
+            &["-lGL", "-lX11"],
+        )
+    });
+    let x = Xvfb::start(W + 40, H + 40);
+    for (size, stereo) in [("small", false), ("window", true)] {
+        let dir = common::scratch(&format!("auto-targets-{size}"));
+        let o = common::run_ok(
+            Command::new(&built().run)
+                .args([
+                    "--auto",
+                    "--separation",
+                    SEPARATION,
+                    "--convergence",
+                    CONVERGENCE,
+                ])
+                .arg("--capture")
+                .arg(&dir)
+                .arg(&exe)
+                .arg(size)
+                .env("DISPLAY", &x.display),
+        );
+        assert!(
+            String::from_utf8_lossy(&o.stdout).contains("error 0x0"),
+            "{size}: {o:?}"
+        );
+        let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+        let red = centre(&eyes[0], [255, 0, 0]).unwrap_or_else(|| panic!("{size}: no red left"));
+        let right = centre(&eyes[1], [255, 0, 0]).unwrap_or_else(|| panic!("{size}: no red right"));
+        let d = differing(&eyes[0], &eyes[1]).len();
+        if stereo {
+            // Near (w = 2 < C = 4): the right eye's red is to the left, by
+            // its parallax in the target, which the window's quad shows at
+            // 0.6 of its width (x = ±2.4 at w = 4 of a ±1 frustum).
+            let s = 0.07 * SEPARATION.parse::<f64>().unwrap() / 100.0;
+            let want = s * (1.0 - 4.0 / 2.0) * W as f64 * 0.6;
+            assert!(
+                (right.0 - red.0 - want).abs() < 1.0,
+                "{size}: red moved by {:.2}, want {want:.2}",
+                right.0 - red.0
+            );
+        } else {
+            assert_eq!(d, 0, "{size}: the eyes differ in {d} pixels");
+            assert_eq!(red, right, "{size}: the red quad moved");
+        }
+    }
+}

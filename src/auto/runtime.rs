@@ -227,6 +227,8 @@ pub struct AutoState {
     list: u32,
     /// Between glBegin and glEnd into the layer's list.
     in_begin: bool,
+    /// Between a glBegin GL executed (into a mono target) and its glEnd.
+    in_mono_begin: bool,
     /// The program compiles a display list: (list, convert to execute at
     /// glEndList).
     compiling: Option<(u32, bool)>,
@@ -1079,6 +1081,15 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
     let f = &t.gl;
     let group = cur.sc.group();
     cur.sc.with_auto(cur.draw, |st, eyes_of| {
+        if st.in_mono_begin {
+            // Between a glBegin GL executed and its glEnd only vertex
+            // commands (and glCallList) are allowed: nothing of the
+            // layer's own.
+            if call.name == "glEnd" {
+                st.in_mono_begin = false;
+            }
+            return draw();
+        }
         let Some((mut app_fbo, mut layered)) = eyes_of else {
             return draw();
         };
@@ -1142,12 +1153,14 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                     _ if st.compiling.is_some() => return draw(),
                     (Family::BeginEnd, "glBegin") => {
                         if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+                            st.in_mono_begin = true;
                             return draw();
                         }
                         if st.list == 0 {
                             st.list = (f.gen_lists)(1);
                         }
                         if st.list == 0 {
+                            st.in_mono_begin = true;
                             return draw();
                         }
                         (f.new_list)(st.list, GL_COMPILE);
