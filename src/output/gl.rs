@@ -209,6 +209,19 @@ pub fn is_software_renderer(renderer: &str) -> bool {
         || r.contains("software rasterizer")
 }
 
+/// Whether the device behind a GL_RENDERER string is the CPU: one of
+/// Mesa's software rasterizers ([`is_software_renderer`]), or zink over
+/// lavapipe ("zink (llvmpipe …)", "zink (Lavapipe …)"), whose Vulkan device
+/// renders on this process's cores. There the CPU row kernels compose a
+/// window's frame from the eyes read back (then one upload and a blit)
+/// faster than the renderer runs the shader passes (BENCHMARKS.md, "Where
+/// each format is composed"). virgl's device is the host's, not ours.
+pub fn composes_on_cpu(renderer: &str) -> bool {
+    let r = renderer.trim_start().to_ascii_lowercase();
+    is_software_renderer(renderer)
+        || (r.starts_with("zink") && (r.contains("(llvmpipe") || r.contains("(lavapipe")))
+}
+
 /// The shader programs; one per family of modes and variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kernel {
@@ -508,6 +521,9 @@ pub struct GlCompositor {
     limit: u32,
     /// Whether the renderer is a software rasterizer (None: not queried yet).
     software: Option<bool>,
+    /// Whether its device is the CPU ([`composes_on_cpu`]; None: not
+    /// queried yet).
+    cpu_device: Option<bool>,
     /// The blit and CPU ways into a window ([`super::window`]).
     window: WindowPaths,
 }
@@ -545,6 +561,17 @@ impl GlCompositor {
         *self
             .software
             .get_or_insert_with(|| is_software_renderer(&unsafe { gl.string(GL_RENDERER) }))
+    }
+
+    /// Whether this context's device is the CPU ([`composes_on_cpu`]).
+    ///
+    /// # Safety
+    /// The compositor context must be current.
+    pub unsafe fn cpu_device(&mut self, gl: &Gl) -> bool {
+        // SAFETY: contract.
+        *self
+            .cpu_device
+            .get_or_insert_with(|| composes_on_cpu(&unsafe { gl.string(GL_RENDERER) }))
     }
 
     /// Composes `job` into the compositor's capture framebuffer and returns
@@ -662,9 +689,9 @@ impl GlCompositor {
             if (cw, ch) == (width, height) {
                 // SAFETY: contract.
                 let path = unsafe {
-                    let software = self.software(gl);
+                    let cpu = self.cpu_device(gl);
                     let alpha = WindowPaths::has_alpha(gl, framebuffer, buf);
-                    window_path(job.mode, &options, software, alpha)
+                    window_path(job.mode, &options, cpu, alpha)
                 };
                 if let Some(path) = path {
                     // SAFETY: contract.
@@ -751,9 +778,9 @@ impl GlCompositor {
         let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
         // SAFETY: contract.
         unsafe {
-            let software = self.software(gl);
+            let cpu = self.cpu_device(gl);
             gl.take_error();
-            if unscaled && preferred_path(software, job.mode, &options) == ComposePath::Cpu {
+            if unscaled && preferred_path(cpu, job.mode, &options) == ComposePath::Cpu {
                 self.window.cpu_image(gl, job, &options, out)?;
                 gl.check("reading the eyes back")?;
                 return Ok(true);
@@ -1320,6 +1347,25 @@ mod tests {
         assert!(!is_software_renderer(
             "virgl (LLVMPIPE (LLVM 15.0.6, 256 bits))"
         ));
+    }
+
+    #[test]
+    fn zink_over_lavapipe_composes_on_the_cpu_and_gpus_do_not() {
+        for cpu in [
+            "llvmpipe (LLVM 15.0.6, 256 bits)",
+            "softpipe",
+            "zink (llvmpipe (LLVM 15.0.6, 256 bits))",
+            "zink (Lavapipe (LLVM 19.1.7, 256 bits))",
+        ] {
+            assert!(composes_on_cpu(cpu), "{cpu}");
+        }
+        for gpu in [
+            "Mesa Intel(R) UHD Graphics 620 (KBL GT2)",
+            "zink (AMD Radeon RX 6600 (RADV NAVI23))",
+            "virgl (LLVMPIPE (LLVM 15.0.6, 256 bits))",
+        ] {
+            assert!(!composes_on_cpu(gpu), "{gpu}");
+        }
     }
 
     #[test]
