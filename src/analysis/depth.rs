@@ -40,6 +40,11 @@ impl DepthImage {
         })
     }
 
+    /// Its values, rows bottom first (the image's buffer, given back).
+    pub fn into_values(self) -> Vec<f32> {
+        self.values
+    }
+
     /// A depth image whose pixel (x, y) (y = 0 at the bottom) is `f(x, y)`.
     pub fn from_fn(width: u32, height: u32, mut f: impl FnMut(u32, u32) -> f32) -> DepthImage {
         crate::image::check_size(width, height).expect("depth image size");

@@ -59,14 +59,16 @@ pub struct Frame {
 ///
 /// # Safety
 /// A context sharing the eyes' objects is current on this thread.
-pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame) {
+pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame, scratch: &mut Scratch) {
     let window = frame.window.then(|| (None, (eyes.width(), eyes.height())));
     let target = frame.target.map(|(t, size)| (Some(t), size));
     // SAFETY: contract.
     let Some(c) = window
         .into_iter()
         .chain(target)
-        .find_map(|(source, size)| unsafe { centre_of(gl, eyes, fbo, frame, source, size) })
+        .find_map(|(source, size)| unsafe {
+            centre_of(gl, eyes, fbo, frame, source, size, scratch)
+        })
     else {
         return;
     };
@@ -91,6 +93,7 @@ unsafe fn centre_of(
     frame: &Frame,
     source: Option<Attachments>,
     (width, height): (u32, u32),
+    scratch: &mut Scratch,
 ) -> Option<f64> {
     let (x, y, w, h) = window(frame.viewport);
     let (x0, y0) = (x.max(0), y.max(0));
@@ -100,14 +103,17 @@ unsafe fn centre_of(
     }
     let rect = (x0, y0, x1 - x0, y1 - y0);
     // SAFETY: contract; the rectangle is inside what is read.
-    let depth = unsafe {
+    let read = unsafe {
         match source {
-            Some(target) => target.read_left_depth(gl, fbo, rect)?,
-            None => eyes.read_left_depth(gl, fbo, rect)?,
+            Some(target) => target.read_left_depth(gl, fbo, rect, &mut scratch.depth),
+            None => eyes.read_left_depth(gl, fbo, rect, &mut scratch.depth),
         }
     };
+    if !read {
+        return None;
+    }
     centre(
-        depth,
+        scratch,
         (rect.2 as u32, rect.3 as u32),
         &frame.perspective,
         frame.depth_range,
@@ -181,12 +187,22 @@ pub fn window((x, y, w, h): (i32, i32, i32, i32)) -> (i32, i32, i32, i32) {
     (wx, wy, ww, wh)
 }
 
+/// The buffers of a measurement, kept by the context from one to the next
+/// (a measured frame allocates nothing once they have grown).
+#[derive(Debug, Default)]
+pub struct Scratch {
+    /// Window depths read back.
+    pub depth: Vec<f32>,
+    /// Their distances.
+    distances: Vec<f64>,
+}
+
 /// The convergence for a frame: the median eye distance of the pixels of
-/// `depth` (`width` × `height` window depths, the central window) that
-/// hold geometry (not at `clear_depth`), drawn with `perspective` and
+/// `scratch.depth` (`width` × `height` window depths, the central window)
+/// that hold geometry (not at `clear_depth`), drawn with `perspective` and
 /// glDepthRange `depth_range`. None when none does.
 pub fn centre(
-    depth: Vec<f32>,
+    scratch: &mut Scratch,
     (width, height): (u32, u32),
     perspective: &Perspective,
     depth_range: (f64, f64),
@@ -194,11 +210,14 @@ pub fn centre(
 ) -> Option<f64> {
     let frustum = perspective.frustum()?;
     let mapping = DepthMapping::new(&frustum, depth_range).ok()?;
+    let depth = std::mem::take(&mut scratch.depth);
     let mut capture = DepthCapture::new(DepthImage::new(width, height, depth).ok()?);
     capture.depth_range = depth_range;
     capture.clear_depth = clear_depth;
-    let mut d = Vec::new();
+    let d = &mut scratch.distances;
+    d.clear();
     capture.for_each_covered(0.0, 1.0, |z| d.push(mapping.distance(f64::from(z))));
+    scratch.depth = capture.depth.into_values();
     if d.is_empty() {
         return None;
     }
@@ -264,9 +283,17 @@ mod tests {
         let mut v = vec![depth(5.0); 10];
         v.extend([depth(20.0); 6]);
         v.extend([1.0; 4]);
-        let c = centre(v, (5, 4), &p, (0.0, 1.0), 1.0).unwrap();
+        let mut scratch = Scratch {
+            depth: v,
+            ..Default::default()
+        };
+        let c = centre(&mut scratch, (5, 4), &p, (0.0, 1.0), 1.0).unwrap();
         assert!((c - 5.0).abs() < 1e-3, "{c}");
-        assert_eq!(centre(vec![1.0; 20], (5, 4), &p, (0.0, 1.0), 1.0), None);
+        // The buffers are kept for the next measurement.
+        assert_eq!(scratch.depth.len(), 20);
+        assert!(scratch.distances.capacity() >= 16);
+        scratch.depth = vec![1.0; 20];
+        assert_eq!(centre(&mut scratch, (5, 4), &p, (0.0, 1.0), 1.0), None);
     }
 
     #[test]

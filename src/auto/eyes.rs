@@ -494,7 +494,7 @@ impl LayeredEyes {
 
     /// The left eye's depth (layer 0 of the depth array) in `(x, y, w, h)`
     /// as window depths, rows bottom first, read through `fbo`
-    /// ([`Attachments::read_left_depth`]). None without depth.
+    /// ([`Attachments::read_left_depth`]). Into `out`; false without depth.
     ///
     /// # Safety
     /// As [`Attachments::read_left_depth`].
@@ -503,9 +503,10 @@ impl LayeredEyes {
         gl: &Gl,
         fbo: u32,
         rect: (i32, i32, i32, i32),
-    ) -> Option<Vec<f32>> {
+        out: &mut Vec<f32>,
+    ) -> bool {
         // SAFETY: contract.
-        unsafe { self.attachments().read_left_depth(gl, fbo, rect) }
+        unsafe { self.attachments().read_left_depth(gl, fbo, rect, out) }
     }
 
     /// Whether the shared storage is where it is predicted: a marker
@@ -738,7 +739,7 @@ impl Attachments {
     /// stereoized render target) in `(x, y, w, h)`
     /// as window depths, rows bottom first, read through `fbo`, a
     /// framebuffer object of the current context (its depth attachment
-    /// is left empty and GL_READ_FRAMEBUFFER at 0). None without depth.
+    /// is left empty and GL_READ_FRAMEBUFFER at 0). Into `out`; false without depth.
     ///
     /// # Safety
     /// A context sharing the arrays is current; the rectangle is inside
@@ -748,11 +749,14 @@ impl Attachments {
         gl: &Gl,
         fbo: u32,
         (x, y, w, h): (i32, i32, i32, i32),
-    ) -> Option<Vec<f32>> {
+        out: &mut Vec<f32>,
+    ) -> bool {
         if self.depth == 0 || w <= 0 || h <= 0 {
-            return None;
+            return false;
         }
-        let mut out = vec![0.0f32; w as usize * h as usize];
+        // The buffer keeps its capacity from one measurement to the next.
+        out.clear();
+        out.resize(w as usize * h as usize, 0.0);
         // SAFETY: contract; `out` holds w × h floats at alignment 4.
         unsafe {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
@@ -783,7 +787,7 @@ impl Attachments {
             );
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         }
-        Some(out)
+        true
     }
 
     /// The first pair's colour array (the eyes' size is its size).

@@ -252,6 +252,8 @@ pub struct AutoState {
     /// present (its arrays and size): where automatic convergence
     /// measures a frame that left the window's eyes undrawn.
     target_drawn: Option<(Attachments, (u32, u32))>,
+    /// Automatic convergence's buffers.
+    pub measure: converge::Scratch,
     /// The program's counting queries active now ([`Counting`]).
     queries: Vec<Counting>,
     /// Ended counting queries that have segments: (the program's name,

@@ -1095,9 +1095,10 @@ impl StereoContext {
         if let Some(frame) = measured {
             let fb = &drawn.fb;
             if let Some(eyes) = fb.layered() {
+                let scratch = &mut st.auto.measure;
                 // SAFETY: the layer's context, sharing the program's
                 // objects, is current; `read_fbo` is of that context.
-                unsafe { crate::auto::converge::measure(gl, eyes, fb.read_fbo(), &frame) };
+                unsafe { crate::auto::converge::measure(gl, eyes, fb.read_fbo(), &frame, scratch) };
             }
         }
         self.compose_and_swap(r, st, (drawable, x_window), window, frame_index)
