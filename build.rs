@@ -27,6 +27,7 @@ fn main() {
     // libglstereo_preload.so this soname too.
     println!("cargo:rustc-link-arg=-Wl,-soname,libglstereo.so.0");
     link_soname(&out_dir);
+    avx512_cfg();
 
     let mut config = cbindgen::Config::from_file(crate_dir.join("cbindgen.toml"))
         .expect("cbindgen.toml is readable and valid");
@@ -107,5 +108,28 @@ fn link_soname(out_dir: &std::path::Path) {
             "cargo:warning=cannot make {} (a C program linked here would not start): {e}",
             link.display()
         );
+    }
+}
+
+/// `cfg(glstereo_avx512)` where the compiler has the AVX-512 intrinsics
+/// and target features (stable since Rust 1.89; the crate's MSRV is
+/// older): the AVX-512 kernels of `src/output` are compiled only then.
+fn avx512_cfg() {
+    println!("cargo:rustc-check-cfg=cfg(glstereo_avx512)");
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    let version = std::process::Command::new(rustc)
+        .arg("--version")
+        .output()
+        .ok()
+        .and_then(|o| String::from_utf8(o.stdout).ok());
+    // "rustc 1.95.0 (…)"
+    let minor = version.as_deref().and_then(|v| {
+        let mut parts = v.split_whitespace().nth(1)?.split('.');
+        let major: u32 = parts.next()?.parse().ok()?;
+        let minor: u32 = parts.next()?.parse().ok()?;
+        Some(if major > 1 { u32::MAX } else { minor })
+    });
+    if minor.is_some_and(|m| m >= 89) {
+        println!("cargo:rustc-cfg=glstereo_avx512");
     }
 }

@@ -786,10 +786,10 @@ fn the_fast_composite_is_the_reference_byte_for_byte() {
                     for frame in [0, 1] {
                         let got = compose(m, o, l, r, frame).unwrap();
                         let want = glstereo::output::cpu::reference(m, o, l, r, frame).unwrap();
-                        // -dubois of changed eyes interpolates the sRGB curve.
-                        let changed = o.crosstalk != 0.0 || o.saturation != 1.0;
+                        // -dubois is within 1: of changed eyes it interpolates
+                        // the sRGB curve, with AVX-512 it is fixed point.
                         let dubois = matches!(m, OutputMode::Anaglyph(_, AnaglyphMethod::Dubois));
-                        let tol = u8::from(changed && dubois);
+                        let tol = u8::from(dubois);
                         assert_within(
                             &got,
                             &want,

@@ -2,7 +2,8 @@
 //! (fast: the row kernels of `output/rows.rs`) and [`reference()`], the
 //! "oracle": pure Rust, no GL, one pixel at a time, the rules below taken
 //! literally. The fast path gives the reference's bytes (but for `-dubois`
-//! of eyes changed by saturation or crosstalk, within 1 unit); the GL
+//! of eyes changed by saturation or crosstalk, and for `-dubois` on a
+//! processor with AVX-512, within 1 unit); the GL
 //! compositor reproduces it within 1 unit per channel.
 //!
 //! # Numbers

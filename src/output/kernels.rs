@@ -3,10 +3,11 @@
 //! as [`crate::image::as_words`] reads an image on a little-endian machine).
 //!
 //! Every kernel computes exactly what [`super::cpu::reference`] computes,
-//! byte for byte, with one exception: `-dubois` of eyes changed by
+//! byte for byte, with two exceptions, both within 1 unit of the
+//! reference (see [`super::dubois_lut`]): `-dubois` of eyes changed by
 //! saturation or crosstalk (whose channels are no longer whole numbers)
-//! decodes sRGB by interpolating a table instead of calling `powf`, which
-//! keeps it within 1 unit of the reference (see [`super::dubois_lut`]).
+//! decodes sRGB by interpolating a table instead of calling `powf`; and
+//! `-dubois` with AVX-512 computes in fixed point.
 //!
 //! Two kinds of kernels:
 //!
@@ -18,8 +19,9 @@
 //!   crosstalk ([`Stage`]) and the mode ([`PairOp`]) with the reference's
 //!   operations in the reference's order, and packed with its rounding.
 //!   Loops over fixed-size arrays, which the compiler turns into vector
-//!   code; [`with_simd`] compiles them once more for AVX2 and picks that
-//!   copy at run time where the processor has it.
+//!   code; [`with_simd`] compiles them once more for AVX2 and once for
+//!   AVX-512 and picks the copy at run time that the processor can run
+//!   ([`Simd`]).
 //!
 //! Output alpha is always 255 and input alpha is ignored; every word
 //! written goes through the caller's `px` (a window's byte order).
@@ -197,13 +199,13 @@ impl PairOp {
     };
 
     /// `out[x] = op(a[x], b[x])` along a row (the same length, x counted
-    /// from column 0), each word through `px`; `avx2` as [`with_simd`]
+    /// from column 0), each word through `px`; `simd` as [`with_simd`]
     /// passes it; `memo` as [`Dubois::row`] takes it.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn row(
         &self,
-        avx2: bool,
+        simd: Simd,
         stage: Stage,
         memo: &mut Memo,
         a: &[u32],
@@ -262,7 +264,7 @@ impl PairOp {
                     },
                 );
             }
-            PairOp::Dubois(d) => d.row(avx2, stage, memo, a, b, out, px),
+            PairOp::Dubois(d) => d.row(simd, stage, memo, a, b, out, px),
             op => chunks(
                 a,
                 b,
@@ -358,22 +360,93 @@ pub(crate) fn chunks(
     }
 }
 
-/// Runs `f` with vector code for this processor: `f::<true>` compiled for
-/// AVX2 when the processor has it (checked once, cached by std), else
-/// `f::<false>` for the baseline. `f` must be `#[inline(always)]` all the
-/// way down for the AVX2 copy to be AVX2 code.
-#[inline(always)]
-pub(crate) fn with_simd<T>(f: impl FnOnce(bool) -> T) -> T {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        #[target_feature(enable = "avx2")]
-        fn avx2<T>(f: impl FnOnce(bool) -> T) -> T {
-            f(true)
+/// The vector instructions a kernel may use, from none to AVX-512 (the
+/// subset glstereo uses: F, BW, VL, DQ, VBMI, VNNI, with AVX2 and FMA;
+/// only where the compiler has them, Rust 1.89 on: `cfg(glstereo_avx512)`).
+/// Ordered: a level has everything the levels below it have.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Simd {
+    Scalar,
+    Avx2,
+    Avx512,
+}
+
+impl Simd {
+    /// Every level, lowest first.
+    #[cfg(test)]
+    pub(crate) const ALL: [Simd; 3] = [Simd::Scalar, Simd::Avx2, Simd::Avx512];
+
+    /// The highest level this processor has (std caches the checks).
+    pub(crate) fn detected() -> Simd {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::is_x86_feature_detected as has;
+            #[cfg(glstereo_avx512)]
+            #[allow(clippy::incompatible_msrv)]
+            // Only compiled with Rust ≥ 1.89 (build.rs).
+            if has!("avx2")
+                && has!("fma")
+                && has!("avx512f")
+                && has!("avx512bw")
+                && has!("avx512vl")
+                && has!("avx512dq")
+                && has!("avx512vbmi")
+                && has!("avx512vnni")
+            {
+                return Simd::Avx512;
+            }
+            if has!("avx2") {
+                return Simd::Avx2;
+            }
         }
-        // SAFETY: the processor has AVX2 (checked just above).
-        return unsafe { avx2(f) };
+        Simd::Scalar
     }
-    f(false)
+
+    /// Whether AVX2 may be used.
+    #[inline(always)]
+    pub(crate) fn avx2(self) -> bool {
+        self >= Simd::Avx2
+    }
+
+    /// Whether AVX-512 (the subset above) may be used.
+    #[inline(always)]
+    pub(crate) fn avx512(self) -> bool {
+        self >= Simd::Avx512
+    }
+}
+
+/// Runs `f` with vector code for this processor: `f` compiled for
+/// AVX-512 or AVX2 where the processor has them (checked once, cached by
+/// std), else for the baseline, and told which ([`Simd`]); `max` caps the
+/// level (tests force each level with it). `f` must be `#[inline(always)]`
+/// all the way down for the copies to be vector code.
+#[inline(always)]
+pub(crate) fn with_simd<T>(max: Simd, f: impl FnOnce(Simd) -> T) -> T {
+    #[cfg(target_arch = "x86_64")]
+    match max.min(Simd::detected()) {
+        #[cfg(glstereo_avx512)]
+        Simd::Avx512 => {
+            #[target_feature(
+                enable = "avx2,fma,avx512f,avx512bw,avx512vl,avx512dq,avx512vbmi,avx512vnni"
+            )]
+            fn avx512<T>(f: impl FnOnce(Simd) -> T) -> T {
+                f(Simd::Avx512)
+            }
+            // SAFETY: the processor has these features (Simd::detected).
+            return unsafe { avx512(f) };
+        }
+        Simd::Avx2 => {
+            #[target_feature(enable = "avx2")]
+            fn avx2<T>(f: impl FnOnce(Simd) -> T) -> T {
+                f(Simd::Avx2)
+            }
+            // SAFETY: the processor has AVX2 (Simd::detected).
+            return unsafe { avx2(f) };
+        }
+        _ => {}
+    }
+    let _ = max;
+    f(Simd::Scalar)
 }
 
 #[cfg(test)]

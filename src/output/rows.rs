@@ -25,7 +25,7 @@
 //! exact). Every word goes through the caller's `px` (a window's byte
 //! order). The result is byte for byte [`super::cpu::reference`] (and its
 //! resampling), but for `-dubois` of eyes changed by saturation or
-//! crosstalk (within 1, see [`super::dubois_lut`]).
+//! crosstalk, or with AVX-512 (within 1, see [`super::dubois_lut`]).
 
 use std::ops::Range;
 
@@ -35,7 +35,7 @@ use crate::stereo::eye_memory::Rows;
 
 use super::cpu::{Tap, tap};
 use super::dubois_lut::Memo;
-use super::kernels::{ALPHA, PairOp, Planes, Stage, average2, average4, chunks, with_simd};
+use super::kernels::{ALPHA, PairOp, Planes, Simd, Stage, average2, average4, chunks, with_simd};
 use super::layout::{Placement, WindowFit, composite_size, placements, window_fit};
 use super::mode::OutputMode;
 use super::options::OutputOptions;
@@ -322,17 +322,32 @@ impl Frame {
         scratch: &mut Scratch,
         px: impl Fn(u32) -> u32 + Copy,
     ) {
+        self.write_with(Simd::Avx512, eyes, rows, target, scratch, px)
+    }
+
+    /// [`Frame::write`] with vector code of level `max` at most (tests
+    /// check every level with it).
+    pub(crate) fn write_with(
+        &self,
+        max: Simd,
+        eyes: [Option<EyeRows<'_>>; 2],
+        rows: Range<u32>,
+        target: &mut Target<'_>,
+        scratch: &mut Scratch,
+        px: impl Fn(u32) -> u32 + Copy,
+    ) {
         scratch.memo = Memo::default();
         with_simd(
+            max,
             #[inline(always)]
-            |avx2| self.write_rows(avx2, eyes, rows, target, scratch, px),
+            |simd| self.write_rows(simd, eyes, rows, target, scratch, px),
         )
     }
 
     #[inline(always)]
     fn write_rows(
         &self,
-        avx2: bool,
+        simd: Simd,
         eyes: [Option<EyeRows<'_>>; 2],
         rows: Range<u32>,
         target: &mut Target<'_>,
@@ -353,12 +368,12 @@ impl Frame {
             }
             let y = y as u32;
             if !scaled && fit.x == 0 && cw == tw {
-                self.composite_row(avx2, eyes, y, target.row(t), scratch, px);
+                self.composite_row(simd, eyes, y, target.row(t), scratch, px);
                 continue;
             }
             if !scaled {
                 // Cropped or centred, pixel for pixel.
-                let slot = self.cached_row(avx2, eyes, y, scratch);
+                let slot = self.cached_row(simd, eyes, y, scratch);
                 let line = &scratch.rows[slot].1;
                 let out = target.row(t);
                 out.fill(black_px);
@@ -377,12 +392,12 @@ impl Frame {
             // (No closures around the composing: they would not be
             // inlined into the vector code.)
             let s0 = if v0.is_none() {
-                Some(self.cached_row(avx2, eyes, i0, scratch))
+                Some(self.cached_row(simd, eyes, i0, scratch))
             } else {
                 None
             };
             let s1 = if v1.is_none() {
-                Some(self.cached_row_besides(avx2, eyes, i1, s0.unwrap_or(0), scratch))
+                Some(self.cached_row_besides(simd, eyes, i1, s0.unwrap_or(0), scratch))
             } else {
                 None
             };
@@ -417,7 +432,7 @@ impl Frame {
                 store(a, out, px);
             } else {
                 sample_store(
-                    avx2,
+                    simd,
                     (r0, r1, vt.f),
                     window_taps.get(cw, fit.width),
                     out,
@@ -458,7 +473,7 @@ impl Frame {
     #[inline(always)]
     fn cached_row_besides(
         &self,
-        avx2: bool,
+        simd: Simd,
         eyes: [Option<EyeRows<'_>>; 2],
         y: u32,
         keep: usize,
@@ -471,7 +486,7 @@ impl Frame {
         let mut line = std::mem::take(&mut scratch.rows[slot].1);
         line.resize(self.composite.0 as usize, 0);
         scratch.rows[slot].0 = None;
-        self.composite_row(avx2, eyes, y, &mut line, scratch, |v| v);
+        self.composite_row(simd, eyes, y, &mut line, scratch, |v| v);
         scratch.rows[slot] = (Some(y), line);
         slot
     }
@@ -480,7 +495,7 @@ impl Frame {
     #[inline(always)]
     fn cached_row(
         &self,
-        avx2: bool,
+        simd: Simd,
         eyes: [Option<EyeRows<'_>>; 2],
         y: u32,
         scratch: &mut Scratch,
@@ -491,14 +506,14 @@ impl Frame {
             [Some(_), Some(_)] | [Some(_), None] => 0,
             _ => 1,
         };
-        self.cached_row_besides(avx2, eyes, y, keep, scratch)
+        self.cached_row_besides(simd, eyes, y, keep, scratch)
     }
 
     /// Composite row `y` into `out` (the composite's width).
     #[inline(always)]
     fn composite_row(
         &self,
-        avx2: bool,
+        simd: Simd,
         eyes: [Option<EyeRows<'_>>; 2],
         y: u32,
         out: &mut [u32],
@@ -520,7 +535,7 @@ impl Frame {
                     op => op,
                 };
                 let (a, b) = (eye(a).row(y), eye(b).row(y));
-                op.row(avx2, self.stage, &mut scratch.memo, a, b, out, px);
+                op.row(simd, self.stage, &mut scratch.memo, a, b, out, px);
             }
             Source::Places(places) => {
                 let inside = |p: &Placement| p.width > 0 && y >= p.y && y < p.y + p.height;
@@ -535,7 +550,7 @@ impl Frame {
                 for (p, i) in places.iter().filter(|(p, _)| inside(p)) {
                     let other = eyes[1 - i];
                     let span = &mut out[p.x as usize..(p.x + p.width) as usize];
-                    self.span(avx2, p, eye(*i), other, y - p.y, span, scratch, px);
+                    self.span(simd, p, eye(*i), other, y - p.y, span, scratch, px);
                 }
             }
         }
@@ -546,7 +561,7 @@ impl Frame {
     #[inline(always)]
     fn span(
         &self,
-        avx2: bool,
+        simd: Simd,
         p: &Placement,
         e: EyeRows<'_>,
         o: Option<EyeRows<'_>>,
@@ -610,7 +625,7 @@ impl Frame {
         } = scratch;
         let ht = (p.width != w).then(|| span_taps.get(w, p.width));
         if let (Some(ht), 0.0) = (ht, k) {
-            sample_store(avx2, (r0, r1, vt.f), ht, out, px);
+            sample_store(simd, (r0, r1, vt.f), ht, out, px);
             return;
         }
         let ht = ht.map(|t| &t.taps[..]);
@@ -648,11 +663,11 @@ fn sample(
 }
 
 /// [`sample`] then [`store`], pixel by pixel from the two rows (with AVX2
-/// gathers when `avx2`): each output pixel's two columns are sampled
+/// gathers when `simd` has AVX2): each output pixel's two columns are sampled
 /// between the rows, then between each other, as the reference does.
 #[inline(always)]
 fn sample_store(
-    avx2: bool,
+    simd: Simd,
     (r0, r1, f): (&[u32], &[u32], f32),
     ht: &TapCache,
     out: &mut [u32],
@@ -660,11 +675,11 @@ fn sample_store(
 ) {
     let mut done = 0;
     #[cfg(target_arch = "x86_64")]
-    if avx2 {
-        // SAFETY: `avx2` says the processor has AVX2 (see with_simd).
+    if simd.avx2() {
+        // SAFETY: `simd` says the processor has AVX2 (see with_simd).
         done = unsafe { gather_store((r0, r1, f), ht, out, px) };
     }
-    let _ = avx2;
+    let _ = simd;
     let column = |i: usize| lerp(unpack(r0[i]), unpack(r1[i]), f);
     for (o, t) in out.iter_mut().zip(&ht.taps).skip(done) {
         *o = px(pack(lerp(column(t.i0), column(t.i1), t.f)));
@@ -791,6 +806,7 @@ mod tests {
     /// Writes the frame from the eyes stored bottom row first (as GL
     /// keeps them), in bands of `band` rows when the frame allows it.
     fn written(
+        simd: Simd,
         mode: OutputMode,
         o: &OutputOptions,
         l: &Image,
@@ -833,7 +849,7 @@ mod tests {
             } else {
                 frame.rows_of_band(y0..y0 + n)
             };
-            frame.write(eyes, out_rows, &mut target, &mut scratch, |v| v);
+            frame.write_with(simd, eyes, out_rows, &mut target, &mut scratch, |v| v);
             y0 += n;
         }
         out
@@ -860,16 +876,23 @@ mod tests {
                     for size in [(cw, ch), (w, h), (40, 31), (9, 7), (cw / 2, ch / 2)] {
                         let size = (size.0.max(1), size.1.max(1));
                         let want = fitted(&reference, mode, size);
-                        for band in [h, 5] {
-                            let got = written(mode, o, &l, &r, size, band);
+                        for (band, simd) in [h, 5]
+                            .into_iter()
+                            .flat_map(|b| Simd::ALL.map(|s| (b, s)))
+                            .filter(|&(_, s)| s <= Simd::detected())
+                        {
+                            let got = written(simd, mode, o, &l, &r, size, band);
                             let (d, x, y, c) = got.max_difference(&want).unwrap();
                             let changed = *o != OutputOptions::default();
                             let dubois =
                                 matches!(mode, OutputMode::Anaglyph(_, AnaglyphMethod::Dubois));
+                            // Dubois within 1 when the eyes are changed or
+                            // in AVX-512's fixed point; everything else exact.
+                            let tol = dubois && (changed || simd == Simd::Avx512);
                             assert!(
-                                d <= u8::from(changed && dubois),
-                                "{mode} {w}x{h} into {size:?} (bands of {band}), {o:?}: ({x}, {y}) \
-                                 channel {c} is {:?}, want {:?}",
+                                d <= u8::from(tol),
+                                "{mode} {w}x{h} into {size:?} (bands of {band}, {simd:?}), {o:?}: \
+                                 ({x}, {y}) channel {c} is {:?}, want {:?}",
                                 got.get(x, y),
                                 want.get(x, y)
                             );
