@@ -78,6 +78,41 @@ fn run_auto(
     (eyes, String::from_utf8_lossy(&o.stdout).into_owned())
 }
 
+/// One of our C clients (tests/c/NAME.c, linked with libGL and Xlib),
+/// built once.
+fn client(name: &str) -> PathBuf {
+    build_once(name, |out| {
+        compile_plain(
+            &common::root().join(format!("tests/c/{name}.c")),
+            out,
+            &["-lGL", "-lX11"],
+        )
+    })
+}
+
+/// `exe args` under `glstereo-run --auto` with the tests' separation and
+/// convergence, its frame captured into `dir`: the eyes of frame 1 and
+/// its stdout.
+fn auto_capture(x: &Xvfb, exe: &Path, args: &[&str], dir: &Path) -> ([Image; 2], String) {
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .args([
+                "--auto",
+                "--separation",
+                SEPARATION,
+                "--convergence",
+                CONVERGENCE,
+            ])
+            .arg("--capture")
+            .arg(dir)
+            .arg(exe)
+            .args(args)
+            .env("DISPLAY", &x.display),
+    );
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+    (eyes, String::from_utf8_lossy(&o.stdout).into_owned())
+}
+
 /// The eye the program draws itself with the rule applied by hand, with
 /// no layer.
 fn by_hand(x: &Xvfb, profile: &str, eye: &str, dir: &Path) -> Image {
@@ -326,13 +361,7 @@ fn a_scene_drawn_off_screen_and_blitted_into_the_window_is_in_stereo() {
 #[test]
 fn automatic_stereo_contexts_made_and_destroyed_leave_nothing_behind() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = build_once("auto_churn", |out| {
-        compile_plain(
-            &common::root().join("tests/c/auto_churn.c"),
-            out,
-            &["-lGL", "-lX11"],
-        )
-    });
+    let exe = client("auto_churn");
     let x = Xvfb::start(W + 40, H + 40);
     let o = common::run_ok(
         Command::new(&built().run)
@@ -367,38 +396,17 @@ fn automatic_stereo_contexts_made_and_destroyed_leave_nothing_behind() {
 #[test]
 fn transform_feedback_captures_the_mono_draws_once() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = build_once("auto_feedback", |out| {
-        compile_plain(
-            &common::root().join("tests/c/auto_feedback.c"),
-            out,
-            &["-lGL", "-lX11"],
-        )
-    });
+    let exe = client("auto_feedback");
     let x = Xvfb::start(W + 40, H + 40);
     let plain = common::run_ok(Command::new(&exe).env("DISPLAY", &x.display));
     let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
     assert!(plain.contains("written 2\n"), "without the layer: {plain}");
     let dir = common::scratch("auto-feedback");
-    let o = common::run_ok(
-        Command::new(&built().run)
-            .args([
-                "--auto",
-                "--separation",
-                SEPARATION,
-                "--convergence",
-                CONVERGENCE,
-            ])
-            .arg("--capture")
-            .arg(&dir)
-            .arg(&exe)
-            .env("DISPLAY", &x.display),
-    );
-    let auto = String::from_utf8_lossy(&o.stdout);
+    let (eyes, auto) = auto_capture(&x, &exe, &[], &dir);
     assert_eq!(
         auto, plain,
         "the capture under --auto is not the mono program's"
     );
-    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
     assert!(
         differing(&eyes[0], &eyes[1]).len() > 100,
         "the triangle is not in stereo while captured"
@@ -538,13 +546,7 @@ fn the_window_shows_both_eyes_in_the_format_asked_for() {
 #[test]
 fn queries_count_the_mono_draws_once() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = build_once("auto_queries", |out| {
-        compile_plain(
-            &common::root().join("tests/c/auto_queries.c"),
-            out,
-            &["-lGL", "-lX11"],
-        )
-    });
+    let exe = client("auto_queries");
     let x = Xvfb::start(W + 40, H + 40);
     let plain = common::run_ok(Command::new(&exe).env("DISPLAY", &x.display));
     let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
@@ -553,27 +555,12 @@ fn queries_count_the_mono_draws_once() {
         "without the layer: {plain}"
     );
     let dir = common::scratch("auto-queries");
-    let o = common::run_ok(
-        Command::new(&built().run)
-            .args([
-                "--auto",
-                "--separation",
-                SEPARATION,
-                "--convergence",
-                CONVERGENCE,
-            ])
-            .arg("--capture")
-            .arg(&dir)
-            .arg(&exe)
-            .env("DISPLAY", &x.display),
-    );
-    let auto = String::from_utf8_lossy(&o.stdout);
+    let (eyes, auto) = auto_capture(&x, &exe, &[], &dir);
     assert_eq!(
         auto, plain,
         "the counts under --auto are not the mono program's"
     );
     // Both eyes were drawn: the background (w = 8) is shifted between them.
-    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
     assert!(
         differing(&eyes[0], &eyes[1]).len() > 100,
         "the eyes are alike"
@@ -589,36 +576,12 @@ fn queries_count_the_mono_draws_once() {
 #[test]
 fn small_render_targets_stay_mono_and_window_sized_ones_are_stereo() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = build_once("auto_targets", |out| {
-        compile_plain(
-            &common::root().join("tests/c/auto_targets.c"),
-            out,
-            &["-lGL", "-lX11"],
-        )
-    });
+    let exe = client("auto_targets");
     let x = Xvfb::start(W + 40, H + 40);
     for (size, stereo) in [("small", false), ("window", true)] {
         let dir = common::scratch(&format!("auto-targets-{size}"));
-        let o = common::run_ok(
-            Command::new(&built().run)
-                .args([
-                    "--auto",
-                    "--separation",
-                    SEPARATION,
-                    "--convergence",
-                    CONVERGENCE,
-                ])
-                .arg("--capture")
-                .arg(&dir)
-                .arg(&exe)
-                .arg(size)
-                .env("DISPLAY", &x.display),
-        );
-        assert!(
-            String::from_utf8_lossy(&o.stdout).contains("error 0x0"),
-            "{size}: {o:?}"
-        );
-        let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+        let (eyes, stdout) = auto_capture(&x, &exe, &[size], &dir);
+        assert!(stdout.contains("error 0x0"), "{size}: {stdout}");
         let red = centre(&eyes[0], [255, 0, 0]).unwrap_or_else(|| panic!("{size}: no red left"));
         let right = centre(&eyes[1], [255, 0, 0]).unwrap_or_else(|| panic!("{size}: no red right"));
         let d = differing(&eyes[0], &eyes[1]).len();

@@ -348,7 +348,7 @@ impl AutoState {
     /// The enables the fixed-function stand-in depends on may have
     /// changed (glEnable, glDisable, glPopAttrib, a display list): read
     /// them again at the next fixed-function draw.
-    pub fn forget_enables(&mut self, _: Option<(u32, Attachments)>) {
+    pub fn forget_enables(&mut self) {
         self.fixed_enables = None;
     }
 
@@ -750,7 +750,7 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
                 call.name,
                 "glEnable" | "glDisable" | "glEnablei" | "glDisablei"
             ) {
-                cur.sc.with_auto(cur.draw, AutoState::forget_enables);
+                cur.sc.with_auto(cur.draw, |st, _| st.forget_enables());
             }
             settings_call(call, draw)
         }
@@ -776,7 +776,7 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
             let mut out = None;
             drawing(t, cur, call, &mut || out = Some(draw()));
             if list {
-                cur.sc.with_auto(cur.draw, AutoState::forget_enables);
+                cur.sc.with_auto(cur.draw, |st, _| st.forget_enables());
             }
             out.unwrap_or_else(|| R::from_bits(0))
         }

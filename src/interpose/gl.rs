@@ -976,8 +976,7 @@ fn pop_selections(gl: &Gl, pop: unsafe extern "system" fn()) {
     unsafe { pop() };
     // Enables may be back on: automatic stereo's fixed-function stand-in
     // reads them again.
-    cur.sc
-        .with_auto(cur.draw, crate::auto::runtime::AutoState::forget_enables);
+    cur.sc.with_auto(cur.draw, |st, _| st.forget_enables());
     let after = stack_depth(gl, &cur);
     if before.is_none() || after.map(|d| d + 1) != before {
         // Stack underflow, or a core context: GL popped nothing.
