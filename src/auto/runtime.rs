@@ -932,13 +932,17 @@ unsafe fn query_object<R: Returned>(
             std::ptr::copy_nonoverlapping(params, before.as_mut_ptr(), width);
         }
         let r = draw();
-        if !wanted || params.is_null() || integer(f, GL_QUERY_BUFFER_BINDING) != 0 {
+        if !wanted || params.is_null() {
             return r;
         }
         cur.sc.with_auto(cur.draw, |st, _| {
             let Some((_, target, segments)) = st.segmented.iter().find(|(i, ..)| *i == id) else {
                 return;
             };
+            // Into a query buffer params is an offset: not summed here.
+            if integer(f, GL_QUERY_BUFFER_BINDING) != 0 {
+                return;
+            }
             let value = |q: u32, p: u32| {
                 let mut v = 0u64;
                 (f.get_query_objectui64v)(q, p, &mut v);
