@@ -381,7 +381,7 @@ fn desaturate(row: &mut [Rgb], s: f32) {
 }
 
 #[inline]
-fn unorm(v: f32) -> u8 {
+pub(crate) fn unorm(v: f32) -> u8 {
     // Clamp, then round half up; `as` truncates the non-negative sum.
     (v.clamp(0.0, 255.0) + 0.5) as u8
 }

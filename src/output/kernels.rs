@@ -476,16 +476,22 @@ mod tests {
     }
 
     #[test]
-    fn unorm_rounds_half_up_and_clamps() {
-        assert_eq!(unorm(-3.0), 0);
-        assert_eq!(unorm(0.49), 0);
-        assert_eq!(unorm(0.5), 1);
-        assert_eq!(unorm(127.5), 128);
-        assert_eq!(unorm(254.6), 255);
-        assert_eq!(unorm(300.0), 255);
-        assert_eq!(unorm(f32::NAN), 0);
-        for v in 0..=255u8 {
-            assert_eq!(unorm(f32::from(v)), u32::from(v), "integral {v}");
+    fn unorm_is_the_references_rounding() {
+        // The reference's own rules are tested in cpu.rs; here the fast
+        // form must give its bytes for every value a kernel can meet.
+        let mut v = -8.0f32;
+        while v <= 300.0 {
+            assert_eq!(unorm(v), u32::from(crate::output::cpu::unorm(v)), "{v}");
+            v += 1.0 / 64.0;
+        }
+        for v in [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            254.5,
+            254.499_98,
+        ] {
+            assert_eq!(unorm(v), u32::from(crate::output::cpu::unorm(v)), "{v}");
         }
     }
 }
