@@ -63,10 +63,10 @@ struct Object<'a> {
 
 /// How far each object moved from the left eye to the right (window
 /// pixels, x), after checking that it moved along its rows only: its
-/// vertical centre is the same, and so is, with `rows` Some(slack), the
-/// number of its pixels in every row (±slack: flat objects), with None
-/// its top and bottom row (±1: solids, whose sides at other depths move
-/// by other amounts and change the counts).
+/// vertical centre is the same (±0.5; ±1 for solids), and so is, with
+/// `rows` Some(slack), the number of its pixels in every row (±slack:
+/// flat objects), with None its top and bottom row (±1: solids, whose
+/// sides at other depths move by other amounts and change the counts).
 fn horizontal_shifts(
     eyes: &[Image; 2],
     objects: &[Object],
@@ -114,8 +114,14 @@ fn horizontal_shifts(
                 );
             }
         }
+        // A flat object's pixels only move along their rows, so its
+        // centre stays within half a pixel; a solid's sides at other
+        // depths move by other amounts, uncover or hide other lit
+        // pixels and move its centre too (glxgears' blue gear at C 80:
+        // up to 0.63 pixels in 45 captures), within its extents' ±1.
+        let vertical = if rows.is_some() { 0.5 } else { 1.0 };
         assert!(
-            (yr - yl).abs() < 0.5,
+            (yr - yl).abs() < vertical,
             "{what}: the {} object moved vertically by {:.2} pixels",
             o.name,
             yr - yl
