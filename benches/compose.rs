@@ -6,7 +6,10 @@
 //! cargo bench --bench compose                 # everything (about 6 minutes)
 //! cargo bench --bench compose -- cpu/1280     # one group (criterion filter)
 //! cargo bench --bench compose -- ratios-only  # the ratio table alone (a filter matching nothing)
+//! COMPOSE_MODES=anaglyph-red-cyan-dubois,str-rect cargo bench --bench compose -- ratios-only
 //! ```
+//!
+//! (`COMPOSE_MODES`: only these modes, by canonical name.)
 //!
 //! - `cpu/WxH/MODE`: [`compose_into`] of two in-memory eyes into a reused
 //!   output image (what a frame loop or a capture does per frame);
@@ -83,8 +86,16 @@ fn group<'a>(c: &'a mut Criterion, name: String) -> BenchmarkGroup<'a, WallTime>
     g
 }
 
+/// Every mode but quad, or those named in `COMPOSE_MODES` (comma
+/// separated canonical names).
 fn modes() -> impl Iterator<Item = OutputMode> {
-    OutputMode::all().filter(|&m| m != OutputMode::Quad)
+    let only = std::env::var("COMPOSE_MODES").ok();
+    OutputMode::all().filter(move |&m| {
+        m != OutputMode::Quad
+            && only
+                .as_deref()
+                .is_none_or(|o| o.split(',').any(|n| n == m.canonical_name()))
+    })
 }
 
 fn memcpy_id(bytes: usize) -> String {

@@ -64,7 +64,7 @@
 use std::sync::OnceLock;
 
 use super::anaglyph::{dubois_matrices, linear_to_srgb, srgb_to_linear};
-use super::kernels::{ALPHA, N, Planes, Simd, Stage, chunks};
+use super::kernels::{ALPHA, N, Planes, Simd, Stage, ahead, chunks};
 use super::mode::AnaglyphColors;
 
 /// Intervals of the encoding table over (0, 1].
@@ -590,6 +590,7 @@ impl Dubois {
         let whole = n - n % N;
         let mut x = 0;
         while x < n {
+            ahead([a, b], out, x);
             let (l, r) = if x < whole {
                 (load(&a[x..]), load(&b[x..]))
             } else {

@@ -17,6 +17,8 @@
 //!   compositor context (captures and windows).
 
 pub mod anaglyph;
+#[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+mod avx512;
 pub mod cpu;
 mod dubois_lut;
 pub mod gl;

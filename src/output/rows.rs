@@ -598,6 +598,13 @@ impl Frame {
         if k == 0.0 && p.width == w {
             // Between two rows: the reference's f32 steps, 16 pixels at a time.
             let f = vt.f;
+            #[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+            if simd.avx512() && (0.0..=1.0).contains(&f) {
+                // SAFETY: `simd` says the processor has AVX-512 (see
+                // with_simd); f is in [0, 1].
+                unsafe { super::avx512::blend_rows(f, r0, r1, out, px) };
+                return;
+            }
             chunks(
                 r0,
                 r1,
