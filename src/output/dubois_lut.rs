@@ -607,8 +607,18 @@ impl Dubois {
             }
             let o = store(last[2]);
             let m = N.min(n - x);
-            for (o, &v) in out[x..x + m].iter_mut().zip(&o) {
-                *o = px(v);
+            if m == N {
+                // A whole step: a fixed-size loop, one vector store (a
+                // loop of variable length is a call to memcpy, after
+                // which every constant is loaded again).
+                let out: &mut [u32; N] = (&mut out[x..x + N]).try_into().expect("N words");
+                for i in 0..N {
+                    out[i] = px(o[i]);
+                }
+            } else {
+                for (o, &v) in out[x..x + m].iter_mut().zip(&o) {
+                    *o = px(v);
+                }
             }
             x += N;
         }
