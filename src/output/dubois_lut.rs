@@ -288,8 +288,6 @@ struct Avx512<'a> {
     /// [`PAIR_RG`], [`PAIR_BB`].
     rg: std::arch::x86_64::__m512i,
     bb: std::arch::x86_64::__m512i,
-    /// [`Fixed::pairs`] broadcast.
-    weights: [[std::arch::x86_64::__m512i; 3]; 3],
     /// [`Fixed::octave`].
     octave: [std::arch::x86_64::__m512; 3],
     fixed: &'a Fixed,
@@ -312,10 +310,6 @@ impl Avx512<'_> {
             hi: planes(&q[1]),
             rg: load(&PAIR_RG),
             bb: load(&PAIR_BB),
-            weights: d
-                .fixed
-                .pairs
-                .map(|p| p.map(|w| _mm512_set1_epi32(w as i32))),
             octave: d
                 .fixed
                 .octave
@@ -339,54 +333,90 @@ impl Avx512<'_> {
         _mm512_mask_blend_epi8(k, a, b)
     }
 
-    /// `acc` + the pairwise products of the words of `a` and `b`. (As asm:
-    /// LLVM's generic tuning splits the intrinsic into a multiply and an
-    /// add, two instructions for one.)
+    /// `acc` + the pairwise products of the words of `a` and of the
+    /// word pair `*w` (read from memory, broadcast by the instruction: the
+    /// nine pairs would not stay in registers beside the tables). (As
+    /// asm: LLVM's generic tuning splits the intrinsic into a multiply and
+    /// an add, two instructions for one.)
     #[target_feature(enable = "avx512f,avx512vnni")]
     #[inline]
     fn dot(
         mut acc: std::arch::x86_64::__m512i,
         a: std::arch::x86_64::__m512i,
-        b: std::arch::x86_64::__m512i,
+        w: &u32,
     ) -> std::arch::x86_64::__m512i {
-        // SAFETY: an AVX-512 VNNI instruction on registers only.
+        // SAFETY: an AVX-512 VNNI instruction reading the 4 bytes of `w`.
         unsafe {
             std::arch::asm!(
-                "vpdpwssd {acc}, {a}, {b}",
+                "vpdpwssd {acc}, {a}, dword ptr [{w}]{{1to16}}",
                 acc = inout(zmm_reg) acc,
                 a = in(zmm_reg) a,
-                b = in(zmm_reg) b,
-                options(pure, nomem, nostack, preserves_flags),
+                w = in(reg) w,
+                options(pure, readonly, nostack, preserves_flags),
             );
         }
         acc
     }
 
-    /// Output channel `c` of the word pairs `p`, as 32-bit integers
-    /// (outside 0…255 where the byte saturates).
-    #[target_feature(enable = "avx512f,avx512bw,avx512vnni,fma")]
+    /// The sum of output channel `c` of the word pairs `p`, as f32
+    /// (`v·2^(15+S)`).
+    #[target_feature(enable = "avx512f,avx512bw,avx512vnni")]
     #[inline]
-    fn channel(&self, c: usize, p: &[std::arch::x86_64::__m512i; 3]) -> std::arch::x86_64::__m512i {
+    fn sum(&self, c: usize, p: &[std::arch::x86_64::__m512i; 3]) -> std::arch::x86_64::__m512 {
         use std::arch::x86_64::*;
-        let w = &self.weights[c];
-        let sum = Self::dot(
-            Self::dot(_mm512_madd_epi16(p[0], w[0]), p[1], w[1]),
-            p[2],
-            w[2],
-        );
-        let f = _mm512_cvtepi32_ps(sum);
-        // Above the toe: the octave's scale × the cubic of the mantissa.
+        let w = &self.fixed.pairs[c];
+        let first = _mm512_madd_epi16(p[0], _mm512_set1_epi32(w[0] as i32));
+        let sum = Self::dot(Self::dot(first, p[1], &w[1]), p[2], &w[2]);
+        _mm512_cvtepi32_ps(sum)
+    }
+
+    /// Output channel `c` of its sum `f` above the toe: the octave's scale
+    /// × the cubic of the mantissa, + 0.5 for rounding.
+    #[target_feature(enable = "avx512f,fma")]
+    #[inline]
+    fn curve(&self, c: usize, f: std::arch::x86_64::__m512) -> std::arch::x86_64::__m512 {
+        use std::arch::x86_64::*;
         let m = _mm512_getmant_ps::<_MM_MANT_NORM_1_2, _MM_MANT_SIGN_SRC>(f);
         let e = _mm512_srli_epi32::<23>(_mm512_castps_si512(f));
         let scale = _mm512_permutexvar_ps(e, self.octave[c]);
         let y = _mm512_fmadd_ps(_mm512_set1_ps(CUBIC[3]), m, _mm512_set1_ps(CUBIC[2]));
         let y = _mm512_fmadd_ps(y, m, _mm512_set1_ps(CUBIC[1]));
         let y = _mm512_fmadd_ps(y, m, _mm512_set1_ps(CUBIC[0]));
-        let pow = _mm512_fmadd_ps(scale, y, _mm512_set1_ps(0.5 - 0.055 * 255.0));
+        _mm512_fmadd_ps(scale, y, _mm512_set1_ps(0.5 - 0.055 * 255.0))
+    }
+
+    /// Output channels of the word pairs `p`, as 32-bit integers (outside
+    /// 0…255 where the byte saturates): on the toe (sums at or below the
+    /// knee) its linear formula; a step where no channel is on it (most
+    /// of a picture: the toe is its darkest 4 %) skips that.
+    #[target_feature(enable = "avx512f,avx512bw,avx512vnni,fma")]
+    #[inline]
+    fn channels(&self, p: &[std::arch::x86_64::__m512i; 3]) -> [std::arch::x86_64::__m512i; 3] {
+        use std::arch::x86_64::*;
         let fx = self.fixed;
-        let toe = _mm512_fmadd_ps(f, _mm512_set1_ps(fx.toe[c]), _mm512_set1_ps(0.5));
-        let at_toe = _mm512_cmp_ps_mask::<_CMP_LE_OQ>(f, _mm512_set1_ps(fx.knee[c]));
-        _mm512_cvttps_epi32(_mm512_mask_blend_ps(at_toe, pow, toe))
+        let f = [self.sum(0, p), self.sum(1, p), self.sum(2, p)];
+        let mut v = [
+            self.curve(0, f[0]),
+            self.curve(1, f[1]),
+            self.curve(2, f[2]),
+        ];
+        // (No closures here: they would not be compiled with these
+        // features, and every intrinsic in them would be a call.)
+        let mut at_toe = [0; 3];
+        for c in 0..3 {
+            at_toe[c] = _mm512_cmp_ps_mask::<_CMP_LE_OQ>(f[c], _mm512_set1_ps(fx.knee[c]));
+        }
+        if at_toe[0] | at_toe[1] | at_toe[2] != 0 {
+            for c in 0..3 {
+                let t = _mm512_fmadd_ps(f[c], _mm512_set1_ps(fx.toe[c]), _mm512_set1_ps(0.5));
+                v[c] = _mm512_mask_blend_ps(at_toe[c], v[c], t);
+            }
+        }
+        [
+            _mm512_cvttps_epi32(v[0]),
+            _mm512_cvttps_epi32(v[1]),
+            _mm512_cvttps_epi32(v[2]),
+        ]
     }
 
     /// The anaglyph of 16 pixel pairs.
@@ -412,8 +442,9 @@ impl Avx512<'_> {
         ];
         // Saturated into bytes (below 0 and above 255 clamp), per 128-bit
         // lane R0-3 G0-3 B0-3 A0-3, then reordered into pixels.
-        let rg = _mm512_packus_epi32(self.channel(0, &p), self.channel(1, &p));
-        let ba = _mm512_packus_epi32(self.channel(2, &p), _mm512_set1_epi32(255));
+        let [r, g, b] = self.channels(&p);
+        let rg = _mm512_packus_epi32(r, g);
+        let ba = _mm512_packus_epi32(b, _mm512_set1_epi32(255));
         let order = _mm512_broadcast_i32x4(_mm_setr_epi8(
             0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15,
         ));
