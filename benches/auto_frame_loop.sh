@@ -1,6 +1,7 @@
 #!/bin/sh
 # Automatic stereo's cost (issue 23 item 7), with benches/glx_frame_loop.c
-# on a private Xvfb. For the light, heavy, heavy3d (perspective) and shader3d
+# on a private Xvfb. For the light, heavy, heavy3d (perspective), lit3d
+# (heavy3d under fixed-function lighting) and shader3d
 # (perspective, a GLSL program) scenes at 400x300 and
 # 1280x1024, ROUNDS rounds each alternate, in an order that turns each
 # round:
@@ -82,7 +83,7 @@ for wh in $SIZES; do
         case "$scene $wh" in
         "light 400x300") frames=400 ;;
         "light 1280x1024") frames=100 ;;
-        "heavy 400x300" | "heavy3d 400x300" | "shader3d 400x300") frames=20 ;;
+        "heavy 400x300" | "heavy3d 400x300" | "lit3d 400x300" | "shader3d 400x300") frames=20 ;;
         *) frames=10 ;;
         esac
         echo "# $scene $wh, $frames frames a run; $(uptime)"

@@ -5,13 +5,15 @@
  * benches/glx_frame_loop.sh does: mono without the layer, mono and stereo
  * under glstereo-run, stereo with --capture.
  *
- *   glx_frame_loop mono|stereo [WIDTH HEIGHT [FRAMES [light|heavy|heavy3d|shader3d]]]
+ *   glx_frame_loop mono|stereo [WIDTH HEIGHT [FRAMES [light|heavy|heavy3d|lit3d|shader3d]]]
  *
  * Light scene: per eye a clear and three rectangles. Heavy scene: per eye
  * a clear and a depth-tested grid of 512 x 512 quads (524 288 triangles)
  * drawn from a vertex buffer, with identity matrices (w = 1: automatic
  * stereo leaves it at the screen). heavy3d: the same grid seen through a
- * perspective projection (glFrustum, w about 2), fixed function;
+ * perspective projection (glFrustum, w about 2), fixed function; lit3d:
+ * heavy3d under fixed-function lighting (a directional and a positional
+ * light, specular, the colours through GL_COLOR_MATERIAL);
  * shader3d: heavy3d drawn by a GLSL program (gl_ModelViewProjectionMatrix,
  * the vertex colour), which automatic stereo rewrites. Prints
  * "<mode> <scene> WxH frames N: mean M ms, median D ms, p90 P ms, cpu C ms"
@@ -102,14 +104,30 @@ static void heavy(float shift)
     glDrawArrays(GL_TRIANGLES, 0, heavy_vertices);
 }
 
-/* heavy3d's projection; with `shader`, shader3d's program. */
-static int make_3d(int shader)
+/* heavy3d's projection; with `shader`, shader3d's program; with `lit`,
+ * lit3d's lights. */
+static int make_3d(int shader, int lit)
 {
     heavy_z = 2.0f;
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();
     glFrustum(-0.5, 0.5, -0.4, 0.4, 1.0, 10.0);
     glMatrixMode(GL_MODELVIEW);
+    if (lit) {
+        static const GLfloat pos1[] = {0.5f, 0.5f, -1.0f, 1.0f};
+        static const GLfloat spec[] = {0.6f, 0.6f, 0.6f, 1.0f};
+        glLoadIdentity();
+        glLightfv(GL_LIGHT1, GL_POSITION, pos1);
+        glLightfv(GL_LIGHT1, GL_SPECULAR, spec);
+        glMaterialfv(GL_FRONT, GL_SPECULAR, spec);
+        glMaterialf(GL_FRONT, GL_SHININESS, 16.0f);
+        glNormal3f(0.0f, 0.3f, 1.0f);
+        glEnable(GL_COLOR_MATERIAL);
+        glEnable(GL_NORMALIZE);
+        glEnable(GL_LIGHTING);
+        glEnable(GL_LIGHT0);
+        glEnable(GL_LIGHT1);
+    }
     if (!shader) return 1;
     static const char *vs = "#version 130\n"
                             "out vec3 colour;\n"
@@ -157,7 +175,8 @@ int main(int argc, char **argv)
     int height = argc > 3 ? atoi(argv[3]) : 1024;
     int frames = argc > 4 ? atoi(argv[4]) : 200;
     const char *scene_name = argc > 5 ? argv[5] : "light";
-    int is_3d = strcmp(scene_name, "heavy3d") == 0 || strcmp(scene_name, "shader3d") == 0;
+    int lit = strcmp(scene_name, "lit3d") == 0;
+    int is_3d = strcmp(scene_name, "heavy3d") == 0 || strcmp(scene_name, "shader3d") == 0 || lit;
     int is_heavy = strcmp(scene_name, "heavy") == 0 || is_3d;
     void (*scene)(float) = is_heavy ? heavy : light;
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_DEPTH_SIZE, 16, None, None};
@@ -180,7 +199,7 @@ int main(int argc, char **argv)
     if (ctx == NULL || !glXMakeCurrent(display, win, ctx)) return 1;
 
     if (is_heavy) make_heavy();
-    if (is_3d && !make_3d(strcmp(scene_name, "shader3d") == 0)) {
+    if (is_3d && !make_3d(strcmp(scene_name, "shader3d") == 0, lit)) {
         fprintf(stderr, "shader3d: the program does not link\n");
         return 3;
     }

@@ -31,7 +31,7 @@ fn oracle() -> PathBuf {
         compile_plain(
             &common::root().join("tests/c/auto_oracle.c"),
             out,
-            &["-lGL", "-lX11"],
+            &["-lGL", "-lX11", "-lm"],
         )
     })
 }

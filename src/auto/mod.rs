@@ -148,8 +148,10 @@
 //!   fixed-function vertex processing ([`standin`]: `ftransform()` keeps
 //!   positions invariant with fixed function; colours, texture coordinates
 //!   through the texture matrices, fog coordinate, gl_ClipVertex, point
-//!   size; lighting and texgen to be generated from the fixed-function
-//!   state the layer tracks, as Mesa's own `ffvertex_prog` does), with the
+//!   size, one-sided lighting — each enabled light, positional or not,
+//!   spot, attenuation, colour material, local viewer, separate specular,
+//!   normalised or rescaled normals — generated from the fixed-function
+//!   state the layer reads, as Mesa's own `ffvertex_prog` does), with the
 //!   same rule and uniform, bound in place of program 0, the fragment
 //!   stage left fixed-function; measured as d (variant dff: 1.00–1.06x at
 //!   400x300 under load 8), and proved here pixel for pixel against fixed
@@ -157,7 +159,8 @@
 //!   with a vertex shader bound, Mesa 22.3 reports the raster position's
 //!   clip w as 1/w (measured: 0.333 for w = 3), and the eyes' raster
 //!   positions are computed from it. State the stand-in does not model
-//!   (today lighting and texgen; vertex blending, NV programs…) takes the
+//!   (today two-sided lighting and texgen; vertex blending, NV programs…)
+//!   takes the
 //!   slow path of [`fixed`], proved here pixel for pixel too: the eye's
 //!   projection loaded by the matrix form (row 0 + e·s·row 3 −
 //!   e·s·C·(0, 0, 0, 1); orthographic projections as they are) and the

@@ -10,8 +10,9 @@
 //!   [`crate::auto::link`]), of the pipeline's last-stage program, or of
 //!   the layer's stand-in for fixed-function vertex processing
 //!   ([`crate::auto::standin`]) bound for the draw. Where the vertices
-//!   cannot choose a layer (fixed-function lighting or texture-coordinate
-//!   generation, ARB vertex programs, a program that was not rewritten)
+//!   cannot choose a layer (two-sided fixed-function lighting,
+//!   texture-coordinate generation, ARB vertex programs, a program that
+//!   was not rewritten)
 //!   each eye's layers are attached in turn, with the eye's projection for
 //!   fixed function ([`crate::auto::fixed`]) or the shift in a rewritten
 //!   program's uniform: the slow path. After the eyes the uniform holds
@@ -59,7 +60,7 @@ use crate::auto::fixed;
 use crate::auto::gl_fns;
 use crate::auto::link::{self, LinkOutcome};
 use crate::auto::render_targets::{self, Targets};
-use crate::auto::standin::{self, FixedVertexState};
+use crate::auto::standin::{self, FixedVertexState, Lighting};
 use crate::auto::vertex::LayerWrite;
 use crate::interpose::context::Current;
 use crate::interpose::draws::{Call, Returned};
@@ -91,6 +92,22 @@ const GL_MAX_TEXTURE_COORDS: u32 = 0x8871;
 const GL_MAX_CLIP_PLANES: u32 = 0x0D32;
 const GL_CLIP_PLANE0: u32 = 0x3000;
 const GL_COLOR_SUM: u32 = 0x8458;
+const GL_LIGHT0: u32 = 0x4000;
+const GL_NORMALIZE: u32 = 0x0BA1;
+const GL_RESCALE_NORMAL: u32 = 0x803A;
+const GL_COLOR_MATERIAL: u32 = 0x0B57;
+const GL_COLOR_MATERIAL_FACE: u32 = 0x0B55;
+const GL_COLOR_MATERIAL_PARAMETER: u32 = 0x0B56;
+const GL_LIGHT_MODEL_LOCAL_VIEWER: u32 = 0x0B51;
+const GL_LIGHT_MODEL_TWO_SIDE: u32 = 0x0B52;
+const GL_LIGHT_MODEL_COLOR_CONTROL: u32 = 0x81F8;
+const GL_SEPARATE_SPECULAR_COLOR: u32 = 0x81FA;
+const GL_MAX_LIGHTS: u32 = 0x0D31;
+const GL_POSITION: u32 = 0x1203;
+const GL_SPOT_CUTOFF: u32 = 0x1206;
+const GL_CONSTANT_ATTENUATION: u32 = 0x1207;
+const GL_LINEAR_ATTENUATION: u32 = 0x1208;
+const GL_QUADRATIC_ATTENUATION: u32 = 0x1209;
 const GL_PROGRAM_POINT_SIZE: u32 = 0x8642;
 /// The fixed-function texture targets a unit may enable.
 const TEXTURE_TARGETS: [u32; 5] = [0x0DE0, 0x0DE1, 0x806F, 0x8513, 0x84F5];
@@ -120,6 +137,7 @@ gl_fns! {
         get_floatv = c"glGetFloatv": fn(u32, *mut f32);
         get_doublev = c"glGetDoublev": fn(u32, *mut f64);
         is_enabled = c"glIsEnabled": fn(u32) -> u8;
+        get_lightfv = c"glGetLightfv": fn(u32, u32, *mut f32);
         use_program = c"glUseProgram": fn(u32);
         uniform4f = c"glUniform4f": fn(i32, f32, f32, f32, f32);
         program_uniform4f = c"glProgramUniform4f": fn(u32, i32, f32, f32, f32, f32);
@@ -444,17 +462,19 @@ unsafe fn vertex_program(f: &AutoFns) -> Option<(u32, bool)> {
 }
 
 /// The fixed-function state the stand-in must reproduce now, or None
-/// when it cannot (lighting, texture-coordinate generation on a unit with
-/// a texture, an ARB vertex program). The per-unit enables are read only
+/// when it cannot (texture-coordinate generation on a unit with a
+/// texture, an ARB vertex program; two-sided lighting the stand-in itself
+/// refuses). The per-unit enables are read only
 /// after something may have changed them (`AutoState::fixed_enables`): a
 /// unit's enables are read by making it active, a dozen calls per unit.
 unsafe fn fixed_state(f: &AutoFns, st: &mut AutoState) -> Option<FixedVertexState> {
     // SAFETY: contract of the callers.
     unsafe {
         let on = |cap| (f.is_enabled)(cap) != 0;
-        if on(GL_LIGHTING) || on(GL_VERTEX_PROGRAM_ARB) {
+        if on(GL_VERTEX_PROGRAM_ARB) {
             return None;
         }
+        let lit = on(GL_LIGHTING);
         let enables = match st.fixed_enables {
             Some(e) => e,
             None => {
@@ -466,13 +486,63 @@ unsafe fn fixed_state(f: &AutoFns, st: &mut AutoState) -> Option<FixedVertexStat
         if enables.texgen {
             return None;
         }
-        // glFog's source is not an enable: read at every draw under fog.
+        // glFog's source, glLightModel and glColorMaterial are not
+        // enables: read at every draw that uses them.
         let fog_coord = enables.fog && integer(f, GL_FOG_COORD_SRC) as u32 == GL_FOG_COORD;
+        let lighting = match (lit, enables.lighting) {
+            (true, Some(l)) => Some(Lighting {
+                color_material: if l.color_material != 0
+                    && integer(f, GL_COLOR_MATERIAL_FACE) as u32 != crate::gl::enums::GL_BACK
+                {
+                    integer(f, GL_COLOR_MATERIAL_PARAMETER) as u32
+                } else {
+                    0
+                },
+                local_viewer: integer(f, GL_LIGHT_MODEL_LOCAL_VIEWER) != 0,
+                two_side: integer(f, GL_LIGHT_MODEL_TWO_SIDE) != 0,
+                separate_specular: integer(f, GL_LIGHT_MODEL_COLOR_CONTROL) as u32
+                    == GL_SEPARATE_SPECULAR_COLOR,
+                ..light_kinds(f, l)
+            }),
+            _ => None,
+        };
         Some(FixedVertexState {
             fog_coord,
+            lighting,
             ..enables
         })
     }
+}
+
+/// `l` with the kind of each enabled light (positional, spot,
+/// attenuated) read from GL, as Mesa keys its fixed-function program: the
+/// stand-in computes only what each light needs.
+unsafe fn light_kinds(f: &AutoFns, mut l: Lighting) -> Lighting {
+    let get = |light: u32, pname: u32| {
+        let mut v = [0.0f32; 4];
+        // SAFETY: a compatibility context is current (callers); at most 4
+        // values.
+        unsafe { (f.get_lightfv)(GL_LIGHT0 + light, pname, v.as_mut_ptr()) };
+        v
+    };
+    for i in (0..8).filter(|i| l.lights & (1 << i) != 0) {
+        let bit = 1u8 << i;
+        if get(i, GL_POSITION)[3] != 0.0 {
+            l.positional |= bit;
+            let k = [
+                get(i, GL_CONSTANT_ATTENUATION)[0],
+                get(i, GL_LINEAR_ATTENUATION)[0],
+                get(i, GL_QUADRATIC_ATTENUATION)[0],
+            ];
+            if k != [1.0, 0.0, 0.0] {
+                l.attenuated |= bit;
+            }
+        }
+        if get(i, GL_SPOT_CUTOFF)[0] != 180.0 {
+            l.spot |= bit;
+        }
+    }
+    l
 }
 
 /// The enables [`fixed_state`] keeps between changes.
@@ -494,8 +564,19 @@ unsafe fn read_enables(f: &AutoFns) -> FixedVertexState {
         }
         (f.active_texture)(active);
         let planes = integer(f, GL_MAX_CLIP_PLANES).clamp(0, 64) as u32;
+        let lights = integer(f, GL_MAX_LIGHTS).clamp(0, 8) as u32;
         FixedVertexState {
-            lighting: false,
+            // The enables of lighting (whether GL_LIGHTING is on is read
+            // at every draw); `color_material` 1 here: enabled.
+            lighting: Some(Lighting {
+                lights: (0..lights)
+                    .filter(|&i| on(GL_LIGHT0 + i))
+                    .fold(0, |m, i| m | 1 << i),
+                color_material: u32::from(on(GL_COLOR_MATERIAL)),
+                normalize: on(GL_NORMALIZE),
+                rescale_normal: on(GL_RESCALE_NORMAL),
+                ..Lighting::default()
+            }),
             texgen,
             texture_units,
             fog: on(GL_FOG),

@@ -19,7 +19,8 @@
 //! default), user clip planes (gl_ClipVertex) and the point size under
 //! GL_PROGRAM_POINT_SIZE: each only where fragments read it
 //! ([`FixedVertexState`]).
-//! Not yet: lighting, texture-coordinate generation, vertex blending —
+//! Lighting too, one face (`lighting_source`). Not yet: two-sided
+//! lighting, texture-coordinate generation, vertex blending —
 //! those draws take the slow path of [`crate::auto::fixed`] until the
 //! generator models them from the tracked state (as Mesa's
 //! `ffvertex_prog` builds its program from a state key).
@@ -43,8 +44,8 @@ use crate::auto::vertex::EYE_UNIFORM;
 /// "Automatic stereo: a mono program under --auto").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct FixedVertexState {
-    /// GL_LIGHTING enabled.
-    pub lighting: bool,
+    /// GL_LIGHTING enabled: its state.
+    pub lighting: Option<Lighting>,
     /// Any GL_TEXTURE_GEN_* enabled on any unit.
     pub texgen: bool,
     /// Texture units with a texture target enabled (bit i: unit i): their
@@ -63,11 +64,169 @@ pub struct FixedVertexState {
     pub program_point_size: bool,
 }
 
+// GL_COLOR_MATERIAL's modes (glColorMaterial): which material colour the
+// current colour stands for.
+const GL_EMISSION: u32 = 0x1600;
+const GL_AMBIENT: u32 = 0x1200;
+const GL_DIFFUSE: u32 = 0x1201;
+const GL_SPECULAR: u32 = 0x1202;
+const GL_AMBIENT_AND_DIFFUSE: u32 = 0x1602;
+
+/// The lighting state of a lit draw, as the layer reads it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Lighting {
+    /// GL_LIGHTi enabled (bit i).
+    pub lights: u8,
+    /// GL_COLOR_MATERIAL enabled for the front face: its mode, else 0.
+    pub color_material: u32,
+    /// GL_LIGHT_MODEL_LOCAL_VIEWER.
+    pub local_viewer: bool,
+    /// GL_LIGHT_MODEL_TWO_SIDE (not modelled: the slow path).
+    pub two_side: bool,
+    /// GL_LIGHT_MODEL_COLOR_CONTROL is GL_SEPARATE_SPECULAR_COLOR.
+    pub separate_specular: bool,
+    /// Lights (bit i: GL_LIGHTi) with a position (w ≠ 0).
+    pub positional: u8,
+    /// Positional lights attenuated (not 1, 0, 0).
+    pub attenuated: u8,
+    /// Spot lights (cutoff ≠ 180).
+    pub spot: u8,
+    /// GL_NORMALIZE enabled.
+    pub normalize: bool,
+    /// GL_RESCALE_NORMAL enabled.
+    pub rescale_normal: bool,
+}
+
+/// The vertex colours of fixed-function lighting (OpenGL 2.1 §2.14.1, the
+/// compatibility profile's §12.2.1) for the front face: the scene's
+/// emission and ambient, and per enabled light its attenuated, spot-lit
+/// ambient, diffuse and specular terms; the material's colours from
+/// `gl_FrontMaterial` or, under GL_COLOR_MATERIAL, the current colour;
+/// the specular sum in the secondary colour under
+/// GL_SEPARATE_SPECULAR_COLOR. Colours are left to GL's vertex colour
+/// clamping, as fixed function's are.
+fn lighting_source(l: Lighting, color_sum: bool, s: &mut String) {
+    let cm = l.color_material;
+    let from_colour = |which: u32| {
+        cm == which
+            || (cm == GL_AMBIENT_AND_DIFFUSE && (which == GL_AMBIENT || which == GL_DIFFUSE))
+    };
+    // A material colour: the current colour under GL_COLOR_MATERIAL, else
+    // the material's; a product with light i's colour: GL's own
+    // precomputed product where the material is GL's.
+    let material = |which: u32, name: &str| {
+        if from_colour(which) {
+            "gl_Color".to_string()
+        } else {
+            format!("gl_FrontMaterial.{name}")
+        }
+    };
+    let product = |which: u32, name: &str, i: u32| {
+        if from_colour(which) {
+            format!("(gl_Color.rgb * gl_LightSource[{i}].{name}.rgb)")
+        } else {
+            format!("gl_FrontLightProduct[{i}].{name}.rgb")
+        }
+    };
+    s.push_str("    vec4 eye = gl_ModelViewMatrix * gl_Vertex;\n");
+    s.push_str("    vec3 n = gl_NormalMatrix * gl_Normal;\n");
+    if l.rescale_normal {
+        s.push_str("    n *= gl_NormalScale;\n");
+    }
+    if l.normalize {
+        s.push_str("    n = normalize(n);\n");
+    }
+    if l.local_viewer {
+        s.push_str("    vec3 toEye = -normalize(eye.xyz / eye.w);\n");
+    }
+    if from_colour(GL_EMISSION) || from_colour(GL_AMBIENT) {
+        s.push_str(&format!(
+            "    vec3 colour = {}.rgb + {}.rgb * gl_LightModel.ambient.rgb;\n",
+            material(GL_EMISSION, "emission"),
+            material(GL_AMBIENT, "ambient")
+        ));
+    } else {
+        s.push_str("    vec3 colour = gl_FrontLightModelProduct.sceneColor.rgb;\n");
+    }
+    s.push_str("    vec3 shine = vec3(0.0);\n");
+    for i in (0..8).filter(|i| l.lights & (1 << i) != 0) {
+        let bit = 1u8 << i;
+        let (positional, spot) = (l.positional & bit != 0, l.spot & bit != 0);
+        let attenuated = positional && l.attenuated & bit != 0;
+        let ls = format!("gl_LightSource[{i}]");
+        s.push_str("    {\n");
+        if positional {
+            s.push_str(&format!(
+                "        vec3 d = {ls}.position.xyz / {ls}.position.w - eye.xyz / eye.w;\n\
+                 \x20       float dist = length(d);\n\
+                 \x20       vec3 toLight = d / dist;\n"
+            ));
+        } else {
+            s.push_str(&format!(
+                "        vec3 toLight = normalize({ls}.position.xyz);\n"
+            ));
+        }
+        s.push_str(if attenuated || spot {
+            "        float att = 1.0;\n"
+        } else {
+            ""
+        });
+        if attenuated {
+            s.push_str(&format!(
+                "        att = 1.0 / ({ls}.constantAttenuation + {ls}.linearAttenuation * dist\n\
+                 \x20           + {ls}.quadraticAttenuation * dist * dist);\n"
+            ));
+        }
+        if spot {
+            s.push_str(&format!(
+                "        float c = dot(-toLight, normalize({ls}.spotDirection));\n\
+                 \x20       att *= c >= {ls}.spotCosCutoff ? pow(max(c, 0.0), {ls}.spotExponent) : 0.0;\n"
+            ));
+        }
+        // The half vector: GL's own for a directional light seen from
+        // infinity, else from the vertex.
+        let half = match (positional, l.local_viewer) {
+            (false, false) => format!("{ls}.halfVector.xyz"),
+            (_, true) => "normalize(toLight + toEye)".into(),
+            (true, false) => "normalize(toLight + vec3(0.0, 0.0, 1.0))".into(),
+        };
+        let att = if attenuated || spot { "att * " } else { "" };
+        s.push_str(&format!(
+            "        float nl = dot(n, toLight);\n\
+             \x20       colour += {att}({} + max(nl, 0.0) * {});\n\
+             \x20       if (nl > 0.0)\n\
+             \x20           shine += {att}pow(max(dot(n, {half}), 0.0), gl_FrontMaterial.shininess)\n\
+             \x20               * {};\n\
+             \x20   }}\n",
+            product(GL_AMBIENT, "ambient", i),
+            product(GL_DIFFUSE, "diffuse", i),
+            product(GL_SPECULAR, "specular", i),
+        ));
+    }
+    let alpha = format!("{}.a", material(GL_DIFFUSE, "diffuse"));
+    if l.separate_specular {
+        s.push_str(&format!(
+            "    gl_FrontColor = vec4(colour, {alpha});\n\
+             \x20   gl_FrontSecondaryColor = vec4(shine, 0.0);\n"
+        ));
+    } else {
+        s.push_str(&format!(
+            "    gl_FrontColor = vec4(colour + shine, {alpha});\n"
+        ));
+        if color_sum {
+            // Lit, the secondary colour is the specular sum or nothing.
+            s.push_str("    gl_FrontSecondaryColor = vec4(0.0);\n");
+        }
+    }
+}
+
 /// The stand-in's source for `state`, the eye uniform at `location`; or
 /// why `state` needs the slow path.
 pub fn source(state: FixedVertexState, location: u32) -> Result<String, String> {
-    if state.lighting {
-        return Err("fixed-function lighting is not modelled yet".into());
+    if let Some(l) = state.lighting {
+        if l.two_side {
+            return Err("two-sided fixed-function lighting is not modelled yet".into());
+        }
     }
     if state.texgen {
         return Err("texture-coordinate generation is not modelled yet".into());
@@ -82,17 +241,22 @@ pub fn source(state: FixedVertexState, location: u32) -> Result<String, String> 
     ));
     s.push_str(
         "void main()\n{\n\
-         \x20   gl_Position = ftransform();\n\
-         \x20   gl_FrontColor = gl_Color;\n",
+         \x20   gl_Position = ftransform();\n",
     );
-    // Without lighting the back colours are never selected (two-sided
-    // colour belongs to lighting, or to GL_VERTEX_PROGRAM_TWO_SIDE, which
-    // a fixed-function program has no reason to enable).
-    if state.color_sum {
-        s.push_str("    gl_FrontSecondaryColor = gl_SecondaryColor;\n");
-    }
-    if state.clip_planes || (state.fog && !state.fog_coord) {
-        s.push_str("    vec4 eye = gl_ModelViewMatrix * gl_Vertex;\n");
+    // Without two-sided lighting the back colours are never selected
+    // (two-sided colour belongs to it, or to GL_VERTEX_PROGRAM_TWO_SIDE,
+    // which a fixed-function program has no reason to enable).
+    match state.lighting {
+        Some(l) => lighting_source(l, state.color_sum, &mut s),
+        None => {
+            s.push_str("    gl_FrontColor = gl_Color;\n");
+            if state.color_sum {
+                s.push_str("    gl_FrontSecondaryColor = gl_SecondaryColor;\n");
+            }
+            if state.clip_planes || (state.fog && !state.fog_coord) {
+                s.push_str("    vec4 eye = gl_ModelViewMatrix * gl_Vertex;\n");
+            }
+        }
     }
     if state.clip_planes {
         s.push_str("    gl_ClipVertex = eye;\n");
@@ -127,11 +291,15 @@ mod tests {
 
     #[test]
     fn unmodelled_state_takes_the_slow_path() {
-        let lit = FixedVertexState {
-            lighting: true,
+        let two_sided = FixedVertexState {
+            lighting: Some(Lighting {
+                lights: 1,
+                two_side: true,
+                ..Default::default()
+            }),
             ..Default::default()
         };
-        assert!(source(lit, 7).unwrap_err().contains("lighting"));
+        assert!(source(two_sided, 7).unwrap_err().contains("two-sided"));
         let s = source(
             FixedVertexState {
                 texture_units: 0b101,
@@ -179,5 +347,80 @@ mod tests {
         ] {
             assert!(all.contains(present), "{present}: {all}");
         }
+    }
+
+    #[test]
+    fn lighting_takes_each_enabled_light_and_the_colour_material() {
+        let lit = |l: Lighting, color_sum: bool| {
+            source(
+                FixedVertexState {
+                    lighting: Some(l),
+                    color_sum,
+                    ..Default::default()
+                },
+                7,
+            )
+            .unwrap()
+        };
+        let s = lit(
+            Lighting {
+                lights: 0b101,
+                color_material: GL_AMBIENT_AND_DIFFUSE,
+                ..Default::default()
+            },
+            false,
+        );
+        assert!(s.contains("gl_LightSource[0]") && s.contains("gl_LightSource[2]"));
+        assert!(!s.contains("gl_LightSource[1]"), "{s}");
+        assert!(
+            s.contains("(gl_Color.rgb * gl_LightSource[0].ambient.rgb)"),
+            "{s}"
+        );
+        assert!(
+            s.contains("(gl_Color.rgb * gl_LightSource[2].diffuse.rgb)"),
+            "{s}"
+        );
+        assert!(s.contains("gl_FrontLightProduct[2].specular.rgb"), "{s}");
+        // Directional lights from infinity: GL's half vectors, nothing
+        // attenuated, no spot.
+        assert!(s.contains("gl_LightSource[0].halfVector.xyz"), "{s}");
+        for absent in ["normalize(n)", "att", "dist", "spotDirection", "toEye"] {
+            assert!(!s.contains(absent), "{absent}: {s}");
+        }
+        assert!(!s.contains("gl_FrontSecondaryColor"), "{s}");
+        let s = lit(
+            Lighting {
+                lights: 0b10,
+                positional: 0b10,
+                attenuated: 0b10,
+                spot: 0b10,
+                local_viewer: true,
+                normalize: true,
+                separate_specular: true,
+                ..Default::default()
+            },
+            false,
+        );
+        for present in [
+            "vec3 toEye = -normalize(eye.xyz / eye.w);",
+            "n = normalize(n);",
+            "gl_FrontSecondaryColor = vec4(shine, 0.0);",
+            "gl_FrontLightModelProduct.sceneColor.rgb",
+            "gl_FrontLightProduct[1].diffuse.rgb",
+            "gl_LightSource[1].quadraticAttenuation * dist * dist",
+            "normalize(gl_LightSource[1].spotDirection)",
+            "normalize(toLight + toEye)",
+        ] {
+            assert!(s.contains(present), "{present}: {s}");
+        }
+        // Lit with GL_COLOR_SUM and no separate specular: no secondary colour.
+        let s = lit(
+            Lighting {
+                lights: 1,
+                ..Default::default()
+            },
+            true,
+        );
+        assert!(s.contains("gl_FrontSecondaryColor = vec4(0.0);"), "{s}");
     }
 }

@@ -50,6 +50,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
 
 #include "x_window.h"
 
@@ -150,6 +151,60 @@ static void legacy_scene(double k, double c)
     glVertex3f(-3.0f, 3.0f, -5.0f);
     glEnd();
     glDisable(GL_LIGHTING);
+
+    /* A lit strip (w = 5) whose normals turn across it (given twice too
+     * long: GL_NORMALIZE), under two lights: light 0 as it is by default,
+     * and light 1 positional, a spot with attenuation; specular colour
+     * separate, a local viewer, and GL_COLOR_MATERIAL for the diffuse
+     * colour. Everything put back after. */
+    {
+        static const GLfloat pos1[] = {-2.0f, 0.0f, -3.0f, 1.0f};
+        static const GLfloat dir1[] = {-1.0f, -0.5f, -1.0f};
+        static const GLfloat dif1[] = {0.2f, 0.6f, 0.9f, 1.0f};
+        static const GLfloat spec1[] = {0.5f, 0.5f, 0.4f, 1.0f};
+        static const GLfloat mspec[] = {0.5f, 0.4f, 0.3f, 1.0f};
+        static const GLfloat spec_default[] = {0.0f, 0.0f, 0.0f, 1.0f};
+        glPushMatrix();
+        glLoadIdentity();
+        glLightfv(GL_LIGHT1, GL_POSITION, pos1);
+        glLightfv(GL_LIGHT1, GL_SPOT_DIRECTION, dir1);
+        glPopMatrix();
+        glLightf(GL_LIGHT1, GL_SPOT_CUTOFF, 70.0f);
+        glLightf(GL_LIGHT1, GL_SPOT_EXPONENT, 2.0f);
+        glLightf(GL_LIGHT1, GL_LINEAR_ATTENUATION, 0.1f);
+        glLightf(GL_LIGHT1, GL_QUADRATIC_ATTENUATION, 0.02f);
+        glLightfv(GL_LIGHT1, GL_DIFFUSE, dif1);
+        glLightfv(GL_LIGHT1, GL_SPECULAR, spec1);
+        glMaterialfv(GL_FRONT, GL_SPECULAR, mspec);
+        glMaterialf(GL_FRONT, GL_SHININESS, 12.0f);
+        glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, GL_TRUE);
+        glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SEPARATE_SPECULAR_COLOR);
+        glColorMaterial(GL_FRONT, GL_DIFFUSE);
+        glEnable(GL_COLOR_MATERIAL);
+        glEnable(GL_NORMALIZE);
+        glEnable(GL_LIGHTING);
+        glEnable(GL_LIGHT0);
+        glEnable(GL_LIGHT1);
+        glColor3f(0.3f, 0.5f, 0.7f);
+        glBegin(GL_QUAD_STRIP);
+        for (int i = 0; i <= 8; i++) {
+            float a = -1.0f + 0.25f * (float)i;
+            float x = -4.6f + 0.15f * (float)i;
+            glNormal3f(2.0f * sinf(a), 0.0f, 2.0f * cosf(a));
+            glVertex3f(x, -3.0f, -5.0f);
+            glVertex3f(x, 1.0f, -5.0f);
+        }
+        glEnd();
+        glDisable(GL_LIGHT1);
+        glDisable(GL_LIGHTING);
+        glDisable(GL_NORMALIZE);
+        glDisable(GL_COLOR_MATERIAL);
+        glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
+        glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
+        glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, GL_FALSE);
+        glMaterialfv(GL_FRONT, GL_SPECULAR, spec_default);
+        glMaterialf(GL_FRONT, GL_SHININESS, 0.0f);
+    }
 
     /* A bitmap at a perspective raster position (w = 10). */
     glColor3f(1.0f, 0.5f, 0.0f);
