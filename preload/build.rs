@@ -19,8 +19,9 @@ use entry_points::Family;
 /// hook (`glstereo::interpose::draws`): everything that draws into the
 /// default framebuffer, the capabilities automatic stereo answers
 /// (glEnable/glDisable/glIsEnabled of GL_3DVISION_STEREO_NV), the
-/// matrix uploads automatic convergence learns projections from, and the
-/// queries and transform feedback whose capture stays single.
+/// matrix uploads automatic convergence learns projections from, the
+/// queries and transform feedback whose capture stays single, and the
+/// lighting state the fixed-function stand-in is keyed on.
 const GENERATED: &[Family] = &[
     Family::Draw,
     Family::BeginEnd,
@@ -31,6 +32,7 @@ const GENERATED: &[Family] = &[
     Family::Settings,
     Family::Projection,
     Family::SideEffect,
+    Family::Lighting,
 ];
 
 /// Each stub's file name (also its soname) and the library it stands for.

@@ -83,6 +83,11 @@ pub enum Family {
     /// convergence learns a shader program's perspective projection from
     /// them ([`crate::auto::converge`]).
     Projection,
+    /// Fixed-function lighting state that is not an enable (glLight*,
+    /// glLightModel*, glColorMaterial): the stand-in vertex shader is
+    /// keyed on it ([`crate::auto::standin`]), so it is read again after
+    /// one of these, not at every draw.
+    Lighting,
 }
 
 /// The names of `family`'s commands that no prefix rule below catches.
@@ -136,6 +141,7 @@ const EXACT: &[(&str, Family)] = &[
     ("glBindImageTextureEXT", Family::Texture),
     ("glBindImageTextures", Family::Texture),
     ("glQueryCounter", Family::SideEffect),
+    ("glColorMaterial", Family::Lighting),
     ("glUniformMatrix4fv", Family::Projection),
     ("glUniformMatrix4fvARB", Family::Projection),
     ("glProgramUniformMatrix4fv", Family::Projection),
@@ -291,6 +297,7 @@ const PREFIXES: &[(&str, &[&str], Family)] = &[
         Family::Vertex,
     ),
     ("glMaterial", &[], Family::Vertex),
+    ("glLight", &[], Family::Lighting),
     ("glEvalCoord", &[], Family::Vertex),
     ("glEvalPoint", &[], Family::Vertex),
     (
@@ -390,8 +397,9 @@ mod tests {
             (Family::SideEffect, 35),
             (Family::Settings, 18),
             (Family::Projection, 4),
+            (Family::Lighting, 14),
         ];
-        assert_eq!(total, 922);
+        assert_eq!(total, 936);
         for (f, n) in want {
             assert_eq!(counts.get(&f).copied().unwrap_or(0), n, "{f:?}");
         }

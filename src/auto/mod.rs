@@ -306,8 +306,9 @@
 //! | SideEffect | 35 | queries segmented and summed, transform feedback paused |
 //! | Settings | 18 | GL_3DVISION_STEREO_NV and the STEREO_*_NV pnames |
 //! | Projection | 4 | glUniformMatrix4fv & co.: automatic convergence's projection |
+//! | Lighting | 14 | glLight*, glLightModel*, glColorMaterial: the stand-in's lighting read again |
 //!
-//! 922 in all (most are the per-vertex commands of immediate mode and
+//! 936 in all (most are the per-vertex commands of immediate mode and
 //! their extension forms); glStereoParameterfNV / glStereoParameteriNV are
 //! an OpenGL ES extension, not in gl.xml's desktop set: two hand-typed
 //! exports. Without `--auto` each wrapper is one thread-local test and the

@@ -235,9 +235,9 @@ pub struct AutoState {
     settings: Option<StereoSettings>,
     /// The stand-in programs made so far, by the state they reproduce.
     standin: Vec<(FixedVertexState, u32)>,
-    /// The enables the stand-in depends on, as last read ([`fixed_state`]);
-    /// None: to be read again (glEnable, glDisable, glPopAttrib or a
-    /// display list ran since).
+    /// The state the stand-in depends on, as last read ([`fixed_state`]);
+    /// None: to be read again (glEnable, glDisable, glPopAttrib, a display
+    /// list, glLight*, glLightModel* or glColorMaterial ran since).
     fixed_enables: Option<FixedVertexState>,
     /// A stand-in could not be made: fixed function takes the slow path.
     standin_failed: bool,
@@ -363,9 +363,10 @@ impl AutoState {
         s
     }
 
-    /// The enables the fixed-function stand-in depends on may have
-    /// changed (glEnable, glDisable, glPopAttrib, a display list): read
-    /// them again at the next fixed-function draw.
+    /// The state the fixed-function stand-in depends on may have changed
+    /// (glEnable, glDisable, glPopAttrib, a display list, glLight*,
+    /// glLightModel*, glColorMaterial): read it again at the next
+    /// fixed-function draw.
     pub fn forget_enables(&mut self) {
         self.fixed_enables = None;
     }
@@ -470,11 +471,9 @@ unsafe fn vertex_program(f: &AutoFns) -> Option<(u32, bool)> {
 unsafe fn fixed_state(f: &AutoFns, st: &mut AutoState) -> Option<FixedVertexState> {
     // SAFETY: contract of the callers.
     unsafe {
-        let on = |cap| (f.is_enabled)(cap) != 0;
-        if on(GL_VERTEX_PROGRAM_ARB) {
+        if (f.is_enabled)(GL_VERTEX_PROGRAM_ARB) != 0 {
             return None;
         }
-        let lit = on(GL_LIGHTING);
         let enables = match st.fixed_enables {
             Some(e) => e,
             None => {
@@ -486,66 +485,69 @@ unsafe fn fixed_state(f: &AutoFns, st: &mut AutoState) -> Option<FixedVertexStat
         if enables.texgen {
             return None;
         }
-        // glFog's source, glLightModel and glColorMaterial are not
-        // enables: read at every draw that uses them.
+        // glFog's source is not an enable: read at every draw under fog.
         let fog_coord = enables.fog && integer(f, GL_FOG_COORD_SRC) as u32 == GL_FOG_COORD;
-        let lighting = match (lit, enables.lighting) {
-            (true, Some(l)) => Some(Lighting {
-                color_material: if l.color_material != 0
-                    && integer(f, GL_COLOR_MATERIAL_FACE) as u32 != crate::gl::enums::GL_BACK
-                {
-                    integer(f, GL_COLOR_MATERIAL_PARAMETER) as u32
-                } else {
-                    0
-                },
-                local_viewer: integer(f, GL_LIGHT_MODEL_LOCAL_VIEWER) != 0,
-                two_side: integer(f, GL_LIGHT_MODEL_TWO_SIDE) != 0,
-                separate_specular: integer(f, GL_LIGHT_MODEL_COLOR_CONTROL) as u32
-                    == GL_SEPARATE_SPECULAR_COLOR,
-                ..light_kinds(f, l)
-            }),
-            _ => None,
-        };
         Some(FixedVertexState {
             fog_coord,
-            lighting,
             ..enables
         })
     }
 }
 
-/// `l` with the kind of each enabled light (positional, spot,
-/// attenuated) read from GL, as Mesa keys its fixed-function program: the
-/// stand-in computes only what each light needs.
-unsafe fn light_kinds(f: &AutoFns, mut l: Lighting) -> Lighting {
-    let get = |light: u32, pname: u32| {
+/// The lighting state of the stand-in's key, GL_LIGHTING being on: the
+/// enabled lights and the kind of each (positional, spot, attenuated),
+/// as Mesa keys its own fixed-function program, so that the stand-in
+/// computes only what each light needs; the colour material, the light
+/// model, the normals' treatment.
+unsafe fn read_lighting(f: &AutoFns) -> Lighting {
+    // SAFETY (every call): a compatibility context is current (callers);
+    // glGetLightfv writes at most 4 values.
+    let on = |cap| unsafe { (f.is_enabled)(cap) != 0 };
+    let int = |pname| unsafe { integer(f, pname) };
+    let light = |i: u32, pname: u32| {
         let mut v = [0.0f32; 4];
-        // SAFETY: a compatibility context is current (callers); at most 4
-        // values.
-        unsafe { (f.get_lightfv)(GL_LIGHT0 + light, pname, v.as_mut_ptr()) };
+        unsafe { (f.get_lightfv)(GL_LIGHT0 + i, pname, v.as_mut_ptr()) };
         v
     };
-    for i in (0..8).filter(|i| l.lights & (1 << i) != 0) {
+    let mut l = Lighting {
+        color_material: if on(GL_COLOR_MATERIAL)
+            && int(GL_COLOR_MATERIAL_FACE) as u32 != crate::gl::enums::GL_BACK
+        {
+            int(GL_COLOR_MATERIAL_PARAMETER) as u32
+        } else {
+            0
+        },
+        local_viewer: int(GL_LIGHT_MODEL_LOCAL_VIEWER) != 0,
+        two_side: int(GL_LIGHT_MODEL_TWO_SIDE) != 0,
+        separate_specular: int(GL_LIGHT_MODEL_COLOR_CONTROL) as u32 == GL_SEPARATE_SPECULAR_COLOR,
+        normalize: on(GL_NORMALIZE),
+        rescale_normal: on(GL_RESCALE_NORMAL),
+        ..Lighting::default()
+    };
+    for i in (0..int(GL_MAX_LIGHTS).clamp(0, 8) as u32).filter(|&i| on(GL_LIGHT0 + i)) {
         let bit = 1u8 << i;
-        if get(i, GL_POSITION)[3] != 0.0 {
+        l.lights |= bit;
+        if light(i, GL_POSITION)[3] != 0.0 {
             l.positional |= bit;
             let k = [
-                get(i, GL_CONSTANT_ATTENUATION)[0],
-                get(i, GL_LINEAR_ATTENUATION)[0],
-                get(i, GL_QUADRATIC_ATTENUATION)[0],
-            ];
+                GL_CONSTANT_ATTENUATION,
+                GL_LINEAR_ATTENUATION,
+                GL_QUADRATIC_ATTENUATION,
+            ]
+            .map(|p| light(i, p)[0]);
             if k != [1.0, 0.0, 0.0] {
                 l.attenuated |= bit;
             }
         }
-        if get(i, GL_SPOT_CUTOFF)[0] != 180.0 {
+        if light(i, GL_SPOT_CUTOFF)[0] != 180.0 {
             l.spot |= bit;
         }
     }
     l
 }
 
-/// The enables [`fixed_state`] keeps between changes.
+/// The state [`fixed_state`] keeps between changes: the enables, and
+/// under GL_LIGHTING the lighting ([`read_lighting`]).
 unsafe fn read_enables(f: &AutoFns) -> FixedVertexState {
     // SAFETY: contract of the callers.
     unsafe {
@@ -564,19 +566,8 @@ unsafe fn read_enables(f: &AutoFns) -> FixedVertexState {
         }
         (f.active_texture)(active);
         let planes = integer(f, GL_MAX_CLIP_PLANES).clamp(0, 64) as u32;
-        let lights = integer(f, GL_MAX_LIGHTS).clamp(0, 8) as u32;
         FixedVertexState {
-            // The enables of lighting (whether GL_LIGHTING is on is read
-            // at every draw); `color_material` 1 here: enabled.
-            lighting: Some(Lighting {
-                lights: (0..lights)
-                    .filter(|&i| on(GL_LIGHT0 + i))
-                    .fold(0, |m, i| m | 1 << i),
-                color_material: u32::from(on(GL_COLOR_MATERIAL)),
-                normalize: on(GL_NORMALIZE),
-                rescale_normal: on(GL_RESCALE_NORMAL),
-                ..Lighting::default()
-            }),
+            lighting: on(GL_LIGHTING).then(|| read_lighting(f)),
             texgen,
             texture_units,
             fog: on(GL_FOG),
@@ -837,6 +828,10 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
         }
         Family::Projection => {
             learn_projection(cur, &call);
+            draw()
+        }
+        Family::Lighting => {
+            cur.sc.with_auto(cur.draw, |st, _| st.forget_enables());
             draw()
         }
         Family::SideEffect => {

@@ -156,7 +156,8 @@ static void legacy_scene(double k, double c)
      * long: GL_NORMALIZE), under two lights: light 0 as it is by default,
      * and light 1 positional, a spot with attenuation; specular colour
      * separate, a local viewer, and GL_COLOR_MATERIAL for the diffuse
-     * colour. Everything put back after. */
+     * colour; then light 1 changed by glLight alone (directional, no
+     * spot) for a second strip. Everything put back after. */
     {
         static const GLfloat pos1[] = {-2.0f, 0.0f, -3.0f, 1.0f};
         static const GLfloat dir1[] = {-1.0f, -0.5f, -1.0f};
@@ -193,6 +194,23 @@ static void legacy_scene(double k, double c)
             glNormal3f(2.0f * sinf(a), 0.0f, 2.0f * cosf(a));
             glVertex3f(x, -3.0f, -5.0f);
             glVertex3f(x, 1.0f, -5.0f);
+        }
+        glEnd();
+        /* Light 1 made directional and no spot by glLight alone (no
+         * enable changes): a second strip above the first. */
+        static const GLfloat dir_pos1[] = {-1.0f, 0.5f, 1.0f, 0.0f};
+        glPushMatrix();
+        glLoadIdentity();
+        glLightfv(GL_LIGHT1, GL_POSITION, dir_pos1);
+        glPopMatrix();
+        glLightf(GL_LIGHT1, GL_SPOT_CUTOFF, 180.0f);
+        glBegin(GL_QUAD_STRIP);
+        for (int i = 0; i <= 8; i++) {
+            float a = -1.0f + 0.25f * (float)i;
+            float x = -4.6f + 0.15f * (float)i;
+            glNormal3f(2.0f * sinf(a), 0.0f, 2.0f * cosf(a));
+            glVertex3f(x, 1.2f, -5.0f);
+            glVertex3f(x, 2.8f, -5.0f);
         }
         glEnd();
         glDisable(GL_LIGHT1);
