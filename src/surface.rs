@@ -903,8 +903,8 @@ impl Surface {
                     let (w, h) = job.eye_size;
                     let (cw, ch) = crate::output::composite_size(mode, w, h);
                     let fits = cw <= c.max_side(gl) && ch <= c.max_side(gl);
-                    let chosen =
-                        path.unwrap_or_else(|| preferred_path(c.software(gl), mode, &job.options));
+                    let chosen = path
+                        .unwrap_or_else(|| preferred_path(c.cpu_device(gl), mode, &job.options));
                     if !fits || chosen == ComposePath::Cpu {
                         return Ok(None);
                     }

@@ -223,7 +223,8 @@ fn assert_within_one(got: &Image, want: &Image, what: &str) {
 fn the_librarys_own_surfaces_compose_on_zink_as_on_llvmpipe() {
     // RedBlue headless (EGL) in a Dubois mode and a byte-shuffling one,
     // once on llvmpipe and once on zink: the same eyes, and composites
-    // within one unit (zink composes on GL, llvmpipe partly on the CPU).
+    // within one unit (both compose captures on the CPU: zink's device
+    // is lavapipe).
     let exe = common::build_example("redblue", false);
     for mode in ["anaglyph-red-cyan-dubois", "side-by-side-half"] {
         let mut images = Vec::new();

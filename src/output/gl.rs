@@ -169,9 +169,9 @@ pub enum ComposePath {
 }
 
 /// The faster way to capture the composite of `mode` with `options`, on a
-/// software renderer (`software`: llvmpipe, softpipe, swrast, zink over
-/// lavapipe — what EGL surfaceless, OSMesa and Xvfb give on a machine
-/// without a GPU) or a hardware one.
+/// renderer whose device is the CPU (`cpu_device`, [`composes_on_cpu`]:
+/// llvmpipe, softpipe, swrast, zink over lavapipe — what EGL surfaceless,
+/// OSMesa and Xvfb give on a machine without a GPU) or a hardware one.
 ///
 /// On a software renderer, the CPU for every mode and option: its row
 /// kernels compose any mode in 0.3–3 ms at 1280x1024 (`benches/compose.rs`),
@@ -185,9 +185,9 @@ pub enum ComposePath {
 /// per mode.
 ///
 /// Both paths give the same image within 1 unit per channel.
-pub fn preferred_path(software: bool, mode: OutputMode, options: &OutputOptions) -> ComposePath {
+pub fn preferred_path(cpu_device: bool, mode: OutputMode, options: &OutputOptions) -> ComposePath {
     let _ = (mode, options);
-    if software {
+    if cpu_device {
         ComposePath::Cpu
     } else {
         ComposePath::Gl
