@@ -7,20 +7,28 @@
 //! `v = ML[c][0]·lin(l0) + ML[c][1]·lin(l1) + ML[c][2]·lin(l2) + MR[c][0]·lin(r0) + …`
 //! in f32 from left to right, then `unorm(linear_to_srgb(clamp(v, 0, 1))·255)`.
 //!
-//! **AVX-512** (8-bit eyes; [`Dubois::row_avx512`], 16 pixels a vector,
-//! no memory read but the eyes): within 1 unit, and equal to the
-//! reference for more than 99 % of channels.
+//! **AVX-512** (8-bit eyes; [`Dubois::row_avx512`], 32 pixels a step,
+//! software-pipelined): within 1 unit, and equal to the reference for more
+//! than 99 % of channels.
 //!
-//! - **Decoding**: `lin(x)·2¹⁵` rounded to 16 bits, its low and high bytes
-//!   looked up by byte permutes (VBMI) of 4 registers each, every byte of
-//!   the pixels at once; errors ≤ 2⁻¹⁶.
+//! - **Decoding**: the six channels of 32 pixels packed by byte permutes
+//!   into three registers of channel pairs per pixel (left R, G; left B
+//!   and the right eye's B, moved into the left eye's alpha byte; right R,
+//!   G), then `lin(x)·2¹⁵` rounded to 16 bits, its low and high bytes
+//!   looked up by byte permutes (VBMI) of 128-entry halves of the table,
+//!   and unpacked into 16-bit pairs; errors ≤ 2⁻¹⁶.
 //! - **The sum** in 32-bit integers, pairs of 16-bit products at a time
 //!   (VNNI), with the weights rounded to 16 bits (`round(w·2^S)`, S = 15,
 //!   or 14 for weights of 1 or more); errors ≤ 6·2⁻¹⁶ + 2⁻¹⁶·Σ|w|.
-//! - **Encoding** in f32: on the toe (v ≤ 0.0031308) its linear formula;
-//!   above, per octave [2^e, 2^(e+1)) of v, `255·1.055·2^(e/2.4)` (a
-//!   16-entry permute by the exponent) times a cubic of the mantissa
-//!   ([`CUBIC`], within 0.03 units); rounded half up, and bytes saturated.
+//! - **Encoding** in f32: the smaller of the curve — per octave
+//!   [2^e, 2^(e+1)) of v, `255·1.055·2^(e/2.4)` (a 32-entry permute by the
+//!   exponent and the mantissa's top bit) times a cubic of the mantissa
+//!   ([`CUBIC`], within 0.03 units), minus 0.055·255 — and the toe's line
+//!   `12.92·255·v`: sRGB's two pieces cross at the knee, so the smaller is
+//!   the right one but within 0.002 units in the half octave the knee
+//!   splits, and half octaves wholly below the knee give the curve a huge
+//!   scale ([`Fixed::scale`]). Rounded to nearest, bytes saturated by
+//!   packing.
 //!
 //! At the curve's steepest (the toe: 3294 units per unit of v) the errors
 //! add up to less than 0.45 of a unit, so the byte is the reference's or
@@ -168,56 +176,81 @@ pub(crate) struct Dubois {
     /// Row c: the left eye's R, G, B and the right eye's R, G, B weights
     /// of output channel c.
     m: [[f32; 6]; 3],
-    /// The same in fixed point, for the AVX-512 kernel.
+    /// The same in fixed point, for the AVX-512 kernel (one per pair of
+    /// glasses, built once: its tables are 400 bytes).
     #[cfg_attr(not(glstereo_avx512), allow(dead_code))]
-    fixed: Fixed,
+    fixed: &'static Fixed,
 }
+
+/// 64-byte alignment for the AVX-512 kernel's tables (whole cache lines,
+/// loads that never split one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+struct Lines<T>(T);
 
 /// The sRGB decoding in fixed point: `lin(x)·2¹⁵` rounded (white, 2¹⁵,
 /// as 2¹⁵ − 1), split into its low and high bytes for byte permutes.
 #[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
-fn decode_q15() -> &'static [[u8; 256]; 2] {
-    static TABLE: OnceLock<[[u8; 256]; 2]> = OnceLock::new();
+fn decode_q15() -> &'static Lines<[[u8; 256]; 2]> {
+    static TABLE: OnceLock<Lines<[[u8; 256]; 2]>> = OnceLock::new();
     TABLE.get_or_init(|| {
         let q = |x: usize| {
             let v = (srgb_to_linear(x as f32 / 255.0) as f64 * 32768.0).round();
             v.min(32767.0) as u16
         };
-        [
+        Lines([
             std::array::from_fn(|x| q(x) as u8),
             std::array::from_fn(|x| (q(x) >> 8) as u8),
-        ]
+        ])
     })
 }
 
-/// Byte permutes of a chunk's decoded low and high bytes (bit 6 of an
-/// index: the high) into word pairs per pixel: byte j of dword i from
-/// byte 4i + f[j] of the pixel words.
+/// The pixel of byte i of a packed pair register (32 pixels, two channels
+/// each, [`Dubois::row_avx512`]): in 128-bit lane l, bytes 0–7 hold the
+/// pairs of pixels 4l…4l+3 and bytes 8–15 those of pixels 16+4l…16+4l+3,
+/// so that unpacking a lane's low and high halves into words gives
+/// pixels 0–15 and 16–31 in order.
 #[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
-const fn pair_index(f: [u8; 4]) -> [u8; 64] {
-    let mut b = [0; 64];
-    let mut j = 0;
-    while j < 64 {
-        let (i, k) = (j / 4, j % 4);
-        b[j] = if k % 2 == 1 { 64 } else { 0 } + 4 * i as u8 + f[k];
-        j += 1;
+const fn packed_pixel(i: usize) -> usize {
+    let (lane, pair) = (i / 16, i % 16 / 2);
+    if pair < 4 {
+        4 * lane + pair
+    } else {
+        16 + 4 * lane + pair - 4
     }
-    b
 }
 
-/// (R, G) of a pixel, and (B, B) (the left eye's in the low word, the
-/// right eye's in the high).
+/// Byte permutes of two eye registers (32 pixels: byte 4p + c is channel
+/// c of pixel p) into a packed pair register of channels `first` and
+/// `first` + 1.
 #[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
-const PAIR_RG: [u8; 64] = pair_index([0, 0, 1, 1]);
+const fn pack_index(first: usize) -> Lines<[u8; 64]> {
+    let mut b = [0; 64];
+    let mut i = 0;
+    while i < 64 {
+        b[i] = (4 * packed_pixel(i) + first + i % 2) as u8;
+        i += 1;
+    }
+    Lines(b)
+}
+
+/// (R, G) of each pixel; and (B, alpha), where the kernel has put the
+/// right eye's blue in the left eye's alpha byte.
 #[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
-const PAIR_BB: [u8; 64] = pair_index([2, 2, 2, 2]);
+static PACK_RG: Lines<[u8; 64]> = pack_index(0);
+#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
+static PACK_BA: Lines<[u8; 64]> = pack_index(2);
 
 /// m^(1/2.4) on [1, 2] by a cubic (Chebyshev interpolation; within
 /// 1.1·10⁻⁴, 0.03 of an output unit at the top octave), lowest power first.
 #[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
 const CUBIC: [f32; 4] = [0.461_083_8, 0.688_601, -0.173_310_86, 0.023_732_816];
 
-/// [`Dubois`] in fixed point for [`Dubois::chunk_avx512`]: per output
+/// A scale the curve takes where a half octave lies below the knee, so
+/// that the toe's line is the smaller (see [`Fixed::scale`]).
+const ABOVE: f32 = 1e30;
+
+/// [`Dubois`] in fixed point for [`Dubois::row_avx512`]: per output
 /// channel, the six weights as 16-bit integers `round(w·2^S)` (S = 15, or
 /// 14 where a weight is 1 or more), so that the sum of weight × decoded
 /// channel (2¹⁵ for 1) is `v·2^(15+S)`, exactly, in 32 bits; and the
@@ -227,39 +260,27 @@ const CUBIC: [f32; 4] = [0.461_083_8, 0.688_601, -0.173_310_86, 0.023_732_816];
 struct Fixed {
     /// Word pairs (left R, left G), (left B, right B), (right R, right G).
     pairs: [[u32; 3]; 3],
-    /// The sum at the knee: at or below, the linear toe.
-    knee: [f32; 3],
-    /// Output units (+0.5, for rounding) per unit of the sum, on the toe.
+    /// Output units per unit of the sum on the toe (12.92·255/2^(15+S)).
     toe: [f32; 3],
-    /// S − 14: which of [`octaves`] the channel's sums take.
-    octave: [u8; 3],
-}
-
-/// By a sum's biased f32 exponent mod 16, where the sum is `v·2^(15+S)`
-/// (entry S − 14): 255·1.055·2^(e/2.4) for v in [2^e, 2^(e+1)), e = −9…0
-/// (the toe's octaves: 0).
-#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
-fn octaves() -> &'static [[f32; 16]; 2] {
-    static TABLE: OnceLock<[[f32; 16]; 2]> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        let mut t = [[0.0; 16]; 2];
-        for (i, t) in t.iter_mut().enumerate() {
-            for e in -9..=0 {
-                let slot = (127 + e + 15 + 14 + i as i32) as usize % 16;
-                t[slot] = 255.0 * 1.055 * 2f32.powf(e as f32 / 2.4);
-            }
-        }
-        t
-    })
+    /// By the f32 bits of a sum shifted right by 22, mod 32 (the octave
+    /// [2^e, 2^(e+1)) of v and which half of it): 255·1.055·2^(e/2.4), the
+    /// curve's scale there (e = −9…0; above 1, e = 0's, which saturates);
+    /// [`ABOVE`] for every other half octave. On the toe (v ≤ 0.0031308)
+    /// the output is the smaller of the toe's line and the curve: every
+    /// half octave wholly below the knee makes the curve huge, and in the
+    /// one the knee splits, [1.5, 2)·2⁻⁹, the curve lies under the line by
+    /// at most 0.0008·255 above the knee and within 0.002 units of it
+    /// below; higher the curve is the smaller (sRGB's two pieces cross
+    /// at the knee and the line is steeper).
+    scale: Lines<[[f32; 32]; 3]>,
 }
 
 impl Fixed {
     fn new(m: &[[f32; 6]; 3]) -> Fixed {
         let mut f = Fixed {
             pairs: [[0; 3]; 3],
-            knee: [0.0; 3],
             toe: [0.0; 3],
-            octave: [0; 3],
+            scale: Lines([[ABOVE; 32]; 3]),
         };
         for (c, m) in m.iter().enumerate() {
             let max = m.iter().fold(0.0f32, |a, w| a.max(w.abs()));
@@ -267,77 +288,85 @@ impl Fixed {
             let q = m.map(|w| (f64::from(w) * f64::from(1 << s)).round() as i32);
             let total: i64 = q.iter().map(|q| i64::from(q.abs()) * 32767).sum();
             assert!(total < 1 << 31, "the sums fit in 32 bits");
+            // Positive sums stay below 2^(16+S) (v < 2): one half-octave
+            // slot per half octave from 2⁻¹⁵ up.
+            let positive: i64 = q.iter().map(|&q| i64::from(q.max(0)) * 32767).sum();
+            assert!(positive < 1 << (16 + s), "v < 2");
             let pair = |a: i32, b: i32| (a as u16 as u32) | (b as u16 as u32) << 16;
             f.pairs[c] = [pair(q[0], q[1]), pair(q[2], q[5]), pair(q[3], q[4])];
-            let unit = 2f32.powi(15 + s);
-            f.knee[c] = KNEE * unit;
-            f.toe[c] = 12.92 * 255.0 / unit;
-            f.octave[c] = (s - 14) as u8;
+            f.toe[c] = (12.92 * 255.0 / 2f64.powi(15 + s)) as f32;
+            for e in -9..=1 {
+                for half in 0..2 {
+                    let top = 2f64.powi(e) * (1.0 + f64::from(half + 1) / 2.0);
+                    let slot = (2 * (127 + 15 + s + e) + half) as usize % 32;
+                    if top > f64::from(KNEE) {
+                        f.scale.0[c][slot] = 255.0 * 1.055 * 2f32.powf(e.min(0) as f32 / 2.4);
+                    }
+                }
+            }
         }
         f
     }
 }
 
-/// The constants of [`Dubois::row_avx512`] in registers, and its kernel.
+/// The AVX-512 kernel of [`Dubois::row_avx512`] (its tables stay in
+/// memory: a byte permute overwrites one of its two tables, and the
+/// instructions read the other from memory at no cost).
 #[cfg(all(target_arch = "x86_64", glstereo_avx512))]
 #[allow(clippy::incompatible_msrv)] // Only compiled with Rust ≥ 1.89 (build.rs).
 struct Avx512<'a> {
-    /// The low and the high bytes of [`decode_q15`], 64 entries a register.
-    lo: [std::arch::x86_64::__m512i; 4],
-    hi: [std::arch::x86_64::__m512i; 4],
-    /// [`PAIR_RG`], [`PAIR_BB`].
-    rg: std::arch::x86_64::__m512i,
-    bb: std::arch::x86_64::__m512i,
-    /// [`Fixed::octave`].
-    octave: [std::arch::x86_64::__m512; 3],
     fixed: &'a Fixed,
+    /// [`decode_q15`].
+    q15: &'static Lines<[[u8; 256]; 2]>,
 }
+
+/// The sums of one step's 32 pixels: [pixels 0–15, 16–31][channel].
+#[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+type Sums = [[std::arch::x86_64::__m512i; 3]; 2];
 
 #[cfg(all(target_arch = "x86_64", glstereo_avx512))]
 #[allow(clippy::incompatible_msrv)] // Only compiled with Rust ≥ 1.89 (build.rs).
 impl Avx512<'_> {
-    #[target_feature(enable = "avx512f,avx512bw,avx512vbmi,avx512vnni,fma")]
+    /// 64 bytes at `p`.
+    ///
+    /// # Safety
+    /// 64 bytes from `p` are readable (of one array).
+    #[target_feature(enable = "avx512f")]
     #[inline]
-    fn new(d: &Dubois) -> Avx512<'_> {
+    unsafe fn line(p: &u8) -> std::arch::x86_64::__m512i {
+        // SAFETY: the caller's promise.
+        unsafe { std::arch::x86_64::_mm512_loadu_si512(std::ptr::from_ref(p).cast()) }
+    }
+
+    /// Each byte of `x` decoded: its low and high bytes, by the byte's low
+    /// 7 bits in two 128-entry halves of the table.
+    #[target_feature(enable = "avx512f,avx512bw,avx512vbmi")]
+    #[inline]
+    fn decode(&self, x: std::arch::x86_64::__m512i) -> [std::arch::x86_64::__m512i; 2] {
         use std::arch::x86_64::*;
-        let q = decode_q15();
-        // SAFETY: 64 bytes of a 256-byte table at a multiple of 64, or of
-        // a 64-byte constant; 16 f32.
-        let load = |p: &[u8]| unsafe { _mm512_loadu_si512(p.as_ptr().cast()) };
-        let planes = |t: &[u8; 256]| [0, 1, 2, 3].map(|i| load(&t[64 * i..]));
-        Avx512 {
-            lo: planes(&q[0]),
-            hi: planes(&q[1]),
-            rg: load(&PAIR_RG),
-            bb: load(&PAIR_BB),
-            octave: d
-                .fixed
-                .octave
-                .map(|i| unsafe { _mm512_loadu_ps(octaves()[usize::from(i)].as_ptr()) }),
-            fixed: &d.fixed,
+        let k = _mm512_movepi8_mask(x);
+        let [lo, hi] = &self.q15.0;
+        // SAFETY: 64 bytes at a multiple of 64 of a 256-byte table.
+        unsafe {
+            [
+                _mm512_mask_blend_epi8(
+                    k,
+                    _mm512_permutex2var_epi8(Self::line(&lo[0]), x, Self::line(&lo[64])),
+                    _mm512_permutex2var_epi8(Self::line(&lo[128]), x, Self::line(&lo[192])),
+                ),
+                _mm512_mask_blend_epi8(
+                    k,
+                    _mm512_permutex2var_epi8(Self::line(&hi[0]), x, Self::line(&hi[64])),
+                    _mm512_permutex2var_epi8(Self::line(&hi[128]), x, Self::line(&hi[192])),
+                ),
+            ]
         }
     }
 
-    /// Each byte of the pixels `w` (alpha too, unused) decoded: its low or
-    /// high byte (`t`), by the byte's low 7 bits in two 128-entry halves.
-    #[target_feature(enable = "avx512f,avx512bw,avx512vbmi")]
-    #[inline]
-    fn decode(
-        w: std::arch::x86_64::__m512i,
-        t: &[std::arch::x86_64::__m512i; 4],
-    ) -> std::arch::x86_64::__m512i {
-        use std::arch::x86_64::*;
-        let k = _mm512_movepi8_mask(w);
-        let a = _mm512_permutex2var_epi8(t[0], w, t[1]);
-        let b = _mm512_permutex2var_epi8(t[2], w, t[3]);
-        _mm512_mask_blend_epi8(k, a, b)
-    }
-
     /// `acc` + the pairwise products of the words of `a` and of the
-    /// word pair `*w` (read from memory, broadcast by the instruction: the
-    /// nine pairs would not stay in registers beside the tables). (As
-    /// asm: LLVM's generic tuning splits the intrinsic into a multiply and
-    /// an add, two instructions for one.)
+    /// word pair `*w` (read from memory, broadcast by the instruction).
+    /// (As asm: LLVM's generic tuning splits the intrinsic into a multiply
+    /// and an add, two instructions for one.)
     #[target_feature(enable = "avx512f,avx512vnni")]
     #[inline]
     fn dot(
@@ -358,91 +387,95 @@ impl Avx512<'_> {
         acc
     }
 
-    /// The sum of output channel `c` of the word pairs `p`, as f32
-    /// (`v·2^(15+S)`).
-    #[target_feature(enable = "avx512f,avx512bw,avx512vnni")]
+    /// The sums of 32 pixel pairs: the left eye `l` and the right `r`,
+    /// 16 pixels a register.
+    #[target_feature(enable = "avx512f,avx512bw,avx512vbmi,avx512vnni")]
     #[inline]
-    fn sum(&self, c: usize, p: &[std::arch::x86_64::__m512i; 3]) -> std::arch::x86_64::__m512 {
+    fn sums(&self, l: [std::arch::x86_64::__m512i; 2], r: [std::arch::x86_64::__m512i; 2]) -> Sums {
         use std::arch::x86_64::*;
-        let w = &self.fixed.pairs[c];
-        let first = _mm512_madd_epi16(p[0], _mm512_set1_epi32(w[0] as i32));
-        let sum = Self::dot(Self::dot(first, p[1], &w[1]), p[2], &w[2]);
-        _mm512_cvtepi32_ps(sum)
+        // SAFETY: 64-byte tables.
+        let (rg, ba) = unsafe { (Self::line(&PACK_RG.0[0]), Self::line(&PACK_BA.0[0])) };
+        // The right eye's blue in the left eye's alpha byte (bit select).
+        let alpha = _mm512_set1_epi32(0xFF00_0000u32 as i32);
+        let lb = [
+            _mm512_ternarylogic_epi32::<0xCA>(alpha, _mm512_slli_epi32::<8>(r[0]), l[0]),
+            _mm512_ternarylogic_epi32::<0xCA>(alpha, _mm512_slli_epi32::<8>(r[1]), l[1]),
+        ];
+        // Pairs (left R, G), (left B, right B), (right R, G), decoded and
+        // unpacked into words: dword i of [0] is pixel i, of [1] 16 + i.
+        let packed = [
+            _mm512_permutex2var_epi8(lb[0], rg, lb[1]),
+            _mm512_permutex2var_epi8(lb[0], ba, lb[1]),
+            _mm512_permutex2var_epi8(r[0], rg, r[1]),
+        ];
+        let (a, b, c) = (
+            self.decode(packed[0]),
+            self.decode(packed[1]),
+            self.decode(packed[2]),
+        );
+        let words = [
+            [
+                _mm512_unpacklo_epi8(a[0], a[1]),
+                _mm512_unpacklo_epi8(b[0], b[1]),
+                _mm512_unpacklo_epi8(c[0], c[1]),
+            ],
+            [
+                _mm512_unpackhi_epi8(a[0], a[1]),
+                _mm512_unpackhi_epi8(b[0], b[1]),
+                _mm512_unpackhi_epi8(c[0], c[1]),
+            ],
+        ];
+        let mut sums = [[_mm512_setzero_si512(); 3]; 2];
+        for (sums, p) in sums.iter_mut().zip(&words) {
+            for (sum, w) in sums.iter_mut().zip(&self.fixed.pairs) {
+                let first = _mm512_madd_epi16(p[0], _mm512_set1_epi32(w[0] as i32));
+                *sum = Self::dot(Self::dot(first, p[1], &w[1]), p[2], &w[2]);
+            }
+        }
+        sums
     }
 
-    /// Output channel `c` of its sum `f` above the toe: the octave's scale
-    /// × the cubic of the mantissa, + 0.5 for rounding.
+    /// Output channel `c` of its sums, as 32-bit integers (outside 0…255
+    /// where the byte saturates): the smaller of the curve (the octave's
+    /// scale × the cubic of the mantissa) and the toe's line (see
+    /// [`Fixed::scale`]), rounded to nearest.
     #[target_feature(enable = "avx512f,fma")]
     #[inline]
-    fn curve(&self, c: usize, f: std::arch::x86_64::__m512) -> std::arch::x86_64::__m512 {
+    fn channel(&self, c: usize, s: std::arch::x86_64::__m512i) -> std::arch::x86_64::__m512i {
         use std::arch::x86_64::*;
-        let m = _mm512_getmant_ps::<_MM_MANT_NORM_1_2, _MM_MANT_SIGN_SRC>(f);
-        let e = _mm512_srli_epi32::<23>(_mm512_castps_si512(f));
-        let scale = _mm512_permutexvar_ps(e, self.octave[c]);
+        // Rounded down, so that no sum rounds up into the next octave.
+        let f = _mm512_cvt_roundepi32_ps::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(s);
+        let m = _mm512_getmant_ps::<_MM_MANT_NORM_1_2, _MM_MANT_SIGN_ZERO>(f);
+        let half = _mm512_srli_epi32::<22>(_mm512_castps_si512(f));
+        let table = &self.fixed.scale.0[c];
+        // SAFETY: 16 f32 of a 32-entry table, twice.
+        let scale = unsafe {
+            _mm512_permutex2var_ps(
+                _mm512_loadu_ps(table.as_ptr()),
+                half,
+                _mm512_loadu_ps(table[16..].as_ptr()),
+            )
+        };
         let y = _mm512_fmadd_ps(_mm512_set1_ps(CUBIC[3]), m, _mm512_set1_ps(CUBIC[2]));
         let y = _mm512_fmadd_ps(y, m, _mm512_set1_ps(CUBIC[1]));
         let y = _mm512_fmadd_ps(y, m, _mm512_set1_ps(CUBIC[0]));
-        _mm512_fmadd_ps(scale, y, _mm512_set1_ps(0.5 - 0.055 * 255.0))
+        let curve = _mm512_fmadd_ps(scale, y, _mm512_set1_ps(-0.055 * 255.0));
+        let toe = _mm512_mul_ps(f, _mm512_set1_ps(self.fixed.toe[c]));
+        _mm512_cvtps_epi32(_mm512_min_ps(curve, toe))
     }
 
-    /// Output channels of the word pairs `p`, as 32-bit integers (outside
-    /// 0…255 where the byte saturates): on the toe (sums at or below the
-    /// knee) its linear formula; a step where no channel is on it (most
-    /// of a picture: the toe is its darkest 4 %) skips that.
-    #[target_feature(enable = "avx512f,avx512bw,avx512vnni,fma")]
+    /// The anaglyph of 16 pixels of [`Sums`].
+    #[target_feature(enable = "avx512f,avx512bw,fma")]
     #[inline]
-    fn channels(&self, p: &[std::arch::x86_64::__m512i; 3]) -> [std::arch::x86_64::__m512i; 3] {
+    fn encode(&self, s: &[std::arch::x86_64::__m512i; 3]) -> std::arch::x86_64::__m512i {
         use std::arch::x86_64::*;
-        let fx = self.fixed;
-        let f = [self.sum(0, p), self.sum(1, p), self.sum(2, p)];
-        let mut v = [
-            self.curve(0, f[0]),
-            self.curve(1, f[1]),
-            self.curve(2, f[2]),
-        ];
-        // (No closures here: they would not be compiled with these
-        // features, and every intrinsic in them would be a call.)
-        let mut at_toe = [0; 3];
-        for c in 0..3 {
-            at_toe[c] = _mm512_cmp_ps_mask::<_CMP_LE_OQ>(f[c], _mm512_set1_ps(fx.knee[c]));
-        }
-        if at_toe[0] | at_toe[1] | at_toe[2] != 0 {
-            for c in 0..3 {
-                let t = _mm512_fmadd_ps(f[c], _mm512_set1_ps(fx.toe[c]), _mm512_set1_ps(0.5));
-                v[c] = _mm512_mask_blend_ps(at_toe[c], v[c], t);
-            }
-        }
-        [
-            _mm512_cvttps_epi32(v[0]),
-            _mm512_cvttps_epi32(v[1]),
-            _mm512_cvttps_epi32(v[2]),
-        ]
-    }
-
-    /// The anaglyph of 16 pixel pairs.
-    #[target_feature(enable = "avx512f,avx512bw,avx512vbmi,avx512vnni,fma")]
-    #[inline]
-    fn compose(
-        &self,
-        l: std::arch::x86_64::__m512i,
-        r: std::arch::x86_64::__m512i,
-    ) -> std::arch::x86_64::__m512i {
-        use std::arch::x86_64::*;
-        let (l_lo, l_hi) = (Self::decode(l, &self.lo), Self::decode(l, &self.hi));
-        let (r_lo, r_hi) = (Self::decode(r, &self.lo), Self::decode(r, &self.hi));
-        // Word pairs per pixel: (left R, G), (left B, right B), (right R, G).
-        let p = [
-            _mm512_permutex2var_epi8(l_lo, self.rg, l_hi),
-            _mm512_mask_blend_epi16(
-                0xAAAA_AAAA,
-                _mm512_permutex2var_epi8(l_lo, self.bb, l_hi),
-                _mm512_permutex2var_epi8(r_lo, self.bb, r_hi),
-            ),
-            _mm512_permutex2var_epi8(r_lo, self.rg, r_hi),
-        ];
+        let (r, g, b) = (
+            self.channel(0, s[0]),
+            self.channel(1, s[1]),
+            self.channel(2, s[2]),
+        );
         // Saturated into bytes (below 0 and above 255 clamp), per 128-bit
         // lane R0-3 G0-3 B0-3 A0-3, then reordered into pixels.
-        let [r, g, b] = self.channels(&p);
         let rg = _mm512_packus_epi32(r, g);
         let ba = _mm512_packus_epi32(b, _mm512_set1_epi32(255));
         let order = _mm512_broadcast_i32x4(_mm_setr_epi8(
@@ -452,11 +485,86 @@ impl Avx512<'_> {
     }
 }
 
+/// A word map that is a byte map: output byte j is input byte `from[j]`,
+/// or (None) a constant, OR-ed in from `or`. [`ByteMap::of`] finds it
+/// from probes and checks it on more, so that a kernel can apply a
+/// caller's `px` (a window's byte order) to whole registers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
+struct ByteMap {
+    from: [Option<u8>; 4],
+    or: u32,
+}
+
+#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
+impl ByteMap {
+    /// `px` as a byte map, if it is one on every probe.
+    fn of(px: &impl Fn(u32) -> u32) -> Option<ByteMap> {
+        let (a, b) = (px(0x0302_0100).to_le_bytes(), px(0x0706_0504).to_le_bytes());
+        let mut map = ByteMap {
+            from: [None; 4],
+            or: 0,
+        };
+        for j in 0..4 {
+            if a[j] < 4 && b[j] == a[j] + 4 {
+                map.from[j] = Some(a[j]);
+            } else if a[j] == b[j] {
+                map.or |= u32::from(a[j]) << (8 * j);
+            } else {
+                return None;
+            }
+        }
+        // Checked on words of every byte value.
+        let mut w = 0x9E37_79B9u32;
+        for _ in 0..64 {
+            w = w
+                .wrapping_mul(0x0101_0101)
+                .wrapping_add(0x6D2B_79F5)
+                .rotate_left(7);
+            if px(w) != map.apply(w) {
+                return None;
+            }
+        }
+        Some(map)
+    }
+
+    fn apply(&self, w: u32) -> u32 {
+        let b = w.to_le_bytes();
+        let mut out = self.or;
+        for (j, from) in self.from.iter().enumerate() {
+            if let Some(f) = from {
+                out |= u32::from(b[usize::from(*f)]) << (8 * j);
+            }
+        }
+        out
+    }
+
+    /// Whether it leaves the anaglyph's words (alpha 255) as they are.
+    fn is_identity(&self) -> bool {
+        self.from[..3] == [Some(0), Some(1), Some(2)]
+            && self.or & 0x00FF_FFFF == 0
+            && matches!(self.from[3], Some(3) | None)
+            && (self.from[3].is_some() || self.or >> 24 == 0xFF)
+    }
+}
+
+/// The last, partial step of [`Dubois::row_avx512`]'s row: its pixels
+/// and zeros.
+#[cold]
+#[inline(never)]
+#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
+fn last_step(a: &[u32], b: &[u32]) -> [[u32; 2 * N]; 2] {
+    let (mut l, mut r) = ([0u32; 2 * N], [0u32; 2 * N]);
+    l[..a.len()].copy_from_slice(a);
+    r[..b.len()].copy_from_slice(b);
+    [l, r]
+}
+
 impl Dubois {
     pub(crate) fn new(colors: AnaglyphColors) -> Dubois {
         let d = dubois_matrices(colors);
         // Build the tables now, not inside a frame.
-        let _ = (decode_table(), encode_table(), decode_q15(), octaves());
+        let _ = (decode_table(), encode_table(), decode_q15());
         let m = std::array::from_fn(|c| {
             std::array::from_fn(|k| {
                 if k < 3 {
@@ -466,10 +574,9 @@ impl Dubois {
                 }
             })
         });
-        Dubois {
-            m,
-            fixed: Fixed::new(&m),
-        }
+        static FIXED: [OnceLock<Fixed>; 3] = [const { OnceLock::new() }; 3];
+        let fixed = FIXED[colors as usize].get_or_init(|| Fixed::new(&m));
+        Dubois { m, fixed }
     }
 
     /// One row: `out[x]` the anaglyph of `a[x]` (left) and `b[x]` (right)
@@ -586,7 +693,11 @@ impl Dubois {
     }
 
     /// [`Dubois::row`] of 8-bit eyes (no saturation, no crosstalk) with
-    /// AVX-512, [`N`] pixels a vector ([`Avx512`]).
+    /// AVX-512 ([`Avx512`]), 32 pixels a step, software-pipelined: a step
+    /// sums the next 32 pixels before it encodes its own (summed by the
+    /// step before), so that the two long dependency chains overlap. A
+    /// step whose 32 pixel pairs equal the last step's (flat backgrounds)
+    /// copies its anaglyph; `memo` carries that across rows.
     ///
     /// # Safety
     /// The processor has AVX-512 F, BW, VBMI and VNNI, and FMA.
@@ -603,59 +714,153 @@ impl Dubois {
         px: impl Fn(u32) -> u32,
     ) {
         use std::arch::x86_64::*;
-        let k = Avx512::new(self);
+        /// Pixels a step.
+        const STEP: usize = 2 * N;
+        type Eyes = [__m512i; 4];
+        let k = Avx512 {
+            fixed: self.fixed,
+            q15: decode_q15(),
+        };
+        let n = out.len().min(a.len()).min(b.len());
         // SAFETY (every load and store below): N words of an array or a
         // slice at least that long from that offset.
         let load = |w: &[u32]| unsafe { _mm512_loadu_si512(w.as_ptr().cast()) };
+        // The step at x: the left eye's two registers, then the right's
+        // (zeros past the row's end, from a function of its own). (A
+        // macro: as a closure it was called, and every register saved
+        // around the call.)
+        macro_rules! step {
+            ($x:expr) => {{
+                let x: usize = $x;
+                if x + STEP <= n {
+                    [
+                        load(&a[x..]),
+                        load(&a[x + N..]),
+                        load(&b[x..]),
+                        load(&b[x + N..]),
+                    ]
+                } else {
+                    let [l, r] = last_step(&a[x..n], &b[x..n]);
+                    [load(&l), load(&l[N..]), load(&r), load(&r[N..])]
+                }
+            }};
+        }
+        // Whether two steps' pixels are equal: the first 16 left pixels
+        // decide for most steps that differ, then (x ^ y) | z, four times.
+        let equal = |p: &Eyes, q: &Eyes| {
+            if _mm512_cmpeq_epi64_mask(p[0], q[0]) != 0xFF {
+                return false;
+            }
+            let d = _mm512_xor_si512(p[0], q[0]);
+            let d = _mm512_ternarylogic_epi32::<0xBE>(p[1], q[1], d);
+            let d = _mm512_ternarylogic_epi32::<0xBE>(p[2], q[2], d);
+            let d = _mm512_ternarylogic_epi32::<0xBE>(p[3], q[3], d);
+            _mm512_test_epi64_mask(d, d) == 0
+        };
+        // The last step composed (its pixels and anaglyph), from the memo
+        // of the row before: its N pixels twice.
+        let (mut last, mut last_out, mut valid) = match &memo.0 {
+            Some((l, r, o)) => {
+                let (l, r, o) = (load(l), load(r), load(o));
+                ([l, l, r, r], [o, o], true)
+            }
+            None => (
+                [_mm512_setzero_si512(); 4],
+                [_mm512_setzero_si512(); 2],
+                false,
+            ),
+        };
+        // Writes a step's anaglyph at x through px.
+        // `px` as a byte shuffle and an OR, where it is one (a window's
+        // byte order): applied to the registers, stored whole (a store of
+        // the registers read back word by word through `px` stalls on
+        // forwarding and cost 7 % of the step).
+        let map = ByteMap::of(&px).map(|m| {
+            let ctrl: [u8; 64] =
+                std::array::from_fn(|i| m.from[i % 4].map_or(0x80, |b| (i & !3) as u8 + b));
+            // SAFETY: 64 bytes.
+            (
+                unsafe { _mm512_loadu_si512(ctrl.as_ptr().cast()) },
+                _mm512_set1_epi32(m.or as i32),
+                m.is_identity(),
+            )
+        });
+        // Writes a step's anaglyph at x through px.
+        macro_rules! emit {
+            ($x:expr, $v:expr) => {{
+                let (x, mut v): (usize, [__m512i; 2]) = ($x, $v);
+                let m = STEP.min(n - x);
+                if let Some((ctrl, or, identity)) = map {
+                    if !identity {
+                        v = [
+                            _mm512_or_si512(_mm512_shuffle_epi8(v[0], ctrl), or),
+                            _mm512_or_si512(_mm512_shuffle_epi8(v[1], ctrl), or),
+                        ];
+                    }
+                }
+                if m == STEP && map.is_some() {
+                    // SAFETY: N words at x and x + N of a slice of x + 2N.
+                    unsafe {
+                        _mm512_storeu_si512(out[x..x + STEP].as_mut_ptr().cast(), v[0]);
+                        _mm512_storeu_si512(out[x + N..x + STEP].as_mut_ptr().cast(), v[1]);
+                    }
+                } else {
+                    let mut o = [0u32; STEP];
+                    // SAFETY: N words at 0 and N of 2N.
+                    unsafe {
+                        _mm512_storeu_si512(o.as_mut_ptr().cast(), v[0]);
+                        _mm512_storeu_si512(o[N..].as_mut_ptr().cast(), v[1]);
+                    }
+                    if map.is_some() {
+                        out[x..x + m].copy_from_slice(&o[..m]);
+                    } else {
+                        for (o, &v) in out[x..x + m].iter_mut().zip(&o) {
+                            *o = px(v);
+                        }
+                    }
+                }
+            }};
+        }
+        let mut x = 0;
+        'steps: while x < n {
+            let mut eyes: Eyes = step!(x);
+            if valid && equal(&eyes, &last) {
+                // A run of equal steps.
+                emit!(x, last_out);
+                x += STEP;
+                continue;
+            }
+            // Steps that differ from the one before, pipelined: the next
+            // step's sums before this one's encoding.
+            let mut sums = k.sums([eyes[0], eyes[1]], [eyes[2], eyes[3]]);
+            loop {
+                ahead([a, b], out, x + STEP);
+                ahead([a, b], out, x + STEP + N);
+                let next = x + STEP;
+                let next_eyes: Eyes = if next < n { step!(next) } else { eyes };
+                if next >= n || equal(&next_eyes, &eyes) {
+                    last_out = [k.encode(&sums[0]), k.encode(&sums[1])];
+                    (last, valid) = (eyes, true);
+                    emit!(x, last_out);
+                    x = next;
+                    continue 'steps;
+                }
+                let next_sums = k.sums([next_eyes[0], next_eyes[1]], [next_eyes[2], next_eyes[3]]);
+                emit!(x, [k.encode(&sums[0]), k.encode(&sums[1])]);
+                (eyes, sums, x) = (next_eyes, next_sums, next);
+            }
+        }
+        if !valid {
+            return;
+        }
+        // The last step's first N pixel pairs (past the row's end: zero
+        // pairs and their anaglyph, as true as any).
         let store = |v: __m512i| {
             let mut w = [0u32; N];
             unsafe { _mm512_storeu_si512(w.as_mut_ptr().cast(), v) };
             w
         };
-        // The last chunk composed, for runs of equal pixels.
-        let (mut last, mut valid) = match &memo.0 {
-            Some((l, r, o)) => ([load(l), load(r), load(o)], true),
-            None => ([_mm512_setzero_si512(); 3], false),
-        };
-        let n = out.len().min(a.len()).min(b.len());
-        let whole = n - n % N;
-        let mut x = 0;
-        while x < n {
-            ahead([a, b], out, x);
-            let (l, r) = if x < whole {
-                (load(&a[x..]), load(&b[x..]))
-            } else {
-                let (mut l, mut r) = ([0u32; N], [0u32; N]);
-                l[..n - whole].copy_from_slice(&a[whole..n]);
-                r[..n - whole].copy_from_slice(&b[whole..n]);
-                (load(&l), load(&r))
-            };
-            let differ =
-                _mm512_cmpneq_epi32_mask(l, last[0]) | _mm512_cmpneq_epi32_mask(r, last[1]);
-            if !valid || differ != 0 {
-                last = [l, r, k.compose(l, r)];
-                valid = true;
-            }
-            let o = store(last[2]);
-            let m = N.min(n - x);
-            if m == N {
-                // A whole step: a fixed-size loop, one vector store (a
-                // loop of variable length is a call to memcpy, after
-                // which every constant is loaded again).
-                let out: &mut [u32; N] = (&mut out[x..x + N]).try_into().expect("N words");
-                for i in 0..N {
-                    out[i] = px(o[i]);
-                }
-            } else {
-                for (o, &v) in out[x..x + m].iter_mut().zip(&o) {
-                    *o = px(v);
-                }
-            }
-            x += N;
-        }
-        if valid {
-            memo.0 = Some((store(last[0]), store(last[1]), store(last[2])));
-        }
+        memo.0 = Some((store(last[0]), store(last[2]), store(last_out[0])));
     }
 
     /// [`Dubois::chunk_scalar`] with AVX2 gathers, 8 pixels at a time; the
@@ -752,6 +957,7 @@ impl Dubois {
 mod tests {
     use super::*;
     use crate::output::anaglyph::dubois_pixel;
+    use crate::output::kernels::Stage;
 
     /// The reference: cpu.rs's arithmetic.
     fn reference(colors: AnaglyphColors, l: [f32; 3], r: [f32; 3]) -> [u8; 3] {
@@ -898,6 +1104,116 @@ mod tests {
                     "{simd:?} {colors:?}: {differ} of {} channels off by one",
                     3 * pairs.len()
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn window_byte_orders_are_byte_maps_and_other_maps_are_not() {
+        use crate::backend::PixelLayout;
+        let id = ByteMap::of(&|v| v).expect("identity");
+        assert!(id.is_identity());
+        let rgbx = ByteMap::of(&|v| PixelLayout::Rgbx.convert(v)).expect("Rgbx");
+        assert!(rgbx.is_identity(), "{rgbx:?}");
+        let bgrx = ByteMap::of(&|v| PixelLayout::Bgrx.convert(v)).expect("Bgrx");
+        assert!(!bgrx.is_identity());
+        for w in [0u32, 0x0102_0304, 0xFFEE_DDCC, 0x8040_2010] {
+            assert_eq!(bgrx.apply(w), PixelLayout::Bgrx.convert(w));
+            assert_eq!(rgbx.apply(w), PixelLayout::Rgbx.convert(w));
+        }
+        // Not byte maps: arithmetic, bit rotations, a map right on the
+        // two first probes only.
+        assert_eq!(ByteMap::of(&|v: u32| v.wrapping_add(1)), None);
+        assert_eq!(ByteMap::of(&|v: u32| v.rotate_left(4)), None);
+        assert_eq!(
+            ByteMap::of(&|v: u32| if v == 0x0302_0100 || v == 0x0706_0504 {
+                v
+            } else {
+                !v
+            }),
+            None
+        );
+    }
+
+    /// Rows through every path of the AVX-512 kernel: lengths around its
+    /// 32-pixel step, runs of equal steps (from the row before too, by the
+    /// memo), and a window's byte order, against the one-pixel-at-a-time
+    /// kernel within 1.
+    #[test]
+    fn avx512_rows_match_the_scalar_kernel_through_runs_tails_and_byte_orders() {
+        if Simd::detected() < Simd::Avx512 {
+            eprintln!("no AVX-512 here");
+            return;
+        }
+        use crate::backend::PixelLayout;
+        let stage = Stage {
+            saturation: 1.0,
+            crosstalk: 0.0,
+        };
+        let noise = random_pairs(4096, true);
+        let word = |p: [f32; 3]| u32::from_le_bytes([p[0] as u8, p[1] as u8, p[2] as u8, 0x55]);
+        for colors in AnaglyphColors::ALL {
+            let d = Dubois::new(colors);
+            for len in [1, 15, 16, 17, 31, 32, 33, 63, 64, 65, 100, 1280] {
+                // Noise, then a flat run, then noise, then flat again.
+                let row = |eye: usize, y: usize| -> Vec<u32> {
+                    (0..len)
+                        .map(|x| {
+                            let flat = (x / 40) % 2 == 1 || y == 1;
+                            let i = if flat {
+                                7
+                            } else {
+                                (x * 31 + y * 17) % noise.len()
+                            };
+                            word([noise[i].0, noise[i].1][eye])
+                        })
+                        .collect()
+                };
+                let (mut memo_a, mut memo_s) = (Memo::default(), Memo::default());
+                // Then rows of 32 made of the halves of the last step of the
+                // row before: the memo must pair a step's pixels with their
+                // own anaglyph.
+                let halves = |y: usize| {
+                    let (a, b) = (row(0, 0), row(1, 0));
+                    let last = |r: &[u32], h: usize| -> Vec<u32> {
+                        let start = (len - 1) / (2 * N) * (2 * N) + h * N;
+                        (0..N)
+                            .map(|i| r.get(start + i).copied().unwrap_or(0))
+                            .collect()
+                    };
+                    let (l, r) = (last(&a, y % 2), last(&b, 0));
+                    ([l.clone(), l].concat(), [r.clone(), r].concat())
+                };
+                for y in 0..6 {
+                    let (a, b) = if y < 3 {
+                        (row(0, y), row(1, y))
+                    } else {
+                        halves(y)
+                    };
+                    if y == 3 {
+                        (memo_a, memo_s) = (Memo::default(), Memo::default());
+                        let (a, b) = (row(0, 0), row(1, 0));
+                        let mut o = vec![0; len];
+                        d.row(Simd::Avx512, stage, &mut memo_a, &a, &b, &mut o, |v| v);
+                        d.row(Simd::Scalar, stage, &mut memo_s, &a, &b, &mut o, |v| v);
+                    }
+                    let len = a.len();
+                    let px = |v| PixelLayout::Bgrx.convert(v);
+                    let (mut fast, mut slow) = (vec![0; len], vec![0; len]);
+                    d.row(Simd::Avx512, stage, &mut memo_a, &a, &b, &mut fast, px);
+                    d.row(Simd::Scalar, stage, &mut memo_s, &a, &b, &mut slow, px);
+                    for x in 0..len {
+                        let (f, s) = (fast[x].to_le_bytes(), slow[x].to_le_bytes());
+                        for c in 0..4 {
+                            assert!(
+                                (i32::from(f[c]) - i32::from(s[c])).abs() <= 1,
+                                "{colors:?} length {len} row {y} pixel {x}: {:08x}, want {:08x}",
+                                fast[x],
+                                slow[x]
+                            );
+                        }
+                    }
+                }
             }
         }
     }
