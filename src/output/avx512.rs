@@ -25,7 +25,7 @@
 use std::arch::x86_64::*;
 
 use super::anaglyph::LUMA;
-use super::kernels::{ALPHA, N, ahead};
+use super::kernels::{ALPHA, N, VectorPx, ahead};
 
 /// Byte shuffles (per 128-bit lane) that put byte `c` of each pixel word
 /// into the low byte of its lane and zero the rest.
@@ -117,6 +117,9 @@ macro_rules! steps {
     ($a:expr, $b:expr, $out:expr, $px:expr, |$l:ident, $r:ident| $f:expr) => {{
         let (a, b, out): (&[u32], &[u32], &mut [u32]) = ($a, $b, $out);
         let n = out.len().min(a.len()).min(b.len());
+        // `px` on the registers where it is a byte map (a window's byte
+        // order), so that they are stored whole.
+        let map = VectorPx::of(&$px);
         let mut x = 0;
         while x < n {
             ahead([a, b], out, x);
@@ -130,9 +133,18 @@ macro_rules! steps {
                     _mm512_maskz_loadu_epi32(mask, b[x..].as_ptr().cast()),
                 )
             };
+            let v = $f;
+            if let Some(map) = &map {
+                // SAFETY: the mask covers m ≤ n − x words, all inside out.
+                unsafe {
+                    _mm512_mask_storeu_epi32(out[x..].as_mut_ptr().cast(), mask, map.apply(v))
+                };
+                x += N;
+                continue;
+            }
             let mut words = [0u32; N];
             // SAFETY: 16 words into an array of 16.
-            unsafe { _mm512_storeu_si512(words.as_mut_ptr().cast(), $f) };
+            unsafe { _mm512_storeu_si512(words.as_mut_ptr().cast(), v) };
             if m == N {
                 // A whole step: a fixed-size loop, one vector store (a
                 // loop of variable length would be a call to memcpy).
@@ -278,6 +290,55 @@ mod tests {
                     .iter()
                     .fold(ALPHA, |w, c| w | c);
                 assert_eq!(o, want, "{p:08x} to {q:08x} at {f}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_window_byte_order_is_applied_to_every_length_of_row() {
+        if !have_avx512() {
+            return;
+        }
+        use crate::backend::PixelLayout;
+        // Through a BGRX window's order, rows of 1…40 pixels (whole and
+        // partial steps), the same words as through no order then the
+        // window's conversion; and the words past the row untouched.
+        let bgrx = |v| PixelLayout::Bgrx.convert(v);
+        let a: Vec<u32> = (0..40u32).map(|i| i.wrapping_mul(0x9E37_79B9)).collect();
+        let b: Vec<u32> = (0..40u32).map(|i| i.wrapping_mul(0x85EB_CA6B)).collect();
+        for n in 1..=40 {
+            let (mut plain, mut mixed, mut blended) = (vec![7; 41], vec![7; 41], vec![7; 41]);
+            // SAFETY: the processor has AVX-512 (checked above).
+            unsafe {
+                mix_grey(
+                    (0xFF, 0x00FF_FFFF),
+                    [true, false],
+                    &a[..n],
+                    &b[..n],
+                    &mut plain[..n],
+                    |v| v,
+                );
+                mix_grey(
+                    (0xFF, 0x00FF_FFFF),
+                    [true, false],
+                    &a[..n],
+                    &b[..n],
+                    &mut mixed[..n],
+                    bgrx,
+                );
+            }
+            for x in 0..41 {
+                let want = if x < n { bgrx(plain[x]) } else { 7 };
+                assert_eq!(mixed[x], want, "mix, {n} pixels, pixel {x}");
+            }
+            // SAFETY: as above; f in [0, 1].
+            unsafe {
+                blend_rows(0.25, &a[..n], &b[..n], &mut plain[..n], |v| v);
+                blend_rows(0.25, &a[..n], &b[..n], &mut blended[..n], bgrx);
+            }
+            for x in 0..41 {
+                let want = if x < n { bgrx(plain[x]) } else { 7 };
+                assert_eq!(blended[x], want, "blend, {n} pixels, pixel {x}");
             }
         }
     }

@@ -72,6 +72,8 @@
 use std::sync::OnceLock;
 
 use super::anaglyph::{dubois_matrices, linear_to_srgb, srgb_to_linear};
+#[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+use super::kernels::VectorPx;
 use super::kernels::{ALPHA, N, Planes, Simd, Stage, ahead, chunks};
 use super::mode::AnaglyphColors;
 
@@ -485,69 +487,6 @@ impl Avx512<'_> {
     }
 }
 
-/// A word map that is a byte map: output byte j is input byte `from[j]`,
-/// or (None) a constant, OR-ed in from `or`. [`ByteMap::of`] finds it
-/// from probes and checks it on more, so that a kernel can apply a
-/// caller's `px` (a window's byte order) to whole registers.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
-struct ByteMap {
-    from: [Option<u8>; 4],
-    or: u32,
-}
-
-#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernel's.
-impl ByteMap {
-    /// `px` as a byte map, if it is one on every probe.
-    fn of(px: &impl Fn(u32) -> u32) -> Option<ByteMap> {
-        let (a, b) = (px(0x0302_0100).to_le_bytes(), px(0x0706_0504).to_le_bytes());
-        let mut map = ByteMap {
-            from: [None; 4],
-            or: 0,
-        };
-        for j in 0..4 {
-            if a[j] < 4 && b[j] == a[j] + 4 {
-                map.from[j] = Some(a[j]);
-            } else if a[j] == b[j] {
-                map.or |= u32::from(a[j]) << (8 * j);
-            } else {
-                return None;
-            }
-        }
-        // Checked on words of every byte value.
-        let mut w = 0x9E37_79B9u32;
-        for _ in 0..64 {
-            w = w
-                .wrapping_mul(0x0101_0101)
-                .wrapping_add(0x6D2B_79F5)
-                .rotate_left(7);
-            if px(w) != map.apply(w) {
-                return None;
-            }
-        }
-        Some(map)
-    }
-
-    fn apply(&self, w: u32) -> u32 {
-        let b = w.to_le_bytes();
-        let mut out = self.or;
-        for (j, from) in self.from.iter().enumerate() {
-            if let Some(f) = from {
-                out |= u32::from(b[usize::from(*f)]) << (8 * j);
-            }
-        }
-        out
-    }
-
-    /// Whether it leaves the anaglyph's words (alpha 255) as they are.
-    fn is_identity(&self) -> bool {
-        self.from[..3] == [Some(0), Some(1), Some(2)]
-            && self.or & 0x00FF_FFFF == 0
-            && matches!(self.from[3], Some(3) | None)
-            && (self.from[3].is_some() || self.or >> 24 == 0xFF)
-    }
-}
-
 /// The last, partial step of [`Dubois::row_avx512`]'s row: its pixels
 /// and zeros.
 #[cold]
@@ -770,33 +709,17 @@ impl Dubois {
                 false,
             ),
         };
-        // Writes a step's anaglyph at x through px.
-        // `px` as a byte shuffle and an OR, where it is one (a window's
-        // byte order): applied to the registers, stored whole (a store of
-        // the registers read back word by word through `px` stalls on
-        // forwarding and cost 7 % of the step).
-        let map = ByteMap::of(&px).map(|m| {
-            let ctrl: [u8; 64] =
-                std::array::from_fn(|i| m.from[i % 4].map_or(0x80, |b| (i & !3) as u8 + b));
-            // SAFETY: 64 bytes.
-            (
-                unsafe { _mm512_loadu_si512(ctrl.as_ptr().cast()) },
-                _mm512_set1_epi32(m.or as i32),
-                m.is_identity(),
-            )
-        });
+        // `px` on whole registers where it is a byte map (a window's byte
+        // order): a store of the registers read back word by word through
+        // `px` stalls on forwarding and cost 7 % of the step.
+        let map = VectorPx::of(&px);
         // Writes a step's anaglyph at x through px.
         macro_rules! emit {
             ($x:expr, $v:expr) => {{
                 let (x, mut v): (usize, [__m512i; 2]) = ($x, $v);
                 let m = STEP.min(n - x);
-                if let Some((ctrl, or, identity)) = map {
-                    if !identity {
-                        v = [
-                            _mm512_or_si512(_mm512_shuffle_epi8(v[0], ctrl), or),
-                            _mm512_or_si512(_mm512_shuffle_epi8(v[1], ctrl), or),
-                        ];
-                    }
+                if let Some(map) = &map {
+                    v = [map.apply(v[0]), map.apply(v[1])];
                 }
                 if m == STEP && map.is_some() {
                     // SAFETY: N words at x and x + N of a slice of x + 2N.
@@ -1106,33 +1029,6 @@ mod tests {
                 );
             }
         }
-    }
-
-    #[test]
-    fn window_byte_orders_are_byte_maps_and_other_maps_are_not() {
-        use crate::backend::PixelLayout;
-        let id = ByteMap::of(&|v| v).expect("identity");
-        assert!(id.is_identity());
-        let rgbx = ByteMap::of(&|v| PixelLayout::Rgbx.convert(v)).expect("Rgbx");
-        assert!(rgbx.is_identity(), "{rgbx:?}");
-        let bgrx = ByteMap::of(&|v| PixelLayout::Bgrx.convert(v)).expect("Bgrx");
-        assert!(!bgrx.is_identity());
-        for w in [0u32, 0x0102_0304, 0xFFEE_DDCC, 0x8040_2010] {
-            assert_eq!(bgrx.apply(w), PixelLayout::Bgrx.convert(w));
-            assert_eq!(rgbx.apply(w), PixelLayout::Rgbx.convert(w));
-        }
-        // Not byte maps: arithmetic, bit rotations, a map right on the
-        // two first probes only.
-        assert_eq!(ByteMap::of(&|v: u32| v.wrapping_add(1)), None);
-        assert_eq!(ByteMap::of(&|v: u32| v.rotate_left(4)), None);
-        assert_eq!(
-            ByteMap::of(&|v: u32| if v == 0x0302_0100 || v == 0x0706_0504 {
-                v
-            } else {
-                !v
-            }),
-            None
-        );
     }
 
     /// Rows through every path of the AVX-512 kernel: lengths around its

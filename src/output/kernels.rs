@@ -404,6 +404,115 @@ pub(crate) fn ahead(reads: [&[u32]; 2], out: &[u32], x: usize) {
     let _ = (reads, out, x);
 }
 
+/// A word map that is a byte map: output byte j is input byte `from[j]`,
+/// or (None) a constant, OR-ed in from `or`. [`ByteMap::of`] finds it
+/// from probes and checks it on more, so that a kernel can apply a
+/// caller's `px` (a window's byte order) to whole registers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernels'.
+pub(crate) struct ByteMap {
+    from: [Option<u8>; 4],
+    or: u32,
+}
+
+#[cfg_attr(not(glstereo_avx512), allow(dead_code))] // The AVX-512 kernels'.
+impl ByteMap {
+    /// `px` as a byte map, if it is one on every probe.
+    pub(crate) fn of(px: &impl Fn(u32) -> u32) -> Option<ByteMap> {
+        let (a, b) = (px(0x0302_0100).to_le_bytes(), px(0x0706_0504).to_le_bytes());
+        let mut map = ByteMap {
+            from: [None; 4],
+            or: 0,
+        };
+        for j in 0..4 {
+            if a[j] < 4 && b[j] == a[j] + 4 {
+                map.from[j] = Some(a[j]);
+            } else if a[j] == b[j] {
+                map.or |= u32::from(a[j]) << (8 * j);
+            } else {
+                return None;
+            }
+        }
+        // Checked on words of every byte value.
+        let mut w = 0x9E37_79B9u32;
+        for _ in 0..64 {
+            w = w
+                .wrapping_mul(0x0101_0101)
+                .wrapping_add(0x6D2B_79F5)
+                .rotate_left(7);
+            if px(w) != map.apply(w) {
+                return None;
+            }
+        }
+        Some(map)
+    }
+
+    fn apply(&self, w: u32) -> u32 {
+        let b = w.to_le_bytes();
+        let mut out = self.or;
+        for (j, from) in self.from.iter().enumerate() {
+            if let Some(f) = from {
+                out |= u32::from(b[usize::from(*f)]) << (8 * j);
+            }
+        }
+        out
+    }
+
+    /// Whether it leaves words of alpha 255 (every kernel's) as they are.
+    fn is_identity(&self) -> bool {
+        self.from[..3] == [Some(0), Some(1), Some(2)]
+            && self.or & 0x00FF_FFFF == 0
+            && matches!(self.from[3], Some(3) | None)
+            && (self.from[3].is_some() || self.or >> 24 == 0xFF)
+    }
+}
+
+/// A [`ByteMap`] on registers: a byte shuffle and an OR, or nothing.
+#[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+#[allow(clippy::incompatible_msrv)] // Only compiled with Rust ≥ 1.89 (build.rs).
+pub(crate) struct VectorPx {
+    shuffle: std::arch::x86_64::__m512i,
+    or: std::arch::x86_64::__m512i,
+    identity: bool,
+}
+
+#[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+#[allow(clippy::incompatible_msrv)] // Only compiled with Rust ≥ 1.89 (build.rs).
+impl VectorPx {
+    /// `px` on registers, where it is a byte map (a kernel then writes its
+    /// registers whole, not word by word through `px`: a store read back
+    /// in words stalls on forwarding).
+    #[target_feature(enable = "avx512f,avx512bw")]
+    #[inline]
+    pub(crate) fn of(px: &impl Fn(u32) -> u32) -> Option<VectorPx> {
+        use std::arch::x86_64::*;
+        let map = ByteMap::of(px)?;
+        let mut ctrl = [0x80u8; 64];
+        for (i, c) in ctrl.iter_mut().enumerate() {
+            if let Some(b) = map.from[i % 4] {
+                *c = (i & !3) as u8 + b;
+            }
+        }
+        Some(VectorPx {
+            // SAFETY: 64 bytes.
+            shuffle: unsafe { _mm512_loadu_si512(ctrl.as_ptr().cast()) },
+            or: _mm512_set1_epi32(map.or as i32),
+            identity: map.is_identity(),
+        })
+    }
+
+    /// The words of `v` (alpha 255) through the map.
+    #[target_feature(enable = "avx512f,avx512bw")]
+    #[inline]
+    pub(crate) fn apply(&self, v: std::arch::x86_64::__m512i) -> std::arch::x86_64::__m512i {
+        use std::arch::x86_64::*;
+        if self.identity {
+            return v;
+        }
+        _mm512_or_si512(_mm512_shuffle_epi8(v, self.shuffle), self.or)
+    }
+}
+
 /// The vector instructions a kernel may use, from none to AVX-512 (the
 /// subset glstereo uses: F, BW, VL, DQ, VBMI, VNNI, with AVX2 and FMA;
 /// only where the compiler has them, Rust 1.89 on: `cfg(glstereo_avx512)`).
@@ -496,6 +605,33 @@ pub(crate) fn with_simd<T>(max: Simd, f: impl FnOnce(Simd) -> T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn window_byte_orders_are_byte_maps_and_other_maps_are_not() {
+        use crate::backend::PixelLayout;
+        let id = ByteMap::of(&|v| v).expect("identity");
+        assert!(id.is_identity());
+        let rgbx = ByteMap::of(&|v| PixelLayout::Rgbx.convert(v)).expect("Rgbx");
+        assert!(rgbx.is_identity(), "{rgbx:?}");
+        let bgrx = ByteMap::of(&|v| PixelLayout::Bgrx.convert(v)).expect("Bgrx");
+        assert!(!bgrx.is_identity());
+        for w in [0u32, 0x0102_0304, 0xFFEE_DDCC, 0x8040_2010] {
+            assert_eq!(bgrx.apply(w), PixelLayout::Bgrx.convert(w));
+            assert_eq!(rgbx.apply(w), PixelLayout::Rgbx.convert(w));
+        }
+        // Not byte maps: arithmetic, bit rotations, a map right on the
+        // two first probes only.
+        assert_eq!(ByteMap::of(&|v: u32| v.wrapping_add(1)), None);
+        assert_eq!(ByteMap::of(&|v: u32| v.rotate_left(4)), None);
+        assert_eq!(
+            ByteMap::of(&|v: u32| if v == 0x0302_0100 || v == 0x0706_0504 {
+                v
+            } else {
+                !v
+            }),
+            None
+        );
+    }
 
     #[test]
     fn averages_round_each_byte_half_up() {
