@@ -329,15 +329,13 @@ type Sums = [[std::arch::x86_64::__m512i; 3]; 2];
 #[cfg(all(target_arch = "x86_64", glstereo_avx512))]
 #[allow(clippy::incompatible_msrv)] // Only compiled with Rust ≥ 1.89 (build.rs).
 impl Avx512<'_> {
-    /// 64 bytes at `p`.
-    ///
-    /// # Safety
-    /// 64 bytes from `p` are readable (of one array).
+    /// The first 64 bytes of `p`.
     #[target_feature(enable = "avx512f")]
     #[inline]
-    unsafe fn line(p: &u8) -> std::arch::x86_64::__m512i {
-        // SAFETY: the caller's promise.
-        unsafe { std::arch::x86_64::_mm512_loadu_si512(std::ptr::from_ref(p).cast()) }
+    fn line(p: &[u8]) -> std::arch::x86_64::__m512i {
+        assert!(p.len() >= 64, "a line of 64 bytes");
+        // SAFETY: 64 bytes of the slice (checked above).
+        unsafe { std::arch::x86_64::_mm512_loadu_si512(p.as_ptr().cast()) }
     }
 
     /// Each byte of `x` decoded: its low and high bytes, by the byte's low
@@ -348,21 +346,18 @@ impl Avx512<'_> {
         use std::arch::x86_64::*;
         let k = _mm512_movepi8_mask(x);
         let [lo, hi] = &self.q15.0;
-        // SAFETY: 64 bytes at a multiple of 64 of a 256-byte table.
-        unsafe {
-            [
-                _mm512_mask_blend_epi8(
-                    k,
-                    _mm512_permutex2var_epi8(Self::line(&lo[0]), x, Self::line(&lo[64])),
-                    _mm512_permutex2var_epi8(Self::line(&lo[128]), x, Self::line(&lo[192])),
-                ),
-                _mm512_mask_blend_epi8(
-                    k,
-                    _mm512_permutex2var_epi8(Self::line(&hi[0]), x, Self::line(&hi[64])),
-                    _mm512_permutex2var_epi8(Self::line(&hi[128]), x, Self::line(&hi[192])),
-                ),
-            ]
-        }
+        [
+            _mm512_mask_blend_epi8(
+                k,
+                _mm512_permutex2var_epi8(Self::line(&lo[..]), x, Self::line(&lo[64..])),
+                _mm512_permutex2var_epi8(Self::line(&lo[128..]), x, Self::line(&lo[192..])),
+            ),
+            _mm512_mask_blend_epi8(
+                k,
+                _mm512_permutex2var_epi8(Self::line(&hi[..]), x, Self::line(&hi[64..])),
+                _mm512_permutex2var_epi8(Self::line(&hi[128..]), x, Self::line(&hi[192..])),
+            ),
+        ]
     }
 
     /// `acc` + the pairwise products of the words of `a` and of the
@@ -395,8 +390,7 @@ impl Avx512<'_> {
     #[inline]
     fn sums(&self, l: [std::arch::x86_64::__m512i; 2], r: [std::arch::x86_64::__m512i; 2]) -> Sums {
         use std::arch::x86_64::*;
-        // SAFETY: 64-byte tables.
-        let (rg, ba) = unsafe { (Self::line(&PACK_RG.0[0]), Self::line(&PACK_BA.0[0])) };
+        let (rg, ba) = (Self::line(&PACK_RG.0), Self::line(&PACK_BA.0));
         // The right eye's blue in the left eye's alpha byte (bit select).
         let alpha = _mm512_set1_epi32(0xFF00_0000u32 as i32);
         let lb = [
@@ -780,6 +774,7 @@ impl Dubois {
         // pairs and their anaglyph, as true as any).
         let store = |v: __m512i| {
             let mut w = [0u32; N];
+            // SAFETY: N words into an array of N.
             unsafe { _mm512_storeu_si512(w.as_mut_ptr().cast(), v) };
             w
         };
