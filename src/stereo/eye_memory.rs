@@ -553,6 +553,16 @@ impl<'a> Rows<'a> {
         &self.data[at..at + self.row_bytes]
     }
 
+    /// Rows `k`…`k + n − 1` as one slice, where they follow each other
+    /// with no gap (None where the stride leaves one, or past the last).
+    pub fn span(&self, k: u32, n: u32) -> Option<&'a [u8]> {
+        if self.stride != self.row_bytes || k.checked_add(n)? > self.height {
+            return None;
+        }
+        let at = k as usize * self.stride;
+        self.data.get(at..at + n as usize * self.row_bytes)
+    }
+
     /// How many rows.
     pub fn height(&self) -> u32 {
         self.height
