@@ -1070,23 +1070,39 @@ mod tests {
         }
     }
 
+    /// A pixel pair (left, right), channels 0…255.
+    type Pair = ([f32; 3], [f32; 3]);
+
+    /// The AVX-512 row tests' setup: the identity stage and noise pairs;
+    /// None (and a word why) on a processor without AVX-512.
+    fn avx512_rows() -> Option<(Stage, Vec<Pair>)> {
+        if Simd::detected() < Simd::Avx512 {
+            eprintln!("no AVX-512 here");
+            return None;
+        }
+        let stage = Stage {
+            saturation: 1.0,
+            crosstalk: 0.0,
+        };
+        Some((stage, random_pairs(4096, true)))
+    }
+
+    /// An 8-bit pixel word of a noise pair's eye (alpha 0x55: the kernel
+    /// must write 255 whatever it reads).
+    fn word(p: [f32; 3]) -> u32 {
+        u32::from_le_bytes([p[0] as u8, p[1] as u8, p[2] as u8, 0x55])
+    }
+
     /// Rows through every path of the AVX-512 kernel: lengths around its
     /// 32-pixel step, runs of equal steps (from the row before too, by the
     /// memo), and a window's byte order, against the one-pixel-at-a-time
     /// kernel within 1.
     #[test]
     fn avx512_rows_match_the_scalar_kernel_through_runs_tails_and_byte_orders() {
-        if Simd::detected() < Simd::Avx512 {
-            eprintln!("no AVX-512 here");
+        let Some((stage, noise)) = avx512_rows() else {
             return;
-        }
-        use crate::backend::PixelLayout;
-        let stage = Stage {
-            saturation: 1.0,
-            crosstalk: 0.0,
         };
-        let noise = random_pairs(4096, true);
-        let word = |p: [f32; 3]| u32::from_le_bytes([p[0] as u8, p[1] as u8, p[2] as u8, 0x55]);
+        use crate::backend::PixelLayout;
         for colors in AnaglyphColors::ALL {
             let d = Dubois::new(colors);
             for len in [1, 15, 16, 17, 31, 32, 33, 63, 64, 65, 100, 1280] {
@@ -1158,17 +1174,10 @@ mod tests {
         // The kernel's first step runs up to a cache line (of the output,
         // or of the eyes where they share an offset): rows starting at
         // every offset into a line, eyes and output apart or together.
-        if Simd::detected() < Simd::Avx512 {
-            eprintln!("no AVX-512 here");
+        let Some((stage, noise)) = avx512_rows() else {
             return;
-        }
-        use crate::backend::PixelLayout;
-        let stage = Stage {
-            saturation: 1.0,
-            crosstalk: 0.0,
         };
-        let noise = random_pairs(4096, true);
-        let word = |p: [f32; 3]| u32::from_le_bytes([p[0] as u8, p[1] as u8, p[2] as u8, 0x55]);
+        use crate::backend::PixelLayout;
         const WORDS: usize = 1400;
         const GUARD: u32 = 0xDEAD_BEEF;
         let d = Dubois::new(AnaglyphColors::RedCyan);
