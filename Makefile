@@ -27,7 +27,7 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 python3-pil libimage-exiftool-perl mesa-vulkan-drivers \
                 libxtst6 libxi-dev
 
-.PHONY: all deps build header examples demo test check-sanitize lint bench clean install uninstall
+.PHONY: all deps disk build header examples demo test check-sanitize lint bench clean install uninstall
 
 all: build examples
 
@@ -46,6 +46,27 @@ deps:
 	  apt-get -o DPkg::Lock::Timeout=300 install -y --no-install-recommends $$missing \
 	  || { apt-get -o DPkg::Lock::Timeout=300 update && \
 	       apt-get -o DPkg::Lock::Timeout=300 install -y --no-install-recommends $$missing; }; \
+	fi
+
+# `make test` from a clean tree writes about 4.1 GB under target/ (the
+# debug and sanitizer builds, the release preload, the tests' scratch). On
+# a disk that fills up half way the linker dies of SIGBUS, which says
+# nothing of space: so stop first, and say so, when what is free (plus
+# what target/ already holds) is under DISK_MB_SURE_FAIL, short of what
+# the run needs whatever it reuses; warn below DISK_MB_NEEDED.
+DISK_MB_NEEDED    ?= 4200
+DISK_MB_SURE_FAIL ?= 3000
+disk:
+	@mkdir -p target; \
+	free=$$(df -Pm target | awk 'NR == 2 { print $$4 }'); \
+	held=$$(du -sm target | cut -f1); \
+	if [ $$((free + held)) -lt $(DISK_MB_SURE_FAIL) ]; then \
+	  echo "make test: only $$free MB free for target/ ($$held MB already there);"; \
+	  echo "  a clean run writes about $(DISK_MB_NEEDED) MB: free some space and run it again"; \
+	  exit 1; \
+	elif [ $$((free + held)) -lt $(DISK_MB_NEEDED) ]; then \
+	  echo "make test: warning: $$free MB free for target/ ($$held MB already there);"; \
+	  echo "  a clean run writes about $(DISK_MB_NEEDED) MB (a link that dies of SIGBUS means a full disk)"; \
 	fi
 
 build: deps
@@ -72,7 +93,7 @@ FUZZ_SECONDS ?= 60
 
 # check-sanitize runs the tests/sanitize.rs tests (named sanitized_*), which
 # the full run then skips.
-test: deps lint check-sanitize
+test: deps disk lint check-sanitize
 	$(CARGO) build $(CARGO_PROFILE_FLAG) -p glstereo-preload
 	GLSTEREO_FUZZ_SECONDS=$(FUZZ_SECONDS) $(CARGO) test $(CARGO_PROFILE_FLAG) --no-fail-fast -- --skip sanitized_
 
