@@ -429,6 +429,20 @@ impl Frame {
                 ..
             } = scratch;
             let (r0, r1) = (row_of(v0, s0, black, cache), row_of(v1, s1, black, cache));
+            // The next window row's eye rows, asked for while this one is
+            // made: a row's loop asks for its own lines only AHEAD words
+            // on, and GL's eyes lie bottom first (the lines past a row's
+            // end are the row above), so its first lines would be waited
+            // for.
+            let mut next: [&[u32]; 2] = [&[], &[]];
+            if y + 1 < fit.height {
+                let t = tap(y + 1, ch, fit.height);
+                for (n, i) in next.iter_mut().zip([t.i0, t.i1]) {
+                    if let Some(Verbatim::Row(row)) = self.verbatim(eyes, i as u32) {
+                        *n = row;
+                    }
+                }
+            }
             let (x0, n) = (fit.x as usize, fit.width as usize);
             let out = target.row(t);
             out[..x0].fill(black_px);
@@ -451,6 +465,7 @@ impl Frame {
                     (r0, r1, vt.f),
                     window_taps.get(cw, fit.width),
                     out,
+                    next,
                     px,
                 );
             }
@@ -689,7 +704,7 @@ impl Frame {
         } = scratch;
         let ht = (p.width != w).then(|| span_taps.get(w, p.width));
         if let (Some(ht), 0.0) = (ht, k) {
-            sample_store(simd, (r0, r1, vt.f), ht, out, px);
+            sample_store(simd, (r0, r1, vt.f), ht, out, [&[], &[]], px);
             return;
         }
         let ht = ht.map(|t| &t.taps[..]);
@@ -726,8 +741,8 @@ fn sample(
     }
 }
 
-/// [`sample`] then [`store`], pixel by pixel from the two rows (with AVX2
-/// gathers when `simd` has AVX2): each output pixel's two columns are sampled
+/// [`sample`] then [`store`], pixel by pixel from the two rows (16 at a
+/// time with AVX-512, 8 by AVX2 gathers): each output pixel's two columns are sampled
 /// between the rows, then between each other, as the reference does.
 #[inline(always)]
 fn sample_store(
@@ -735,9 +750,19 @@ fn sample_store(
     (r0, r1, f): (&[u32], &[u32], f32),
     ht: &TapCache,
     out: &mut [u32],
+    next: [&[u32]; 2],
     px: impl Fn(u32) -> u32 + Copy,
 ) {
     let mut done = 0;
+    #[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+    if simd.avx512() {
+        // SAFETY: `simd` says the processor has AVX-512 (see with_simd);
+        // the taps index texels of the rows (clamped to their edge), as
+        // long as both rows.
+        unsafe { super::avx512::sample_taps((r0, r1, f), (&ht.i0, &ht.i1, &ht.f), out, next, px) };
+        return;
+    }
+    let _ = next;
     #[cfg(target_arch = "x86_64")]
     if simd.avx2() {
         // SAFETY: `simd` says the processor has AVX2 (see with_simd).
