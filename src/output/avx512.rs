@@ -25,7 +25,7 @@
 use std::arch::x86_64::*;
 
 use super::anaglyph::LUMA;
-use super::kernels::{AHEAD, ALPHA, N, VectorPx, ahead};
+use super::kernels::{ALPHA, N, VectorPx, ahead, ask_next_rows};
 
 /// Byte shuffles (per 128-bit lane) that put byte `c` of each pixel word
 /// into the low byte of its lane and zero the rest.
@@ -108,6 +108,12 @@ fn luma(w: __m512i) -> __m512i {
     _mm512_shuffle_epi8(round(y), _mm512_broadcast_i32x4(spread))
 }
 
+/// The mask of a step's first `m` (0…16) lanes.
+#[inline(always)]
+fn lanes(m: usize) -> __mmask16 {
+    if m >= N { !0 } else { (1 << m) - 1 }
+}
+
 /// Stores the first `out.len()` (1…16) words of `v`: whole through `map`
 /// where `px` is a byte map, else word by word through `px`.
 #[target_feature(enable = "avx512f,avx512bw")]
@@ -115,7 +121,7 @@ fn luma(w: __m512i) -> __m512i {
 fn put(v: __m512i, map: Option<&VectorPx>, out: &mut [u32], px: &impl Fn(u32) -> u32) {
     let m = out.len();
     debug_assert!((1..=N).contains(&m));
-    let mask: __mmask16 = if m == N { !0 } else { (1 << m) - 1 };
+    let mask = lanes(m);
     if let Some(map) = map {
         // SAFETY: the mask covers the m words of out.
         unsafe { _mm512_mask_storeu_epi32(out.as_mut_ptr().cast(), mask, map.apply(v)) };
@@ -153,7 +159,7 @@ macro_rules! steps {
         while x < n {
             ahead([a, b], out, x);
             let m = N.min(n - x);
-            let mask: __mmask16 = if m == N { !0 } else { (1 << m) - 1 };
+            let mask = lanes(m);
             // SAFETY: the mask covers m ≤ n − x words, all inside a and b
             // (masked-off words are not read).
             let ($l, $r) = unsafe {
@@ -229,8 +235,7 @@ pub(crate) unsafe fn blend_rows(
 #[target_feature(enable = "avx512f")]
 #[inline]
 unsafe fn words(p: *const u32, k: usize, j: usize) -> __m512i {
-    let k = k.saturating_sub(N * j).min(N);
-    let mask: __mmask16 = if k == N { !0 } else { (1 << k) - 1 };
+    let mask = lanes(k.saturating_sub(N * j));
     // SAFETY: the mask covers the words of the k readable ones.
     unsafe { _mm512_maskz_loadu_epi32(mask, p.wrapping_add(N * j).cast()) }
 }
@@ -245,11 +250,8 @@ unsafe fn words(p: *const u32, k: usize, j: usize) -> __m512i {
 /// its taps lie among them (any scale down to about 1:2, and every scale
 /// up), or four permutes a row from the 64 words there (down to about
 /// 1:4: HDMI frame packing fitted into its eye's window is 1:2.04), else
-/// by gathers. A line of each of the `next` rows (the next call's) is
-/// asked for each step, up to [`AHEAD`] words: the step's own asking runs
-/// AHEAD words on, and GL's eyes lie bottom first (past a row's end is
-/// the row above, already read), so a row's first lines were waited for.
-/// Measured (perf samples, HDMI frame packing of 1280x1024 eyes fitted
+/// by gathers. Each step asks for a line of the `next` rows (the next
+/// call's; [`ask_next_rows`]). Measured (perf samples, HDMI frame packing of 1280x1024 eyes fitted
 /// into their window): the row loop with AVX2 gathers 2.24 ms a frame,
 /// with this kernel 2.24 (1.5 → 1.17 ns a pixel on rows in cache: the
 /// lines were the cost), with the next rows asked for 1.40.
@@ -280,7 +282,7 @@ pub(crate) unsafe fn sample_taps(
     let mut x = 0;
     while x < n {
         let m = N.min(n - x);
-        let mask: __mmask16 = if m == N { !0 } else { (1 << m) - 1 };
+        let mask = lanes(m);
         // SAFETY: the mask covers m ≤ n − x entries of each tap array.
         let (a, b, f) = unsafe {
             (
@@ -293,15 +295,7 @@ pub(crate) unsafe fn sample_taps(
         // before it is out of range too).
         let base = i0[x] as usize;
         ahead([&r0[base..], &r1[base..]], &out[x..], 0);
-        // The first lines of the next rows, a line of each a step.
-        let line = x / N * 16;
-        if line < AHEAD {
-            for row in next {
-                if let Some(w) = row.get(line) {
-                    _mm_prefetch::<_MM_HINT_T0>((w as *const u32).cast());
-                }
-            }
-        }
+        ask_next_rows(next, x / N);
         let from = _mm512_set1_epi32(base as i32);
         let (oa, ob) = (_mm512_sub_epi32(a, from), _mm512_sub_epi32(b, from));
         let (near, nearer) = (_mm512_set1_epi32(64), _mm512_set1_epi32(32));

@@ -404,6 +404,29 @@ pub(crate) fn ahead(reads: [&[u32]; 2], out: &[u32], x: usize) {
     let _ = (reads, out, x);
 }
 
+/// Asks for line `line` (0, 1, …: 64 bytes each) of each of `next`'s rows
+/// while it is within their first [`AHEAD`] words: a resampling loop
+/// calls it once a step with the rows the next call will read, whose
+/// first lines its own asking ([`ahead`]) never reaches — GL's eyes lie
+/// bottom first, so past a row's end lies the row above, already read.
+#[inline(always)]
+pub(crate) fn ask_next_rows(next: [&[u32]; 2], line: usize) {
+    let x = line * 16;
+    if x >= AHEAD {
+        return;
+    }
+    #[cfg(target_arch = "x86_64")]
+    for row in next {
+        if let Some(w) = row.get(x) {
+            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+            // SAFETY: a prefetch reads nothing and faults on no address.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>((w as *const u32).cast()) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = next;
+}
+
 /// A word map that is a byte map: output byte j is input byte `from[j]`,
 /// or (None) a constant, OR-ed in from `or`. [`ByteMap::of`] finds it
 /// from probes and checks it on more, so that a kernel can apply a

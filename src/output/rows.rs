@@ -35,7 +35,9 @@ use crate::stereo::eye_memory::Rows;
 
 use super::cpu::{Tap, tap};
 use super::dubois_lut::Memo;
-use super::kernels::{ALPHA, PairOp, Planes, Simd, Stage, average2, average4, chunks, with_simd};
+use super::kernels::{
+    ALPHA, PairOp, Planes, Simd, Stage, ask_next_rows, average2, average4, chunks, with_simd,
+};
 use super::layout::{Placement, WindowFit, composite_size, placements, window_fit};
 use super::mode::OutputMode;
 use super::options::OutputOptions;
@@ -429,20 +431,6 @@ impl Frame {
                 ..
             } = scratch;
             let (r0, r1) = (row_of(v0, s0, black, cache), row_of(v1, s1, black, cache));
-            // The next window row's eye rows, asked for while this one is
-            // made: a row's loop asks for its own lines only AHEAD words
-            // on, and GL's eyes lie bottom first (the lines past a row's
-            // end are the row above), so its first lines would be waited
-            // for.
-            let mut next: [&[u32]; 2] = [&[], &[]];
-            if y + 1 < fit.height {
-                let t = tap(y + 1, ch, fit.height);
-                for (n, i) in next.iter_mut().zip([t.i0, t.i1]) {
-                    if let Some(Verbatim::Row(row)) = self.verbatim(eyes, i as u32) {
-                        *n = row;
-                    }
-                }
-            }
             let (x0, n) = (fit.x as usize, fit.width as usize);
             let out = target.row(t);
             out[..x0].fill(black_px);
@@ -460,6 +448,17 @@ impl Frame {
                 sample(r0, r1, vt.f, None, tmp, a);
                 store(a, out, px);
             } else {
+                // The next window row's eye rows, asked for while this one
+                // is made (see kernels::ask_next_rows).
+                let mut next: [&[u32]; 2] = [&[], &[]];
+                if y + 1 < fit.height {
+                    let t = tap(y + 1, ch, fit.height);
+                    for (n, i) in next.iter_mut().zip([t.i0, t.i1]) {
+                        if let Some(Verbatim::Row(row)) = self.verbatim(eyes, i as u32) {
+                            *n = row;
+                        }
+                    }
+                }
                 sample_store(
                     simd,
                     (r0, r1, vt.f),
@@ -742,8 +741,10 @@ fn sample(
 }
 
 /// [`sample`] then [`store`], pixel by pixel from the two rows (16 at a
-/// time with AVX-512, 8 by AVX2 gathers): each output pixel's two columns are sampled
-/// between the rows, then between each other, as the reference does.
+/// time with AVX-512, 8 by AVX2 gathers): each output pixel's two columns
+/// are sampled between the rows, then between each other, as the
+/// reference does. Asks for the first lines of the `next` rows on the way
+/// ([`ask_next_rows`]).
 #[inline(always)]
 fn sample_store(
     simd: Simd,
@@ -762,15 +763,18 @@ fn sample_store(
         unsafe { super::avx512::sample_taps((r0, r1, f), (&ht.i0, &ht.i1, &ht.f), out, next, px) };
         return;
     }
-    let _ = next;
     #[cfg(target_arch = "x86_64")]
     if simd.avx2() {
         // SAFETY: `simd` says the processor has AVX2 (see with_simd).
-        done = unsafe { gather_store((r0, r1, f), ht, out, px) };
+        done = unsafe { gather_store((r0, r1, f), ht, out, next, px) };
     }
+
     let _ = simd;
     let column = |i: usize| lerp(unpack(r0[i]), unpack(r1[i]), f);
-    for (o, t) in out.iter_mut().zip(&ht.taps).skip(done) {
+    for (x, (o, t)) in out.iter_mut().zip(&ht.taps).enumerate().skip(done) {
+        if x % 8 == 0 {
+            ask_next_rows(next, x / 8);
+        }
         *o = px(pack(lerp(column(t.i0), column(t.i1), t.f)));
     }
 }
@@ -787,6 +791,7 @@ unsafe fn gather_store(
     (r0, r1, fy): (&[u32], &[u32], f32),
     ht: &TapCache,
     out: &mut [u32],
+    next: [&[u32]; 2],
     px: impl Fn(u32) -> u32,
 ) -> usize {
     use std::arch::x86_64::*;
@@ -796,6 +801,7 @@ unsafe fn gather_store(
     let lerp =
         |a: __m256, b: __m256, f: __m256| _mm256_add_ps(a, _mm256_mul_ps(f, _mm256_sub_ps(b, a)));
     for x in (0..whole).step_by(8) {
+        ask_next_rows(next, x / 8);
         debug_assert!(
             ht.i0[x..x + 8]
                 .iter()
