@@ -22,7 +22,7 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind \
                 libx11-xcb-dev libglfw3-dev libsdl2-dev python3-opengl libepoxy-dev \
-                qtbase5-dev qt6-base-dev g++ \
+                qtbase5-dev qt6-base-dev libqt6opengl6-dev g++ \
                 openscenegraph mesa-utils apitrace mangohud renderdoccmd librenderdoc-dev \
                 python3-pil libimage-exiftool-perl mesa-vulkan-drivers \
                 libxtst6 libxi-dev
