@@ -27,7 +27,7 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 python3-pil libimage-exiftool-perl mesa-vulkan-drivers \
                 libxtst6 libxi-dev
 
-.PHONY: all deps disk build header examples demo test check-sanitize lint bench clean install uninstall
+.PHONY: all deps disk build header examples demo test check-sanitize check-fits lint bench clean install uninstall
 
 all: build examples
 
@@ -93,9 +93,17 @@ FUZZ_SECONDS ?= 60
 
 # check-sanitize runs the tests/sanitize.rs tests (named sanitized_*), which
 # the full run then skips.
-test: deps disk lint check-sanitize
+test: deps disk lint check-sanitize check-fits
 	$(CARGO) build $(CARGO_PROFILE_FLAG) -p glstereo-preload
 	GLSTEREO_FUZZ_SECONDS=$(FUZZ_SECONDS) $(CARGO) test $(CARGO_PROFILE_FLAG) --no-fail-fast -- --skip sanitized_
+
+# Every output format fitted to every window size a user can make (each
+# from 1x1 to 64x64, thin ones up to 4096, random ones up to 4096x4096), at
+# every vector level the processor has, against the reference
+# (src/output/fits.rs): many sizes, so an optimised build (a debug
+# `cargo test` lists them as ignored).
+check-fits:
+	$(CARGO) test --release --lib output::fits
 
 # The C examples, the misuse suites and the threads tests built with
 # -fsanitize=address,undefined, run clean (tests/sanitize.rs); the GLX ones

@@ -21,11 +21,19 @@
 //!   outputs untouched on error, codes as documented; and
 //!   gls_parallax_report_describe with any report and buffer length.
 //!
+//! - `window_fits`: every output format fitted to a window
+//!   (`glstereo::output::compose_fitted`, what a window under glstereo-run
+//!   gets) for eyes and windows of random sizes — 1 to 3 pixels thin, small,
+//!   up to 4096 long — one call after another on one thread, so that each
+//!   reuses the row buffers the last one left, as a window being resized
+//!   does: each frame equals the reference composite fitted to the window
+//!   (`cpu::fitted`), Dubois within 1 where the eyes are changed.
+//!
 //! No panic anywhere (a panic would come back as GLS_ERROR_PANIC and fail).
 //! Every error must carry a message of its own.
 //!
 //! Time: GLSTEREO_FUZZ_SECONDS (default 2) in total, shared equally by the
-//! four targets; `make test` sets 60. Seed: GLSTEREO_FUZZ_SEED (default
+//! five targets; `make test` sets 60. Seed: GLSTEREO_FUZZ_SEED (default
 //! fixed, so a run is reproducible). A failure prints the input as a corpus
 //! line: add it to tests/fuzz_corpus/<target>.txt once fixed.
 
@@ -51,7 +59,7 @@ use glstereo::output::options::{
 
 use common::last_error;
 
-const TARGETS: u32 = 4;
+const TARGETS: u32 = 5;
 
 // ---- the engine --------------------------------------------------------
 
@@ -1185,4 +1193,105 @@ fn check_describe(a: &[f64], len: usize) -> Result<(), String> {
 #[test]
 fn fuzz_projection_parameters() {
     fuzz("math", gen_math, check_math);
+}
+
+// ---- window_fits ---------------------------------------------------------
+
+/// A side of an eye or a window: thin, small, medium or long (up to 4096).
+fn gen_side(rng: &mut Rng) -> u32 {
+    match rng.below(8) {
+        0 | 1 => 1 + rng.below(3) as u32,
+        2..=4 => 1 + rng.below(64) as u32,
+        5 | 6 => 1 + rng.below(400) as u32,
+        _ => 1 + rng.below(4096) as u32,
+    }
+}
+
+/// `MODE EYE_W EYE_H WIN_W WIN_H SWAP CROSSTALK SATURATION SEED`, the area
+/// of the eyes and of the window kept under 2^20 pixels (a long side comes
+/// with a short one).
+fn gen_window_fit(rng: &mut Rng, corpus: &[String]) -> String {
+    let mode = OutputMode::ALL[rng.below(OutputMode::ALL.len())];
+    let mut size = || loop {
+        let (w, h) = (gen_side(rng), gen_side(rng));
+        if w * h <= 1 << 20 {
+            return (w, h);
+        }
+    };
+    let (eye, win) = (size(), size());
+    // Often the window of the eyes' size, as a program that follows it.
+    let win = if rng.chance(3) { eye } else { win };
+    let changed = rng.chance(3);
+    if rng.chance(8) && !corpus.is_empty() {
+        // A corpus case again, after other sizes filled the buffers.
+        return rng.pick(corpus).clone();
+    }
+    format!(
+        "{} {} {} {} {} {} {} {} {}",
+        mode.canonical_name(),
+        eye.0,
+        eye.1,
+        win.0,
+        win.1,
+        u8::from(changed),
+        if changed { 0.25 } else { 0.0 },
+        if changed { 0.5 } else { 1.0 },
+        rng.next() % 1000
+    )
+}
+
+fn check_window_fit(line: &str) -> Result<(), String> {
+    use glstereo::output::cpu::{fitted, reference};
+    use glstereo::output::pattern::{gradient, noise};
+    use glstereo::output::{AnaglyphMethod, OutputOptions, compose_fitted};
+    let f: Vec<&str> = line.split_whitespace().collect();
+    let [mode, ew, eh, ww, wh, swap, crosstalk, saturation, seed] = f[..] else {
+        return Err(format!("a case has 9 fields: {line:?}"));
+    };
+    let num = |s: &str| s.parse::<u32>().map_err(|e| format!("{s:?}: {e}"));
+    let real = |s: &str| s.parse::<f32>().map_err(|e| format!("{s:?}: {e}"));
+    let mode = OutputMode::from_name(mode).map_err(|e| e.to_string())?;
+    let (eye, win) = ((num(ew)?, num(eh)?), (num(ww)?, num(wh)?));
+    let o = OutputOptions {
+        swap_eyes: swap == "1",
+        crosstalk: real(crosstalk)?,
+        saturation: real(saturation)?,
+    };
+    let seed = u64::from(num(seed)?);
+    let (l, r) = (
+        noise(eye.0, eye.1, seed),
+        gradient(eye.0, eye.1, seed as u8),
+    );
+    let mut got = glstereo::image::Image::new(1, 1);
+    let done = compose_fitted(mode, &o, &l, &r, 1, win, &mut got);
+    if mode == OutputMode::Quad {
+        // Not a composite: refused, the image untouched.
+        return match done {
+            Err(_) if got.width() == 1 => Ok(()),
+            _ => Err("quad was composed".into()),
+        };
+    }
+    done.map_err(|e| format!("refused: {e}"))?;
+    let want = fitted(
+        &reference(mode, &o, &l, &r, 1).map_err(|e| e.to_string())?,
+        mode,
+        win,
+    );
+    let (d, x, y, c) = got
+        .max_difference(&want)
+        .ok_or_else(|| format!("a {}x{} image, want {win:?}", got.width(), got.height()))?;
+    let dubois = matches!(mode, OutputMode::Anaglyph(_, AnaglyphMethod::Dubois));
+    if d > u8::from(dubois) {
+        return Err(format!(
+            "({x}, {y}) channel {c} is {:?}, the reference fitted {:?}",
+            got.get(x, y),
+            want.get(x, y)
+        ));
+    }
+    Ok(())
+}
+
+#[test]
+fn fuzz_window_fits() {
+    fuzz("window_fits", gen_window_fit, check_window_fit);
 }

@@ -21,6 +21,8 @@ pub mod anaglyph;
 mod avx512;
 pub mod cpu;
 mod dubois_lut;
+#[cfg(test)]
+mod fits;
 pub mod gl;
 mod kernels;
 pub mod layout;

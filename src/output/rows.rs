@@ -133,7 +133,8 @@ pub(crate) struct Scratch {
     /// Horizontal taps of spans and of the window's scaling, by key.
     span_taps: TapCache,
     window_taps: TapCache,
-    /// Composite rows a scaled or cropped window samples (row index, words).
+    /// Composite rows a scaled or cropped window samples (row index, words),
+    /// kept within one [`Frame::write`] call.
     rows: [(Option<u32>, Vec<u32>); 2],
     /// A black composite row.
     black: Vec<u32>,
@@ -347,7 +348,12 @@ impl Frame {
         scratch: &mut Scratch,
         px: impl Fn(u32) -> u32 + Copy,
     ) {
+        // Rows composed for an earlier call are of another frame (other
+        // eyes, perhaps another size): never reused.
         scratch.memo = Memo::default();
+        for (row, _) in &mut scratch.rows {
+            *row = None;
+        }
         with_simd(
             max,
             #[inline(always)]
@@ -893,62 +899,10 @@ fn store(src: &[[f32; 4]], out: &mut [u32], px: impl Fn(u32) -> u32) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::image::as_words_mut;
     use crate::output::cpu::{fitted, reference};
+    use crate::output::fits::written;
     use crate::output::mode::AnaglyphMethod;
     use crate::output::pattern::{gradient, noise};
-
-    /// Writes the frame from the eyes stored bottom row first (as GL
-    /// keeps them), in bands of `band` rows when the frame allows it.
-    fn written(
-        simd: Simd,
-        mode: OutputMode,
-        o: &OutputOptions,
-        l: &Image,
-        r: &Image,
-        size: (u32, u32),
-        band: u32,
-    ) -> Image {
-        let (w, h) = (l.width(), l.height());
-        let frame = Frame::new(mode, o, 1, (w, h), size);
-        let flipped = |img: &Image| {
-            let mut f = img.clone();
-            f.flip_vertical();
-            f
-        };
-        let (fl, fr) = (flipped(l), flipped(r));
-        let mut out = Image::new(size.0, size.1);
-        let mut target = Target {
-            words: as_words_mut(out.pixels_mut()).unwrap(),
-            stride: size.0 as usize,
-            size,
-        };
-        let mut scratch = Scratch::default();
-        let band = if frame.row_local() { band } else { h };
-        let mut y0 = 0;
-        while y0 < h {
-            let n = band.min(h - y0);
-            // Only this band's rows, as a band read back holds them.
-            let rows = |img: &Image| {
-                let len = w as usize * 4;
-                let mut b = Image::new(w, n);
-                let at = y0 as usize * len;
-                b.pixels_mut()
-                    .copy_from_slice(&img.pixels()[at..at + n as usize * len]);
-                b
-            };
-            let (bl, br) = (rows(&fl), rows(&fr));
-            let eyes = [&bl, &br].map(|b| EyeRows::gl(Rows::of_image(b), y0, h));
-            let out_rows = if band == h {
-                0..size.1
-            } else {
-                frame.rows_of_band(y0..y0 + n)
-            };
-            frame.write_with(simd, eyes, out_rows, &mut target, &mut scratch, |v| v);
-            y0 += n;
-        }
-        out
-    }
 
     #[test]
     fn every_mode_fits_any_target_as_the_reference_resampled() {
@@ -985,7 +939,8 @@ mod tests {
                             .flat_map(|b| Simd::ALL.map(|s| (b, s)))
                             .filter(|&(_, s)| s <= Simd::detected())
                         {
-                            let got = written(simd, mode, o, &l, &r, size, band);
+                            let got =
+                                written(simd, mode, o, &l, &r, size, band, &mut Scratch::default());
                             let (d, x, y, c) = got.max_difference(&want).unwrap();
                             let changed = *o != OutputOptions::default();
                             let dubois =

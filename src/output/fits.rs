@@ -1,0 +1,239 @@
+//! Property tests of every frame a window can get: for every output
+//! format, every vector level the processor has and every window size a
+//! user can make — each from 1x1 to 64x64, thin ones (1 or 2 pixels wide
+//! or high, up to 4096 long) and random ones up to 4096x4096 — the rows
+//! [`Frame::write_with`] writes equal the reference composite fitted to
+//! the window ([`fitted`] of [`reference`]). Each level keeps one
+//! [`Scratch`] from case to case, as a window keeps its buffers while the
+//! program is resized, and the eyes are sometimes of another size than
+//! the window (a resize the program has not followed with glViewport).
+//!
+//! The sizes are many, so these run in an optimised build: `make test`
+//! runs them with `cargo test --release --lib output::fits`; a debug
+//! `cargo test` lists them as ignored.
+
+use super::cpu::{fitted, reference};
+use super::kernels::Simd;
+use super::mode::{AnaglyphMethod, OutputMode};
+use super::options::OutputOptions;
+use super::pattern::{gradient, noise};
+use super::rows::{EyeRows, Frame, Scratch, Target};
+use crate::image::{Image, as_words_mut};
+use crate::stereo::eye_memory::Rows;
+
+/// SplitMix64: the same sequence everywhere.
+pub(super) struct Rng(pub(super) u64);
+
+impl Rng {
+    pub(super) fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// 1 … `n`.
+    pub(super) fn upto(&mut self, n: u32) -> u32 {
+        1 + (self.next() % u64::from(n)) as u32
+    }
+}
+
+/// Writes the frame of `mode` from eyes `l`, `r` into a target of `size`,
+/// the eyes stored bottom row first as GL keeps them and handed over in
+/// bands of `band` rows where the frame allows it (as the window reads
+/// them back), with `scratch` left from earlier frames.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn written(
+    simd: Simd,
+    mode: OutputMode,
+    o: &OutputOptions,
+    l: &Image,
+    r: &Image,
+    size: (u32, u32),
+    band: u32,
+    scratch: &mut Scratch,
+) -> Image {
+    let (w, h) = (l.width(), l.height());
+    let frame = Frame::new(mode, o, 1, (w, h), size);
+    let flipped = |img: &Image| {
+        let mut f = img.clone();
+        f.flip_vertical();
+        f
+    };
+    let (fl, fr) = (flipped(l), flipped(r));
+    let mut out = Image::new(size.0, size.1);
+    let mut target = Target {
+        words: as_words_mut(out.pixels_mut()).expect("aligned words"),
+        stride: size.0 as usize,
+        size,
+    };
+    let band = if frame.row_local() { band.max(1) } else { h };
+    let mut y0 = 0;
+    while y0 < h {
+        let n = band.min(h - y0);
+        let whole = n == h;
+        // Only this band's rows, as a band read back holds them.
+        let rows = |img: &Image| {
+            let len = w as usize * 4;
+            let mut b = Image::new(w, n);
+            let at = y0 as usize * len;
+            b.pixels_mut()
+                .copy_from_slice(&img.pixels()[at..at + n as usize * len]);
+            b
+        };
+        let (bl, br) = if whole {
+            (fl.clone(), fr.clone())
+        } else {
+            (rows(&fl), rows(&fr))
+        };
+        let eyes = [&bl, &br].map(|b| EyeRows::gl(Rows::of_image(b), y0, h));
+        let out_rows = if whole {
+            0..size.1
+        } else {
+            frame.rows_of_band(y0..y0 + n)
+        };
+        frame.write_with(simd, eyes, out_rows, &mut target, scratch, |v| v);
+        y0 += n;
+    }
+    out
+}
+
+/// The levels this processor has, lowest first.
+fn levels() -> impl Iterator<Item = Simd> {
+    Simd::ALL.into_iter().filter(|&s| s <= Simd::detected())
+}
+
+/// Options of a case: the defaults, or swapped eyes with crosstalk and
+/// saturation (every stage of the pipeline).
+fn options(changed: bool) -> OutputOptions {
+    if changed {
+        OutputOptions {
+            swap_eyes: true,
+            crosstalk: 0.3,
+            saturation: 0.6,
+        }
+    } else {
+        OutputOptions::default()
+    }
+}
+
+/// The modes that are composites (every one but `quad`).
+fn composites() -> impl Iterator<Item = OutputMode> {
+    OutputMode::all().filter(|&m| m != OutputMode::Quad)
+}
+
+/// One buffer set per level, kept across the cases of a test.
+struct Windows {
+    scratch: [Scratch; 3],
+    cases: usize,
+}
+
+impl Windows {
+    fn new() -> Windows {
+        Windows {
+            scratch: Default::default(),
+            cases: 0,
+        }
+    }
+
+    /// Eyes of `eye` size into a window of `size`, at every level, against
+    /// the reference. Dubois may differ by 1 where the eyes are changed
+    /// (saturation, crosstalk) or in AVX-512's fixed point; everything
+    /// else is exact.
+    fn check(&mut self, mode: OutputMode, eye: (u32, u32), size: (u32, u32), seed: u64) {
+        let (w, h) = eye;
+        let (l, r) = (noise(w, h, seed), gradient(w, h, seed as u8));
+        let o = options(seed % 3 == 0);
+        let want = fitted(&reference(mode, &o, &l, &r, 1).unwrap(), mode, size);
+        let dubois = matches!(mode, OutputMode::Anaglyph(_, AnaglyphMethod::Dubois));
+        for simd in levels() {
+            let band = 1 + (seed as u32 % h.max(1));
+            let scratch = &mut self.scratch[simd as usize];
+            let got = written(simd, mode, &o, &l, &r, size, band, scratch);
+            let (d, x, y, c) = got.max_difference(&want).expect("same size");
+            let tol = dubois && (o != OutputOptions::default() || simd == Simd::Avx512);
+            assert!(
+                d <= u8::from(tol),
+                "{mode}: eyes {w}x{h} into a {}x{} window ({simd:?}, bands of {band}, \
+                 {o:?}, after {} other cases): ({x}, {y}) channel {c} is {:?}, want {:?}",
+                size.0,
+                size.1,
+                self.cases,
+                got.get(x, y),
+                want.get(x, y)
+            );
+        }
+        self.cases += 1;
+    }
+}
+
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "many sizes: make test runs it with --release"
+)]
+fn every_window_from_1x1_to_64x64_is_the_reference_fitted() {
+    let mut rng = Rng(64);
+    for mode in composites() {
+        let mut windows = Windows::new();
+        for ww in 1..=64 {
+            for wh in 1..=64 {
+                // The eyes of the window's size (a program that follows
+                // its window), then of another (one that has not yet).
+                windows.check(mode, (ww, wh), (ww, wh), rng.next());
+                let eye = (rng.upto(64), rng.upto(64));
+                windows.check(mode, eye, (ww, wh), rng.next());
+            }
+        }
+    }
+}
+
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "many sizes: make test runs it with --release"
+)]
+fn thin_windows_up_to_4096_are_the_reference_fitted() {
+    let mut rng = Rng(4096);
+    for mode in composites() {
+        let mut windows = Windows::new();
+        let lengths: Vec<u32> = (1..=64)
+            .chain((0..24).map(|_| rng.upto(4096)))
+            .chain([4095, 4096])
+            .collect();
+        for thin in [1, 2] {
+            for &long in &lengths {
+                for size in [(thin, long), (long, thin)] {
+                    windows.check(mode, size, size, rng.next());
+                    // Eyes as thin the other way, or small and square.
+                    let eye = if rng.next() % 2 == 0 {
+                        (size.1, size.0)
+                    } else {
+                        (rng.upto(48), rng.upto(48))
+                    };
+                    windows.check(mode, eye, size, rng.next());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "many sizes: make test runs it with --release"
+)]
+fn random_windows_up_to_4096x4096_are_the_reference_fitted() {
+    let mut rng = Rng(4242);
+    for mode in composites() {
+        let mut windows = Windows::new();
+        for _ in 0..2 {
+            let size = (rng.upto(4096), rng.upto(4096));
+            windows.check(mode, size, size, rng.next());
+            // Eyes of a smaller random size (a frame from before a resize).
+            let eye = (rng.upto(1024), rng.upto(1024));
+            windows.check(mode, eye, size, rng.next());
+        }
+    }
+}
