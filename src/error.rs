@@ -46,8 +46,12 @@ pub enum Error {
     /// Reading or writing a file failed.
     #[error("{0}")]
     Io(String),
-    /// A panic inside the library was caught at the boundary.
-    #[error("internal error (please report it): {0}")]
+    /// A panic inside the library was caught ([`crate::fault`]): where it
+    /// happened and what it said.
+    #[error(
+        "internal error, a bug in glstereo ({0}); please report it with what \
+         GLSTEREO_VERBOSE=1 prints"
+    )]
     Panic(String),
     /// A handle that is not (or no longer) a live object of the expected kind.
     #[error("{0} is not a live handle: it was never created, or was already destroyed")]

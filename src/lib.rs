@@ -35,6 +35,7 @@ pub mod capture;
 pub mod config;
 pub mod display;
 pub mod error;
+mod fault;
 pub mod ffi;
 pub mod framing;
 pub mod gl;

@@ -195,16 +195,39 @@ fn trap_errors<T>(
     // SAFETY: installs a handler that records or forwards; restored below.
     let old = unsafe { (xlib.XSetErrorHandler)(Some(on_x_error)) };
     *TRAP_PREVIOUS.lock().unwrap_or_else(|e| e.into_inner()) = old;
+    // The program's handler goes back even if `f` panics (a fault the
+    // caller contains must not leave the program's X errors trapped).
+    let restore = Restore {
+        xlib,
+        display,
+        old,
+        sync,
+    };
     let v = f();
-    // SAFETY: valid display; XSync delivers pending errors to the handler.
-    unsafe {
-        if sync {
-            (xlib.XSync)(display, xlib::False);
-        }
-        (xlib.XSetErrorHandler)(old);
-    }
-    TRAP_DISPLAY.store(0, Ordering::SeqCst);
+    drop(restore);
     (v, TRAPPED.swap(0, Ordering::SeqCst))
+}
+
+/// Ends a trap: delivers its pending errors (`sync`), then puts the
+/// program's handler back.
+struct Restore<'a> {
+    xlib: &'a Xlib,
+    display: *mut xlib::Display,
+    old: Option<XErrorHandler>,
+    sync: bool,
+}
+
+impl Drop for Restore<'_> {
+    fn drop(&mut self) {
+        // SAFETY: valid display; XSync delivers pending errors to the handler.
+        unsafe {
+            if self.sync {
+                (self.xlib.XSync)(self.display, xlib::False);
+            }
+            (self.xlib.XSetErrorHandler)(self.old);
+        }
+        TRAP_DISPLAY.store(0, Ordering::SeqCst);
+    }
 }
 
 /// One X connection with GLX, shared by the display and its surfaces.

@@ -1,10 +1,9 @@
-//! The one boundary every export goes through: panics are caught, errors
-//! become result codes, and the message is kept per thread for
+//! The one boundary every export goes through: panics are caught (quietly,
+//! as [`crate::fault`] says), errors become result codes, and the message is kept per thread for
 //! `gls_last_error_message()`.
 
 use std::cell::RefCell;
 use std::ffi::CString;
-use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use crate::error::{Error, Result};
 use crate::ffi::types::{GLS_OK, gls_result};
@@ -33,26 +32,11 @@ pub(crate) fn last_error_ptr() -> *const std::ffi::c_char {
         .unwrap_or(c"".as_ptr())
 }
 
-fn panic_message(payload: Box<dyn std::any::Any + Send>) -> String {
-    if let Some(s) = payload.downcast_ref::<&str>() {
-        (*s).to_owned()
-    } else if let Some(s) = payload.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "a panic with a non-string payload".to_owned()
-    }
-}
-
 /// Runs the body of a `gls_result`-returning export.
 pub(crate) fn run(function: &'static str, body: impl FnOnce() -> Result<()>) -> gls_result {
-    match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(Ok(())) => GLS_OK,
-        Ok(Err(e)) => {
-            set_last_error(function, &e);
-            e.code()
-        }
-        Err(payload) => {
-            let e = Error::Panic(panic_message(payload));
+    match crate::fault::contain(body).and_then(|r| r) {
+        Ok(()) => GLS_OK,
+        Err(e) => {
             set_last_error(function, &e);
             e.code()
         }
@@ -66,14 +50,10 @@ pub(crate) fn run_value<T>(
     on_error: T,
     body: impl FnOnce() -> Result<T>,
 ) -> T {
-    match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(Ok(v)) => v,
-        Ok(Err(e)) => {
+    match crate::fault::contain(body).and_then(|r| r) {
+        Ok(v) => v,
+        Err(e) => {
             set_last_error(function, &e);
-            on_error
-        }
-        Err(payload) => {
-            set_last_error(function, &Error::Panic(panic_message(payload)));
             on_error
         }
     }
@@ -90,10 +70,9 @@ pub(crate) fn run_layer<T>(
     on_error: T,
     body: impl FnOnce() -> Result<T>,
 ) -> T {
-    let e = match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(Ok(v)) => return v,
-        Ok(Err(e)) => e,
-        Err(payload) => Error::Panic(panic_message(payload)),
+    let e = match crate::fault::contain(body).and_then(|r| r) {
+        Ok(v) => return v,
+        Err(e) => e,
     };
     set_last_error(function, &e);
     crate::interpose::warn(&format!("{legacy} refused: {e}"));

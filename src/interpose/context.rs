@@ -1011,7 +1011,10 @@ impl StereoContext {
                 ));
             }
         }
-        let result = self.flip_and_show(r, drawable, flip);
+        // A fault (a panic) while presenting costs this frame only: what
+        // was current goes back, and the next frame starts as any other.
+        let result =
+            crate::fault::contain(|| self.flip_and_show(r, drawable, flip)).and_then(|r| r);
         profile::span(Stage::SwitchOut, || saved.restore(r, self.display));
         if here {
             // A resize after the frame replaced textures the program draws

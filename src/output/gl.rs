@@ -667,6 +667,7 @@ impl GlCompositor {
         width: u32,
         height: u32,
     ) -> Result<()> {
+        crate::fault::inject(crate::fault::Site::Compose);
         let (w, h) = job.eye_size;
         // SAFETY: contract.
         let double = framebuffer == 0
@@ -846,6 +847,7 @@ impl GlCompositor {
         plan: PixelPlan,
         mut target: crate::backend::PixelTarget<'_>,
     ) -> Result<()> {
+        crate::fault::inject(crate::fault::Site::Compose);
         let options = job.options.validated()?;
         // SAFETY: contract.
         unsafe {
