@@ -6,9 +6,13 @@
 //!   namespace (`unshare -Urm`) where the system library directory is a
 //!   tmpfs of symlinks to the real files, without libEGL, libEGL_mesa,
 //!   libOSMesa or libGL — what a machine without those packages looks like.
-//!   Where namespaces are not allowed, an LD_PRELOAD shim
-//!   (tests/c/hide_libs.c) makes dlopen of those names fail as for a missing
-//!   file instead.
+//!   Where namespaces are not allowed (a chroot, a container), stand-ins
+//!   of those files on `LD_LIBRARY_PATH` fail to load as missing ones do
+//!   (each needs a library that does not exist), for every dlopen by name
+//!   in the process (libc's own included) and for the loader, and an
+//!   LD_PRELOAD shim (tests/c/hide_libs.c) fails a dlopen of them by path;
+//!   glstereo-run without libGL is checked both ways wherever namespaces
+//!   are allowed.
 //! - $DISPLAY pointing nowhere, and an X server without GLX (a killed X
 //!   server is tests/glx.rs's `a_killed_server_is_reported_not_an_exit`).
 //! - Surfaces of 100000x100000, 0x0, and 16384x16384 with 1 GiB of address
@@ -128,6 +132,31 @@ fn system_lib_dir() -> String {
     format!("/usr/lib/{arch}")
 }
 
+/// How a test makes libraries missing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Hiding {
+    /// A private mount namespace whose system library directory lacks
+    /// the files (where user and mount namespaces are allowed).
+    Namespace,
+    /// Stand-ins on `LD_LIBRARY_PATH`, searched before the system's: a
+    /// library of each hidden file's name that needs a library that does
+    /// not exist, so the loader fails to open it, for every dlopen by name
+    /// in the process and for a program linked with it; and
+    /// tests/c/hide_libs.c preloaded for a dlopen by path (chroots and
+    /// containers).
+    Stubs,
+}
+
+/// The methods this machine allows, the real one first.
+fn hidings() -> Vec<Hiding> {
+    if namespaces() {
+        vec![Hiding::Namespace, Hiding::Stubs]
+    } else {
+        eprintln!("no user/mount namespaces here: hiding libraries with stand-ins only");
+        vec![Hiding::Stubs]
+    }
+}
+
 /// Runs `c` where the library files matching the shell patterns `hide`
 /// (e.g. "libEGL.so*") do not exist.
 fn without_libraries(c: &mut Command, hide: &[&str]) -> Said {
@@ -136,11 +165,50 @@ fn without_libraries(c: &mut Command, hide: &[&str]) -> Said {
 
 /// [`without_libraries`], returning the output whatever the exit status.
 fn output_without_libraries(c: &mut Command, hide: &[&str]) -> Output {
-    if namespaces() {
-        // In a private mount namespace the system directory becomes a tmpfs
-        // of symlinks to the real files, less the hidden ones. cp runs
-        // through the real loader: the tmpfs hides the loader's own link.
-        let script = r#"set -e
+    hidden(hidings()[0], c, hide)
+}
+
+/// [`output_without_libraries`] by the method `how`.
+fn hidden(how: Hiding, c: &mut Command, hide: &[&str]) -> Output {
+    match how {
+        Hiding::Namespace => in_namespace(c, hide),
+        Hiding::Stubs => {
+            let prefixes: Vec<&str> = hide.iter().map(|p| p.trim_end_matches('*')).collect();
+            // glstereo-run keeps an LD_PRELOAD it finds, after its own library.
+            c.env("LD_LIBRARY_PATH", stubs(hide))
+                .env("LD_PRELOAD", hide_shim())
+                .env("GLSTEREO_TEST_HIDE", prefixes.join(":"))
+                .output()
+                .expect("the program starts")
+        }
+    }
+}
+
+/// tests/c/hide_libs.c built once: dlopen of a hidden file by its path
+/// fails too.
+fn hide_shim() -> &'static Path {
+    static SHIM: OnceLock<PathBuf> = OnceLock::new();
+    SHIM.get_or_init(|| {
+        let shim = common::scratch("faults-shim").join("hide_libs.so");
+        let o = Command::new("cc")
+            .args(common::C_FLAGS)
+            .args(["-shared", "-fPIC"])
+            .arg(common::root().join("tests/c/hide_libs.c"))
+            .arg("-o")
+            .arg(&shim)
+            .arg("-ldl")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        shim
+    })
+}
+
+fn in_namespace(c: &mut Command, hide: &[&str]) -> Output {
+    // In a private mount namespace the system directory becomes a tmpfs
+    // of symlinks to the real files, less the hidden ones. cp runs
+    // through the real loader: the tmpfs hides the loader's own link.
+    let script = r#"set -e
 d="$GLS_LIBDIR"; o=$(mktemp -d)
 mount --bind "$d" "$o"
 mount -t tmpfs tmpfs "$d"
@@ -148,48 +216,86 @@ ld=$(echo "$o"/ld-linux*.so.*)
 "$ld" --library-path "$o" /usr/bin/cp -as "$o"/. "$d"/
 for p in $GLS_HIDE; do rm -f "$d"/$p; done
 exec "$@""#;
-        let program = c.get_program().to_owned();
-        let args: Vec<_> = c.get_args().map(|a| a.to_owned()).collect();
-        let mut n = Command::new("unshare");
-        n.args(["-Urm", "sh", "-c", script, "sh"])
-            .arg(program)
-            .args(args)
-            .env("GLS_LIBDIR", system_lib_dir())
-            .env("GLS_HIDE", hide.join(" "));
-        for (k, v) in c.get_envs() {
-            match v {
-                Some(v) => n.env(k, v),
-                None => n.env_remove(k),
-            };
-        }
-        n.output().expect("unshare runs")
-    } else {
-        eprintln!("no user/mount namespaces here: hiding libraries with tests/c/hide_libs.c");
-        static SHIM: OnceLock<PathBuf> = OnceLock::new();
-        let shim = SHIM.get_or_init(|| {
-            let shim = common::scratch("faults-shim").join("hide_libs.so");
-            let o = Command::new("cc")
-                .args(common::C_FLAGS)
-                .args(["-shared", "-fPIC"])
-                .arg(common::root().join("tests/c/hide_libs.c"))
-                .arg("-o")
-                .arg(&shim)
-                .arg("-ldl")
-                .output()
-                .unwrap();
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-            shim
-        });
-        let prefixes: Vec<String> = hide
-            .iter()
-            .map(|p| p.trim_end_matches('*').into())
-            .collect();
-        // glstereo-run keeps an LD_PRELOAD it finds, after its own library.
-        c.env("LD_PRELOAD", shim)
-            .env("GLSTEREO_TEST_HIDE", prefixes.join(":"))
-            .output()
-            .expect("the program starts")
+    let program = c.get_program().to_owned();
+    let args: Vec<_> = c.get_args().map(|a| a.to_owned()).collect();
+    let mut n = Command::new("unshare");
+    n.args(["-Urm", "sh", "-c", script, "sh"])
+        .arg(program)
+        .args(args)
+        .env("GLS_LIBDIR", system_lib_dir())
+        .env("GLS_HIDE", hide.join(" "));
+    for (k, v) in c.get_envs() {
+        match v {
+            Some(v) => n.env(k, v),
+            None => n.env_remove(k),
+        };
     }
+    n.output().expect("unshare runs")
+}
+
+/// A directory of stand-ins for the system library files matching the
+/// patterns `hide` (made once per set): each has the file's name and
+/// needs `<name>.hidden-by-the-test`, which does not exist, so opening it
+/// fails as "… cannot open shared object file: No such file or
+/// directory", as for a missing library.
+fn stubs(hide: &[&str]) -> PathBuf {
+    use std::collections::HashMap;
+    use std::sync::Mutex;
+    static MADE: Mutex<Option<HashMap<String, PathBuf>>> = Mutex::new(None);
+    let key = hide.join(" ");
+    let mut made = MADE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(dir) = made.get_or_insert_with(HashMap::new).get(&key) {
+        return dir.clone();
+    }
+    let n = made.as_ref().map_or(0, HashMap::len);
+    let dir = common::scratch(&format!("faults-hidden-{n}"));
+    let source = dir.join("stub.c");
+    std::fs::write(&source, "int glstereo_test_stand_in;\n").unwrap();
+    let cc = |args: &[&std::ffi::OsStr]| {
+        let o = Command::new("cc").args(args).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    let matches = |name: &str| {
+        hide.iter().any(|p| match p.strip_suffix('*') {
+            Some(prefix) => name.starts_with(prefix),
+            None => name == *p,
+        })
+    };
+    let mut names: Vec<String> = std::fs::read_dir(system_lib_dir())
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|name| matches(name))
+        .collect();
+    names.sort();
+    assert!(!names.is_empty(), "no system library matches {hide:?}");
+    for name in names {
+        // Linked against a library of the missing name, which then goes.
+        let missing = format!("{name}.hidden-by-the-test");
+        let needed = dir.join(&missing);
+        let soname = format!("-Wl,-soname,{missing}");
+        cc(&[
+            "-shared".as_ref(),
+            "-fPIC".as_ref(),
+            source.as_os_str(),
+            "-o".as_ref(),
+            needed.as_os_str(),
+            soname.as_ref(),
+        ]);
+        let stub = dir.join(&name);
+        cc(&[
+            "-shared".as_ref(),
+            "-fPIC".as_ref(),
+            source.as_os_str(),
+            "-o".as_ref(),
+            stub.as_os_str(),
+            "-Wl,--no-as-needed".as_ref(),
+            needed.as_os_str(),
+        ]);
+        std::fs::remove_file(&needed).unwrap();
+    }
+    made.get_or_insert_with(HashMap::new)
+        .insert(key, dir.clone());
+    dir
 }
 
 #[test]
@@ -332,59 +438,71 @@ fn glstereo_run(display: &str, program: &Path, args: &[&str]) -> Command {
 #[test]
 fn glstereo_run_without_libgl_refuses_every_call_naming_the_package_and_nothing_crashes() {
     let x = common::xvfb::Xvfb::start(320, 240);
-    // A program that finds glX*/gl* at run time: it gets the layer's, which
-    // cannot load the real libGL.
-    let exe = plain("no_libgl", &["-lX11", "-ldl"]);
-    let o = output_without_libraries(&mut glstereo_run(&x.display, &exe, &[]), &["libGL.so*"]);
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "exit {}\n{stdout}\n{stderr}", o.status);
-    for line in [
-        "libGL: missing",
-        "glXChooseVisual -> NULL",
-        "glXChooseFBConfig -> NULL, n -1",
-        "glXCreateContext -> NULL",
-        "glXMakeCurrent -> 0",
-        "glXSwapBuffers -> returned",
-        "glXGetProcAddressARB -> NULL",
-        "glDrawBuffer, glGetIntegerv -> -7",
-        "glGetError -> 0x0",
-        "done",
-    ] {
-        assert!(
-            stdout.contains(line),
-            "wanted {line:?}:\n{stdout}\n{stderr}"
+    for how in hidings() {
+        // A program that finds glX*/gl* at run time: it gets the layer's,
+        // which cannot load the real libGL.
+        let exe = plain("no_libgl", &["-lX11", "-ldl"]);
+        let o = hidden(
+            how,
+            &mut glstereo_run(&x.display, &exe, &[]),
+            &["libGL.so*"],
         );
-    }
-    for name in [
-        "glXChooseVisual",
-        "glXChooseFBConfig",
-        "glXCreateContext",
-        "glXMakeCurrent",
-        "glXSwapBuffers",
-        "glXGetProcAddress",
-        "glDrawBuffer",
-        "glGetIntegerv",
-        "glGetError",
-    ] {
-        let said = format!("glstereo: {name} refused: the real libGL.so.1 could not be loaded");
-        assert!(stderr.contains(&said), "wanted {said:?}:\n{stderr}");
-    }
-    assert!(stderr.contains("install libgl1"), "{stderr}");
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            o.status.success(),
+            "{how:?}: exit {}\n{stdout}\n{stderr}",
+            o.status
+        );
+        for line in [
+            "libGL: missing",
+            "glXChooseVisual -> NULL",
+            "glXChooseFBConfig -> NULL, n -1",
+            "glXCreateContext -> NULL",
+            "glXMakeCurrent -> 0",
+            "glXSwapBuffers -> returned",
+            "glXGetProcAddressARB -> NULL",
+            "glDrawBuffer, glGetIntegerv -> -7",
+            "glGetError -> 0x0",
+            "done",
+        ] {
+            assert!(
+                stdout.contains(line),
+                "{how:?}: wanted {line:?}:\n{stdout}\n{stderr}"
+            );
+        }
+        for name in [
+            "glXChooseVisual",
+            "glXChooseFBConfig",
+            "glXCreateContext",
+            "glXMakeCurrent",
+            "glXSwapBuffers",
+            "glXGetProcAddress",
+            "glDrawBuffer",
+            "glGetIntegerv",
+            "glGetError",
+        ] {
+            let said = format!("glstereo: {name} refused: the real libGL.so.1 could not be loaded");
+            assert!(
+                stderr.contains(&said),
+                "{how:?}: wanted {said:?}:\n{stderr}"
+            );
+        }
+        assert!(stderr.contains("install libgl1"), "{how:?}: {stderr}");
 
-    // A program linked with -lGL does not start: the loader says why
-    // (glstereo-run and its library need no libGL themselves).
-    if namespaces() {
+        // A program linked with -lGL does not start: the loader says why
+        // (glstereo-run and its library need no libGL themselves).
         let legacy = plain("legacy_stereo", &["-lGL", "-lX11"]);
-        let o = output_without_libraries(
+        let o = hidden(
+            how,
             &mut glstereo_run(&x.display, &legacy, &["32", "32"]),
             &["libGL.so*"],
         );
         let stderr = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(127), "{stderr}");
+        assert_eq!(o.status.code(), Some(127), "{how:?}: {stderr}");
         assert!(
             stderr.contains("libGL.so.1") && !stderr.contains("glstereo"),
-            "{stderr}"
+            "{how:?}: {stderr}"
         );
     }
 }

@@ -1,9 +1,12 @@
-/* LD_PRELOAD shim for tests/faults.rs, used only where the test cannot
- * make a private library directory without some libraries (no user and
- * mount namespaces): dlopen() of a library whose file name starts with one
- * of the ':'-separated prefixes in GLSTEREO_TEST_HIDE fails as for a
- * missing file ("cannot open shared object file: No such file or
- * directory"), from whichever library calls it (glstereo, libglvnd). */
+/* LD_PRELOAD shim for tests/faults.rs, used where the test cannot make a
+ * private library directory without some libraries (no user and mount
+ * namespaces), beside stand-ins on LD_LIBRARY_PATH that make every look-up
+ * by name fail: this catches the look-ups by path the stand-ins cannot
+ * (x11-dl tries /usr/lib/<arch>/libGL.so.1 after "libGL.so.1"). dlopen()
+ * of a library whose file name starts with one of the ':'-separated
+ * prefixes in GLSTEREO_TEST_HIDE fails as for a missing file ("cannot
+ * open shared object file: No such file or directory"), from whichever
+ * library calls it through the global dlopen (glstereo, libglvnd). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <stdlib.h>
