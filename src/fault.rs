@@ -158,7 +158,7 @@ mod tests {
         assert_eq!(contain(|| 7).unwrap(), 7);
         // Nested: the inner one is caught, the outer goes on.
         let outer = contain(|| contain(|| panic!("inner")).is_err());
-        assert_eq!(outer.unwrap(), true);
+        assert!(outer.unwrap());
         assert_eq!(DEPTH.with(|d| d.get()), 0);
     }
 }
