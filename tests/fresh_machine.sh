@@ -9,6 +9,8 @@
 #    (variant minbase: Essential packages and apt) from this machine's own
 #    apt sources, with what a fresh development machine has besides: gcc,
 #    make, git, CA certificates.
+#    Its resolver and the extra certificate authorities this machine
+#    trusts are copied in (the machine's network, as its apt sources).
 # 2. The Rust toolchain this machine uses is mounted read-only into it
 #    (rustup's active toolchain directory, put first on PATH); crates are
 #    fetched afresh into the root's own CARGO_HOME.
@@ -68,7 +70,14 @@ say "building a Debian 12 root in $root (log: $log)"
 mmdebstrap --variant=minbase --include=ca-certificates,gcc,libc6-dev,make,git \
     bookworm "$root" - <"$sources" >>"$log" 2>&1
 rm -f "$sources"
+# This machine's network as it is: its resolver, and the certificate
+# authorities it trusts besides Debian's (a proxy's, where https is
+# intercepted; cargo fetches crates over https).
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+if ls /usr/local/share/ca-certificates/*.crt >/dev/null 2>&1; then
+    cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+    chroot "$root" update-ca-certificates >>"$log" 2>&1
+fi
 
 for d in proc sys dev; do
     mkdir -p "$root/$d"
