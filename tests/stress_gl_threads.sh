@@ -1,10 +1,10 @@
 #!/bin/sh
 # Stress loop of the multi-threaded GL tests: surfaces on several threads
-# composing on llvmpipe at once (EGL). Runs, RUNS times each, under CPU
-# load (LOAD busy loops at the script's own priority: start the script with
-# `nice -n 10` on a shared machine):
-#   - tests/output_gl.rs as `cargo test` runs it (tests in parallel threads,
-#     each on its own surface);
+# composing on llvmpipe at once (EGL and OSMesa). Runs, RUNS times each,
+# under CPU load (LOAD busy loops at the script's own priority: start the
+# script with `nice -n 10` on a shared machine):
+#   - tests/output_gl.rs and tests/output_gl_osmesa.rs as `cargo test` runs
+#     them (tests in parallel threads, each on its own surface);
 #   - the ignored stress test of tests/gl_threads.rs (GLSTEREO_STRESS_THREADS
 #     threads of GLSTEREO_STRESS_ROUNDS surfaces each).
 # With COLD=1 (the default) Mesa's shader cache is off, so every run compiles
@@ -12,6 +12,10 @@
 # that runs only while compiling is never exercised twice).
 #
 #   tests/stress_gl_threads.sh [RUNS [LOAD]]     (default 100 runs, load 2)
+#
+# ONLY=NAME runs one of the three loops. Core files are kept (the script
+# raises `ulimit -c` where it may and the kernel's core_pattern is a plain
+# file name).
 #
 # Prints each failed run (the signal that killed it, or its panic; its
 # output is kept in the scratch directory, a core file beside it when
@@ -23,13 +27,19 @@ RUNS=${1:-100}
 LOAD=${2:-2}
 COLD=${COLD:-1}
 cd "$ROOT" || exit 1
+ulimit -c unlimited 2>/dev/null || true
 build() {
     cargo test --no-run --message-format=json --test "$1" 2>/dev/null |
         sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1
 }
 OUTPUT_GL=$(build output_gl)
+OUTPUT_GL_OSMESA=$(build output_gl_osmesa)
 GL_THREADS=$(build gl_threads)
-[ -x "$OUTPUT_GL" ] && [ -x "$GL_THREADS" ] || { echo "building the tests failed" >&2; exit 1; }
+[ -x "$OUTPUT_GL" ] && [ -x "$OUTPUT_GL_OSMESA" ] && [ -x "$GL_THREADS" ] || {
+    echo "building the tests failed" >&2
+    exit 1
+}
+ONLY=${ONLY:-}
 DIR="$ROOT/target/stress-gl-threads"
 mkdir -p "$DIR"
 [ "$COLD" = 1 ] && export MESA_SHADER_CACHE_DISABLE=true
@@ -69,7 +79,10 @@ loop() {
     [ "$ok" -eq "$RUNS" ]
 }
 
+# ONLY=NAME runs one binary's loop (output_gl, output_gl_osmesa, gl_threads).
+want() { [ -z "$ONLY" ] || [ "$ONLY" = "$1" ]; }
 status=0
-loop output_gl "$OUTPUT_GL" || status=1
-loop gl_threads "$GL_THREADS" --ignored stress_surfaces_on_threads_compose_at_once || status=1
+want output_gl && { loop output_gl "$OUTPUT_GL" || status=1; }
+want output_gl_osmesa && { loop output_gl_osmesa "$OUTPUT_GL_OSMESA" || status=1; }
+want gl_threads && { loop gl_threads "$GL_THREADS" --ignored stress_surfaces_on_threads_compose_at_once || status=1; }
 exit $status
