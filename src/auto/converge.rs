@@ -15,7 +15,10 @@
 //! The projection: the fixed-function GL_PROJECTION_MATRIX in effect at
 //! the present when it is a perspective one, else the last perspective
 //! matrix the program uploaded with glUniformMatrix4fv or
-//! glProgramUniformMatrix4fv ([`Perspective::from_upload`]). Before either
+//! glProgramUniformMatrix4fv before a draw into what is measured — a
+//! projection alone or the combined model-view-projection matrix of an
+//! object ([`Perspective::from_upload`]: only the depth terms matter, and
+//! every product of a camera's projection has the same). Before either
 //! is known, or when no pixel of the window holds geometry, the
 //! convergence stays where it was (0 at first: NV_3dvision_settings'
 //! initial value, the whole picture behind the screen).
@@ -34,21 +37,20 @@ pub const PERIOD: u64 = 30;
 /// ([`crate::auto::runtime::frame_geometry`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {
-    /// The projection the frame was drawn with.
-    pub perspective: Perspective,
     /// The program's viewport.
     pub viewport: (i32, i32, i32, i32),
     /// glDepthRange.
     pub depth_range: (f64, f64),
     /// glClearDepth.
     pub clear_depth: f64,
-    /// Something was drawn into the window's eyes.
-    pub window: bool,
+    /// Something was drawn into the window's eyes, with this projection.
+    pub window: Option<Perspective>,
     /// The stereoized render target drawn into last (its arrays and
-    /// size): measured when the window's eyes were not drawn or hold no
-    /// geometry where the viewer looks (a program that draws off screen
-    /// and blits, or shows its scene as a textured quad without depth).
-    pub target: Option<(Attachments, (u32, u32))>,
+    /// size, and the projection it was drawn with): measured when the
+    /// window's eyes were not drawn or hold no geometry where the viewer
+    /// looks (a program that draws off screen and blits, or shows its
+    /// scene as a textured quad without depth).
+    pub target: Option<(Attachments, (u32, u32), Perspective)>,
 }
 
 /// Measures `frame` in `eyes` (the layered eyes of an automatic-stereo
@@ -60,14 +62,16 @@ pub struct Frame {
 /// # Safety
 /// A context sharing the eyes' objects is current on this thread.
 pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame, scratch: &mut Scratch) {
-    let window = frame.window.then(|| (None, (eyes.width(), eyes.height())));
-    let target = frame.target.map(|(t, size)| (Some(t), size));
+    let window = frame
+        .window
+        .map(|p| (None, (eyes.width(), eyes.height()), p));
+    let target = frame.target.map(|(t, size, p)| (Some(t), size, p));
     // SAFETY: contract.
     let Some(c) = window
         .into_iter()
         .chain(target)
-        .find_map(|(source, size)| unsafe {
-            centre_of(gl, eyes, fbo, frame, source, size, scratch)
+        .find_map(|(source, size, p)| unsafe {
+            centre_of(gl, eyes, fbo, frame, (source, &p), size, scratch)
         })
     else {
         return;
@@ -91,7 +95,7 @@ unsafe fn centre_of(
     eyes: &LayeredEyes,
     fbo: u32,
     frame: &Frame,
-    source: Option<Attachments>,
+    (source, perspective): (Option<Attachments>, &Perspective),
     (width, height): (u32, u32),
     scratch: &mut Scratch,
 ) -> Option<f64> {
@@ -115,15 +119,20 @@ unsafe fn centre_of(
     centre(
         scratch,
         (rect.2 as u32, rect.3 as u32),
-        &frame.perspective,
+        perspective,
         frame.depth_range,
         frame.clear_depth,
     )
 }
 
-/// The depth terms of a perspective projection: clip z = `a`·z_eye + `b`,
-/// clip w = −z_eye (row 3 of the matrix is (0, 0, −1, 0)), so a window
-/// depth maps back to the eye distance w.
+/// The depth terms of a perspective camera: clip z = −`a`·w + `b`, where
+/// w is the clip w, so a window depth maps back to the distance w. A
+/// projection alone has them (row 3 = (0, 0, −1, 0), w = −z_eye), and so
+/// does any product of one with the matrices before it — the combined
+/// model-view-projection matrix a shader program uploads per object: with
+/// P·V·M, row 3 is −(row 2 of V·M) and row 2 is `a`·(row 2 of V·M) plus
+/// `b` in w's column, so row 2 = −`a`·row 3 + (0, 0, 0, `b`) whatever
+/// the model and view.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Perspective {
     a: f64,
@@ -133,29 +142,45 @@ pub struct Perspective {
 impl Perspective {
     /// From a column-major 4x4 matrix (as glGetDoublev and a
     /// non-transposed glUniformMatrix4fv give it); None when it is not a
-    /// perspective projection with a near and a far plane in front of the
-    /// eye.
+    /// perspective camera with a near and a far plane in front of the eye.
     pub fn from_matrix(m: &[f64; 16]) -> Option<Perspective> {
-        let row3 = [m[3], m[7], m[11], m[15]];
-        Perspective::checked(row3, m[10], m[14])
+        Perspective::of_rows([m[2], m[6], m[10], m[14]], [m[3], m[7], m[11], m[15]])
     }
 
     /// From `count` matrices of 16 floats at `value`, uploaded with
-    /// `transpose` (row-major when true): the last perspective one.
+    /// `transpose` (row-major when true): the last perspective one
+    /// (a projection, or a projection times the matrices before it).
     pub fn from_upload(value: &[f32], transpose: bool) -> Option<Perspective> {
         value.chunks_exact(16).rev().find_map(|m| {
             let m: Vec<f64> = m.iter().map(|&v| f64::from(v)).collect();
             if transpose {
-                Perspective::checked([m[12], m[13], m[14], m[15]], m[10], m[11])
+                Perspective::of_rows([m[8], m[9], m[10], m[11]], [m[12], m[13], m[14], m[15]])
             } else {
-                Perspective::checked([m[3], m[7], m[11], m[15]], m[10], m[14])
+                Perspective::of_rows([m[2], m[6], m[10], m[14]], [m[3], m[7], m[11], m[15]])
             }
         })
     }
 
-    fn checked(row3: [f64; 4], a: f64, b: f64) -> Option<Perspective> {
-        let p = Perspective { a, b };
-        (row3 == [0.0, 0.0, -1.0, 0.0] && p.frustum().is_some()).then_some(p)
+    /// From rows 2 (z) and 3 (w) of a matrix: row 2's first three terms
+    /// must be row 3's times one number (−`a`; within float rounding of
+    /// an uploaded f32 product), and row 3's must not all be 0 (an
+    /// orthographic or affine matrix: w is the same everywhere).
+    fn of_rows(z: [f64; 4], w: [f64; 4]) -> Option<Perspective> {
+        let dot = |p: &[f64; 4], q: &[f64; 4]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+        let ww = dot(&w, &w);
+        if ww.is_nan() || ww <= 0.0 || !ww.is_finite() {
+            return None;
+        }
+        let alpha = dot(&z, &w) / ww;
+        let off = (0..3).map(|i| (z[i] - alpha * w[i]).powi(2)).sum::<f64>();
+        if off > 1e-9 * dot(&z, &z).max(ww) {
+            return None;
+        }
+        let p = Perspective {
+            a: -alpha,
+            b: z[3] - alpha * w[3],
+        };
+        p.frustum().map(|_| p)
     }
 
     /// The near and far distances (a frustum whose sides do not matter
@@ -271,6 +296,60 @@ mod tests {
         two.extend(DMat4::IDENTITY.to_cols_array().iter().map(|&v| v as f32));
         assert!(Perspective::from_upload(&two, false).is_some());
         assert_eq!(Perspective::from_upload(&f[..12], false), None);
+    }
+
+    #[test]
+    fn a_model_view_projection_gives_its_cameras_depth_terms() {
+        let proj = DMat4::perspective_rh_gl(0.9, 16.0 / 9.0, 0.25, 60.0);
+        let want = Perspective::from_matrix(&proj.to_cols_array()).unwrap();
+        let view = DMat4::look_at_rh(
+            glam::DVec3::new(3.0, 2.0, 9.0),
+            glam::DVec3::ZERO,
+            glam::DVec3::Y,
+        );
+        let models = [
+            DMat4::IDENTITY,
+            DMat4::from_rotation_y(1.1) * DMat4::from_translation(glam::DVec3::new(1.0, -2.0, 0.5)),
+            DMat4::from_scale(glam::DVec3::new(2.0, 0.5, 3.0)) * DMat4::from_rotation_x(-0.4),
+        ];
+        for model in models {
+            let mvp = proj * view * model;
+            let m = mvp.to_cols_array();
+            let got = Perspective::from_matrix(&m).unwrap();
+            assert!((got.a - want.a).abs() < 1e-9 && (got.b - want.b).abs() < 1e-9);
+            // As a program uploads it: f32, either way round.
+            let f: Vec<f32> = m.iter().map(|&v| v as f32).collect();
+            let t: Vec<f32> = mvp
+                .transpose()
+                .to_cols_array()
+                .iter()
+                .map(|&v| v as f32)
+                .collect();
+            for (value, transpose) in [(&f, false), (&t, true)] {
+                let got = Perspective::from_upload(value, transpose).unwrap();
+                assert!(
+                    (got.a - want.a).abs() < 1e-4 * want.a.abs(),
+                    "{got:?} {want:?}"
+                );
+                assert!(
+                    (got.b - want.b).abs() < 1e-4 * want.b.abs(),
+                    "{got:?} {want:?}"
+                );
+            }
+            // The distance a depth maps back to is the clip w of the point.
+            let point = glam::DVec4::new(0.3, -0.7, 0.2, 1.0);
+            let clip = mvp * point;
+            let ndc_z = clip.z / clip.w;
+            assert!((got.b / (ndc_z + got.a) - clip.w).abs() < 1e-9 * clip.w);
+        }
+        // Orthographic cameras, model-view matrices and other matrices:
+        // not a perspective.
+        let ortho = DMat4::orthographic_rh_gl(-4.0, 4.0, -3.0, 3.0, 0.1, 50.0) * view;
+        let mut skew = (proj * view).to_cols_array();
+        skew[2] += 0.3; // row 2 no longer a multiple of row 3
+        for m in [ortho.to_cols_array(), view.to_cols_array(), skew] {
+            assert_eq!(Perspective::from_matrix(&m), None, "{m:?}");
+        }
     }
 
     #[test]

@@ -264,12 +264,14 @@ pub struct AutoState {
     feedback: bool,
     /// A draw reached the window's eyes since the last present: their
     /// depth holds this frame's scene (a program that draws off screen
-    /// and blits leaves it unwritten, and is not measured).
-    window_drawn: bool,
+    /// and blits leaves it unwritten, and is not measured); with the
+    /// perspective uploaded last before such a draw.
+    window_drawn: Option<Option<Perspective>>,
     /// The stereoized render target a draw reached last since the last
-    /// present (its arrays and size): where automatic convergence
-    /// measures a frame that left the window's eyes undrawn.
-    target_drawn: Option<(Attachments, (u32, u32))>,
+    /// present (its arrays and size, and the perspective uploaded last
+    /// before such a draw): where automatic convergence measures a frame
+    /// that left the window's eyes undrawn.
+    target_drawn: Option<(Attachments, (u32, u32), Option<Perspective>)>,
     /// Automatic convergence's buffers.
     pub measure: converge::Scratch,
     /// The program's counting queries active now ([`Counting`]).
@@ -1107,12 +1109,12 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
     // measured.
     st.unmeasured = (frame + 1) % converge::PERIOD != 0;
     let fixed = st.fixed.take();
-    let drawn = std::mem::take(&mut st.window_drawn);
+    let drawn = st.window_drawn.take();
     let target = st.target_drawn.take();
     if live::convergence().is_some()
         || !live::auto_on()
         || frame % converge::PERIOD != 0
-        || (!drawn && target.is_none())
+        || (drawn.is_none() && target.is_none())
     {
         return None;
     }
@@ -1124,9 +1126,14 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
     unsafe {
         let mut m = [0.0f64; 16];
         (f.get_doublev)(GL_PROJECTION_MATRIX, m.as_mut_ptr());
-        let perspective = fixed
-            .or_else(|| Perspective::from_matrix(&m))
-            .or(st.uploaded)?;
+        // Fixed function's projection, else the matrix a shader program
+        // uploaded last before drawing into what is measured.
+        let fixed = fixed.or_else(|| Perspective::from_matrix(&m));
+        let window = drawn.and_then(|uploaded| fixed.or(uploaded));
+        let target = target.and_then(|(a, size, uploaded)| Some((a, size, fixed.or(uploaded)?)));
+        if window.is_none() && target.is_none() {
+            return None;
+        }
         let mut vp = [0i32; 4];
         (f.get_integerv)(GL_VIEWPORT, vp.as_mut_ptr());
         let mut range = [0.0f64; 2];
@@ -1134,11 +1141,10 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
         let mut clear = 1.0f64;
         (f.get_doublev)(GL_DEPTH_CLEAR_VALUE, &mut clear);
         Some(converge::Frame {
-            perspective,
             viewport: (vp[0], vp[1], vp[2], vp[3]),
             depth_range: (range[0], range[1]),
             clear_depth: clear,
-            window: drawn,
+            window,
             target,
         })
     }
@@ -1186,14 +1192,14 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                 if st.compiling.is_none() {
                     let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
                     if fbo == window_fbo && call.family != Family::Blit {
-                        st.window_drawn = true;
+                        st.window_drawn = Some(st.uploaded);
                     }
                     if fbo != app_fbo {
                         if let Some(a) = render_targets::eyes_of(targets, context, fbo, &layered) {
                             (app_fbo, layered) = (fbo, a);
                             if call.family != Family::Blit {
                                 let size = render_targets::size(targets, context, fbo);
-                                st.target_drawn = size.map(|s| (a, s));
+                                st.target_drawn = size.map(|s| (a, s, st.uploaded));
                             }
                         }
                     }
