@@ -76,7 +76,7 @@ fn payload_text(payload: &(dyn std::any::Any + Send)) -> String {
 /// Whether a contained panic is printed with its backtrace.
 fn verbose() -> bool {
     let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty() && v != "0");
-    set("RUST_BACKTRACE") || set(crate::interpose::settings::ENV_VERBOSE)
+    set("RUST_BACKTRACE") || set(crate::report::ENV_VERBOSE)
 }
 
 /// Puts glstereo's hook in front of the one installed before (once per

@@ -44,6 +44,7 @@ pub mod interpose;
 pub mod math;
 pub mod output;
 mod profile;
+pub mod report;
 pub mod shims;
 pub mod stereo;
 pub mod surface;

@@ -26,8 +26,8 @@
 use crate::analysis::depth::{DepthCapture, DepthImage, DepthMapping};
 use crate::analysis::parallax::CONVERGENCE_WINDOW;
 use crate::auto::eyes::{Attachments, LayeredEyes};
+use crate::auto::live;
 use crate::gl::Gl;
-use crate::interpose::live;
 use crate::math::frustum::Frustum;
 
 /// Frames between two measurements (the first at the first present).
@@ -79,7 +79,7 @@ pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame, scra
     let before = live::automatic_convergence();
     live::set_automatic_convergence(c as f32);
     if before.is_none_or(|b| (b - c as f32).abs() > 0.01 * b.abs()) {
-        crate::interpose::settings::tell(&format!(
+        crate::report::tell(&format!(
             "automatic convergence at {c:.3} (the centre of interest; Ctrl+F5/F6 set it by hand)"
         ));
     }

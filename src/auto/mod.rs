@@ -314,12 +314,15 @@
 //! exports. Without `--auto` each wrapper is one thread-local test and the
 //! call passed on, as the layer's interposed calls are today.
 
+pub mod call;
 pub mod converge;
 pub mod entry_points;
 pub mod eyes;
 pub mod fixed;
 pub mod glsl;
+pub mod host;
 pub mod link;
+pub mod live;
 pub mod render_targets;
 pub mod runtime;
 pub mod standin;

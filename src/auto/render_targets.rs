@@ -33,7 +33,7 @@
 //! it mono again (its attachments are the program's from then on).
 
 use std::collections::HashMap;
-use std::ffi::{CStr, c_void};
+
 use std::sync::{Mutex, OnceLock};
 
 use crate::auto::eyes::Attachments;
@@ -116,15 +116,11 @@ gl_fns! {
 fn fns() -> Option<&'static TargetFns> {
     static FNS: OnceLock<Option<TargetFns>> = OnceLock::new();
     FNS.get_or_init(|| {
-        let get = |name: &CStr| {
-            // SAFETY: a NUL-terminated name.
-            unsafe { crate::interpose::real::get_proc_address(name.as_ptr()) }
-                .map_or(std::ptr::null(), |f| f as *const c_void)
-        };
+        let get = crate::auto::host::gl_proc;
         // SAFETY: `get` returns the named GL function or NULL.
         let t = unsafe { TargetFns::load(get) };
         if t.is_none() {
-            crate::interpose::warn(
+            crate::report::warn(
                 "automatic stereo of render targets needs GL 4.5's direct state access: \
                  what programs draw into their own framebuffer objects stays mono",
             );

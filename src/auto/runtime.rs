@@ -48,23 +48,23 @@
 //! ([`crate::auto::render_targets`]).
 
 use std::collections::HashMap;
-use std::ffi::{CStr, c_void};
+
 use std::sync::{Mutex, OnceLock};
 
 use glam::DMat4;
 
+use crate::auto::call::{Call, Returned};
 use crate::auto::converge::{self, Perspective};
 use crate::auto::entry_points::Family;
 use crate::auto::eyes::{Attachments, layer};
 use crate::auto::fixed;
 use crate::auto::gl_fns;
+use crate::auto::host::{self, Host};
 use crate::auto::link::{self, LinkOutcome};
+use crate::auto::live;
 use crate::auto::render_targets::{self, Targets};
 use crate::auto::standin::{self, FixedVertexState, Lighting};
 use crate::auto::vertex::LayerWrite;
-use crate::interpose::context::Current;
-use crate::interpose::draws::{Call, Returned};
-use crate::interpose::live;
 use crate::math::Eye;
 use crate::shims::nv3dvision::{
     GL_3DVISION_STEREO_NV, GL_STEREO_CONVERGENCE_NV, GL_STEREO_SEPARATION_NV, StereoSettings,
@@ -175,11 +175,7 @@ fn tables() -> Option<&'static Tables> {
     static TABLES: OnceLock<Option<Tables>> = OnceLock::new();
     TABLES
         .get_or_init(|| {
-            let get = |name: &CStr| {
-                // SAFETY: a NUL-terminated name.
-                unsafe { crate::interpose::real::get_proc_address(name.as_ptr()) }
-                    .map_or(std::ptr::null(), |f| f as *const c_void)
-            };
+            let get = host::gl_proc;
             // SAFETY: `get` returns the named GL function or NULL.
             let t = unsafe {
                 Some(Tables {
@@ -188,7 +184,7 @@ fn tables() -> Option<&'static Tables> {
                 })
             };
             if t.is_none() {
-                crate::interpose::warn(
+                crate::report::warn(
                     "automatic stereo needs GL 4.1's functions, which the GL library lacks: \
                      programs stay mono",
                 );
@@ -613,7 +609,7 @@ unsafe fn standin_program(t: &Tables, st: &mut AutoState, state: FixedVertexStat
         }
         None => {
             st.standin_failed = true;
-            crate::interpose::warn(
+            crate::report::warn(
                 "the fixed-function stand-in vertex shader does not build here: \
                  fixed-function draws take the slow path (a framebuffer change per eye)",
             );
@@ -624,7 +620,13 @@ unsafe fn standin_program(t: &Tables, st: &mut AutoState, state: FixedVertexStat
 
 /// How a draw of `kind` reaches the eyes now. `lists`: a display list is
 /// called (whatever it holds: the slow path).
-unsafe fn choose(t: &Tables, cur: &Current, st: &mut AutoState, app_fbo: u32, lists: bool) -> Path {
+unsafe fn choose(
+    t: &Tables,
+    cur: &impl Host,
+    st: &mut AutoState,
+    app_fbo: u32,
+    lists: bool,
+) -> Path {
     let f = &t.gl;
     // SAFETY: the program's context is current (callers).
     unsafe {
@@ -639,7 +641,7 @@ unsafe fn choose(t: &Tables, cur: &Current, st: &mut AutoState, app_fbo: u32, li
             }
         }
         let target = program.and_then(|(p, separate)| {
-            let location = location_of(cur.sc.group(), p)?;
+            let location = location_of(cur.group(), p)?;
             Some(Target {
                 program: p,
                 location,
@@ -814,7 +816,7 @@ unsafe fn eyes(
 }
 
 /// The hook of a context given automatic stereo (module docs).
-pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R {
+pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) -> R {
     let Some(t) = tables() else {
         return draw();
     };
@@ -824,7 +826,7 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
                 call.name,
                 "glEnable" | "glDisable" | "glEnablei" | "glDisablei"
             ) {
-                cur.sc.with_auto(cur.draw, |st, _| st.forget_enables());
+                cur.with_auto(|st, _| st.forget_enables());
             }
             settings_call(call, draw)
         }
@@ -833,12 +835,12 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
             draw()
         }
         Family::Lighting => {
-            cur.sc.with_auto(cur.draw, |st, _| st.forget_enables());
+            cur.with_auto(|st, _| st.forget_enables());
             draw()
         }
         Family::SideEffect => {
             if call.name.starts_with("glBeginTransformFeedback") {
-                cur.sc.with_auto(cur.draw, |st, _| st.feedback = true);
+                cur.with_auto(|st, _| st.feedback = true);
                 return draw();
             }
             // SAFETY: the program's context is current on this thread.
@@ -854,7 +856,7 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
             let mut out = None;
             drawing(t, cur, call, &mut || out = Some(draw()));
             if list {
-                cur.sc.with_auto(cur.draw, |st, _| st.forget_enables());
+                cur.with_auto(|st, _| st.forget_enables());
             }
             out.unwrap_or_else(|| R::from_bits(0))
         }
@@ -868,7 +870,12 @@ pub fn around<R: Returned>(cur: &Current, call: Call, draw: impl Fn() -> R) -> R
 ///
 /// # Safety
 /// The program's context is current on this thread.
-unsafe fn queries<R: Returned>(f: &AutoFns, cur: &Current, call: Call, draw: impl Fn() -> R) -> R {
+unsafe fn queries<R: Returned>(
+    f: &AutoFns,
+    cur: &impl Host,
+    call: Call,
+    draw: impl Fn() -> R,
+) -> R {
     let name = call.name;
     let indexed = name.contains("QueryIndexed");
     // SAFETY: contract (every GL call below is in the program's context).
@@ -885,7 +892,7 @@ unsafe fn queries<R: Returned>(f: &AutoFns, cur: &Current, call: Call, draw: imp
                 let mut current = 0;
                 (f.get_query_indexediv)(target, index, GL_CURRENT_QUERY, &mut current);
                 if current as u32 == id && id != 0 {
-                    cur.sc.with_auto(cur.draw, |st, _| {
+                    cur.with_auto(|st, _| {
                         forget_segments(f, st, id);
                         st.queries
                             .retain(|q| (q.target, q.index) != (target, index));
@@ -904,7 +911,7 @@ unsafe fn queries<R: Returned>(f: &AutoFns, cur: &Current, call: Call, draw: imp
         if name.starts_with("glEndQuery") {
             let (target, index) = (call.u32(0), if indexed { call.u32(1) } else { 0 });
             let r = draw();
-            cur.sc.with_auto(cur.draw, |st, _| {
+            cur.with_auto(|st, _| {
                 if let Some(i) = st
                     .queries
                     .iter()
@@ -923,7 +930,7 @@ unsafe fn queries<R: Returned>(f: &AutoFns, cur: &Current, call: Call, draw: imp
             if n > 0 && !ids.is_null() {
                 // SAFETY: GL's contract: n names at ids.
                 let ids = std::slice::from_raw_parts(ids, n as usize);
-                cur.sc.with_auto(cur.draw, |st, _| {
+                cur.with_auto(|st, _| {
                     for &id in ids {
                         forget_segments(f, st, id);
                         if let Some(i) = st.queries.iter().position(|q| q.id == id) {
@@ -947,7 +954,7 @@ unsafe fn queries<R: Returned>(f: &AutoFns, cur: &Current, call: Call, draw: imp
             let (id, mode) = (call.u32(0), call.u32(1));
             // The condition is the sum of the segments: render under an
             // object whose own result says the same (waiting for them).
-            let chosen = cur.sc.with_auto(cur.draw, |st, _| {
+            let chosen = cur.with_auto(|st, _| {
                 let (_, _, segments) = st.segmented.iter().find(|(i, ..)| *i == id)?;
                 let result = |q: u32| {
                     let mut v = 0u64;
@@ -991,7 +998,7 @@ unsafe fn forget_segments(f: &AutoFns, st: &mut AutoState, id: u32) {
 /// The program's context is current on this thread.
 unsafe fn query_object<R: Returned>(
     f: &AutoFns,
-    cur: &Current,
+    cur: &impl Host,
     call: Call,
     draw: impl Fn() -> R,
 ) -> R {
@@ -1013,7 +1020,7 @@ unsafe fn query_object<R: Returned>(
         if !wanted || params.is_null() {
             return r;
         }
-        cur.sc.with_auto(cur.draw, |st, _| {
+        cur.with_auto(|st, _| {
             let Some((_, target, segments)) = st.segmented.iter().find(|(i, ..)| *i == id) else {
                 return;
             };
@@ -1073,7 +1080,7 @@ unsafe fn query_object<R: Returned>(
 /// glUniformMatrix4fv / glProgramUniformMatrix4fv (and their ARB/EXT
 /// names): a perspective projection among the matrices is remembered for
 /// automatic convergence, while the convergence is automatic.
-fn learn_projection(cur: &Current, call: &Call) {
+fn learn_projection(cur: &impl Host, call: &Call) {
     if live::convergence().is_some() {
         return;
     }
@@ -1090,7 +1097,7 @@ fn learn_projection(cur: &Current, call: &Call) {
     // SAFETY: GL's contract: `count` matrices of 16 floats at `value`.
     let value = unsafe { std::slice::from_raw_parts(value, 16 * count as usize) };
     if let Some(p) = Perspective::from_upload(value, transpose) {
-        cur.sc.with_auto(cur.draw, |st, _| st.uploaded = Some(p));
+        cur.with_auto(|st, _| st.uploaded = Some(p));
     }
 }
 
@@ -1165,10 +1172,10 @@ fn settings_call<R: Returned>(call: Call, draw: impl Fn() -> R) -> R {
 }
 
 /// A call of the drawing families (module docs).
-fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
+fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
     let f = &t.gl;
-    let group = cur.sc.group();
-    cur.sc.with_auto(cur.draw, |st, eyes_of| {
+    let group = cur.group();
+    cur.with_auto(|st, eyes_of| {
         if st.in_mono_begin {
             // Between a glBegin GL executed and its glEnd only vertex
             // commands (and glCallList) are allowed: nothing of the
@@ -1188,7 +1195,7 @@ fn drawing(t: &Tables, cur: &Current, call: Call, draw: &mut dyn FnMut()) {
                 // A render target of the program's drawn in stereo takes the
                 // place of the window's eyes; the others' textures are given
                 // their left eye before anything may sample them.
-                let context = std::sync::Arc::as_ptr(&cur.sc) as usize;
+                let context = cur.context();
                 if st.compiling.is_none() {
                     let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
                     if fbo == window_fbo && call.family != Family::Blit {
@@ -1467,7 +1474,7 @@ unsafe fn located(t: &Tables, program: u32, outcome: &LinkOutcome) -> Option<i32
             None => unsafe { uniform_location(t, program) },
         },
         LinkOutcome::Kept(why) => {
-            crate::interpose::warn(&format!(
+            crate::report::warn(&format!(
                 "a program is drawn unshifted in both eyes (automatic stereo): {why}"
             ));
             None
@@ -1492,7 +1499,7 @@ pub fn separable_source(kind: u32, strings: &[&str]) -> Option<String> {
     match link::shift_separable(kind, strings, LayerWrite::FromUniform, Some(location)) {
         Ok(s) => s,
         Err(why) => {
-            crate::interpose::warn(&format!(
+            crate::report::warn(&format!(
                 "a program is drawn unshifted in both eyes (automatic stereo): {}",
                 why.0
             ));

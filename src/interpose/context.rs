@@ -215,6 +215,26 @@ pub struct Current {
     pub read: u64,
 }
 
+impl crate::auto::host::Host for Current {
+    fn group(&self) -> u64 {
+        self.sc.group()
+    }
+
+    fn context(&self) -> usize {
+        Arc::as_ptr(&self.sc) as usize
+    }
+
+    fn with_auto<T>(
+        &self,
+        f: impl FnOnce(
+            &mut crate::auto::runtime::AutoState,
+            Option<(u32, crate::auto::eyes::Attachments)>,
+        ) -> T,
+    ) -> T {
+        self.sc.with_auto(self.draw, f)
+    }
+}
+
 thread_local! {
     /// The stereo context current on this thread: a leaked `Box<Current>`,
     /// NULL for a mono context or none. A plain pointer has no destructor,

@@ -1,131 +1,46 @@
 //! What the user can change while a program runs under `glstereo-run`: the
-//! output format and the eye order of every stereo window, and automatic
-//! stereo (on or off, separation, convergence). Each starts as the
-//! environment says (glstereo-run's options set it) and is read where it
-//! is used — at each present, at each draw of an automatic-stereo context
-//! — so a change (the keys in the program's window, or a program of 3D
-//! Vision's kind calling glStereoParameterfNV) takes effect at the next
+//! output format and the eye order of every stereo window (and, in
+//! [`crate::auto::live`], automatic stereo's on/off, separation and
+//! convergence, re-exported here). Each starts as the environment says
+//! (glstereo-run's options set it) and is read at each present, so a
+//! change (the keys in the program's window) takes effect at the next
 //! frame. One atomic per setting: a reader never waits.
 //!
 //! | variable                | accepted                      | default |
 //! |-------------------------|-------------------------------|---------|
 //! | `GLSTEREO_MODE`         | a format (glstereo-run -m)    | `anaglyph-red-cyan` |
 //! | `GLSTEREO_SWAP_EYES`    | as in [`crate::output::options`] | `0` |
-//! | `GLSTEREO_AUTO`         | `0` `1` `true` `false` `yes` `no` | `0` |
-//! | `GLSTEREO_SEPARATION`   | percent, 0 … 100              | `15` |
-//! | `GLSTEREO_CONVERGENCE`  | `auto`, or a distance > 0     | `auto` |
 //!
 //! A bad value is said once on stderr and the default is used
 //! (glstereo-run refuses bad values before the program starts).
 
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicBool, AtomicU32, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::output::OutputMode;
 use crate::output::options::OutputOptions;
 
 use super::settings;
 
-/// Automatic stereo for programs that never ask for stereo.
-pub const ENV_AUTO: &str = "GLSTEREO_AUTO";
-/// Automatic stereo's separation, in percent of its maximum.
-pub const ENV_SEPARATION: &str = "GLSTEREO_SEPARATION";
-/// Automatic stereo's convergence: the w (distance) at the screen.
-pub const ENV_CONVERGENCE: &str = "GLSTEREO_CONVERGENCE";
-
-/// The default separation, percent: NVIDIA 3D Vision's default depth
-/// amount, already the library's initial value for NV_3dvision_settings.
-pub const DEFAULT_SEPARATION: f32 = 15.0;
+pub use crate::auto::live::{
+    DEFAULT_SEPARATION, ENV_AUTO, ENV_CONVERGENCE, ENV_SEPARATION, auto_on, auto_requested,
+    automatic_convergence, convergence, parse_convergence, parse_separation, separation,
+    set_auto_on, set_automatic_convergence, set_convergence, set_separation,
+};
 
 /// The live settings.
 struct Live {
     /// The window format, by its index in [`OutputMode::ALL`].
     mode: AtomicUsize,
     swap_eyes: AtomicBool,
-    /// Mono programs get automatic stereo (glstereo-run --auto).
-    auto: bool,
-    /// Automatic stereo is on (3D Vision's Ctrl+T,
-    /// glEnable(GL_3DVISION_STEREO_NV)); only with `auto`.
-    auto_on: AtomicBool,
-    /// f32 bits, percent.
-    separation: AtomicU32,
-    /// f32 bits; NaN: automatic.
-    convergence: AtomicU32,
-    /// f32 bits: the value automatic convergence chose last; NaN: none yet.
-    automatic: AtomicU32,
 }
 
 fn live() -> &'static Live {
     static LIVE: OnceLock<Live> = OnceLock::new();
-    LIVE.get_or_init(|| {
-        let auto = match std::env::var(ENV_AUTO).ok().as_deref().map(str::trim) {
-            None | Some("") => false,
-            Some(v) => parse_flag(v).unwrap_or_else(|| {
-                super::warn(&format!(
-                    "{ENV_AUTO}={v:?} is not 0 or 1; automatic stereo is off"
-                ));
-                false
-            }),
-        };
-        let separation = std::env::var(ENV_SEPARATION)
-            .ok()
-            .filter(|v| !v.trim().is_empty())
-            .map_or(Ok(DEFAULT_SEPARATION), |v| parse_separation(&v))
-            .unwrap_or_else(|e| {
-                super::warn(&format!("{e}; using {DEFAULT_SEPARATION}"));
-                DEFAULT_SEPARATION
-            });
-        let convergence = std::env::var(ENV_CONVERGENCE)
-            .ok()
-            .filter(|v| !v.trim().is_empty())
-            .map_or(Ok(None), |v| parse_convergence(&v))
-            .unwrap_or_else(|e| {
-                super::warn(&format!("{e}; using auto"));
-                None
-            });
-        Live {
-            mode: AtomicUsize::new(settings::window_mode().index()),
-            swap_eyes: AtomicBool::new(settings::get().options.swap_eyes),
-            auto,
-            auto_on: AtomicBool::new(auto),
-            separation: AtomicU32::new(separation.to_bits()),
-            convergence: AtomicU32::new(convergence.unwrap_or(f32::NAN).to_bits()),
-            automatic: AtomicU32::new(f32::NAN.to_bits()),
-        }
+    LIVE.get_or_init(|| Live {
+        mode: AtomicUsize::new(settings::window_mode().index()),
+        swap_eyes: AtomicBool::new(settings::get().options.swap_eyes),
     })
-}
-
-/// `0`/`1`/`true`/`false`/`yes`/`no`, any case.
-fn parse_flag(v: &str) -> Option<bool> {
-    match v.trim().to_ascii_lowercase().as_str() {
-        "1" | "true" | "yes" => Some(true),
-        "0" | "false" | "no" => Some(false),
-        _ => None,
-    }
-}
-
-/// GLSTEREO_SEPARATION: a percentage, 0 … 100.
-pub fn parse_separation(v: &str) -> crate::Result<f32> {
-    match v.trim().parse::<f32>() {
-        Ok(s) if (0.0..=100.0).contains(&s) => Ok(s),
-        _ => Err(crate::Error::invalid_value(format!(
-            "{ENV_SEPARATION}={v:?} is not a percentage from 0 to 100"
-        ))),
-    }
-}
-
-/// GLSTEREO_CONVERGENCE: `auto` (None), or a distance > 0.
-pub fn parse_convergence(v: &str) -> crate::Result<Option<f32>> {
-    let t = v.trim();
-    if t.eq_ignore_ascii_case("auto") {
-        return Ok(None);
-    }
-    match t.parse::<f32>() {
-        Ok(c) if c.is_finite() && c > 0.0 => Ok(Some(c)),
-        _ => Err(crate::Error::invalid_value(format!(
-            "{ENV_CONVERGENCE}={v:?} is not auto or a distance greater than 0"
-        ))),
-    }
 }
 
 /// The format stereo windows are shown in now.
@@ -153,95 +68,5 @@ pub fn options() -> OutputOptions {
     OutputOptions {
         swap_eyes: swap_eyes(),
         ..settings::get().options
-    }
-}
-
-/// Whether mono programs get automatic stereo (glstereo-run --auto).
-pub fn auto_requested() -> bool {
-    live().auto
-}
-
-/// Whether automatic stereo is on now (requested, and not turned off).
-pub fn auto_on() -> bool {
-    let l = live();
-    l.auto && l.auto_on.load(Ordering::Relaxed)
-}
-
-/// Turns automatic stereo on or off (only where it was requested).
-pub fn set_auto_on(on: bool) {
-    live().auto_on.store(on, Ordering::Relaxed);
-}
-
-/// Automatic stereo's separation now, percent (0 … 100).
-pub fn separation() -> f32 {
-    f32::from_bits(live().separation.load(Ordering::Relaxed))
-}
-
-/// Sets the separation (clamped to 0 … 100).
-pub fn set_separation(percent: f32) {
-    let s = if percent.is_finite() {
-        percent.clamp(0.0, 100.0)
-    } else {
-        DEFAULT_SEPARATION
-    };
-    live().separation.store(s.to_bits(), Ordering::Relaxed);
-}
-
-/// Automatic stereo's convergence now: Some(distance), or None for
-/// automatic.
-pub fn convergence() -> Option<f32> {
-    let c = f32::from_bits(live().convergence.load(Ordering::Relaxed));
-    (!c.is_nan()).then_some(c)
-}
-
-/// Sets the convergence (None: automatic; a value that is not finite is
-/// ignored). The user's values are > 0 ([`parse_convergence`]); a
-/// program's own glStereoParameterfNV may set any finite one, 0 (the
-/// extension's initial value) included.
-pub fn set_convergence(c: Option<f32>) {
-    match c {
-        Some(v) if !v.is_finite() => {}
-        v => live()
-            .convergence
-            .store(v.unwrap_or(f32::NAN).to_bits(), Ordering::Relaxed),
-    }
-}
-
-/// The convergence automatic convergence chose last (what the scene is
-/// converged at while [`convergence`] is None), None before it chose one.
-/// The live keys step from it when the user first takes convergence over
-/// ([`super::controls`]).
-pub fn automatic_convergence() -> Option<f32> {
-    let c = f32::from_bits(live().automatic.load(Ordering::Relaxed));
-    (!c.is_nan()).then_some(c)
-}
-
-/// Automatic stereo says which convergence it chose (a value ≤ 0 or not
-/// finite is ignored).
-pub fn set_automatic_convergence(c: f32) {
-    if c.is_finite() && c > 0.0 {
-        live().automatic.store(c.to_bits(), Ordering::Relaxed);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn separation_and_convergence_parse_as_documented() {
-        assert_eq!(parse_separation(" 15 ").unwrap(), 15.0);
-        assert_eq!(parse_separation("0").unwrap(), 0.0);
-        assert_eq!(parse_separation("100").unwrap(), 100.0);
-        for bad in ["-1", "100.5", "x", "", "NaN"] {
-            assert!(parse_separation(bad).is_err(), "{bad}");
-        }
-        assert_eq!(parse_convergence("AUTO").unwrap(), None);
-        assert_eq!(parse_convergence("2.5").unwrap(), Some(2.5));
-        for bad in ["0", "-3", "inf", "near"] {
-            assert!(parse_convergence(bad).is_err(), "{bad}");
-        }
-        assert_eq!(parse_flag("Yes"), Some(true));
-        assert_eq!(parse_flag("nope"), None);
     }
 }

@@ -199,19 +199,7 @@ pub mod real;
 pub mod registry;
 pub mod settings;
 
-use std::collections::HashSet;
-use std::sync::Mutex;
-
-/// Writes `glstereo: <message>` to stderr, once per distinct message: the
-/// layer has no return code to report through, and a frame loop must not
-/// flood the terminal.
-pub fn warn(message: &str) {
-    static SEEN: Mutex<Option<HashSet<String>>> = Mutex::new(None);
-    let mut seen = SEEN.lock().unwrap_or_else(|e| e.into_inner());
-    if seen
-        .get_or_insert_with(HashSet::new)
-        .insert(message.to_owned())
-    {
-        eprintln!("glstereo: {message}");
-    }
-}
+/// Writes `glstereo: <message>` to stderr, once per distinct message
+/// ([`crate::report::warn`]): the layer has no return code to report
+/// through.
+pub use crate::report::warn;

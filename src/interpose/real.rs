@@ -256,7 +256,14 @@ pub fn loaded() -> crate::Result<&'static Real> {
     real().map_err(|e| crate::Error::BackendUnavailable(e.into()))
 }
 
+/// The GL below the layer by name, for automatic stereo
+/// ([`crate::auto::host::set_gl_lookup`]).
+fn gl_below(name: &CStr) -> *const c_void {
+    real().map_or(std::ptr::null(), |r| gl_symbol(&r.glx, name))
+}
+
 fn load() -> Result<Real, String> {
+    crate::auto::host::set_gl_lookup(gl_below);
     let xlib = Xlib::open()
         .map_err(|e| format!("libX11 could not be loaded ({e}): install libx11-6 (Debian)"))?;
     let glx = Glx::load()?;

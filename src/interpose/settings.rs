@@ -42,21 +42,4 @@ pub fn native_allowed() -> bool {
     matches!(get().mode, None | Some(OutputMode::Quad))
 }
 
-/// GLSTEREO_VERBOSE (`glstereo-run -v`): the layer says on stderr, once
-/// per kind, which stereo each program got (native or emulated, and in
-/// which format) and how its frames are presented.
-pub const ENV_VERBOSE: &str = "GLSTEREO_VERBOSE";
-
-/// Whether GLSTEREO_VERBOSE is set to anything but "" or "0".
-pub fn verbose() -> bool {
-    static VERBOSE: OnceLock<bool> = OnceLock::new();
-    *VERBOSE
-        .get_or_init(|| std::env::var_os(ENV_VERBOSE).is_some_and(|v| !v.is_empty() && v != "0"))
-}
-
-/// Says `message` on stderr (once) when GLSTEREO_VERBOSE is set.
-pub fn tell(message: &str) {
-    if verbose() {
-        super::warn(message);
-    }
-}
+pub use crate::report::{ENV_VERBOSE, tell, verbose};
