@@ -46,7 +46,7 @@ pub enum Error {
     /// Reading or writing a file failed.
     #[error("{0}")]
     Io(String),
-    /// A panic inside the library was caught ([`crate::fault`]): where it
+    /// A panic inside the library was caught (`src/fault.rs`): where it
     /// happened and what it said.
     #[error(
         "internal error, a bug in glstereo ({0}); please report it with what \
