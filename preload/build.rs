@@ -20,8 +20,11 @@ use entry_points::Family;
 /// default framebuffer, the capabilities automatic stereo answers
 /// (glEnable/glDisable/glIsEnabled of GL_3DVISION_STEREO_NV), the
 /// matrix uploads automatic convergence learns projections from, the
-/// queries and transform feedback whose capture stays single, and the
-/// lighting state the fixed-function stand-in is keyed on.
+/// queries and transform feedback whose capture stays single, the
+/// lighting state the fixed-function stand-in is keyed on, the texture
+/// bindings that tell which textures a draw samples, the commands that
+/// read or write a texture's contents outside draws, and the copies from
+/// framebuffers into textures.
 const GENERATED: &[Family] = &[
     Family::Draw,
     Family::BeginEnd,
@@ -33,6 +36,10 @@ const GENERATED: &[Family] = &[
     Family::Projection,
     Family::SideEffect,
     Family::Lighting,
+    Family::Texture,
+    Family::TextureData,
+    Family::TextureWrite,
+    Family::Read,
 ];
 
 /// Each stub's file name (also its soname) and the library it stands for.

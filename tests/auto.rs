@@ -567,14 +567,15 @@ fn queries_count_the_mono_draws_once() {
     );
 }
 
-/// Render targets smaller than the window (shadow and reflection maps,
-/// picking) stay mono, as 3D Vision left them; a target of the window's
-/// size is drawn in stereo. The same program shows its target's picture
+/// A square render target of another size than the window is seen from
+/// a light (a shadow or reflection map): drawn in perspective, it stays
+/// one picture both eyes show; a target of the window's size drawn in
+/// perspective gets eyes. The same program shows its target's picture
 /// (a red quad at w = 2) on a quad of the window at the convergence
 /// (w = 4): a 64x64 target gives both eyes the same pixels there, a
 /// window-sized one shifts the red quad between the eyes.
 #[test]
-fn small_render_targets_stay_mono_and_window_sized_ones_are_stereo() {
+fn square_targets_seen_from_a_light_stay_mono_and_window_sized_ones_get_eyes() {
     let _one = common::clients::one_renderer_at_a_time();
     let exe = client("auto_targets");
     let x = Xvfb::start(W + 40, H + 40);
@@ -601,4 +602,81 @@ fn small_render_targets_stay_mono_and_window_sized_ones_are_stereo() {
             assert_eq!(red, right, "{size}: the red quad moved");
         }
     }
+}
+
+/// Render targets by data flow (tests/c/auto_passes.c): a mono program's
+/// scene reaches the window through framebuffer objects of its own — a
+/// half-size copy, a G-buffer with a depth texture sampled later, a
+/// multisample target and its resolve blit, ping-pong blurs, mipmaps, a
+/// glCopyTexSubImage2D and a blit between targets, a regions texture not
+/// redrawn in the second frame — and each eye equals the program's own
+/// frame drawn with the rule applied by hand to its camera (never to the
+/// light of its shadow map, never to its full-screen passes).
+#[test]
+fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = build_once("auto_passes", |out| {
+        compile_plain(
+            &common::root().join("tests/c/auto_passes.c"),
+            out,
+            &["-lGL", "-lX11"],
+        )
+    });
+    let x = Xvfb::start(W + 40, H + 40);
+    let mut failures = Vec::new();
+    for case in [
+        "half", "mrt", "msaa", "pingpong", "mipmap", "copy", "shadow", "regions",
+    ] {
+        let dir = common::scratch(&format!("auto-passes-{case}"));
+        let hand = ["left", "right"].map(|eye| {
+            let out = dir.join(format!("hand-{eye}.rgba"));
+            common::run_ok(
+                Command::new(&exe)
+                    .args([case, eye, SEPARATION, CONVERGENCE])
+                    .arg(&out)
+                    .env("DISPLAY", &x.display),
+            );
+            Image::from_pixels(W, H, std::fs::read(&out).unwrap()).unwrap()
+        });
+        let o = common::run_ok(
+            Command::new(&built().run)
+                .args([
+                    "--auto",
+                    "--separation",
+                    SEPARATION,
+                    "--convergence",
+                    CONVERGENCE,
+                ])
+                .arg("--capture")
+                .arg(&dir)
+                .arg(&exe)
+                .args([case, "mono"])
+                .env("DISPLAY", &x.display),
+        );
+        let (stdout, stderr) = (
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr),
+        );
+        if stderr.contains("glstereo:") || !stdout.contains("error 0x0") {
+            failures.push(format!("{case}: {stdout} {stderr}"));
+            continue;
+        }
+        // The second frame (the regions case draws its region only in the first).
+        let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000002.png"))));
+        for (n, eye) in ["left", "right"].into_iter().enumerate() {
+            let d = differing(&eyes[n], &hand[n]);
+            if !d.is_empty() {
+                failures.push(format!(
+                    "{case}, {eye} eye: {} pixels differ from the eye drawn by hand, \
+                     e.g. (x, y, --auto, by hand) {:?}",
+                    d.len(),
+                    &d[..d.len().min(4)]
+                ));
+            }
+        }
+        if differing(&eyes[0], &eyes[1]).len() < 200 {
+            failures.push(format!("{case}: the eyes are alike"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

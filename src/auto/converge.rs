@@ -37,21 +37,24 @@ pub const PERIOD: u64 = 30;
 /// ([`crate::auto::runtime::frame_geometry`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {
-    /// The program's viewport.
-    pub viewport: (i32, i32, i32, i32),
     /// glDepthRange.
     pub depth_range: (f64, f64),
     /// glClearDepth.
     pub clear_depth: f64,
-    /// Something was drawn into the window's eyes, with this projection.
-    pub window: Option<Perspective>,
-    /// The stereoized render target drawn into last (its arrays and
-    /// size, and the projection it was drawn with): measured when the
-    /// window's eyes were not drawn or hold no geometry where the viewer
-    /// looks (a program that draws off screen and blits, or shows its
-    /// scene as a textured quad without depth).
-    pub target: Option<(Attachments, (u32, u32), Perspective)>,
+    /// A perspective draw reached the window's eyes, with this projection
+    /// and viewport; with the 2D texture its left eye's depth was copied
+    /// into when a later draw of the frame may have overwritten it.
+    pub window: Option<(Perspective, Viewport, Option<u32>)>,
+    /// The render target with eyes and depth a perspective draw reached
+    /// last (its arrays and size, the draw's projection and viewport):
+    /// measured when the window's eyes hold no geometry where the viewer
+    /// looks (a program that draws its scene off screen and blits it or
+    /// shows it as a textured quad).
+    pub target: Option<(Attachments, (u32, u32), Perspective, Viewport)>,
 }
+
+/// A viewport: x, y, width, height.
+pub type Viewport = (i32, i32, i32, i32);
 
 /// Measures `frame` in `eyes` (the layered eyes of an automatic-stereo
 /// framebuffer) through `fbo`, a framebuffer object of the current
@@ -62,16 +65,17 @@ pub struct Frame {
 /// # Safety
 /// A context sharing the eyes' objects is current on this thread.
 pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame, scratch: &mut Scratch) {
-    let window = frame
-        .window
-        .map(|p| (None, (eyes.width(), eyes.height()), p));
-    let target = frame.target.map(|(t, size, p)| (Some(t), size, p));
+    let window = frame.window.map(|(p, vp, copy)| {
+        let source = copy.map(|c| eyes.attachments().with_depth_copy(c));
+        (source, (eyes.width(), eyes.height()), p, vp)
+    });
+    let target = frame.target.map(|(t, size, p, vp)| (Some(t), size, p, vp));
     // SAFETY: contract.
     let Some(c) = window
         .into_iter()
         .chain(target)
-        .find_map(|(source, size, p)| unsafe {
-            centre_of(gl, eyes, fbo, frame, (source, &p), size, scratch)
+        .find_map(|(source, size, p, vp)| unsafe {
+            centre_of(gl, eyes, fbo, frame, (source, &p, vp), size, scratch)
         })
     else {
         return;
@@ -95,11 +99,11 @@ unsafe fn centre_of(
     eyes: &LayeredEyes,
     fbo: u32,
     frame: &Frame,
-    (source, perspective): (Option<Attachments>, &Perspective),
+    (source, perspective, viewport): (Option<Attachments>, &Perspective, Viewport),
     (width, height): (u32, u32),
     scratch: &mut Scratch,
 ) -> Option<f64> {
-    let (x, y, w, h) = window(frame.viewport);
+    let (x, y, w, h) = window(viewport);
     let (x0, y0) = (x.max(0), y.max(0));
     let (x1, y1) = ((x + w).min(width as i32), (y + h).min(height as i32));
     if x1 <= x0 || y1 <= y0 {

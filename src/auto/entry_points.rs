@@ -65,11 +65,24 @@ pub enum Family {
     /// glFramebufferTexture*, glNamedFramebuffer*, …): which target a draw
     /// goes to (the eyes, a stereoized render target, a mono one).
     Framebuffer,
-    /// Texture and image bindings (glBindTexture, glBindTextures,
-    /// glBindTextureUnit, glBindMultiTextureEXT, glBindImageTexture(s)):
-    /// a stereoized render target sampled in an eye's draw is that eye's
-    /// copy.
+    /// Texture and image bindings (glActiveTexture, glBindTexture,
+    /// glBindTextures, glBindTextureUnit, glBindMultiTextureEXT,
+    /// glBindImageTexture(s)): a texture with eyes sampled in an eye's
+    /// draw is that eye's; the units are looked at again after one of
+    /// these ([`crate::auto::render_targets`]).
     Texture,
+    /// Commands that read a texture's contents outside draws, or make
+    /// new contents from them (glGenerateMipmap*, glCopyImageSubData,
+    /// glGetTexImage and their DSA and compressed forms): a texture with
+    /// eyes is given its left eye first, and its mipmaps are made for the
+    /// right eye too ([`crate::auto::render_targets`]).
+    TextureData,
+    /// Commands that give a texture new contents outside draws (uploads,
+    /// clears, storage: glTexSubImage*, glTexImage2D*, glClearTex*,
+    /// glTexStorage2D* and their DSA and compressed forms): a texture
+    /// with eyes is one picture again, its eyes forgotten
+    /// ([`crate::auto::render_targets`]).
+    TextureWrite,
     /// Queries, conditional rendering and transform feedback (glBeginQuery*,
     /// glEndQuery*, glQueryCounter, glBeginConditionalRender*,
     /// glBeginTransformFeedback, glPauseTransformFeedback, …): what the
@@ -132,6 +145,8 @@ const EXACT: &[(&str, Family)] = &[
     ("glGetUniformIndices", Family::Introspection),
     ("glGetProgramiv", Family::Introspection),
     ("glGetObjectParameterivARB", Family::Introspection),
+    ("glActiveTexture", Family::Texture),
+    ("glActiveTextureARB", Family::Texture),
     ("glBindTexture", Family::Texture),
     ("glBindTextureEXT", Family::Texture),
     ("glBindTextures", Family::Texture),
@@ -190,6 +205,32 @@ const PREFIXES: &[(&str, &[&str], Family)] = &[
     ("glCopyTextureSubImage", &[], Family::Read),
     ("glCopyMultiTex", &[], Family::Read),
     ("glCreateShaderProgram", &[], Family::Program),
+    ("glTexSubImage", &[], Family::TextureWrite),
+    ("glTextureSubImage", &[], Family::TextureWrite),
+    ("glCompressedTexSubImage", &[], Family::TextureWrite),
+    ("glCompressedTextureSubImage", &[], Family::TextureWrite),
+    ("glTexImage2D", &[], Family::TextureWrite),
+    ("glTextureImage2D", &[], Family::TextureWrite),
+    ("glCompressedTexImage2D", &[], Family::TextureWrite),
+    ("glCompressedTextureImage2D", &[], Family::TextureWrite),
+    ("glClearTexImage", &[], Family::TextureWrite),
+    ("glClearTexSubImage", &[], Family::TextureWrite),
+    ("glTexStorage2D", &[], Family::TextureWrite),
+    ("glTextureStorage2D", &[], Family::TextureWrite),
+    ("glGenerateMipmap", &[], Family::TextureData),
+    ("glGenerateTextureMipmap", &[], Family::TextureData),
+    ("glGenerateMultiTexMipmap", &[], Family::TextureData),
+    ("glCopyImageSubData", &[], Family::TextureData),
+    ("glGetTexImage", &[], Family::TextureData),
+    ("glGetnTexImage", &[], Family::TextureData),
+    ("glGetTextureImage", &[], Family::TextureData),
+    ("glGetTextureSubImage", &[], Family::TextureData),
+    ("glGetCompressedTexImage", &[], Family::TextureData),
+    ("glGetnCompressedTexImage", &[], Family::TextureData),
+    ("glGetCompressedTextureImage", &[], Family::TextureData),
+    ("glGetCompressedTextureSubImage", &[], Family::TextureData),
+    ("glGetMultiTexImage", &[], Family::TextureData),
+    ("glGetCompressedMultiTexImage", &[], Family::TextureData),
     ("glGetActiveUniform", &[], Family::Introspection),
     ("glGetProgramResource", &[], Family::Introspection),
     ("glBindFramebuffer", &[], Family::Framebuffer),
@@ -393,13 +434,15 @@ mod tests {
             (Family::Program, 20),
             (Family::Introspection, 16),
             (Family::Framebuffer, 34),
-            (Family::Texture, 8),
+            (Family::Texture, 10),
+            (Family::TextureData, 22),
+            (Family::TextureWrite, 42),
             (Family::SideEffect, 35),
             (Family::Settings, 18),
             (Family::Projection, 4),
             (Family::Lighting, 14),
         ];
-        assert_eq!(total, 936);
+        assert_eq!(total, 1002);
         for (f, n) in want {
             assert_eq!(counts.get(&f).copied().unwrap_or(0), n, "{f:?}");
         }

@@ -41,6 +41,7 @@ const GL_UNSIGNED_INT: u32 = 0x1405;
 const GL_DEPTH_COMPONENT24: u32 = 0x81A6;
 const GL_DEPTH_ATTACHMENT: u32 = 0x8D00;
 const GL_DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
+const GL_STENCIL_ATTACHMENT: u32 = 0x8D20;
 
 gl_fns! {
     /// The GL 3.2–4.3 functions layered eyes need, beyond [`Gl`]'s.
@@ -277,9 +278,15 @@ pub struct LayeredEyes {
 #[derive(Clone, Copy, Debug)]
 pub struct Attachments {
     api: LayeredApi,
-    colour: [u32; 2],
+    /// The array at GL_COLOR_ATTACHMENT0 + i (0: none).
+    colour: [u32; 8],
     depth: u32,
+    /// GL_DEPTH_ATTACHMENT or GL_DEPTH_STENCIL_ATTACHMENT.
     depth_attachment: u32,
+    /// A stencil array of its own, at GL_STENCIL_ATTACHMENT (0: none).
+    stencil: u32,
+    /// `depth` is a 2D texture (a copy of an eye's depth), not an array.
+    depth_2d: bool,
 }
 
 impl LayeredEyes {
@@ -606,11 +613,15 @@ impl LayeredEyes {
 
     /// What a draw attaches.
     pub fn attachments(&self) -> Attachments {
+        let mut colour = [0; 8];
+        colour[..2].copy_from_slice(&self.colour);
         Attachments {
             api: self.api,
-            colour: self.colour,
+            colour,
             depth: self.depth,
             depth_attachment: self.depth_attachment,
+            stencil: 0,
+            depth_2d: false,
         }
     }
 
@@ -722,17 +733,43 @@ impl LayeredEyes {
 }
 
 impl Attachments {
-    /// The attachments of a program's framebuffer object stereoized by
-    /// the layer ([`crate::auto::render_targets`]): its colour array at
-    /// GL_COLOR_ATTACHMENT0, its depth array (0: none) at
-    /// `depth_attachment`, with the API of the context's own eyes.
-    pub fn of_target(&self, colour: u32, depth: u32, depth_attachment: u32) -> Attachments {
+    /// The attachments of a program's framebuffer object given eyes by
+    /// the layer ([`crate::auto::render_targets`]): colour arrays by
+    /// attachment index (0: none), the depth array (0: none) and its
+    /// attachment point, a stencil array of its own (0: none), with the
+    /// API of the context's own eyes.
+    pub fn of_target(
+        &self,
+        colour: [u32; 8],
+        (depth, depth_attachment): (u32, u32),
+        stencil: u32,
+    ) -> Attachments {
         Attachments {
             api: self.api,
-            colour: [colour, 0],
+            colour,
             depth,
             depth_attachment,
+            stencil,
+            depth_2d: false,
         }
+    }
+
+    /// These attachments with their depth array's left eye replaced by
+    /// `copy`, a 2D texture holding it (what automatic convergence
+    /// measures when a later draw overwrote the depth: [`Self::depth`]).
+    pub fn with_depth_copy(&self, copy: u32) -> Attachments {
+        Attachments {
+            colour: [0; 8],
+            stencil: 0,
+            depth: copy,
+            depth_2d: true,
+            ..*self
+        }
+    }
+
+    /// The depth array (0: none).
+    pub fn depth(&self) -> u32 {
+        self.depth
     }
 
     /// The left eye's depth (layer 0 of the depth array: the window's eyes or a
@@ -760,13 +797,22 @@ impl Attachments {
         // SAFETY: contract; `out` holds w × h floats at alignment 4.
         unsafe {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-            (self.api.framebuffer_texture_layer)(
-                GL_READ_FRAMEBUFFER,
-                self.depth_attachment,
-                self.depth,
-                0,
-                0,
-            );
+            if self.depth_2d {
+                (self.api.framebuffer_texture)(
+                    GL_READ_FRAMEBUFFER,
+                    self.depth_attachment,
+                    self.depth,
+                    0,
+                );
+            } else {
+                (self.api.framebuffer_texture_layer)(
+                    GL_READ_FRAMEBUFFER,
+                    self.depth_attachment,
+                    self.depth,
+                    0,
+                    0,
+                );
+            }
             gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
             gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
             gl.ReadPixels(
@@ -790,15 +836,21 @@ impl Attachments {
         true
     }
 
+    /// Whether there is a depth array (what automatic convergence reads).
+    pub fn has_depth(&self) -> bool {
+        self.depth != 0
+    }
+
     /// The first pair's colour array (the eyes' size is its size).
     pub fn colour(&self) -> u32 {
         self.colour[0]
     }
 
-    /// Attaches both pairs' arrays, every layer (pair `p` at
-    /// GL_COLOR_ATTACHMENT0 + p), and the depth array, to the framebuffer
-    /// object bound at `target`; with `eye`, that eye's layers only (the
-    /// slow path: draws whose vertices cannot choose a layer).
+    /// Attaches every array, every layer (the window's pair `p` at
+    /// GL_COLOR_ATTACHMENT0 + p, a render target's at its points), and
+    /// the depth and stencil arrays, to the framebuffer object bound at
+    /// `target`; with `eye`, that eye's layers only (the slow path: draws
+    /// whose vertices cannot choose a layer; blits eye by eye).
     ///
     /// # Safety
     /// A context sharing the arrays must be current with the object bound.
@@ -821,6 +873,9 @@ impl Attachments {
         }
         if self.depth != 0 {
             one(self.depth_attachment, self.depth);
+        }
+        if self.stencil != 0 {
+            one(GL_STENCIL_ATTACHMENT, self.stencil);
         }
     }
 }

@@ -201,26 +201,19 @@
 //!
 //! # Render to texture
 //!
-//! What a program draws into its own framebuffer object and then shows
-//! (a textured quad, a blit: Qt, VTK, many engines) must be in stereo too.
-//! As 3D Vision did, render targets the size of the window (or larger)
-//! are stereoized; smaller ones (shadow maps, reflection maps, picking)
-//! stay mono: they are not pictures of the screen. Built as
-//! [`render_targets`] (the share group's targets: Qt's QOpenGLWidget
-//! draws in a context of its own and the window's context shows it): at
-//! the first draw into such a framebuffer the layer attaches a 2-layer
-//! colour array and depth array in place of the program's attachments
-//! (the draws then reach both eyes as above, with no switch); before any
-//! draw elsewhere it copies layer 0 into the program's texture
-//! (glCopyImageSubData: ≈ 0.1 ms at 1280x1024), and in the right eye's
-//! draws texture units holding the program's texture are bound to a
-//! texture view of layer 1 (a texture binding does not end llvmpipe's
-//! scene). The program's own reads of its texture see the left eye, as a
-//! mono program's would. Not yet: a blit from a stereoized target to the
-//! default framebuffer reads its left eye into both eyes.
-//! Not covered: targets the program sizes differently from the window and
-//! then scales (they stay mono), and textures sampled through bindless
-//! handles or image units.
+//! What a program draws into its own framebuffer objects and then shows
+//! (a textured quad, a blit, a chain of post-processing passes: Qt, VTK,
+//! glmark2, most engines) must be in stereo too. 3D Vision decided by a
+//! target's shape; here stereo flows with the data ([`render_targets`],
+//! which states the policy and its mistakes): a target gets eyes when a
+//! draw into it samples a texture with eyes, a blit into it comes from a
+//! target with eyes, or a draw into it is moved per eye and it is not
+//! seen from a light (depth only, or square and not the window's size).
+//! Its objects then have 2-layer twins drawn exactly as the window's eyes
+//! are (uniform and gl_Layer, no switch); the program's own objects hold
+//! the left eye, copied in before anything else reads them, and the
+//! right eye's draws sample the right layer (a texture binding does not
+//! end llvmpipe's scene).
 //!
 //! # Side effects stay single where GL allows
 //!
@@ -298,17 +291,19 @@
 //! | RasterPos | 30 | with program 0 while the fixed-function stand-in is bound |
 //! | RasterPixels | 4 | per eye at the eye's raster position |
 //! | Blit | 3 | per eye into the default framebuffer |
-//! | Read | 29 | left eye (layer 0); stereoized destinations per eye |
+//! | Read | 29 | left eye (layer 0); a texture copied from eyes gets them (glCopyTex(Sub)Image2D) |
 //! | Program | 20 | link-time rewrite; which program has the last stage |
 //! | Introspection | 16 | the layer's uniform hidden from the program |
 //! | Framebuffer | 34 | the eyes, a stereoized target, or mono |
-//! | Texture | 8 | a stereoized texture's twin in the right eye |
+//! | Texture | 10 | a texture with eyes sampled in the right eye is its right view |
+//! | TextureData | 22 | a texture with eyes given its left eye first; mipmaps for both eyes |
+//! | TextureWrite | 42 | a texture with eyes written outside draws is one picture again |
 //! | SideEffect | 35 | queries segmented and summed, transform feedback paused |
 //! | Settings | 18 | GL_3DVISION_STEREO_NV and the STEREO_*_NV pnames |
 //! | Projection | 4 | glUniformMatrix4fv & co.: automatic convergence's projection |
 //! | Lighting | 14 | glLight*, glLightModel*, glColorMaterial: the stand-in's lighting read again |
 //!
-//! 936 in all (most are the per-vertex commands of immediate mode and
+//! 1002 in all (most are the per-vertex commands of immediate mode and
 //! their extension forms); glStereoParameterfNV / glStereoParameteriNV are
 //! an OpenGL ES extension, not in gl.xml's desktop set: two hand-typed
 //! exports. Without `--auto` each wrapper is one thread-local test and the

@@ -1,40 +1,79 @@
-//! Render to texture under automatic stereo ([`crate::auto`], "Render to
-//! texture"): a framebuffer object of the program's whose colour is one
-//! 2D texture at least the size of the window (Qt's QOpenGLWidget, VTK,
-//! engines that draw the scene off screen and then show it as a textured
-//! quad) is stereoized, as 3D Vision stereoized screen-sized render
-//! targets. Smaller ones (shadow maps, reflections, picking) stay mono.
+//! Render targets under automatic stereo: which of a program's framebuffer
+//! objects are drawn in stereo, and how ([`crate::auto`], "Render to
+//! texture").
 //!
-//! - The first draw into such a framebuffer attaches, in place of the
-//!   program's texture and depth/stencil, a 2-layer colour array of the
-//!   texture's format and a 2-layer depth array: the draws then reach both
-//!   eyes as draws into the window's eyes do, by the uniform and gl_Layer
-//!   ([`crate::auto::runtime`]), with no switch. A clear clears both.
-//! - Layer 1 is also seen as a 2D texture (a texture view): the right
-//!   eye's copy of the program's texture. Before a draw that may sample the
-//!   program's texture (any draw outside that framebuffer), layer 0 is
-//!   copied into it once per change (glCopyImageSubData): what the program
-//!   reads back or samples in mono is the left eye, as seed 004 resolves
-//!   for ReadPixels. In the right eye's draws, texture units holding the
-//!   program's texture hold the view instead (a binding does not end
-//!   llvmpipe's scene).
-//! - glReadPixels from the framebuffer reads layer 0: the left eye; a blit
-//!   from it into the window copies each eye's layer into that eye
-//!   ([`known`]).
-//! - Both layers start as copies of the program's buffers, which hold
-//!   what was made before the first draw (the first frame's glClear).
+//! # The policy: stereo flows with the data
 //!
-//! Not covered: framebuffers with more than one colour attachment, a
-//! colour renderbuffer, multisampled attachments, a separate stencil
-//! buffer, a texture level other than 0 or a layer of an array; textures
-//! sampled through image units or bindless handles; what the program sizes
-//! smaller than the window and scales up. Those framebuffers stay mono. A
-//! program that attaches something else to a stereoized framebuffer makes
-//! it mono again (its attachments are the program's from then on).
-
-use std::collections::HashMap;
-
-use std::sync::{Mutex, OnceLock};
+//! A program's framebuffer object (a *target*) gets eyes when what is
+//! drawn into it differs between the eyes:
+//!
+//! 1. a draw into it samples a texture that has eyes (on any texture
+//!    unit): a post-processing pass, a blur of a blur, a composite of
+//!    regions (Blender's, Qt Quick's), a resolve drawn as a quad;
+//! 2. a blit into it comes from a target that has eyes (a multisample
+//!    resolve, a copy between targets);
+//! 3. a draw into it has its vertices moved per eye — the program's
+//!    rewritten vertex stage or the fixed-function stand-in: the scene's
+//!    camera — unless the target is *seen from a light*: it has no colour
+//!    attachment (a depth-only shadow map), or its colour is square and
+//!    not the window's size (a shadow map with colour, a cube or
+//!    environment face). Those stay mono and both eyes sample the one
+//!    picture, as a light has one viewpoint.
+//!
+//! Anything else is drawn once, unshifted: a target no stereo reaches (a
+//! user interface drawn into a texture, a look-up table, a texture a
+//! program fills by drawing) stays one picture. Once a target has eyes
+//! it keeps them until the program attaches something else to it, and a
+//! texture keeps its eyes (what a region not redrawn this frame shows)
+//! until the program redefines or deletes it. Size, aspect, attachment
+//! count and kind play no part beyond rule 3: scaled-down targets (bloom,
+//! blur chains, half-resolution ambient occlusion) get eyes because a
+//! stereo texture flows into them, G-buffers with several colour
+//! attachments get eyes on every attachment, colour and depth
+//! renderbuffers and multisample targets too.
+//!
+//! 3D Vision Automatic decided by shape alone (BPG-05394-001: non-square
+//! targets at least the back buffer's size stereo, square ones mono, a
+//! draw without depth a full-screen pass), so a half-resolution blur of a
+//! stereo scene came out mono and flat, and a 4:3 shadow map stereo.
+//!
+//! What it gets wrong, and what happens then:
+//! - a camera that is not the viewer's drawn into a non-square colour
+//!   target (a planar reflection, a security-camera screen, a portal)
+//!   gets eyes shifted as the viewer's camera is: the picture on the
+//!   mirror or screen has depth of its own instead of lying flat on it;
+//! - a shadow map with a non-square colour attachment (variance or
+//!   exponential shadow maps of 2:1) gets eyes: each eye's shadows are
+//!   looked up in a map shifted for that eye, so shadow edges sit a few
+//!   pixels off between the eyes;
+//! - a square target drawn from the viewer's camera (a square window's
+//!   size excepted) stays mono: its picture is flat;
+//! - targets the layer cannot give eyes — cube map faces, array layers,
+//!   3D slices, mipmap levels other than 0, rectangle textures, textures
+//!   the program sampled through image units or bindless handles — stay
+//!   mono (flat), and a draw sampling a stereo texture into one of them
+//!   sees the left eye.
+//!
+//! # How
+//!
+//! A program's texture or renderbuffer with eyes has a *twin*: a 2-layer
+//! array texture of its format and size (2D, or 2D multisample; with its
+//! mipmap chain), layer 0 the left eye and layer 1 the right, and a
+//! texture view of layer 1 (the right eye's texture). A target with eyes
+//! has its attachments replaced by its objects' twins, attached layered:
+//! its draws reach both eyes by gl_Layer as the window's do
+//! ([`crate::auto::runtime`]), with no framebuffer switch. The program's
+//! own object holds the left eye: layer 0 is copied into it
+//! (glCopyImageSubData, ≈ 0.1 ms at 1280x1024) before anything else may
+//! read it — a draw into another target, a glGenerateMipmap (whose
+//! result is then made for the right eye too), a read of its pixels — so
+//! what a program reads back of its own texture is the left eye, as seed
+//! 004 resolves reads. In the right eye's draws every texture unit whose
+//! 2D or 2D multisample binding is a texture with eyes holds that
+//! texture's right view instead (a binding does not end llvmpipe's
+//! scene). Blits from a target with eyes are made eye to eye; into one
+//! from a mono source, the same picture into both eyes. A new twin starts
+//! with both layers holding what the program's object held.
 
 use crate::auto::eyes::Attachments;
 use crate::auto::gl_fns;
@@ -43,6 +82,7 @@ use crate::math::Eye;
 const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE: u32 = 0x8CD0;
 const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME: u32 = 0x8CD1;
 const GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL: u32 = 0x8CD2;
+const GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE: u32 = 0x8CD3;
 const GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER: u32 = 0x8CD4;
 const GL_FRAMEBUFFER_ATTACHMENT_LAYERED: u32 = 0x8DA7;
 const GL_COLOR_ATTACHMENT0: u32 = 0x8CE0;
@@ -50,75 +90,107 @@ const GL_DEPTH_ATTACHMENT: u32 = 0x8D00;
 const GL_STENCIL_ATTACHMENT: u32 = 0x8D20;
 const GL_DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
 const GL_DRAW_FRAMEBUFFER: u32 = 0x8CA9;
+const GL_READ_FRAMEBUFFER: u32 = 0x8CA8;
 const GL_FRAMEBUFFER_COMPLETE: u32 = 0x8CD5;
-const GL_NONE: i32 = 0;
 const GL_TEXTURE: i32 = 0x1702;
 const GL_RENDERBUFFER: i32 = 0x8D41;
 const GL_TEXTURE_2D: u32 = 0x0DE1;
 const GL_TEXTURE_2D_ARRAY: u32 = 0x8C1A;
+const GL_TEXTURE_2D_MULTISAMPLE: u32 = 0x9100;
+const GL_TEXTURE_2D_MULTISAMPLE_ARRAY: u32 = 0x9102;
 const GL_TEXTURE_DEPTH: u32 = 0x8071;
-const GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE: u32 = 0x8CD3;
 const GL_TEXTURE_WIDTH: u32 = 0x1000;
 const GL_TEXTURE_HEIGHT: u32 = 0x1001;
 const GL_TEXTURE_INTERNAL_FORMAT: u32 = 0x1003;
 const GL_TEXTURE_SAMPLES: u32 = 0x9106;
+const GL_TEXTURE_FIXED_SAMPLE_LOCATIONS: u32 = 0x9107;
+const GL_TEXTURE_IMMUTABLE_FORMAT: u32 = 0x912F;
+const GL_TEXTURE_IMMUTABLE_LEVELS: u32 = 0x82DF;
+const GL_TEXTURE_DEPTH_SIZE: u32 = 0x884A;
+const GL_TEXTURE_STENCIL_SIZE: u32 = 0x88F1;
 const GL_RENDERBUFFER_WIDTH: u32 = 0x8D42;
 const GL_RENDERBUFFER_HEIGHT: u32 = 0x8D43;
 const GL_RENDERBUFFER_INTERNAL_FORMAT: u32 = 0x8D44;
 const GL_RENDERBUFFER_SAMPLES: u32 = 0x8CAB;
-const GL_TEXTURE_MIN_FILTER: u32 = 0x2801;
-const GL_TEXTURE_MAG_FILTER: u32 = 0x2800;
-const GL_TEXTURE_WRAP_S: u32 = 0x2802;
-const GL_TEXTURE_WRAP_T: u32 = 0x2803;
 const GL_ACTIVE_TEXTURE: u32 = 0x84E0;
 const GL_TEXTURE0: u32 = 0x84C0;
 const GL_TEXTURE_BINDING_2D: u32 = 0x8069;
+const GL_TEXTURE_BINDING_2D_MULTISAMPLE: u32 = 0x9104;
 const GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS: u32 = 0x8B4D;
+const GL_TEXTURE_BINDING_2D_ARRAY: u32 = 0x8C1D;
+const GL_PIXEL_UNPACK_BUFFER: u32 = 0x88EC;
+const GL_PIXEL_UNPACK_BUFFER_BINDING: u32 = 0x88EF;
+const GL_TEXTURE_MAX_LEVEL: u32 = 0x813D;
 const GL_RGBA: i32 = 0x1908;
 const GL_RGB: i32 = 0x1907;
-const GL_RGBA8: u32 = 0x8058;
-const GL_RGB8: u32 = 0x8051;
+const GL_RG: i32 = 0x8227;
+const GL_RED: i32 = 0x1903;
+const GL_LUMINANCE: i32 = 0x1909;
+const GL_LUMINANCE_ALPHA: i32 = 0x190A;
+const GL_ALPHA: i32 = 0x1906;
 const GL_DEPTH_COMPONENT: i32 = 0x1902;
 const GL_DEPTH_STENCIL: i32 = 0x84F9;
-const GL_DEPTH_COMPONENT24: u32 = 0x81A6;
-const GL_DEPTH24_STENCIL8: u32 = 0x88F0;
+/// The sampling state a right view copies from the program's texture.
+const SAMPLING: [u32; 9] = [
+    0x2801, // GL_TEXTURE_MIN_FILTER
+    0x2800, // GL_TEXTURE_MAG_FILTER
+    0x2802, // GL_TEXTURE_WRAP_S
+    0x2803, // GL_TEXTURE_WRAP_T
+    0x8072, // GL_TEXTURE_WRAP_R
+    0x884C, // GL_TEXTURE_COMPARE_MODE
+    0x884D, // GL_TEXTURE_COMPARE_FUNC
+    0x813C, // GL_TEXTURE_BASE_LEVEL
+    0x813D, // GL_TEXTURE_MAX_LEVEL
+];
 
-/// The texture units scanned for the program's texture in the right
-/// eye's draws (at most; fewer where the driver has fewer).
-const UNITS: i32 = 16;
+/// The colour attachment points looked at (GL_MAX_COLOR_ATTACHMENTS is 8
+/// on Mesa).
+const COLOURS: u32 = 8;
+/// The texture units scanned for textures with eyes (at most; fewer
+/// where the driver has fewer).
+const UNITS: i32 = 32;
 
 gl_fns! {
     /// GL 4.5's direct state access, texture views and image copies:
-    /// stereoizing a framebuffer changes no binding of the program's.
+    /// giving a target eyes changes no binding of the program's.
     pub struct TargetFns {
         get_integerv = c"glGetIntegerv": fn(u32, *mut i32);
         get_framebuffer_attachment_parameteriv = c"glGetNamedFramebufferAttachmentParameteriv": fn(u32, u32, u32, *mut i32);
         get_texture_level_parameteriv = c"glGetTextureLevelParameteriv": fn(u32, i32, u32, *mut i32);
         get_texture_parameteriv = c"glGetTextureParameteriv": fn(u32, u32, *mut i32);
-        texture_parameteri = c"glTextureParameteri": fn(u32, u32, i32);
+        get_texture_parameterfv = c"glGetTextureParameterfv": fn(u32, u32, *mut f32);
+        texture_parameterf = c"glTextureParameterf": fn(u32, u32, f32);
         get_renderbuffer_parameteriv = c"glGetNamedRenderbufferParameteriv": fn(u32, u32, *mut i32);
         create_textures = c"glCreateTextures": fn(u32, i32, *mut u32);
         gen_textures = c"glGenTextures": fn(i32, *mut u32);
         delete_textures = c"glDeleteTextures": fn(i32, *const u32);
         texture_storage_3d = c"glTextureStorage3D": fn(u32, i32, u32, i32, i32, i32);
+        texture_storage_2d = c"glTextureStorage2D": fn(u32, i32, u32, i32, i32);
+        texture_storage_3d_multisample = c"glTextureStorage3DMultisample": fn(u32, i32, u32, i32, i32, i32, u8);
         texture_view = c"glTextureView": fn(u32, u32, u32, u32, u32, u32, u32, u32);
+        tex_image_3d = c"glTexImage3D": fn(u32, i32, i32, i32, i32, i32, i32, u32, u32, *const std::ffi::c_void);
+        tex_image_2d = c"glTexImage2D": fn(u32, i32, i32, i32, i32, i32, u32, u32, *const std::ffi::c_void);
+        bind_buffer = c"glBindBuffer": fn(u32, u32);
+        texture_parameteri = c"glTextureParameteri": fn(u32, u32, i32);
         framebuffer_texture = c"glNamedFramebufferTexture": fn(u32, u32, u32, i32);
         framebuffer_renderbuffer = c"glNamedFramebufferRenderbuffer": fn(u32, u32, u32, u32);
         check_framebuffer_status = c"glCheckNamedFramebufferStatus": fn(u32, u32) -> u32;
         copy_image_sub_data = c"glCopyImageSubData": fn(u32, u32, i32, i32, i32, i32, u32, u32, i32, i32, i32, i32, i32, i32, i32);
-        is_texture = c"glIsTexture": fn(u32) -> u8;
+        generate_texture_mipmap = c"glGenerateTextureMipmap": fn(u32);
         active_texture = c"glActiveTexture": fn(u32);
+        copy_texture_sub_image_2d = c"glCopyTextureSubImage2D": fn(u32, i32, i32, i32, i32, i32, i32, i32);
+        is_texture = c"glIsTexture": fn(u32) -> u8;
+        is_renderbuffer = c"glIsRenderbuffer": fn(u32) -> u8;
         bind_texture = c"glBindTexture": fn(u32, u32);
     }
 }
 
 /// The table, loaded once (None: no GL 4.5 here; render targets stay mono).
 fn fns() -> Option<&'static TargetFns> {
-    static FNS: OnceLock<Option<TargetFns>> = OnceLock::new();
+    static FNS: std::sync::OnceLock<Option<TargetFns>> = std::sync::OnceLock::new();
     FNS.get_or_init(|| {
-        let get = crate::auto::host::gl_proc;
-        // SAFETY: `get` returns the named GL function or NULL.
-        let t = unsafe { TargetFns::load(get) };
+        // SAFETY: gl_proc returns the named GL function or NULL.
+        let t = unsafe { TargetFns::load(crate::auto::host::gl_proc) };
         if t.is_none() {
             crate::report::warn(
                 "automatic stereo of render targets needs GL 4.5's direct state access: \
@@ -130,53 +202,461 @@ fn fns() -> Option<&'static TargetFns> {
     .as_ref()
 }
 
-/// One stereoized framebuffer object of the program's.
-#[derive(Debug)]
-struct Target {
-    /// The context whose framebuffer object it is (framebuffer objects
-    /// are not shared; textures are).
-    context: usize,
-    fbo: u32,
-    /// The program's colour texture (2D, level 0).
-    texture: u32,
-    /// The program's depth/stencil attachment, put back if the
-    /// framebuffer cannot be completed with the arrays: (attachment point,
-    /// object type, name).
-    depth_of_program: Option<(u32, i32, u32)>,
-    /// The 2-layer colour array in its place.
-    colour: u32,
-    /// The 2-layer depth array (0: none) and where it is attached.
-    depth: u32,
-    depth_attachment: u32,
-    /// Layer 1 of `colour` as a 2D texture: the right eye's texture.
-    right: u32,
+/// A program object that can have eyes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Object {
+    /// A texture, by name.
+    Texture(u32),
+    /// A renderbuffer, by name.
+    Renderbuffer(u32),
+}
+
+/// The storage of a program object.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Shape {
+    /// Its internal format as GL reports it (unsized where the program
+    /// gave an unsized one: GL_RGBA of glTexImage2D).
+    format: u32,
     width: i32,
     height: i32,
-    /// Drawn into since layer 0 was last copied into `texture`.
+    /// 0: not multisampled.
+    samples: i32,
+    fixed_locations: bool,
+    levels: i32,
+}
+
+/// A program object with eyes (module docs, "How").
+#[derive(Debug)]
+struct Twin {
+    object: Object,
+    shape: Shape,
+    /// The 2-layer array: layer 0 the left eye, layer 1 the right.
+    array: u32,
+    /// The right eye's texture: layer 1 seen as a texture of the
+    /// object's kind (a view), or, for an unsized format (which no
+    /// immutable storage, so no view, has), a texture of its own that
+    /// layer 1 is copied into with layer 0.
+    right: u32,
+    /// `right` is a view of layer 1.
+    view: bool,
+    /// Layer 0 was drawn into since it was copied into the object.
     dirty: bool,
 }
 
-/// A share group's stereoized render targets: one context draws into a
-/// target, another may show its texture (Qt's QOpenGLWidget renders in a
-/// context of its own and the window's context composes it).
+/// A target with eyes: the program's objects at its attachment points
+/// (each replaced by its twin's array).
+#[derive(Debug)]
+struct Stereo {
+    context: usize,
+    fbo: u32,
+    points: Vec<(u32, Object)>,
+    /// An object of it lost its eyes while another context was current:
+    /// the program's objects go back at this context's next draw into it.
+    stale: bool,
+}
+
+/// What a target's attachments allow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Structure {
+    /// Something the layer cannot give eyes (module docs).
+    Unsupported,
+    /// Seen from a light (rule 3): mono unless stereo flows into it.
+    Light,
+    /// Anything else.
+    Plain,
+}
+
+/// A target looked at and left mono, with what it had attached then.
+#[derive(Debug)]
+struct Looked {
+    context: usize,
+    fbo: u32,
+    attached: Vec<(u32, Object)>,
+    structure: Structure,
+}
+
+/// A share group's render targets and textures with eyes: one context
+/// draws into a target, another may show its texture (Qt's
+/// QOpenGLWidget renders in a context of its own and the window's
+/// context composes it).
 #[derive(Debug, Default)]
 pub struct Targets {
-    targets: Vec<Target>,
-    /// Framebuffers looked at and left mono: (context, framebuffer, its
-    /// colour object), looked at again only when that changes.
-    mono: Vec<(usize, u32, u32)>,
+    twins: Vec<Twin>,
+    stereo: Vec<Stereo>,
+    looked: Vec<Looked>,
+    /// Changes whenever a twin is made or goes ([`Targets::generation`]).
+    generation: u64,
 }
 
 /// Runs `f` with the render targets of the share group `group`.
 pub fn with_group<T>(group: u64, f: impl FnOnce(&mut Targets) -> T) -> T {
-    static GROUPS: Mutex<Option<HashMap<u64, Targets>>> = Mutex::new(None);
+    use std::collections::HashMap;
+    static GROUPS: std::sync::Mutex<Option<HashMap<u64, Targets>>> = std::sync::Mutex::new(None);
     let mut g = GROUPS.lock().unwrap_or_else(|e| e.into_inner());
     f(g.get_or_insert_with(HashMap::new).entry(group).or_default())
 }
 
-/// The eye arrays of the draw framebuffer `fbo` of `context` when it is
-/// one of `targets` (or becomes one now), else None (the draw is mono).
-/// `eyes`: the window's eyes (their API and size).
+/// What decides a draw's target ([`eyes_of`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Draw {
+    /// The draw's vertices are moved per eye (rule 3).
+    pub shifted: bool,
+    /// It samples a texture with eyes (rule 1; [`Sampled::any`]).
+    pub samples_stereo: bool,
+    /// It is a blit from a target with eyes (rule 2).
+    pub from_stereo: bool,
+}
+
+/// The texture units of a draw holding textures with eyes:
+/// (unit, binding target, the program's texture, its right view).
+#[derive(Clone, Debug, Default)]
+pub struct Sampled {
+    units: Vec<(u32, u32, u32, u32)>,
+}
+
+impl Sampled {
+    /// Whether a unit holds a texture with eyes.
+    pub fn any(&self) -> bool {
+        !self.units.is_empty()
+    }
+}
+
+/// The units holding textures with eyes now (none scanned when no
+/// texture has eyes).
+///
+/// # Safety
+/// The program's context is current on this thread.
+pub unsafe fn sampled(targets: &Targets) -> Sampled {
+    let mut s = Sampled::default();
+    let Some(f) = fns() else {
+        return s;
+    };
+    if !targets
+        .twins
+        .iter()
+        .any(|t| matches!(t.object, Object::Texture(_)))
+    {
+        return s;
+    }
+    // SAFETY: contract; one value per query; units below the maximum.
+    unsafe {
+        let (active, max) = (
+            integer(f, GL_ACTIVE_TEXTURE),
+            integer(f, GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS),
+        );
+        for unit in 0..max.clamp(0, UNITS) as u32 {
+            (f.active_texture)(GL_TEXTURE0 + unit);
+            for (binding, target) in [
+                (GL_TEXTURE_BINDING_2D, GL_TEXTURE_2D),
+                (GL_TEXTURE_BINDING_2D_MULTISAMPLE, GL_TEXTURE_2D_MULTISAMPLE),
+            ] {
+                let name = integer(f, binding) as u32;
+                if name == 0 {
+                    continue;
+                }
+                if let Some(t) = targets.twin(Object::Texture(name)) {
+                    s.units.push((unit, target, name, t.right));
+                }
+            }
+        }
+        (f.active_texture)(active as u32);
+    }
+    s
+}
+
+/// For `eye`'s draw: the units of `sampled` hold that eye's texture (the
+/// right view; the left eye's is the program's texture).
+///
+/// # Safety
+/// The program's context is current on this thread.
+pub unsafe fn bind_eye(sampled: &Sampled, eye: Eye) -> Bound<'_> {
+    let bound = Bound {
+        sampled,
+        active: 0,
+        on: eye == Eye::Right && sampled.any(),
+    };
+    if !bound.on {
+        return bound;
+    }
+    let Some(f) = fns() else {
+        return Bound { on: false, ..bound };
+    };
+    // SAFETY: contract.
+    unsafe {
+        let active = integer(f, GL_ACTIVE_TEXTURE) as u32;
+        for &(unit, target, _, right) in &sampled.units {
+            (f.active_texture)(GL_TEXTURE0 + unit);
+            (f.bind_texture)(target, right);
+        }
+        (f.active_texture)(active);
+        Bound { active, ..bound }
+    }
+}
+
+/// Units whose binding was exchanged for an eye: put back by
+/// [`Bound::restore`].
+#[derive(Debug)]
+pub struct Bound<'a> {
+    sampled: &'a Sampled,
+    active: u32,
+    on: bool,
+}
+
+impl Bound<'_> {
+    /// Puts the program's bindings back.
+    ///
+    /// # Safety
+    /// The context of [`bind_eye`] is current on this thread.
+    pub unsafe fn restore(self) {
+        if !self.on {
+            return;
+        }
+        let Some(f) = fns() else {
+            return;
+        };
+        // SAFETY: contract.
+        unsafe {
+            for &(unit, target, name, _) in &self.sampled.units {
+                (f.active_texture)(GL_TEXTURE0 + unit);
+                (f.bind_texture)(target, name);
+            }
+            (f.active_texture)(self.active);
+        }
+    }
+}
+
+impl Targets {
+    /// A number that changes whenever a texture gets or loses eyes: a
+    /// scan of the units ([`sampled`]) holds while it is the same.
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    fn twin(&self, o: Object) -> Option<&Twin> {
+        self.twins.iter().find(|t| t.object == o)
+    }
+
+    fn stereo_at(&self, context: usize, fbo: u32) -> Option<usize> {
+        self.stereo
+            .iter()
+            .position(|s| s.context == context && s.fbo == fbo)
+    }
+
+    /// The arrays of a target with eyes, as attachments (with the API of
+    /// `eyes`, the window's).
+    fn attachments(&self, s: &Stereo, eyes: &Attachments) -> Attachments {
+        let mut colour = [0u32; COLOURS as usize];
+        let (mut depth, mut depth_point, mut stencil) = (0, GL_DEPTH_ATTACHMENT, 0);
+        for &(point, o) in &s.points {
+            let array = self.twin(o).map_or(0, |t| t.array);
+            match point {
+                GL_DEPTH_ATTACHMENT | GL_DEPTH_STENCIL_ATTACHMENT => {
+                    depth = array;
+                    depth_point = point;
+                }
+                GL_STENCIL_ATTACHMENT => stencil = array,
+                p => colour[(p - GL_COLOR_ATTACHMENT0) as usize] = array,
+            }
+        }
+        eyes.of_target(colour, (depth, depth_point), stencil)
+    }
+}
+
+/// The objects attached to `fbo` now, each at its point (a depth and
+/// stencil of one object as GL_DEPTH_STENCIL_ATTACHMENT), and whether the
+/// layer can give them eyes (Unsupported) — reading only what the
+/// framebuffer names, so no query raises a GL error.
+unsafe fn attached(f: &TargetFns, fbo: u32) -> (Vec<(u32, Object)>, bool) {
+    let mut out = Vec::new();
+    let mut supported = true;
+    // SAFETY: contract of the callers; one value per query.
+    unsafe {
+        let at = |point, pname| {
+            let mut v = 0;
+            (f.get_framebuffer_attachment_parameteriv)(fbo, point, pname, &mut v);
+            v
+        };
+        let points = (0..COLOURS)
+            .map(|i| GL_COLOR_ATTACHMENT0 + i)
+            .chain([GL_DEPTH_ATTACHMENT, GL_STENCIL_ATTACHMENT]);
+        for point in points {
+            let name = at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME) as u32;
+            if name == 0 {
+                continue;
+            }
+            let object = match at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) {
+                GL_TEXTURE => {
+                    if at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL) != 0
+                        || at(point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED) != 0
+                        || at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER) != 0
+                        || at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE) != 0
+                    {
+                        supported = false;
+                    }
+                    Object::Texture(name)
+                }
+                GL_RENDERBUFFER => Object::Renderbuffer(name),
+                _ => {
+                    supported = false;
+                    continue;
+                }
+            };
+            out.push((point, object));
+        }
+    }
+    // One object at depth and stencil: a packed depth/stencil attachment.
+    let depth = out.iter().position(|&(p, _)| p == GL_DEPTH_ATTACHMENT);
+    let stencil = out.iter().position(|&(p, _)| p == GL_STENCIL_ATTACHMENT);
+    if let (Some(d), Some(s)) = (depth, stencil) {
+        if out[d].1 == out[s].1 {
+            out[d].0 = GL_DEPTH_STENCIL_ATTACHMENT;
+            out.remove(s);
+        }
+    }
+    (out, supported)
+}
+
+unsafe fn integer(f: &TargetFns, pname: u32) -> i32 {
+    let mut v = 0;
+    // SAFETY: contract of the callers; one value.
+    unsafe { (f.get_integerv)(pname, &mut v) };
+    v
+}
+
+unsafe fn level(f: &TargetFns, texture: u32, pname: u32) -> i32 {
+    let mut v = 0;
+    // SAFETY: contract of the callers; one value.
+    unsafe { (f.get_texture_level_parameteriv)(texture, 0, pname, &mut v) };
+    v
+}
+
+unsafe fn texture_int(f: &TargetFns, texture: u32, pname: u32) -> i32 {
+    let mut v = 0;
+    // SAFETY: contract of the callers; one value.
+    unsafe { (f.get_texture_parameteriv)(texture, pname, &mut v) };
+    v
+}
+
+unsafe fn renderbuffer(f: &TargetFns, rb: u32, pname: u32) -> i32 {
+    let mut v = 0;
+    // SAFETY: contract of the callers; one value.
+    unsafe { (f.get_renderbuffer_parameteriv)(rb, pname, &mut v) };
+    v
+}
+
+/// For an unsized internal format (what glTexImage2D keeps of GL_RGBA):
+/// a format and type glTexImage3D takes it with; None for a sized one.
+/// glCopyImageSubData copies only between equal unsized formats, so the
+/// arrays of such a texture have its very format (mutable storage).
+fn unsized_layout(format: u32) -> Option<(u32, u32)> {
+    const UNSIGNED_BYTE: u32 = 0x1401;
+    const UNSIGNED_INT: u32 = 0x1405;
+    const UNSIGNED_INT_24_8: u32 = 0x84FA;
+    Some(match format as i32 {
+        GL_RGBA | 4 => (GL_RGBA as u32, UNSIGNED_BYTE),
+        GL_RGB | 3 => (GL_RGB as u32, UNSIGNED_BYTE),
+        GL_RG => (GL_RG as u32, UNSIGNED_BYTE),
+        GL_RED => (GL_RED as u32, UNSIGNED_BYTE),
+        GL_LUMINANCE | 1 => (GL_LUMINANCE as u32, UNSIGNED_BYTE),
+        GL_LUMINANCE_ALPHA | 2 => (GL_LUMINANCE_ALPHA as u32, UNSIGNED_BYTE),
+        GL_ALPHA => (GL_ALPHA as u32, UNSIGNED_BYTE),
+        GL_DEPTH_COMPONENT => (GL_DEPTH_COMPONENT as u32, UNSIGNED_INT),
+        GL_DEPTH_STENCIL => (GL_DEPTH_STENCIL as u32, UNSIGNED_INT_24_8),
+        _ => return None,
+    })
+}
+
+/// The shape of `o` now; None where it has no storage. A texture's
+/// levels: its immutable count, else the whole chain for colour (a
+/// program may make mipmaps later), one for depth and stencil.
+unsafe fn shape(f: &TargetFns, o: Object) -> Option<Shape> {
+    // SAFETY: contract of the callers.
+    unsafe {
+        let s = match o {
+            Object::Texture(t) => {
+                let (width, height) = (
+                    level(f, t, GL_TEXTURE_WIDTH),
+                    level(f, t, GL_TEXTURE_HEIGHT),
+                );
+                if level(f, t, GL_TEXTURE_DEPTH) != 1 {
+                    return None;
+                }
+                let samples = level(f, t, GL_TEXTURE_SAMPLES);
+                let depth_or_stencil = level(f, t, GL_TEXTURE_DEPTH_SIZE) > 0
+                    || level(f, t, GL_TEXTURE_STENCIL_SIZE) > 0;
+                let levels = if texture_int(f, t, GL_TEXTURE_IMMUTABLE_FORMAT) != 0 {
+                    texture_int(f, t, GL_TEXTURE_IMMUTABLE_LEVELS)
+                } else if depth_or_stencil || samples > 0 {
+                    1
+                } else {
+                    32 - (width.max(height).max(1) as u32).leading_zeros() as i32
+                };
+                Shape {
+                    format: level(f, t, GL_TEXTURE_INTERNAL_FORMAT) as u32,
+                    width,
+                    height,
+                    samples,
+                    fixed_locations: samples == 0
+                        || level(f, t, GL_TEXTURE_FIXED_SAMPLE_LOCATIONS) != 0,
+                    levels: levels.max(1),
+                }
+            }
+            Object::Renderbuffer(rb) => Shape {
+                format: renderbuffer(f, rb, GL_RENDERBUFFER_INTERNAL_FORMAT) as u32,
+                width: renderbuffer(f, rb, GL_RENDERBUFFER_WIDTH),
+                height: renderbuffer(f, rb, GL_RENDERBUFFER_HEIGHT),
+                samples: renderbuffer(f, rb, GL_RENDERBUFFER_SAMPLES),
+                fixed_locations: true,
+                levels: 1,
+            },
+        };
+        (s.width > 0 && s.height > 0).then_some(s)
+    }
+}
+
+/// What `attached` allows (rule 3's light test against the window's
+/// size `window`).
+unsafe fn structure(
+    f: &TargetFns,
+    attached: &[(u32, Object)],
+    supported: bool,
+    window: (i32, i32),
+) -> Structure {
+    if !supported || attached.is_empty() {
+        return Structure::Unsupported;
+    }
+    // SAFETY: contract of the callers.
+    unsafe {
+        let mut colours = attached
+            .iter()
+            .filter(|&&(p, _)| (GL_COLOR_ATTACHMENT0..GL_COLOR_ATTACHMENT0 + COLOURS).contains(&p))
+            .map(|&(_, o)| shape(f, o))
+            .peekable();
+        if colours.peek().is_none() {
+            return Structure::Light;
+        }
+        let mut light = true;
+        for s in colours {
+            let Some(s) = s else {
+                return Structure::Unsupported;
+            };
+            light &= s.width == s.height && (s.width, s.height) != window;
+        }
+        if attached.iter().any(|&(_, o)| shape(f, o).is_none()) {
+            return Structure::Unsupported;
+        }
+        if light {
+            Structure::Light
+        } else {
+            Structure::Plain
+        }
+    }
+}
+
+/// The eyes of the draw framebuffer `fbo` of `context` for a draw of
+/// kind `draw`: its arrays when it has eyes or gets them now by the
+/// policy (module docs), else None (the draw is mono). `eyes`: the
+/// window's eyes (their API and size).
 ///
 /// # Safety
 /// The program's context `context` is current on this thread.
@@ -185,73 +665,415 @@ pub unsafe fn eyes_of(
     context: usize,
     fbo: u32,
     eyes: &Attachments,
+    draw: Draw,
 ) -> Option<Attachments> {
     let f = fns()?;
-    // SAFETY: contract; one value per query.
+    if fbo == 0 {
+        return None;
+    }
+    // SAFETY: contract.
     unsafe {
-        let colour = attachment(
-            f,
-            fbo,
-            GL_COLOR_ATTACHMENT0,
-            GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
-        );
-        let ours = |t: &Target| t.context == context && t.fbo == fbo;
-        if let Some(t) = targets.targets.iter_mut().find(|t| ours(t)) {
-            if colour as u32 == t.colour {
-                t.dirty = true;
-                return Some(eyes.of_target(t.colour, t.depth, t.depth_attachment));
+        if let Some(i) = targets
+            .stereo_at(context, fbo)
+            .filter(|&i| targets.stereo[i].stale)
+        {
+            let s = targets.stereo.swap_remove(i);
+            restore_program_objects(f, &s);
+        }
+        let (now, supported) = attached(f, fbo);
+        if let Some(i) = targets.stereo_at(context, fbo) {
+            let ours = |&(p, o): &(u32, Object)| {
+                targets
+                    .twin(o)
+                    .is_some_and(|t| now.contains(&(p, Object::Texture(t.array))))
+            };
+            if targets.stereo[i].points.iter().all(ours)
+                && now.len() == targets.stereo[i].points.len()
+            {
+                let s = &targets.stereo[i];
+                let a = targets.attachments(s, eyes);
+                let objects: Vec<Object> = s.points.iter().map(|&(_, o)| o).collect();
+                for t in targets
+                    .twins
+                    .iter_mut()
+                    .filter(|t| objects.contains(&t.object))
+                {
+                    t.dirty = true;
+                }
+                return Some(a);
             }
             // The program attached something else: its framebuffer now.
-            let gone = targets.targets.iter().position(ours).expect("found");
-            release(f, targets.targets.swap_remove(gone));
+            // Points still holding a twin's array get the program's object
+            // back.
+            let s = targets.stereo.swap_remove(i);
+            put_back(f, targets, &s, &now);
+            return eyes_of(targets, context, fbo, eyes, draw);
         }
-        if targets.mono.contains(&(context, fbo, colour as u32)) {
+        let window = (
+            level(f, eyes.colour(), GL_TEXTURE_WIDTH),
+            level(f, eyes.colour(), GL_TEXTURE_HEIGHT),
+        );
+        let known = targets
+            .looked
+            .iter()
+            .find(|l| l.context == context && l.fbo == fbo && l.attached == now)
+            .map(|l| l.structure);
+        let structure = match known {
+            Some(s) => s,
+            None => {
+                let s = structure(f, &now, supported, window);
+                targets
+                    .looked
+                    .retain(|l| (l.context, l.fbo) != (context, fbo));
+                targets.looked.push(Looked {
+                    context,
+                    fbo,
+                    attached: now.clone(),
+                    structure: s,
+                });
+                s
+            }
+        };
+        let wanted = match structure {
+            Structure::Unsupported => false,
+            Structure::Light => draw.samples_stereo || draw.from_stereo,
+            Structure::Plain => draw.samples_stereo || draw.from_stereo || draw.shifted,
+        };
+        if !wanted {
             return None;
         }
-        match stereoize(f, context, fbo, eyes) {
-            Some(mut t) => {
-                t.dirty = true;
-                let a = eyes.of_target(t.colour, t.depth, t.depth_attachment);
-                targets.targets.push(t);
+        match stereoize(f, targets, context, fbo, &now) {
+            Some(s) => {
+                targets
+                    .looked
+                    .retain(|l| (l.context, l.fbo) != (context, fbo));
+                let a = targets.attachments(&s, eyes);
+                targets.stereo.push(s);
                 Some(a)
             }
             None => {
-                targets.mono.retain(|&(c, b, _)| (c, b) != (context, fbo));
-                targets.mono.push((context, fbo, colour as u32));
+                if let Some(l) = targets
+                    .looked
+                    .iter_mut()
+                    .find(|l| l.context == context && l.fbo == fbo)
+                {
+                    l.structure = Structure::Unsupported;
+                }
                 None
             }
         }
     }
 }
 
-/// The eye arrays of `fbo` of `context` when it is a stereoized target
-/// already (to read from it eye by eye: a blit out of it), else None.
-/// `eyes`: the window's eyes (their API).
+/// The eyes of `fbo` of `context` when it has eyes already (to read from
+/// it eye by eye: a blit out of it), else None. `eyes`: the window's.
 pub fn known(
     targets: &Targets,
     context: usize,
     fbo: u32,
     eyes: &Attachments,
 ) -> Option<Attachments> {
-    targets
-        .targets
-        .iter()
-        .find(|t| t.context == context && t.fbo == fbo)
-        .map(|t| eyes.of_target(t.colour, t.depth, t.depth_attachment))
+    let i = targets.stereo_at(context, fbo)?;
+    Some(targets.attachments(&targets.stereo[i], eyes))
 }
 
-/// The size of `context`'s stereoized target `fbo` (None: not one).
+/// The size of `context`'s target `fbo` with eyes (None: not one).
 pub fn size(targets: &Targets, context: usize, fbo: u32) -> Option<(u32, u32)> {
-    targets
-        .targets
-        .iter()
-        .find(|t| t.context == context && t.fbo == fbo)
-        .map(|t| (t.width.max(0) as u32, t.height.max(0) as u32))
+    let s = &targets.stereo[targets.stereo_at(context, fbo)?];
+    s.points.iter().find_map(|&(_, o)| {
+        let t = targets.twin(o)?;
+        Some((t.shape.width.max(0) as u32, t.shape.height.max(0) as u32))
+    })
 }
 
-/// Before a draw of `context` into `drawing` (its draw framebuffer): the
-/// program's textures of the other targets drawn into since, given their
-/// left eye.
+/// Gives `fbo` eyes: every attached object a twin (made, or the one it
+/// has when its shape is still the object's), the arrays attached
+/// layered. None, with the program's objects attached again, where the
+/// framebuffer is then incomplete.
+unsafe fn stereoize(
+    f: &TargetFns,
+    targets: &mut Targets,
+    context: usize,
+    fbo: u32,
+    now: &[(u32, Object)],
+) -> Option<Stereo> {
+    // SAFETY: contract of the callers; objects made here are named by GL.
+    unsafe {
+        for &(_, o) in now {
+            let shape = shape(f, o)?;
+            match targets.twins.iter().position(|t| t.object == o) {
+                Some(i) if targets.twins[i].shape == shape => {}
+                found => {
+                    if let Some(i) = found {
+                        release(f, targets.twins.swap_remove(i));
+                    }
+                    targets.generation += 1;
+                    targets.twins.push(make_twin(f, o, shape)?);
+                }
+            }
+        }
+        let s = Stereo {
+            context,
+            fbo,
+            points: now.to_vec(),
+            stale: false,
+        };
+        for &(point, o) in now {
+            let array = targets.twin(o).expect("made above").array;
+            (f.framebuffer_texture)(fbo, point, array, 0);
+        }
+        if (f.check_framebuffer_status)(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE {
+            put_back(f, targets, &s, &[]);
+            return None;
+        }
+        for t in targets
+            .twins
+            .iter_mut()
+            .filter(|t| now.iter().any(|&(_, o)| o == t.object))
+        {
+            t.dirty = true;
+        }
+        Some(s)
+    }
+}
+
+/// A twin of `o` (module docs), both layers holding `o`'s level 0. None
+/// where the driver refuses (checked without raising a GL error: made
+/// storage is immutable, or has the size asked) or the format is one of
+/// no known layout.
+unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
+    let unsized_format = unsized_layout(shape.format);
+    // SAFETY: contract of the callers; names made here.
+    unsafe {
+        let mut t = Twin {
+            object: o,
+            shape,
+            array: 0,
+            right: 0,
+            view: unsized_format.is_none(),
+            dirty: false,
+        };
+        let (array_target, view_target) = if shape.samples > 0 {
+            (GL_TEXTURE_2D_MULTISAMPLE_ARRAY, GL_TEXTURE_2D_MULTISAMPLE)
+        } else {
+            (GL_TEXTURE_2D_ARRAY, GL_TEXTURE_2D)
+        };
+        match unsized_format {
+            None => {
+                (f.create_textures)(array_target, 1, &mut t.array);
+                if shape.samples > 0 {
+                    (f.texture_storage_3d_multisample)(
+                        t.array,
+                        shape.samples,
+                        shape.format,
+                        shape.width,
+                        shape.height,
+                        2,
+                        u8::from(shape.fixed_locations),
+                    );
+                } else {
+                    (f.texture_storage_3d)(
+                        t.array,
+                        shape.levels,
+                        shape.format,
+                        shape.width,
+                        shape.height,
+                        2,
+                    );
+                }
+                (f.gen_textures)(1, &mut t.right);
+                (f.texture_view)(
+                    t.right,
+                    view_target,
+                    t.array,
+                    shape.format,
+                    0,
+                    shape.levels as u32,
+                    1,
+                    1,
+                );
+                // A view made (no error raised) has immutable storage.
+                if texture_int(f, t.array, GL_TEXTURE_IMMUTABLE_FORMAT) == 0
+                    || texture_int(f, t.right, GL_TEXTURE_IMMUTABLE_FORMAT) == 0
+                {
+                    release(f, t);
+                    return None;
+                }
+            }
+            Some((format, kind)) if shape.samples == 0 => {
+                (f.create_textures)(GL_TEXTURE_2D_ARRAY, 1, &mut t.array);
+                (f.create_textures)(GL_TEXTURE_2D, 1, &mut t.right);
+                // Mutable storage is given through a binding: the active
+                // unit's and the unpack buffer's are put back.
+                let pbo = integer(f, GL_PIXEL_UNPACK_BUFFER_BINDING) as u32;
+                let was = [
+                    integer(f, GL_TEXTURE_BINDING_2D_ARRAY) as u32,
+                    integer(f, GL_TEXTURE_BINDING_2D) as u32,
+                ];
+                (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, 0);
+                (f.bind_texture)(GL_TEXTURE_2D_ARRAY, t.array);
+                (f.bind_texture)(GL_TEXTURE_2D, t.right);
+                for l in 0..shape.levels {
+                    let (w, h) = ((shape.width >> l).max(1), (shape.height >> l).max(1));
+                    let none = std::ptr::null();
+                    let internal = shape.format as i32;
+                    (f.tex_image_3d)(
+                        GL_TEXTURE_2D_ARRAY,
+                        l,
+                        internal,
+                        w,
+                        h,
+                        2,
+                        0,
+                        format,
+                        kind,
+                        none,
+                    );
+                    (f.tex_image_2d)(GL_TEXTURE_2D, l, internal, w, h, 0, format, kind, none);
+                }
+                (f.bind_texture)(GL_TEXTURE_2D_ARRAY, was[0]);
+                (f.bind_texture)(GL_TEXTURE_2D, was[1]);
+                (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, pbo);
+                for tex in [t.array, t.right] {
+                    (f.texture_parameteri)(tex, GL_TEXTURE_MAX_LEVEL, shape.levels - 1);
+                }
+                if level(f, t.array, GL_TEXTURE_WIDTH) != shape.width
+                    || level(f, t.right, GL_TEXTURE_WIDTH) != shape.width
+                {
+                    release(f, t);
+                    return None;
+                }
+            }
+            Some(_) => return None,
+        }
+        let (name, target) = source(o, &shape);
+        complete_for(f, o, || {
+            for layer in 0..2 {
+                (f.copy_image_sub_data)(
+                    name,
+                    target,
+                    0,
+                    0,
+                    0,
+                    0,
+                    t.array,
+                    array_target,
+                    0,
+                    0,
+                    0,
+                    layer,
+                    shape.width,
+                    shape.height,
+                    1,
+                );
+            }
+            if !t.view {
+                (f.copy_image_sub_data)(
+                    name,
+                    target,
+                    0,
+                    0,
+                    0,
+                    0,
+                    t.right,
+                    GL_TEXTURE_2D,
+                    0,
+                    0,
+                    0,
+                    0,
+                    shape.width,
+                    shape.height,
+                    1,
+                );
+            }
+        });
+        if let Object::Texture(tex) = o {
+            copy_sampling(f, tex, t.right);
+        }
+        Some(t)
+    }
+}
+
+/// The name and glCopyImageSubData target of a program object of `shape`.
+fn source(o: Object, shape: &Shape) -> (u32, u32) {
+    match o {
+        Object::Texture(t) if shape.samples > 0 => (t, GL_TEXTURE_2D_MULTISAMPLE),
+        Object::Texture(t) => (t, GL_TEXTURE_2D),
+        Object::Renderbuffer(rb) => (rb, GL_RENDERBUFFER as u32),
+    }
+}
+
+/// Runs `f` (a glCopyImageSubData to or from the program's texture)
+/// with the texture complete: Mesa copies only between complete textures,
+/// and a program's render texture with a mipmap filter has no mipmaps
+/// until it makes them (glGenerateMipmap after drawing). Its minification
+/// filter is made GL_LINEAR meanwhile (which needs the base level only)
+/// and put back after.
+unsafe fn complete_for(f: &TargetFns, o: Object, f_copy: impl FnOnce()) {
+    const GL_TEXTURE_MIN_FILTER: u32 = 0x2801;
+    const GL_LINEAR: i32 = 0x2601;
+    const GL_NEAREST: i32 = 0x2600;
+    let Object::Texture(t) = o else {
+        return f_copy();
+    };
+    // SAFETY: contract of the callers.
+    unsafe {
+        let min = texture_int(f, t, GL_TEXTURE_MIN_FILTER);
+        let mipmapped = min != GL_LINEAR && min != GL_NEAREST && min != 0;
+        if mipmapped {
+            (f.texture_parameteri)(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        }
+        f_copy();
+        if mipmapped {
+            (f.texture_parameteri)(t, GL_TEXTURE_MIN_FILTER, min);
+        }
+    }
+}
+
+/// The sampling state of the program's texture on its right view.
+unsafe fn copy_sampling(f: &TargetFns, texture: u32, right: u32) {
+    for p in SAMPLING {
+        let mut v = 0.0f32;
+        // SAFETY: contract of the callers; valid pnames of both.
+        unsafe {
+            (f.get_texture_parameterfv)(texture, p, &mut v);
+            (f.texture_parameterf)(right, p, v);
+        }
+    }
+}
+
+/// Attaches the program's objects of `s` again at the points that still
+/// hold their twins' arrays (`now`: what is attached; empty: every
+/// point).
+unsafe fn put_back(f: &TargetFns, targets: &Targets, s: &Stereo, now: &[(u32, Object)]) {
+    for &(point, o) in &s.points {
+        let array = targets.twin(o).map_or(0, |t| t.array);
+        if !now.is_empty() && !now.contains(&(point, Object::Texture(array))) {
+            continue;
+        }
+        // SAFETY: contract of the callers.
+        unsafe {
+            match o {
+                Object::Texture(t) => (f.framebuffer_texture)(s.fbo, point, t, 0),
+                Object::Renderbuffer(rb) => {
+                    (f.framebuffer_renderbuffer)(s.fbo, point, GL_RENDERBUFFER as u32, rb)
+                }
+            }
+        }
+    }
+}
+
+/// Deletes the layer's objects of `t`.
+unsafe fn release(f: &TargetFns, t: Twin) {
+    let names: Vec<u32> = [t.array, t.right].into_iter().filter(|&n| n != 0).collect();
+    // SAFETY: contract of the callers; names made here.
+    unsafe { (f.delete_textures)(names.len() as i32, names.as_ptr()) };
+}
+
+/// Before a draw of `context` into `drawing` (its draw framebuffer), and
+/// before anything else reads a texture (`drawing` 0): the program's
+/// objects whose twins were drawn into since get their left eye, but
+/// those of `drawing` itself.
 ///
 /// # Safety
 /// The program's context `context` is current on this thread.
@@ -259,324 +1081,337 @@ pub unsafe fn resolve(targets: &mut Targets, context: usize, drawing: u32) {
     let Some(f) = fns() else {
         return;
     };
-    let others = |t: &&mut Target| t.dirty && (t.context, t.fbo) != (context, drawing);
-    for t in targets.targets.iter_mut().filter(others) {
-        // SAFETY: contract; both are width × height of one format; the
-        // program's texture still exists (checked).
+    let busy: Vec<Object> = targets
+        .stereo_at(context, drawing)
+        .map(|i| targets.stereo[i].points.iter().map(|&(_, o)| o).collect())
+        .unwrap_or_default();
+    for t in targets
+        .twins
+        .iter_mut()
+        .filter(|t| t.dirty && !busy.contains(&t.object))
+    {
+        // SAFETY: contract; both are of one shape (checked against the
+        // object: a program that redefined it loses the twin at its next
+        // target decision, and is not written into meanwhile).
         unsafe {
-            if (f.is_texture)(t.texture) == 0 {
+            if shape(f, t.object) != Some(t.shape) {
                 continue;
             }
-            (f.copy_image_sub_data)(
-                t.colour,
-                GL_TEXTURE_2D_ARRAY,
-                0,
-                0,
-                0,
-                0,
-                t.texture,
-                GL_TEXTURE_2D,
-                0,
-                0,
-                0,
-                0,
-                t.width,
-                t.height,
-                1,
-            );
-            // The right eye's view samples as the program's texture does.
-            for p in [
-                GL_TEXTURE_MIN_FILTER,
-                GL_TEXTURE_MAG_FILTER,
-                GL_TEXTURE_WRAP_S,
-                GL_TEXTURE_WRAP_T,
-            ] {
-                let mut v = 0;
-                (f.get_texture_parameteriv)(t.texture, p, &mut v);
-                (f.texture_parameteri)(t.right, p, v);
+            let (name, target) = source(t.object, &t.shape);
+            let array_target = if t.shape.samples > 0 {
+                GL_TEXTURE_2D_MULTISAMPLE_ARRAY
+            } else {
+                GL_TEXTURE_2D_ARRAY
+            };
+            complete_for(f, t.object, || {
+                (f.copy_image_sub_data)(
+                    t.array,
+                    array_target,
+                    0,
+                    0,
+                    0,
+                    0,
+                    name,
+                    target,
+                    0,
+                    0,
+                    0,
+                    0,
+                    t.shape.width,
+                    t.shape.height,
+                    1,
+                )
+            });
+            if !t.view {
+                (f.copy_image_sub_data)(
+                    t.array,
+                    array_target,
+                    0,
+                    0,
+                    0,
+                    1,
+                    t.right,
+                    GL_TEXTURE_2D,
+                    0,
+                    0,
+                    0,
+                    0,
+                    t.shape.width,
+                    t.shape.height,
+                    1,
+                );
+            }
+            if let Object::Texture(tex) = t.object {
+                copy_sampling(f, tex, t.right);
             }
         }
         t.dirty = false;
     }
 }
 
-/// Texture units whose 2D binding was exchanged for an eye: put back by
-/// [`Bound::restore`].
-#[derive(Debug, Default)]
-pub struct Bound {
-    units: Vec<(u32, u32)>,
-    active: u32,
-}
-
-/// For `eye`'s draw: the units holding a target's texture hold that eye's
-/// copy (the right eye's view; the left eye's is the program's texture).
+/// After the program's glGenerateMipmap of `texture`: its right view
+/// gets its mipmaps too (made from layer 1). The caller resolved it
+/// first, so the program's own mipmaps are the left eye's.
 ///
 /// # Safety
 /// The program's context is current on this thread.
-pub unsafe fn bind_eye(targets: &Targets, eye: Eye) -> Bound {
-    let mut bound = Bound::default();
+pub unsafe fn mipmaps_made(targets: &Targets, texture: u32) {
     let Some(f) = fns() else {
-        return bound;
+        return;
     };
-    if eye == Eye::Left || targets.targets.is_empty() {
-        return bound;
-    }
-    // SAFETY: contract; one value per query; units below the maximum.
-    unsafe {
-        let (mut active, mut max) = (0, 0);
-        (f.get_integerv)(GL_ACTIVE_TEXTURE, &mut active);
-        (f.get_integerv)(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &mut max);
-        bound.active = active as u32;
-        for unit in 0..max.clamp(0, UNITS) as u32 {
-            (f.active_texture)(GL_TEXTURE0 + unit);
-            let mut name = 0;
-            (f.get_integerv)(GL_TEXTURE_BINDING_2D, &mut name);
-            if let Some(t) = targets.targets.iter().find(|t| t.texture == name as u32) {
-                (f.bind_texture)(GL_TEXTURE_2D, t.right);
-                bound.units.push((unit, name as u32));
-            }
-        }
-        (f.active_texture)(bound.active);
-    }
-    bound
-}
-
-impl Bound {
-    /// Puts the program's bindings back.
-    ///
-    /// # Safety
-    /// The context of [`bind_eye`] is current on this thread.
-    pub unsafe fn restore(self) {
-        let Some(f) = fns() else {
-            return;
-        };
-        if self.units.is_empty() {
-            return;
-        }
-        // SAFETY: contract.
-        unsafe {
-            for (unit, name) in self.units {
-                (f.active_texture)(GL_TEXTURE0 + unit);
-                (f.bind_texture)(GL_TEXTURE_2D, name);
-            }
-            (f.active_texture)(self.active);
+    if let Some(t) = targets.twin(Object::Texture(texture)) {
+        if t.shape.levels > 1 && t.shape.samples == 0 {
+            // SAFETY: contract; the array (its view) or the right texture
+            // is complete at level 0.
+            unsafe { (f.generate_texture_mipmap)(if t.view { t.array } else { t.right }) };
         }
     }
 }
 
-unsafe fn attachment(f: &TargetFns, fbo: u32, point: u32, pname: u32) -> i32 {
-    let mut v = 0;
-    // SAFETY: contract of the callers; one value.
-    unsafe { (f.get_framebuffer_attachment_parameteriv)(fbo, point, pname, &mut v) };
-    v
-}
-
-unsafe fn level(f: &TargetFns, texture: u32, pname: u32) -> i32 {
-    let mut v = 0;
-    // SAFETY: as above.
-    unsafe { (f.get_texture_level_parameteriv)(texture, 0, pname, &mut v) };
-    v
-}
-
-unsafe fn renderbuffer(f: &TargetFns, rb: u32, pname: u32) -> i32 {
-    let mut v = 0;
-    // SAFETY: as above.
-    unsafe { (f.get_renderbuffer_parameteriv)(rb, pname, &mut v) };
-    v
-}
-
-/// A sized format for an array of the texture's `format`.
-fn sized(format: i32) -> u32 {
-    match format {
-        GL_RGBA => GL_RGBA8,
-        GL_RGB => GL_RGB8,
-        GL_DEPTH_COMPONENT => GL_DEPTH_COMPONENT24,
-        GL_DEPTH_STENCIL => GL_DEPTH24_STENCIL8,
-        f => f as u32,
+/// `objects` lose their eyes (the program deleted them, or gave one new
+/// contents outside draws): their twins go, and the targets that had
+/// them are the program's again — at once in `context` (current on this
+/// thread), at their context's next draw into them elsewhere.
+///
+/// # Safety
+/// The program's context `context` is current on this thread.
+pub unsafe fn forget(targets: &mut Targets, context: usize, objects: &[Object]) {
+    let Some(f) = fns() else {
+        return;
+    };
+    if !targets.twins.iter().any(|t| objects.contains(&t.object)) {
+        return;
     }
-}
-
-/// Stereoizes `fbo` when it is a render target of the window's size
-/// (module docs); None when it stays mono. Every query is of an object
-/// the framebuffer names, so no call raises a GL error the program would
-/// see.
-unsafe fn stereoize(f: &TargetFns, context: usize, fbo: u32, eyes: &Attachments) -> Option<Target> {
-    // SAFETY: contract of the callers; one value per query; objects made
-    // here are named by GL.
-    unsafe {
-        let at = |point, pname| attachment(f, fbo, point, pname);
-        if fbo == 0 || at(GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_TEXTURE
-        {
-            return None;
-        }
-        let texture = at(GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME) as u32;
-        if at(
-            GL_COLOR_ATTACHMENT0,
-            GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL,
-        ) != 0
-            || at(GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_LAYERED) != 0
-            || at(
-                GL_COLOR_ATTACHMENT0,
-                GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER,
-            ) != 0
-        {
-            return None;
-        }
-        for i in 1..4 {
-            if at(
-                GL_COLOR_ATTACHMENT0 + i,
-                GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
-            ) != GL_NONE
-            {
-                return None;
-            }
-        }
-        // A 2D texture: not a cube map's face, not an array's layer (above),
-        // one deep. (GL_TEXTURE_TARGET is not asked: Mesa answers it only
-        // in 4.5 core contexts, else with GL_INVALID_ENUM.)
-        if at(
-            GL_COLOR_ATTACHMENT0,
-            GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE,
-        ) != 0
-            || level(f, texture, GL_TEXTURE_DEPTH) != 1
-            || level(f, texture, GL_TEXTURE_SAMPLES) > 1
-        {
-            return None;
-        }
-        let (width, height) = (
-            level(f, texture, GL_TEXTURE_WIDTH),
-            level(f, texture, GL_TEXTURE_HEIGHT),
-        );
-        let window = (
-            level(f, eyes.colour(), GL_TEXTURE_WIDTH),
-            level(f, eyes.colour(), GL_TEXTURE_HEIGHT),
-        );
-        if width < window.0 || height < window.1 || width <= 0 || height <= 0 {
-            return None;
-        }
-        let format = sized(level(f, texture, GL_TEXTURE_INTERNAL_FORMAT));
-        // Depth and stencil: none, depth alone, or one packed buffer.
-        let kind = |point| at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE);
-        let name = |point| at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME) as u32;
-        let (depth_kind, stencil_kind) = (kind(GL_DEPTH_ATTACHMENT), kind(GL_STENCIL_ATTACHMENT));
-        let depth_of_program = match (depth_kind, stencil_kind) {
-            (GL_NONE, GL_NONE) => None,
-            (d, GL_NONE) => Some((GL_DEPTH_ATTACHMENT, d, name(GL_DEPTH_ATTACHMENT))),
-            (d, s) if d == s && name(GL_DEPTH_ATTACHMENT) == name(GL_STENCIL_ATTACHMENT) => {
-                Some((GL_DEPTH_STENCIL_ATTACHMENT, d, name(GL_DEPTH_ATTACHMENT)))
-            }
-            _ => return None,
-        };
-        let depth_format = match depth_of_program {
-            None => None,
-            Some((_, GL_RENDERBUFFER, rb)) => {
-                if renderbuffer(f, rb, GL_RENDERBUFFER_SAMPLES) > 0
-                    || renderbuffer(f, rb, GL_RENDERBUFFER_WIDTH) < width
-                    || renderbuffer(f, rb, GL_RENDERBUFFER_HEIGHT) < height
-                {
-                    return None;
-                }
-                Some(sized(renderbuffer(f, rb, GL_RENDERBUFFER_INTERNAL_FORMAT)))
-            }
-            Some((_, GL_TEXTURE, tex)) => {
-                if level(f, tex, GL_TEXTURE_SAMPLES) > 1 {
-                    return None;
-                }
-                Some(sized(level(f, tex, GL_TEXTURE_INTERNAL_FORMAT)))
-            }
-            Some(_) => return None,
-        };
-        let mut t = Target {
-            context,
-            fbo,
-            texture,
-            depth_of_program,
-            colour: 0,
-            depth: 0,
-            depth_attachment: depth_of_program.map_or(GL_DEPTH_ATTACHMENT, |d| d.0),
-            right: 0,
-            width,
-            height,
-            dirty: false,
-        };
-        (f.create_textures)(GL_TEXTURE_2D_ARRAY, 1, &mut t.colour);
-        (f.texture_storage_3d)(t.colour, 1, format, width, height, 2);
-        (f.gen_textures)(1, &mut t.right);
-        (f.texture_view)(t.right, GL_TEXTURE_2D, t.colour, format, 0, 1, 1, 1);
-        if let Some(df) = depth_format {
-            (f.create_textures)(GL_TEXTURE_2D_ARRAY, 1, &mut t.depth);
-            (f.texture_storage_3d)(t.depth, 1, df, width, height, 2);
-        }
-        (f.framebuffer_texture)(fbo, GL_COLOR_ATTACHMENT0, t.colour, 0);
-        if t.depth != 0 {
-            (f.framebuffer_texture)(fbo, t.depth_attachment, t.depth, 0);
-        }
-        if (f.check_framebuffer_status)(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE {
-            put_back(f, &t);
-            release(f, t);
-            return None;
-        }
-        // Both eyes start from what the program's buffers hold: a clear
-        // (glClear is no draw, so it went to them) or anything else made
-        // before this first draw.
-        let copies = [(texture, GL_TEXTURE_2D, t.colour)].into_iter().chain(
-            depth_of_program
-                .filter(|_| t.depth != 0)
-                .map(|(_, kind, name)| {
-                    let target = if kind == GL_RENDERBUFFER {
-                        GL_RENDERBUFFER as u32
-                    } else {
-                        GL_TEXTURE_2D
-                    };
-                    (name, target, t.depth)
-                }),
-        );
-        for (source, target, array) in copies {
-            for layer in 0..2 {
-                (f.copy_image_sub_data)(
-                    source,
-                    target,
-                    0,
-                    0,
-                    0,
-                    0,
-                    array,
-                    GL_TEXTURE_2D_ARRAY,
-                    0,
-                    0,
-                    0,
-                    layer,
-                    width,
-                    height,
-                    1,
-                );
-            }
-        }
-        Some(t)
-    }
-}
-
-/// Attaches the program's own texture and depth/stencil again.
-unsafe fn put_back(f: &TargetFns, t: &Target) {
-    // SAFETY: contract of the callers.
-    unsafe {
-        (f.framebuffer_texture)(t.fbo, GL_COLOR_ATTACHMENT0, t.texture, 0);
-        match t.depth_of_program {
-            Some((point, GL_RENDERBUFFER, rb)) => {
-                (f.framebuffer_renderbuffer)(t.fbo, point, GL_RENDERBUFFER as u32, rb)
-            }
-            Some((point, _, tex)) => (f.framebuffer_texture)(t.fbo, point, tex, 0),
-            None => {}
+    let mut kept = Vec::new();
+    for s in std::mem::take(&mut targets.stereo) {
+        if !s.points.iter().any(|(_, o)| objects.contains(o)) {
+            kept.push(s);
+        } else if s.context == context {
+            // SAFETY: contract.
+            unsafe { restore_program_objects(f, &s) };
+        } else {
+            kept.push(Stereo { stale: true, ..s });
         }
     }
-}
-
-/// Deletes the layer's objects of `t`.
-unsafe fn release(f: &TargetFns, t: Target) {
-    let names: Vec<u32> = [t.colour, t.depth, t.right]
+    targets.stereo = kept;
+    targets
+        .looked
+        .retain(|l| !l.attached.iter().any(|(_, o)| objects.contains(o)));
+    let (gone, kept): (Vec<Twin>, Vec<Twin>) = std::mem::take(&mut targets.twins)
         .into_iter()
-        .filter(|&n| n != 0)
-        .collect();
-    // SAFETY: contract of the callers; names made here.
-    unsafe { (f.delete_textures)(names.len() as i32, names.as_ptr()) };
+        .partition(|t| objects.contains(&t.object));
+    targets.twins = kept;
+    targets.generation += 1;
+    for t in gone {
+        // SAFETY: contract.
+        unsafe { release(f, t) };
+    }
+}
+
+/// Attaches the program's own objects of `s` again (detaching those it
+/// deleted since, as GL detached them where it could).
+unsafe fn restore_program_objects(f: &TargetFns, s: &Stereo) {
+    for &(point, o) in &s.points {
+        // SAFETY: contract of the callers.
+        unsafe {
+            match o {
+                Object::Texture(t) => {
+                    let t = if (f.is_texture)(t) != 0 { t } else { 0 };
+                    (f.framebuffer_texture)(s.fbo, point, t, 0)
+                }
+                Object::Renderbuffer(rb) => {
+                    let rb = if (f.is_renderbuffer)(rb) != 0 { rb } else { 0 };
+                    (f.framebuffer_renderbuffer)(s.fbo, point, GL_RENDERBUFFER as u32, rb)
+                }
+            }
+        }
+    }
+}
+
+/// After the program's glCopyTex(Sub)Image2D into level 0 of `texture`
+/// (rectangle `w` × `h` at (`xoff`, `yoff`)) from (`x`, `y`) of a read
+/// framebuffer with eyes, `source` (the copy read its left eye): the
+/// texture gets eyes, its right eye copied from the source's right eye.
+///
+/// # Safety
+/// The program's context `context` is current on this thread, with the
+/// framebuffer of `source` bound for reading.
+pub unsafe fn copied_from_eyes(
+    targets: &mut Targets,
+    context: usize,
+    texture: u32,
+    source: &Attachments,
+    (xoff, yoff, x, y, w, h): (i32, i32, i32, i32, i32, i32),
+) {
+    let Some(f) = fns() else {
+        return;
+    };
+    let o = Object::Texture(texture);
+    // SAFETY: contract; names made here.
+    unsafe {
+        let Some(shape) = shape(f, o).filter(|s| s.samples == 0) else {
+            return forget(targets, context, &[o]);
+        };
+        match targets.twins.iter().position(|t| t.object == o) {
+            Some(i) if targets.twins[i].shape == shape => {
+                // Layer 0 takes what the program's copy wrote.
+                let t = &targets.twins[i];
+                complete_for(f, o, || {
+                    (f.copy_image_sub_data)(
+                        texture,
+                        GL_TEXTURE_2D,
+                        0,
+                        xoff,
+                        yoff,
+                        0,
+                        t.array,
+                        GL_TEXTURE_2D_ARRAY,
+                        0,
+                        xoff,
+                        yoff,
+                        0,
+                        w,
+                        h,
+                        1,
+                    )
+                });
+            }
+            found => {
+                if found.is_some() {
+                    forget(targets, context, &[o]);
+                }
+                let Some(t) = make_twin(f, o, shape) else {
+                    return;
+                };
+                targets.twins.push(t);
+                targets.generation += 1;
+            }
+        }
+        let t = targets.twin(o).expect("made above");
+        source.attach(GL_READ_FRAMEBUFFER, Some(Eye::Right));
+        (f.copy_texture_sub_image_2d)(t.right, 0, xoff, yoff, x, y, w, h);
+        source.attach(GL_READ_FRAMEBUFFER, None);
+        if !t.view {
+            (f.copy_image_sub_data)(
+                t.right,
+                GL_TEXTURE_2D,
+                0,
+                xoff,
+                yoff,
+                0,
+                t.array,
+                GL_TEXTURE_2D_ARRAY,
+                0,
+                xoff,
+                yoff,
+                1,
+                w,
+                h,
+                1,
+            );
+        }
+    }
+}
+
+/// The program deleted framebuffers `fbos` of `context`.
+pub fn framebuffers_deleted(targets: &mut Targets, context: usize, fbos: &[u32]) {
+    targets
+        .stereo
+        .retain(|s| s.context != context || !fbos.contains(&s.fbo));
+    targets
+        .looked
+        .retain(|l| l.context != context || !fbos.contains(&l.fbo));
+}
+
+/// A copy of an eye's depth, kept by automatic convergence: a later
+/// draw of the frame (a full-screen pass with depth writes over the
+/// scene) may overwrite the depth it measures, so the left eye's depth is
+/// copied when such a draw comes ([`copy_left_depth`]).
+#[derive(Debug, Default)]
+pub struct DepthCopy {
+    /// A 2D texture (0: none yet).
+    pub texture: u32,
+    format: u32,
+    size: (i32, i32),
+}
+
+/// Copies layer 0 (the left eye) of the depth array `array` into `copy`
+/// (made, or made again for another size or format); false where it
+/// cannot be.
+///
+/// # Safety
+/// The program's context is current on this thread; `array` is a 2D
+/// array texture of its share group (the window's eyes' or a twin's).
+pub unsafe fn copy_left_depth(array: u32, copy: &mut DepthCopy) -> bool {
+    let Some(f) = fns() else {
+        return false;
+    };
+    // SAFETY: contract; names made here.
+    unsafe {
+        let format = level(f, array, GL_TEXTURE_INTERNAL_FORMAT) as u32;
+        let size = (
+            level(f, array, GL_TEXTURE_WIDTH),
+            level(f, array, GL_TEXTURE_HEIGHT),
+        );
+        if size.0 <= 0 || size.1 <= 0 {
+            return false;
+        }
+        if copy.texture == 0 || (copy.format, copy.size) != (format, size) {
+            if copy.texture != 0 {
+                (f.delete_textures)(1, &copy.texture);
+            }
+            *copy = DepthCopy {
+                texture: 0,
+                format,
+                size,
+            };
+            (f.create_textures)(GL_TEXTURE_2D, 1, &mut copy.texture);
+            match unsized_layout(format) {
+                None => (f.texture_storage_2d)(copy.texture, 1, format, size.0, size.1),
+                Some((layout, kind)) => {
+                    let pbo = integer(f, GL_PIXEL_UNPACK_BUFFER_BINDING) as u32;
+                    let was = integer(f, GL_TEXTURE_BINDING_2D) as u32;
+                    (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, 0);
+                    (f.bind_texture)(GL_TEXTURE_2D, copy.texture);
+                    let none = std::ptr::null();
+                    (f.tex_image_2d)(
+                        GL_TEXTURE_2D,
+                        0,
+                        format as i32,
+                        size.0,
+                        size.1,
+                        0,
+                        layout,
+                        kind,
+                        none,
+                    );
+                    (f.bind_texture)(GL_TEXTURE_2D, was);
+                    (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, pbo);
+                }
+            }
+            if level(f, copy.texture, GL_TEXTURE_WIDTH) != size.0 {
+                (f.delete_textures)(1, &copy.texture);
+                copy.texture = 0;
+                return false;
+            }
+        }
+        (f.copy_image_sub_data)(
+            array,
+            GL_TEXTURE_2D_ARRAY,
+            0,
+            0,
+            0,
+            0,
+            copy.texture,
+            GL_TEXTURE_2D,
+            0,
+            0,
+            0,
+            0,
+            size.0,
+            size.1,
+            1,
+        );
+        true
+    }
 }

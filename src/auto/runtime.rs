@@ -54,7 +54,7 @@ use std::sync::{Mutex, OnceLock};
 use glam::DMat4;
 
 use crate::auto::call::{Call, Returned};
-use crate::auto::converge::{self, Perspective};
+use crate::auto::converge::{self, Perspective, Viewport};
 use crate::auto::entry_points::Family;
 use crate::auto::eyes::{Attachments, layer};
 use crate::auto::fixed;
@@ -62,7 +62,7 @@ use crate::auto::gl_fns;
 use crate::auto::host::{self, Host};
 use crate::auto::link::{self, LinkOutcome};
 use crate::auto::live;
-use crate::auto::render_targets::{self, Targets};
+use crate::auto::render_targets::{self, Draw, Sampled, Targets};
 use crate::auto::standin::{self, FixedVertexState, Lighting};
 use crate::auto::vertex::LayerWrite;
 use crate::math::Eye;
@@ -129,6 +129,8 @@ const GL_TRANSFORM_FEEDBACK_PAUSED: u32 = 0x8E23;
 const GL_TRANSFORM_FEEDBACK_ACTIVE: u32 = 0x8E24;
 const GL_DEPTH_CLEAR_VALUE: u32 = 0x0B73;
 const GL_LINK_STATUS: u32 = 0x8B82;
+const GL_TEXTURE_2D_TARGET: u32 = 0x0DE1;
+const GL_TEXTURE_BINDING_2D_PNAME: u32 = 0x8069;
 
 gl_fns! {
     /// The GL functions of automatic stereo at run time, below the layer.
@@ -246,30 +248,40 @@ pub struct AutoState {
     /// The program compiles a display list: (list, convert to execute at
     /// glEndList).
     compiling: Option<(u32, bool)>,
-    /// The last perspective projection the program uploaded as a uniform
-    /// matrix ([`crate::auto::converge`]).
-    uploaded: Option<Perspective>,
-    /// The last perspective fixed-function projection a draw of a
-    /// measured frame used.
-    fixed: Option<Perspective>,
-    /// This frame is not measured: fixed-function draws leave the
-    /// projection unread.
+    /// The last perspective matrix the program uploaded to each of its
+    /// programs as a uniform ([`crate::auto::converge`]): what a draw
+    /// with that program projects with. (A program that never uploaded
+    /// one draws what automatic convergence cannot map back to distance:
+    /// a full-screen pass, an orthographic overlay.)
+    uploads: Vec<(u32, Perspective)>,
+    /// This frame is not measured: draws leave their projection unread.
     unmeasured: bool,
     /// The program has begun transform feedback: draws check whether it
     /// is capturing.
     feedback: bool,
-    /// A draw reached the window's eyes since the last present: their
-    /// depth holds this frame's scene (a program that draws off screen
-    /// and blits leaves it unwritten, and is not measured); with the
-    /// perspective uploaded last before such a draw.
-    window_drawn: Option<Option<Perspective>>,
-    /// The stereoized render target a draw reached last since the last
-    /// present (its arrays and size, and the perspective uploaded last
-    /// before such a draw): where automatic convergence measures a frame
-    /// that left the window's eyes undrawn.
-    target_drawn: Option<(Attachments, (u32, u32), Option<Perspective>)>,
+    /// A perspective draw reached the window's eyes this measured frame:
+    /// their depth holds its scene, drawn with this projection (a program
+    /// that draws off screen and then only passes a picture through the
+    /// window leaves none, and is measured in its target).
+    window_drawn: Option<(Perspective, Viewport)>,
+    /// The render target with eyes and depth a perspective draw reached
+    /// last this measured frame (its arrays and size, and the draw's
+    /// projection): where automatic convergence measures a frame whose
+    /// scene is not in the window's eyes.
+    target_drawn: Option<(Attachments, (u32, u32), Perspective, Viewport)>,
     /// Automatic convergence's buffers.
     pub measure: converge::Scratch,
+    /// The left eye's depth of the window's eyes and of the measured
+    /// target, copied when a draw that is not the scene's (a full-screen
+    /// pass with depth writes, an overlay) came into them after the
+    /// scene on a measured frame; `depth_copied` says which copy holds
+    /// the frame's scene ([`render_targets::copy_left_depth`]).
+    depth_copies: [render_targets::DepthCopy; 2],
+    depth_copied: [bool; 2],
+    /// The texture units holding textures with eyes, as last scanned, and
+    /// the twins' generation then; None: to be scanned again (a binding
+    /// changed: the texture commands, glPopAttrib, a display list).
+    sampled: Option<(u64, Sampled)>,
     /// The program's counting queries active now ([`Counting`]).
     queries: Vec<Counting>,
     /// Ended counting queries that have segments: (the program's name,
@@ -367,6 +379,31 @@ impl AutoState {
     /// fixed-function draw.
     pub fn forget_enables(&mut self) {
         self.fixed_enables = None;
+        self.sampled = None;
+    }
+
+    /// The texture bindings may have changed: scan them again at the
+    /// next draw.
+    pub fn forget_bindings(&mut self) {
+        self.sampled = None;
+    }
+
+    /// The units holding textures with eyes now ([`render_targets::sampled`],
+    /// scanned again only after a binding or the set of twins changed).
+    ///
+    /// # Safety
+    /// The program's context is current on this thread.
+    unsafe fn sampled(&mut self, targets: &Targets) -> Sampled {
+        let generation = targets.generation();
+        match &self.sampled {
+            Some((g, s)) if *g == generation => s.clone(),
+            _ => {
+                // SAFETY: contract.
+                let s = unsafe { render_targets::sampled(targets) };
+                self.sampled = Some((generation, s.clone()));
+                s
+            }
+        }
     }
 
     /// The program's NV_3dvision_settings state (cutoff, method).
@@ -618,6 +655,23 @@ unsafe fn standin_program(t: &Tables, st: &mut AutoState, state: FixedVertexStat
     }
 }
 
+/// Whether a draw (`name`) now has its vertices moved per eye: fixed
+/// function (the stand-in, or the slow path), a program whose last
+/// vertex stage was rewritten, a display list (whatever it holds).
+///
+/// # Safety
+/// The program's context is current (callers).
+unsafe fn shifted(f: &AutoFns, group: u64, name: &str) -> bool {
+    if name.starts_with("glCallList") {
+        return true;
+    }
+    // SAFETY: contract.
+    match unsafe { vertex_program(f) } {
+        None => true,
+        Some((p, _)) => location_of(group, p).is_some(),
+    }
+}
+
 /// How a draw of `kind` reaches the eyes now. `lists`: a display list is
 /// called (whatever it holds: the slow path).
 unsafe fn choose(
@@ -631,15 +685,6 @@ unsafe fn choose(
     // SAFETY: the program's context is current (callers).
     unsafe {
         let program = vertex_program(f);
-        if program.is_none() && !st.unmeasured && live::convergence().is_none() {
-            // Automatic convergence measures this frame: the projection
-            // its fixed-function draws use.
-            let mut m = [0.0f64; 16];
-            (f.get_doublev)(GL_PROJECTION_MATRIX, m.as_mut_ptr());
-            if let Some(p) = Perspective::from_matrix(&m) {
-                st.fixed = Some(p);
-            }
-        }
         let target = program.and_then(|(p, separate)| {
             let location = location_of(cur.group(), p)?;
             Some(Target {
@@ -732,7 +777,7 @@ unsafe fn eyes(
     path: Path,
     settings: &StereoSettings,
     layered: &Attachments,
-    targets: &Targets,
+    sampled: &Sampled,
     restore: bool,
     queries: &mut [Counting],
     draw: &mut dyn FnMut(),
@@ -757,7 +802,7 @@ unsafe fn eyes(
                         pause_counting(f, queries, |_| true);
                     }
                     set_uniform(f, target, eye_value(settings, Some(eye), true));
-                    let bound = render_targets::bind_eye(targets, eye);
+                    let bound = render_targets::bind_eye(sampled, eye);
                     draw();
                     bound.restore();
                 }
@@ -789,7 +834,7 @@ unsafe fn eyes(
                     if let Some(target) = target {
                         set_uniform(f, target, eye_value(settings, Some(eye), false));
                     }
-                    let bound = render_targets::bind_eye(targets, eye);
+                    let bound = render_targets::bind_eye(sampled, eye);
                     draw();
                     bound.restore();
                 }
@@ -838,6 +883,16 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
             cur.with_auto(|st, _| st.forget_enables());
             draw()
         }
+        Family::Texture => {
+            cur.with_auto(|st, _| st.forget_bindings());
+            draw()
+        }
+        // SAFETY: the program's context is current on this thread.
+        Family::TextureData => unsafe { texture_data(t, cur, call, draw) },
+        // SAFETY: as above.
+        Family::TextureWrite => unsafe { texture_write(t, cur, call, draw) },
+        // SAFETY: as above.
+        Family::Read => unsafe { read_call(t, cur, call, draw) },
         Family::SideEffect => {
             if call.name.starts_with("glBeginTransformFeedback") {
                 cur.with_auto(|st, _| st.feedback = true);
@@ -862,6 +917,201 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
         }
         _ => draw(),
     }
+}
+
+/// A command that reads a texture's contents outside draws, or makes new
+/// contents from them ([`Family::TextureData`]): textures with eyes get
+/// their left eye first; after glGenerateMipmap of one, its right view
+/// gets mipmaps too.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn texture_data<R: Returned>(
+    t: &Tables,
+    cur: &impl Host,
+    call: Call,
+    draw: impl Fn() -> R,
+) -> R {
+    let context = cur.context();
+    render_targets::with_group(cur.group(), |targets| {
+        // SAFETY: contract.
+        unsafe {
+            render_targets::resolve(targets, context, 0);
+            let r = draw();
+            let texture = match call.name {
+                "glGenerateMipmap" | "glGenerateMipmapEXT" => match call.u32(0) {
+                    GL_TEXTURE_2D_TARGET => {
+                        Some(integer(&t.gl, GL_TEXTURE_BINDING_2D_PNAME) as u32)
+                    }
+                    _ => None,
+                },
+                "glGenerateTextureMipmap" | "glGenerateTextureMipmapEXT" => Some(call.u32(0)),
+                _ => None,
+            };
+            if let Some(texture) = texture {
+                render_targets::mipmaps_made(targets, texture);
+            }
+            // glCopyImageSubData wrote its destination (arguments 6, 7).
+            if call.name.starts_with("glCopyImageSubData") {
+                let o = match call.u32(7) {
+                    0x8D41 => render_targets::Object::Renderbuffer(call.u32(6)),
+                    _ => render_targets::Object::Texture(call.u32(6)),
+                };
+                render_targets::forget(targets, context, &[o]);
+            }
+            r
+        }
+    })
+}
+
+/// The texture a command of the texture families writes or reads: its
+/// first argument for the direct-state-access forms (glTexture*,
+/// glCompressedTexture*, glClearTex*), else the 2D (or 2D multisample)
+/// texture bound to its target on the active unit; None for other
+/// targets.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn texture_of(f: &AutoFns, call: &Call) -> Option<u32> {
+    const GL_TEXTURE_2D_MULTISAMPLE: u32 = 0x9100;
+    const GL_TEXTURE_BINDING_2D_MULTISAMPLE: u32 = 0x9104;
+    let n = call.name;
+    if n.starts_with("glTexture")
+        || n.starts_with("glCompressedTexture")
+        || n.starts_with("glClearTex")
+        || n.starts_with("glCopyTexture")
+    {
+        return Some(call.u32(0));
+    }
+    // SAFETY: contract; one value.
+    unsafe {
+        match call.u32(0) {
+            GL_TEXTURE_2D_TARGET => Some(integer(f, GL_TEXTURE_BINDING_2D_PNAME) as u32),
+            GL_TEXTURE_2D_MULTISAMPLE => Some(integer(f, GL_TEXTURE_BINDING_2D_MULTISAMPLE) as u32),
+            _ => None,
+        }
+    }
+}
+
+/// A command that gives a texture new contents outside draws
+/// ([`Family::TextureWrite`]): a texture with eyes is one picture again.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn texture_write<R: Returned>(
+    t: &Tables,
+    cur: &impl Host,
+    call: Call,
+    draw: impl Fn() -> R,
+) -> R {
+    let r = draw();
+    // SAFETY: contract.
+    if let Some(texture) = unsafe { texture_of(&t.gl, &call) }.filter(|&n| n != 0) {
+        let context = cur.context();
+        render_targets::with_group(cur.group(), |targets| unsafe {
+            render_targets::forget(
+                targets,
+                context,
+                &[render_targets::Object::Texture(texture)],
+            )
+        });
+    }
+    r
+}
+
+/// glCopyTex(Sub)Image2D and glCopyTextureSubImage2D ([`Family::Read`]):
+/// the program's copy reads the left eye of a read framebuffer with
+/// eyes (as a mono program's reads do); the texture then gets eyes, its
+/// right eye copied from the source's right eye. A copy from a mono
+/// source into a texture with eyes makes it one picture again. Other
+/// reads (glReadPixels: the left eye) as they are.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn read_call<R: Returned>(
+    t: &Tables,
+    cur: &impl Host,
+    call: Call,
+    draw: impl Fn() -> R,
+) -> R {
+    let name = call.name.trim_end_matches("EXT");
+    // (x offset, y offset, x, y, width, height) argument positions.
+    let region = match name {
+        "glCopyTexSubImage2D" | "glCopyTextureSubImage2D" => {
+            [Some(2), Some(3), Some(4), Some(5), Some(6), Some(7)]
+        }
+        "glCopyTexImage2D" => [None, None, Some(3), Some(4), Some(5), Some(6)],
+        _ => return draw(),
+    };
+    if call.u32(1) != 0 {
+        // Not level 0: the texture is one picture.
+        // SAFETY: contract.
+        return unsafe { texture_write(t, cur, call, draw) };
+    }
+    let f = &t.gl;
+    let (context, group) = (cur.context(), cur.group());
+    cur.with_auto(|_, eyes| {
+        let Some((window_fbo, window_eyes)) = eyes else {
+            return draw();
+        };
+        render_targets::with_group(group, |targets| {
+            // SAFETY: contract.
+            unsafe {
+                render_targets::resolve(targets, context, 0);
+                let r = draw();
+                let Some(texture) = texture_of(f, &call).filter(|&n| n != 0) else {
+                    return r;
+                };
+                let read = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32;
+                let source = if read == window_fbo {
+                    Some(window_eyes)
+                } else {
+                    render_targets::known(targets, context, read, &window_eyes)
+                };
+                let arg = |i: Option<usize>| i.map_or(0, |i| call.u32(i) as i32);
+                let rect = (
+                    arg(region[0]),
+                    arg(region[1]),
+                    arg(region[2]),
+                    arg(region[3]),
+                    arg(region[4]),
+                    arg(region[5]),
+                );
+                match source {
+                    Some(s) => {
+                        render_targets::copied_from_eyes(targets, context, texture, &s, rect)
+                    }
+                    None => render_targets::forget(
+                        targets,
+                        context,
+                        &[render_targets::Object::Texture(texture)],
+                    ),
+                }
+                r
+            }
+        })
+    })
+}
+
+/// The program deleted textures or renderbuffers `objects` in a context
+/// given automatic stereo: their eyes go.
+///
+/// # Safety
+/// The program's context is current on this thread.
+pub unsafe fn objects_deleted(host: &impl Host, objects: &[render_targets::Object]) {
+    let context = host.context();
+    // SAFETY: contract.
+    render_targets::with_group(host.group(), |targets| unsafe {
+        render_targets::forget(targets, context, objects)
+    });
+}
+
+/// The program deleted framebuffers `fbos` of `host`'s context.
+pub fn framebuffers_deleted(host: &impl Host, fbos: &[u32]) {
+    let context = host.context();
+    render_targets::with_group(host.group(), |targets| {
+        render_targets::framebuffers_deleted(targets, context, fbos)
+    });
 }
 
 /// The program's queries under automatic stereo ([`Counting`]):
@@ -1096,9 +1346,69 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     }
     // SAFETY: GL's contract: `count` matrices of 16 floats at `value`.
     let value = unsafe { std::slice::from_raw_parts(value, 16 * count as usize) };
-    if let Some(p) = Perspective::from_upload(value, transpose) {
-        cur.with_auto(|st, _| st.uploaded = Some(p));
+    let Some(p) = Perspective::from_upload(value, transpose) else {
+        return;
+    };
+    let program = if at == 1 {
+        call.u32(0)
+    } else {
+        // SAFETY: the program's context is current (callers); one value.
+        tables().map_or(0, |t| unsafe { integer(&t.gl, GL_CURRENT_PROGRAM) } as u32)
+    };
+    if program == 0 {
+        return;
     }
+    cur.with_auto(
+        |st, _| match st.uploads.iter_mut().find(|(q, _)| *q == program) {
+            Some(u) => u.1 = p,
+            None => st.uploads.push((program, p)),
+        },
+    );
+}
+
+/// The projection of a draw of a measured frame, where automatic
+/// convergence can map its depth back to distance: fixed function's
+/// perspective projection, or the perspective matrix last uploaded to
+/// the draw's program. None on other frames, or for a draw with neither.
+///
+/// # Safety
+/// The program's context is current (callers).
+unsafe fn draw_perspective(f: &AutoFns, st: &AutoState) -> Option<Perspective> {
+    if st.unmeasured || live::convergence().is_some() {
+        return None;
+    }
+    // SAFETY: contract.
+    unsafe {
+        match vertex_program(f) {
+            Some((p, _)) => st.uploads.iter().find(|(q, _)| *q == p).map(|u| u.1),
+            None => {
+                let mut m = [0.0f64; 16];
+                (f.get_doublev)(GL_PROJECTION_MATRIX, m.as_mut_ptr());
+                Perspective::from_matrix(&m)
+            }
+        }
+    }
+}
+
+/// A draw that is not the scene's comes into the window's eyes (`which`
+/// 0) or the measured target (1) whose depth array `array` holds this
+/// measured frame's scene: its left eye is copied before the draw may
+/// overwrite it, once per scene drawn.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn keep_scene_depth(st: &mut AutoState, which: usize, array: u32) {
+    let scene = if which == 0 {
+        st.window_drawn.is_some()
+    } else {
+        st.target_drawn.is_some()
+    };
+    if st.unmeasured || !scene || st.depth_copied[which] || array == 0 {
+        return;
+    }
+    // SAFETY: contract.
+    st.depth_copied[which] =
+        unsafe { render_targets::copy_left_depth(array, &mut st.depth_copies[which]) };
 }
 
 /// What automatic convergence reads of a frame at its present, in the
@@ -1112,43 +1422,37 @@ fn learn_projection(cur: &impl Host, call: &Call) {
 /// # Safety
 /// The program's context is current on this thread.
 pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge::Frame> {
-    // The next frame's draws read the fixed-function projection if it is
-    // measured.
+    // The next frame's draws read their projections if it is measured.
     st.unmeasured = (frame + 1) % converge::PERIOD != 0;
-    let fixed = st.fixed.take();
-    let drawn = st.window_drawn.take();
-    let target = st.target_drawn.take();
+    let copied = std::mem::take(&mut st.depth_copied);
+    let copy = |i: usize, a: Attachments| match copied[i] {
+        true => a.with_depth_copy(st.depth_copies[i].texture),
+        false => a,
+    };
+    let window = st
+        .window_drawn
+        .take()
+        .map(|(p, vp)| (p, vp, copied[0].then(|| st.depth_copies[0].texture)));
+    let target = st
+        .target_drawn
+        .take()
+        .map(|(a, size, p, vp)| (copy(1, a), size, p, vp));
     if live::convergence().is_some()
         || !live::auto_on()
         || frame % converge::PERIOD != 0
-        || (drawn.is_none() && target.is_none())
+        || (window.is_none() && target.is_none())
     {
         return None;
     }
     let t = tables()?;
     let f = &t.gl;
-    // SAFETY: contract. A core context raises GL_INVALID_ENUM for the
-    // projection matrix and writes nothing: the caller keeps the
-    // program's errors apart.
+    // SAFETY: contract.
     unsafe {
-        let mut m = [0.0f64; 16];
-        (f.get_doublev)(GL_PROJECTION_MATRIX, m.as_mut_ptr());
-        // Fixed function's projection, else the matrix a shader program
-        // uploaded last before drawing into what is measured.
-        let fixed = fixed.or_else(|| Perspective::from_matrix(&m));
-        let window = drawn.and_then(|uploaded| fixed.or(uploaded));
-        let target = target.and_then(|(a, size, uploaded)| Some((a, size, fixed.or(uploaded)?)));
-        if window.is_none() && target.is_none() {
-            return None;
-        }
-        let mut vp = [0i32; 4];
-        (f.get_integerv)(GL_VIEWPORT, vp.as_mut_ptr());
         let mut range = [0.0f64; 2];
         (f.get_doublev)(GL_DEPTH_RANGE, range.as_mut_ptr());
         let mut clear = 1.0f64;
         (f.get_doublev)(GL_DEPTH_CLEAR_VALUE, &mut clear);
         Some(converge::Frame {
-            viewport: (vp[0], vp[1], vp[2], vp[3]),
             depth_range: (range[0], range[1]),
             clear_depth: clear,
             window,
@@ -1196,17 +1500,61 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                 // place of the window's eyes; the others' textures are given
                 // their left eye before anything may sample them.
                 let context = cur.context();
+                let blit = call.family == Family::Blit;
+                let mut sampled = Sampled::default();
                 if st.compiling.is_none() {
                     let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
-                    if fbo == window_fbo && call.family != Family::Blit {
-                        st.window_drawn = Some(st.uploaded);
+                    let perspective = if blit {
+                        None
+                    } else {
+                        draw_perspective(f, st).map(|p| {
+                            let mut vp = [0i32; 4];
+                            (f.get_integerv)(GL_VIEWPORT, vp.as_mut_ptr());
+                            (p, (vp[0], vp[1], vp[2], vp[3]))
+                        })
+                    };
+                    if fbo == window_fbo && perspective.is_some() {
+                        st.window_drawn = perspective;
+                        st.depth_copied[0] = false;
+                    } else if fbo == window_fbo && !blit {
+                        keep_scene_depth(st, 0, layered.depth());
+                    }
+                    if !blit {
+                        // Between glBegin and glEnd (the layer's list is
+                        // compiling: glActiveTexture would go into it)
+                        // the units are as glBegin found them.
+                        sampled = if st.in_begin {
+                            st.sampled.as_ref().map(|s| s.1.clone()).unwrap_or_default()
+                        } else {
+                            st.sampled(targets)
+                        };
                     }
                     if fbo != app_fbo {
-                        if let Some(a) = render_targets::eyes_of(targets, context, fbo, &layered) {
+                        // The policy's facts about this draw
+                        // (render_targets, "The policy").
+                        let read = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32;
+                        let kind = Draw {
+                            shifted: !blit && shifted(f, group, call.name),
+                            samples_stereo: sampled.any(),
+                            from_stereo: blit
+                                && (read == window_fbo
+                                    || render_targets::known(targets, context, read, &layered)
+                                        .is_some()),
+                        };
+                        if let Some(a) =
+                            render_targets::eyes_of(targets, context, fbo, &layered, kind)
+                        {
                             (app_fbo, layered) = (fbo, a);
-                            if call.family != Family::Blit {
+                            // Measured: the last one with depth (a scene;
+                            // the post-processing passes after it have none).
+                            if let (Some((p, vp)), true) = (perspective, a.has_depth()) {
                                 let size = render_targets::size(targets, context, fbo);
-                                st.target_drawn = size.map(|s| (a, s, st.uploaded));
+                                st.target_drawn = size.map(|s| (a, s, p, vp));
+                                st.depth_copied[1] = false;
+                            } else if !blit
+                                && st.target_drawn.is_some_and(|t| t.0.depth() == a.depth())
+                            {
+                                keep_scene_depth(st, 1, a.depth());
                             }
                         }
                     }
@@ -1237,7 +1585,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                 path,
                                 &settings,
                                 &layered,
-                                targets,
+                                &sampled,
                                 true,
                                 &mut st.queries,
                                 &mut || (f.call_list)(list),
@@ -1277,7 +1625,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             path,
                             &settings,
                             &layered,
-                            targets,
+                            &sampled,
                             false,
                             &mut st.queries,
                             &mut || (f.call_list)(list),
@@ -1337,20 +1685,20 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     });
                     if (f.is_enabled)(GL_RASTERIZER_DISCARD) != 0 {
                         let q = &mut st.queries;
-                        return eyes(t, mono, &settings, &layered, targets, false, q, draw);
+                        return eyes(t, mono, &settings, &layered, &sampled, false, q, draw);
                     }
                     if integer(f, GL_TRANSFORM_FEEDBACK_ACTIVE) != 0
                         && integer(f, GL_TRANSFORM_FEEDBACK_PAUSED) == 0
                     {
                         let q = &mut st.queries;
                         (f.enable)(GL_RASTERIZER_DISCARD);
-                        eyes(t, mono, &settings, &layered, targets, false, q, draw);
+                        eyes(t, mono, &settings, &layered, &sampled, false, q, draw);
                         (f.disable)(GL_RASTERIZER_DISCARD);
                         (f.pause_transform_feedback)();
                         // The mono draw generated the primitives: the eyes'
                         // are not counted again.
                         pause_counting(f, q, |t| t == GL_PRIMITIVES_GENERATED);
-                        eyes(t, path, &settings, &layered, targets, false, q, draw);
+                        eyes(t, path, &settings, &layered, &sampled, false, q, draw);
                         resume_counting(f, q);
                         (f.resume_transform_feedback)();
                         return;
@@ -1361,7 +1709,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     path,
                     &settings,
                     &layered,
-                    targets,
+                    &sampled,
                     lists,
                     &mut st.queries,
                     draw,

@@ -631,6 +631,9 @@ pub unsafe fn delete_framebuffers(n: i32, names: *const u32, ext: bool) -> Resul
             .collect()
     };
     forward(kept.len() as i32, kept.as_ptr());
+    if cur.sc.auto() {
+        crate::auto::runtime::framebuffers_deleted(&cur, &kept);
+    }
     // Deleting the bound framebuffer reverts the binding to framebuffer 0,
     // which is the emulated one.
     let gl = &r.gl;
@@ -696,14 +699,18 @@ pub unsafe fn delete_objects(n: i32, names: *const u32, what: Deleted) -> Result
         },
         Deleted::Renderbuffers(_) => unsafe { r.gl.DeleteRenderbuffers(n, p) },
     };
-    if n <= 0 || !r.gl.owns_any(kind) {
+    if n <= 0 {
         forward(n, names);
         return Ok(());
     }
     // SAFETY: GL's contract: `names` holds n values.
     let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
-    if !list.iter().any(|&name| r.gl.owns(kind, name)) || !in_stereo_group(r) {
+    if !r.gl.owns_any(kind)
+        || !list.iter().any(|&name| r.gl.owns(kind, name))
+        || !in_stereo_group(r)
+    {
         forward(n, names);
+        auto_deleted(list, what);
         return Ok(());
     }
     let kept: Vec<u32> = list
@@ -712,7 +719,26 @@ pub unsafe fn delete_objects(n: i32, names: *const u32, what: Deleted) -> Result
         .filter(|&name| !r.gl.owns(kind, name))
         .collect();
     forward(kept.len() as i32, kept.as_ptr());
+    auto_deleted(&kept, what);
     Ok(())
+}
+
+/// Automatic stereo forgets the eyes of the program's deleted textures
+/// or renderbuffers `names` (a context given automatic stereo is current).
+fn auto_deleted(names: &[u32], what: Deleted) {
+    let Some(cur) = current().filter(|c| c.sc.auto()) else {
+        return;
+    };
+    use crate::auto::render_targets::Object;
+    let objects: Vec<Object> = names
+        .iter()
+        .map(|&n| match what {
+            Deleted::Textures(_) => Object::Texture(n),
+            Deleted::Renderbuffers(_) => Object::Renderbuffer(n),
+        })
+        .collect();
+    // SAFETY: the program's context is current on this thread.
+    unsafe { crate::auto::runtime::objects_deleted(&cur, &objects) };
 }
 
 /// Whether the context current on this thread shares objects with a

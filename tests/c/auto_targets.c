@@ -5,10 +5,11 @@
  * projection), then shows that texture on a quad of the window at clip
  * w = 4, and swaps.
  *
- *   auto_targets small    the framebuffer object is 64x64: a shadow or
- *                         reflection map, not a picture of the screen. It
- *                         stays mono: with --convergence 4 both eyes show
- *                         the same pixels on the window's quad.
+ *   auto_targets small    the framebuffer object is 64x64, square: seen
+ *                         from a light (a shadow or reflection map), not
+ *                         a picture of the screen. It stays mono: with
+ *                         --convergence 4 both eyes show the same pixels
+ *                         on the window's quad.
  *   auto_targets window   the framebuffer object is the window's size:
  *                         drawn in stereo, its red quad shifted between
  *                         the eyes as any object at w = 2.
