@@ -24,6 +24,7 @@
 # tests' fallbacks for machines without them run here (tests/faults.rs).
 # Time on this project's 2-core machine: README ("A fresh machine").
 set -eu
+ulimit -c unlimited 2>/dev/null || true
 
 if [ "$(id -u)" != 0 ]; then
     echo "fresh_machine.sh: run me as root (mmdebstrap, chroot and mounts need it)" >&2
@@ -99,6 +100,15 @@ chroot "$root" /usr/bin/env -i HOME=/root USER=root LANG=C.UTF-8 TERM=dumb \
     CARGO_HOME=/root/.cargo \
     /bin/sh -c 'cd /root/glstereo && make test' >>"$log" 2>&1 || status=$?
 
+# A crash's core files (core_pattern "core": in the crashed test's
+# directory) are kept beside the log for gdb.
+if [ "$status" != 0 ]; then
+    find "$root/root/glstereo" -name 'core*' -type f -newer "$log" 2>/dev/null |
+        while read -r core; do
+            cp "$core" "$base/glstereo-fresh-$$-$(basename "$(dirname "$core")")-$(basename "$core")"
+            say "kept $core"
+        done
+fi
 took=$(( $(date +%s) - start ))
 say "make test exited $status after $((took / 60)) min $((took % 60)) s (log: $log)"
 grep -E '^test result:|FAILED|panicked' "$log" | tail -40 >&2 || true
