@@ -24,7 +24,8 @@ use entry_points::Family;
 /// lighting state the fixed-function stand-in is keyed on, the texture
 /// bindings that tell which textures a draw samples, the commands that
 /// read or write a texture's contents outside draws, and the copies from
-/// framebuffers into textures.
+/// framebuffers into textures, and the program bindings (a display list
+/// that binds a program is not geometry only).
 const GENERATED: &[Family] = &[
     Family::Draw,
     Family::BeginEnd,
@@ -40,6 +41,7 @@ const GENERATED: &[Family] = &[
     Family::TextureData,
     Family::TextureWrite,
     Family::Read,
+    Family::Program,
 ];
 
 /// Each stub's file name (also its soname) and the library it stands for.

@@ -27,7 +27,7 @@
 #![warn(missing_docs)]
 #![allow(clippy::missing_safety_doc, non_snake_case)]
 
-use std::ffi::{c_int, c_uchar, c_ulong, c_void};
+use std::ffi::{c_char, c_int, c_uchar, c_ulong, c_void};
 use std::sync::atomic::{AtomicPtr, Ordering};
 
 use glstereo::auto::entry_points::Family;

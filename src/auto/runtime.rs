@@ -248,6 +248,15 @@ pub struct AutoState {
     /// The program compiles a display list: (list, convert to execute at
     /// glEndList).
     compiling: Option<(u32, bool)>,
+    /// The list compiling holds geometry only: draws, vertices, matrices,
+    /// uniforms, lists of geometry only — nothing that changes which
+    /// program draws, the stand-in's key, texture bindings, or clears.
+    compiling_plain: bool,
+    /// The display lists compiled so far, by name: geometry only (true),
+    /// or not. A list of geometry only is drawn by the eye's uniform as
+    /// any draw (the fast path); the others attach each eye's layers in
+    /// turn, since they may change anything between their draws.
+    lists: HashMap<u32, bool>,
     /// The last perspective matrix the program uploaded to each of its
     /// programs as a uniform ([`crate::auto::converge`]): what a draw
     /// with that program projects with. (A program that never uploaded
@@ -797,9 +806,15 @@ unsafe fn eyes(
                 if standin {
                     (f.use_program)(target.program);
                 }
+                let saved = restore.then(|| matrices(f));
                 for eye in EYES {
                     if eye == Eye::Right {
                         pause_counting(f, queries, |_| true);
+                        if let Some(m) = &saved {
+                            (f.matrix_mode)(GL_MODELVIEW);
+                            (f.load_matrixd)(m.modelview.as_ptr());
+                            load_projection(f, &m.projection, m.mode);
+                        }
                     }
                     set_uniform(f, target, eye_value(settings, Some(eye), true));
                     let bound = render_targets::bind_eye(sampled, eye);
@@ -871,6 +886,7 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
                 call.name,
                 "glEnable" | "glDisable" | "glEnablei" | "glDisablei"
             ) {
+                not_geometry_only(cur, call.family);
                 cur.with_auto(|st, _| st.forget_enables());
             }
             settings_call(call, draw)
@@ -880,10 +896,12 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
             draw()
         }
         Family::Lighting => {
+            not_geometry_only(cur, call.family);
             cur.with_auto(|st, _| st.forget_enables());
             draw()
         }
         Family::Texture => {
+            not_geometry_only(cur, call.family);
             cur.with_auto(|st, _| st.forget_bindings());
             draw()
         }
@@ -906,17 +924,36 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
         | Family::DisplayList
         | Family::RasterPixels
         | Family::Blit => {
-            // A display list may change any enable.
-            let list = call.name.starts_with("glCallList");
             let mut out = None;
             drawing(t, cur, call, &mut || out = Some(draw()));
-            if list {
-                cur.with_auto(|st, _| st.forget_enables());
-            }
             out.unwrap_or_else(|| R::from_bits(0))
         }
-        _ => draw(),
+        _ => {
+            not_geometry_only(cur, call.family);
+            draw()
+        }
     }
+}
+
+thread_local! {
+    /// This thread's context compiles a display list of the program's.
+    static COMPILING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// A call of `family` while the program compiles a display list: the
+/// list is not geometry only unless the family is one that keeps it so
+/// (draws, glBegin/glEnd, other lists — judged by `drawing` —, uniform
+/// matrices).
+pub fn not_geometry_only(cur: &impl Host, family: Family) {
+    if !COMPILING.with(std::cell::Cell::get)
+        || matches!(
+            family,
+            Family::Draw | Family::BeginEnd | Family::DisplayList | Family::Projection
+        )
+    {
+        return;
+    }
+    cur.with_auto(|st, _| st.compiling_plain = false);
 }
 
 /// A command that reads a texture's contents outside draws, or makes new
@@ -1570,16 +1607,21 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             draw();
                             st.compiling = Some((list, false));
                         }
+                        st.compiling_plain = true;
+                        COMPILING.with(|c| c.set(true));
                         return;
                     }
                     (Family::DisplayList, "glEndList") => {
                         draw();
+                        COMPILING.with(|c| c.set(false));
                         let Some((list, execute)) = st.compiling.take() else {
                             return;
                         };
+                        let plain = st.compiling_plain;
+                        st.lists.insert(list, plain);
                         if execute {
                             let settings = st.settings();
-                            let path = choose(t, cur, st, app_fbo, true);
+                            let path = choose(t, cur, st, app_fbo, !plain);
                             eyes(
                                 t,
                                 path,
@@ -1590,10 +1632,25 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                 &mut st.queries,
                                 &mut || (f.call_list)(list),
                             );
+                            if !plain {
+                                st.forget_enables();
+                            }
                         }
                         return;
                     }
-                    _ if st.compiling.is_some() => return draw(),
+                    _ if st.compiling.is_some() => {
+                        // A list called inside keeps this one geometry only
+                        // if it is; glBitmap and glDrawPixels need each eye's
+                        // raster position.
+                        let nested_plain =
+                            call.name == "glCallList" && st.lists.get(&call.u32(0)) == Some(&true);
+                        if (call.family == Family::DisplayList && !nested_plain)
+                            || call.family == Family::RasterPixels
+                        {
+                            st.compiling_plain = false;
+                        }
+                        return draw();
+                    }
                     (Family::BeginEnd, "glBegin") => {
                         if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
                             st.in_mono_begin = true;
@@ -1668,8 +1725,12 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     _ => {}
                 }
                 let lists = call.family == Family::DisplayList;
+                // A list of geometry only takes the fast path, with the
+                // matrices put back between the eyes (it may move them).
+                let plain =
+                    lists && call.name == "glCallList" && st.lists.get(&call.u32(0)) == Some(&true);
                 let settings = st.settings();
-                let path = choose(t, cur, st, app_fbo, lists);
+                let path = choose(t, cur, st, app_fbo, lists && !plain);
                 if st.feedback && call.family == Family::Draw {
                     // Transform feedback captures what the mono program
                     // would: the draw once, unshifted and not rasterized,
@@ -1714,6 +1775,10 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     &mut st.queries,
                     draw,
                 );
+                if lists && !plain {
+                    // It may have changed any enable.
+                    st.forget_enables();
+                }
             }
         })
     })

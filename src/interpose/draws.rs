@@ -56,8 +56,15 @@ pub fn around<R: Returned>(call: Call, draw: impl Fn() -> R) -> R {
 /// glClearBuffer*, the blits): a size check asked for by
 /// [`check_size_at_next_draw`].
 pub fn notice(family: Family) {
-    if WATCH.with(Cell::get) & SIZE != 0 {
+    let watch = WATCH.with(Cell::get);
+    if watch & SIZE != 0 {
         check_size(family);
+    }
+    if watch & AUTO != 0 {
+        // A clear compiled into a display list keeps it off the fast path.
+        if let Some(cur) = current() {
+            crate::auto::runtime::not_geometry_only(&cur, family);
+        }
     }
 }
 

@@ -129,6 +129,9 @@ static void legacy_scene(double k, double c)
     glVertex3f(-1.0f, -2.5f, -4.0f);
     glVertex3f(-1.75f, -1.2f, -4.0f);
     glEnd();
+    /* It moves the model-view for what follows: once per call (the eyes'
+     * calls of a list of geometry only must not move it twice). */
+    glTranslatef(0.1f, 0.0f, 0.0f);
     glEndList();
     glCallList(list);
     glDeleteLists(list, 1);
