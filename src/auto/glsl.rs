@@ -177,11 +177,23 @@ pub fn scan(source: &str) -> Scan {
     let mut after_version_line_number = 1;
     let mut first_token_line = source.len();
     let mut first_token_line_number = 0;
+    // The first token inside a conditional block, where none comes
+    // outside one (a shader wholly inside `#ifndef`).
+    let mut conditional_token: Option<(usize, u32)> = None;
+    let mut depth = 0u32;
     // The number the compiler gives the next physical line.
     let mut number: u32 = 1;
     for (start, end, line) in logical_lines(&text) {
         let physical = text[start..end].matches('\n').count().max(1) as u32;
         match directive(&line) {
+            Some(("if" | "ifdef" | "ifndef", _)) => {
+                depth += 1;
+                number += physical;
+            }
+            Some(("endif", _)) => {
+                depth = depth.saturating_sub(1);
+                number += physical;
+            }
             Some(("version", arg)) if after_version == 0 => {
                 version = parse_version(arg);
                 after_version = end;
@@ -202,6 +214,13 @@ pub fn scan(source: &str) -> Scan {
             }
             Some(_) => number += physical,
             None if line.trim().is_empty() => number += physical,
+            // A declaration in a conditional block may not be compiled: what
+            // must come before the shader's code goes before its first
+            // token outside one.
+            None if depth > 0 => {
+                conditional_token.get_or_insert((start, number));
+                number += physical;
+            }
             None => {
                 first_token_line = start;
                 first_token_line_number = number;
@@ -210,7 +229,10 @@ pub fn scan(source: &str) -> Scan {
         }
     }
     if first_token_line == source.len() {
-        first_token_line_number = number;
+        match conditional_token {
+            Some((start, n)) => (first_token_line, first_token_line_number) = (start, n),
+            None => first_token_line_number = number,
+        }
     }
     Scan {
         version,
@@ -306,6 +328,19 @@ pub fn out_per_vertex_members(text: &str) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn early_declarations_go_before_the_first_token_outside_conditionals() {
+        let src = "#version 330\n#if SHADOWS\nuniform mat4 light;\n#endif\nlayout(points) in;\n";
+        let s = scan(src);
+        assert_eq!(&src[s.first_token_line..], "layout(points) in;\n");
+        assert_eq!(s.first_token_line_number, 5);
+        // Wholly inside one: its first token.
+        let src = "#version 150\n#ifndef NO_GS\nlayout(points) in;\n#endif\n";
+        let s = scan(src);
+        assert_eq!(&src[s.first_token_line..], "layout(points) in;\n#endif\n");
+        assert_eq!(s.first_token_line_number, 3);
+    }
 
     #[test]
     fn versions_and_profiles() {

@@ -386,6 +386,39 @@ mod tests {
                 true,
             ),
             (
+                "330 geometry, first declarations in preprocessor conditionals",
+                vec![
+                    (
+                        GL_VERTEX_SHADER,
+                        "#version 330 core\nlayout(location = 0) in vec4 p;\nvoid main() { gl_Position = p; }\n",
+                    ),
+                    (
+                        GL_GEOMETRY_SHADER,
+                        "#version 330 core\n#define SHADOWS 0\n#if SHADOWS\nuniform mat4 light;\n#endif\n#ifdef GL_ES\nprecision highp float;\n#else\n#endif\nlayout(triangles) in;\nlayout(triangle_strip, max_vertices = 3) out;\nvoid emit(int i) { gl_Position = gl_in[i].gl_Position; EmitVertex (); }\nvoid main() {\n    for (int i = 0; i < 3; i++) emit(i);\n    EndPrimitive();\n}\n",
+                    ),
+                    (GL_FRAGMENT_SHADER, fs330),
+                ],
+                true,
+            ),
+            (
+                "150 geometry, every declaration in one conditional",
+                vec![
+                    (
+                        GL_VERTEX_SHADER,
+                        "#version 150\nin vec4 p;\nvoid main() { gl_Position = p; }\n",
+                    ),
+                    (
+                        GL_GEOMETRY_SHADER,
+                        "#version 150\n#ifndef NO_GS\nlayout(points) in;\nlayout(points, max_vertices = 1) out;\nvoid main() { gl_Position = gl_in[0].gl_Position; EmitVertex(); }\n#endif\n",
+                    ),
+                    (
+                        GL_FRAGMENT_SHADER,
+                        "#version 150\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n",
+                    ),
+                ],
+                true,
+            ),
+            (
                 "450 tessellation",
                 vec![
                     (
@@ -509,6 +542,11 @@ mod tests {
                     continue;
                 };
                 if Some(stage) != vertex::last_stage(stages.iter().map(|&(t, _)| t)) {
+                    continue;
+                }
+                // gl_ViewportIndex is a geometry shader's from GLSL 4.10
+                // (GL_ARB_viewport_array) on.
+                if stage == Stage::Geometry && vertex::scan(src).version.number < 410 {
                     continue;
                 }
                 let Ok(Rewrite::Shifted(out)) = vertex::shift_position(src, stage, options) else {
