@@ -680,3 +680,48 @@ fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Automatic convergence where the camera's matrix is in a uniform buffer
+/// (tests/c/auto_ubo.c), so no upload shows the projection: the centre
+/// of interest is found as a depth and the rule computed from each
+/// vertex's clip depth. The quad filling the middle of the view (w = 6)
+/// sits at the screen, the near one (w = 3) in front, the far one
+/// (w = 12) behind, each by the parallax the rule gives with C = 6
+/// (the build before left C at 0: every object 14 pixels apart).
+#[test]
+fn automatic_convergence_finds_the_centre_where_the_matrices_are_in_a_uniform_buffer() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = build_once("auto_ubo", |out| {
+        compile_plain(
+            &common::root().join("tests/c/auto_ubo.c"),
+            out,
+            &["-lGL", "-lX11"],
+        )
+    });
+    let x = Xvfb::start(W + 40, H + 40);
+    let dir = common::scratch("auto-ubo");
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .args(["--auto", "--separation", SEPARATION])
+            .arg("--capture")
+            .arg(&dir)
+            .arg(&exe)
+            .arg("3")
+            .env("DISPLAY", &x.display),
+    );
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("error 0x0"), "{stdout}");
+    // Frame 0 is measured; the third frame is drawn with it.
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000003.png"))));
+    check_parallax_at(
+        &eyes,
+        &[
+            ([0, 255, 0], Some(6.0)),
+            ([255, 0, 0], Some(3.0)),
+            ([0, 0, 255], Some(12.0)),
+        ],
+        6.0,
+        0.5,
+        "matrices in a uniform buffer",
+    );
+}

@@ -1,6 +1,7 @@
 //! Automatic convergence: where automatic stereo puts the screen when the
 //! user has not (`GLSTEREO_CONVERGENCE=auto`, the default). Every
-//! [`PERIOD`] frames the layer reads the left eye's depth in the central
+//! [`PERIOD`] frames (every frame until one finds the scene: [`measures`])
+//! the layer reads the left eye's depth in the central
 //! window of the program's viewport (the window's eyes when the frame drew
 //! into them, else the stereoized render target it drew into last: a
 //! program that draws its scene off screen and blits it or shows it as a
@@ -33,24 +34,44 @@ use crate::math::frustum::Frustum;
 /// Frames between two measurements (the first at the first present).
 pub const PERIOD: u64 = 30;
 
+/// Whether frame `frame` (counted from 0) is measured: every
+/// [`PERIOD`]th, and every one until a measurement found the scene (a
+/// program that presents a few frames and then only on events — Blender,
+/// a viewer waiting for input — may draw its scene after the first).
+pub fn measures(frame: u64) -> bool {
+    frame % PERIOD == 0
+        || (live::automatic_convergence().is_none() && live::automatic_depth().is_none())
+}
+
 /// What the program's context says of a frame at its present
 /// ([`crate::auto::runtime::frame_geometry`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {
+    /// glClipControl's depth mode is GL_ZERO_TO_ONE (NDC depth 0…1).
+    pub zero_to_one: bool,
     /// glDepthRange.
     pub depth_range: (f64, f64),
     /// glClearDepth.
     pub clear_depth: f64,
-    /// A perspective draw reached the window's eyes, with this projection
-    /// and viewport; with the 2D texture its left eye's depth was copied
-    /// into when a later draw of the frame may have overwritten it.
-    pub window: Option<(Perspective, Viewport, Option<u32>)>,
+    /// The scene was drawn into the window's eyes; with the 2D texture
+    /// its left eye's depth was copied into when a later draw of the
+    /// frame may have overwritten it.
+    pub window: Option<(Scene, Option<u32>)>,
     /// The render target with eyes and depth a perspective draw reached
     /// last (its arrays and size, the draw's projection and viewport):
     /// measured when the window's eyes hold no geometry where the viewer
     /// looks (a program that draws its scene off screen and blits it or
     /// shows it as a textured quad).
-    pub target: Option<(Attachments, (u32, u32), Perspective, Viewport)>,
+    pub target: Option<(Attachments, (u32, u32), Scene)>,
+}
+
+/// How a frame's scene was drawn where automatic convergence measures it.
+#[derive(Clone, Copy, Debug)]
+pub struct Scene {
+    /// Its projection (None: one automatic stereo cannot see).
+    pub perspective: Option<Perspective>,
+    /// The viewport it was drawn in.
+    pub viewport: Viewport,
 }
 
 /// A viewport: x, y, width, height.
@@ -65,28 +86,63 @@ pub type Viewport = (i32, i32, i32, i32);
 /// # Safety
 /// A context sharing the eyes' objects is current on this thread.
 pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame, scratch: &mut Scratch) {
-    let window = frame.window.map(|(p, vp, copy)| {
+    let window = frame.window.map(|(scene, copy)| {
         let source = copy.map(|c| eyes.attachments().with_depth_copy(c));
-        (source, (eyes.width(), eyes.height()), p, vp)
+        (source, (eyes.width(), eyes.height()), scene)
     });
-    let target = frame.target.map(|(t, size, p, vp)| (Some(t), size, p, vp));
+    let target = frame.target.map(|(t, size, scene)| (Some(t), size, scene));
     // SAFETY: contract.
-    let Some(c) = window
+    let Some(found) = window
         .into_iter()
         .chain(target)
-        .find_map(|(source, size, p, vp)| unsafe {
-            centre_of(gl, eyes, fbo, frame, (source, &p, vp), size, scratch)
+        .find_map(|(source, size, scene)| unsafe {
+            centre_of(gl, eyes, fbo, frame, (source, &scene), size, scratch)
         })
     else {
         return;
     };
-    let before = live::automatic_convergence();
-    live::set_automatic_convergence(c as f32);
-    if before.is_none_or(|b| (b - c as f32).abs() > 0.01 * b.abs()) {
-        crate::report::tell(&format!(
-            "automatic convergence at {c:.3} (the centre of interest; Ctrl+F5/F6 set it by hand)"
-        ));
+    match found {
+        Centre::Distance(c) => {
+            let before = live::automatic_convergence();
+            live::set_automatic_convergence(c as f32);
+            if before.is_none_or(|b| (b - c as f32).abs() > 0.01 * b.abs()) {
+                crate::report::tell(&format!(
+                    "automatic convergence at {c:.3} (the centre of interest; Ctrl+F5/F6 set \
+                     it by hand)"
+                ));
+            }
+        }
+        Centre::Depth(z) => {
+            // The depth offset α of clip z = α·w + β, for far ≫ near: 1
+            // for GL's perspective ((f + n) / (f − n)) and for one into
+            // GL_ZERO_TO_ONE (f / (f − n)); reversed depth (cleared to 0):
+            // 0 into GL_ZERO_TO_ONE, −1 into GL's −1…1.
+            let alpha = match (frame.zero_to_one, frame.clear_depth < 0.5) {
+                (_, false) => 1.0,
+                (true, true) => 0.0,
+                (false, true) => -1.0,
+            };
+            let before = live::automatic_depth();
+            live::set_automatic_depth(z as f32, alpha);
+            if before.is_none_or(|(b, _)| (b - z as f32).abs() > 1e-4) {
+                crate::report::tell(&format!(
+                    "automatic convergence at depth {z:.5} (NDC; the centre of interest of a \
+                     projection glstereo cannot see; Ctrl+F5/F6 set it by hand)"
+                ));
+            }
+        }
     }
+}
+
+/// What a measurement found: the centre of interest's distance (the clip
+/// w at the screen), or, where the projection is not known, its NDC
+/// depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Centre {
+    /// The distance C.
+    Distance(f64),
+    /// The NDC depth z_c.
+    Depth(f64),
 }
 
 /// The convergence [`centre`] finds in the left eye's depth of the
@@ -99,11 +155,11 @@ unsafe fn centre_of(
     eyes: &LayeredEyes,
     fbo: u32,
     frame: &Frame,
-    (source, perspective, viewport): (Option<Attachments>, &Perspective, Viewport),
+    (source, scene): (Option<Attachments>, &Scene),
     (width, height): (u32, u32),
     scratch: &mut Scratch,
-) -> Option<f64> {
-    let (x, y, w, h) = window(viewport);
+) -> Option<Centre> {
+    let (x, y, w, h) = window(scene.viewport);
     let (x0, y0) = (x.max(0), y.max(0));
     let (x1, y1) = ((x + w).min(width as i32), (y + h).min(height as i32));
     if x1 <= x0 || y1 <= y0 {
@@ -120,13 +176,35 @@ unsafe fn centre_of(
     if !read {
         return None;
     }
-    centre(
-        scratch,
-        (rect.2 as u32, rect.3 as u32),
-        perspective,
-        frame.depth_range,
-        frame.clear_depth,
-    )
+    let size = (rect.2 as u32, rect.3 as u32);
+    match &scene.perspective {
+        Some(p) => {
+            centre(scratch, size, p, frame.depth_range, frame.clear_depth).map(Centre::Distance)
+        }
+        None => centre_depth(scratch, size, frame).map(Centre::Depth),
+    }
+}
+
+/// The NDC depth of the median of the pixels of `scratch.depth` that
+/// hold geometry (not at the frame's clear depth), for a projection that
+/// is not known: the same pixel [`centre`] finds, as a depth.
+fn centre_depth(scratch: &mut Scratch, (width, height): (u32, u32), frame: &Frame) -> Option<f64> {
+    let depth = std::mem::take(&mut scratch.depth);
+    let mut capture = DepthCapture::new(DepthImage::new(width, height, depth).ok()?);
+    capture.depth_range = frame.depth_range;
+    capture.clear_depth = frame.clear_depth;
+    let d = &mut scratch.distances;
+    d.clear();
+    capture.for_each_covered(0.0, 1.0, |z| d.push(f64::from(z)));
+    scratch.depth = capture.depth.into_values();
+    if d.is_empty() {
+        return None;
+    }
+    let mid = d.len() / 2;
+    let (_, median, _) = d.select_nth_unstable_by(mid, f64::total_cmp);
+    let (n, f) = frame.depth_range;
+    let t = (*median - n) / (f - n);
+    Some(if frame.zero_to_one { t } else { 2.0 * t - 1.0 })
 }
 
 /// The depth terms of a perspective camera: clip z = −`a`·w + `b`, where
@@ -185,6 +263,13 @@ impl Perspective {
             b: z[3] - alpha * w[3],
         };
         p.frustum().map(|_| p)
+    }
+
+    /// The distance (clip w) of a point at NDC depth `z`: b / (z + a);
+    /// None where that is not a distance in front of the eye.
+    pub fn distance_at(&self, z: f64) -> Option<f64> {
+        let w = self.b / (z + self.a);
+        (w.is_finite() && w > 0.0).then_some(w)
     }
 
     /// The near and far distances (a frustum whose sides do not matter

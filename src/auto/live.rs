@@ -16,7 +16,7 @@
 //! (glstereo-run refuses bad values before the program starts).
 
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 
 use crate::report::warn;
 
@@ -44,7 +44,13 @@ struct Live {
     convergence: AtomicU32,
     /// f32 bits: the value automatic convergence chose last; NaN: none yet.
     automatic: AtomicU32,
+    /// Two f32s (low: the screen's NDC depth, high: the projection's depth
+    /// offset α): the convergence automatic convergence chose last as a
+    /// depth, where the scene's projection was not known; NaN: none.
+    automatic_depth: AtomicU64,
 }
+
+const NO_DEPTH: u64 = 0x7FC0_0000;
 
 fn live() -> &'static Live {
     static LIVE: OnceLock<Live> = OnceLock::new();
@@ -80,6 +86,7 @@ fn live() -> &'static Live {
             separation: AtomicU32::new(separation.to_bits()),
             convergence: AtomicU32::new(convergence.unwrap_or(f32::NAN).to_bits()),
             automatic: AtomicU32::new(f32::NAN.to_bits()),
+            automatic_depth: AtomicU64::new(NO_DEPTH),
         }
     })
 }
@@ -178,10 +185,35 @@ pub fn automatic_convergence() -> Option<f32> {
 }
 
 /// Automatic stereo says which convergence it chose (a value ≤ 0 or not
-/// finite is ignored).
+/// finite is ignored); it replaces a convergence chosen as a depth.
 pub fn set_automatic_convergence(c: f32) {
     if c.is_finite() && c > 0.0 {
         live().automatic.store(c.to_bits(), Ordering::Relaxed);
+        live().automatic_depth.store(NO_DEPTH, Ordering::Relaxed);
+    }
+}
+
+/// The convergence automatic convergence chose last as a depth, where
+/// the scene's projection was not known (a program whose matrices are in
+/// uniform buffers or built in its shader): the screen's NDC depth z_c
+/// and the depth offset α of the projection kind (clip z = α·w + β),
+/// ([`crate::auto::converge`]). None when it chose a distance, or
+/// nothing yet.
+pub fn automatic_depth() -> Option<(f32, f32)> {
+    let v = live().automatic_depth.load(Ordering::Relaxed);
+    let z = f32::from_bits(v as u32);
+    (!z.is_nan()).then(|| (z, f32::from_bits((v >> 32) as u32)))
+}
+
+/// Automatic stereo says it chose the depth `z` (NDC) of a projection of
+/// depth offset `alpha`; it replaces a convergence chosen as a distance.
+pub fn set_automatic_depth(z: f32, alpha: f32) {
+    if z.is_finite() && alpha.is_finite() && z != alpha {
+        let v = u64::from(z.to_bits()) | u64::from(alpha.to_bits()) << 32;
+        live().automatic_depth.store(v, Ordering::Relaxed);
+        live()
+            .automatic
+            .store(f32::NAN.to_bits(), Ordering::Relaxed);
     }
 }
 

@@ -281,6 +281,10 @@ struct Looked {
 /// context composes it).
 #[derive(Debug, Default)]
 pub struct Targets {
+    /// Where the group's scene was drawn last, for automatic convergence
+    /// (a program may draw its scene in one context and present it from
+    /// another: Blender's draw manager and its window).
+    pub scene: SceneTarget,
     twins: Vec<Twin>,
     stereo: Vec<Stereo>,
     looked: Vec<Looked>,
@@ -709,10 +713,6 @@ pub unsafe fn eyes_of(
             put_back(f, targets, &s, &now);
             return eyes_of(targets, context, fbo, eyes, draw);
         }
-        let window = (
-            level(f, eyes.colour(), GL_TEXTURE_WIDTH),
-            level(f, eyes.colour(), GL_TEXTURE_HEIGHT),
-        );
         let known = targets
             .looked
             .iter()
@@ -721,6 +721,10 @@ pub unsafe fn eyes_of(
         let structure = match known {
             Some(s) => s,
             None => {
+                let window = (
+                    level(f, eyes.colour(), GL_TEXTURE_WIDTH),
+                    level(f, eyes.colour(), GL_TEXTURE_HEIGHT),
+                );
                 let s = structure(f, &now, supported, window);
                 targets
                     .looked
@@ -1321,6 +1325,20 @@ pub fn framebuffers_deleted(targets: &mut Targets, context: usize, fbos: &[u32])
     targets
         .looked
         .retain(|l| l.context != context || !fbos.contains(&l.fbo));
+}
+
+/// The render target with eyes and depth a perspective draw (or one whose
+/// projection is not known, where no known one came) reached last on a
+/// measured frame: its arrays and size, and how the scene was drawn; with
+/// its depth's left eye copied where a later draw may overwrite it.
+#[derive(Debug, Default)]
+pub struct SceneTarget {
+    /// The target and its scene.
+    pub drawn: Option<(Attachments, (u32, u32), crate::auto::converge::Scene)>,
+    /// The copy of its left eye's depth.
+    pub copy: DepthCopy,
+    /// `copy` holds the scene's depth (a later draw came after it).
+    pub copied: bool,
 }
 
 /// A copy of an eye's depth, kept by automatic convergence: a later

@@ -54,7 +54,7 @@ use std::sync::{Mutex, OnceLock};
 use glam::DMat4;
 
 use crate::auto::call::{Call, Returned};
-use crate::auto::converge::{self, Perspective, Viewport};
+use crate::auto::converge::{self, Perspective, Scene};
 use crate::auto::entry_points::Family;
 use crate::auto::eyes::{Attachments, layer};
 use crate::auto::fixed;
@@ -129,6 +129,9 @@ const GL_TRANSFORM_FEEDBACK_PAUSED: u32 = 0x8E23;
 const GL_TRANSFORM_FEEDBACK_ACTIVE: u32 = 0x8E24;
 const GL_DEPTH_CLEAR_VALUE: u32 = 0x0B73;
 const GL_LINK_STATUS: u32 = 0x8B82;
+const GL_CLIP_DEPTH_MODE: u32 = 0x935D;
+const GL_NEGATIVE_ONE_TO_ONE: u32 = 0x935E;
+const GL_ZERO_TO_ONE: u32 = 0x935F;
 const GL_TEXTURE_2D_TARGET: u32 = 0x0DE1;
 const GL_TEXTURE_BINDING_2D_PNAME: u32 = 0x8069;
 
@@ -257,36 +260,37 @@ pub struct AutoState {
     /// any draw (the fast path); the others attach each eye's layers in
     /// turn, since they may change anything between their draws.
     lists: HashMap<u32, bool>,
-    /// The last perspective matrix the program uploaded to each of its
-    /// programs as a uniform ([`crate::auto::converge`]): what a draw
-    /// with that program projects with. (A program that never uploaded
-    /// one draws what automatic convergence cannot map back to distance:
-    /// a full-screen pass, an orthographic overlay.)
-    uploads: Vec<(u32, Perspective)>,
+    /// What the program uploaded to each of its programs as 4x4 uniform
+    /// matrices ([`crate::auto::converge`]): the last perspective one
+    /// (what a draw with that program projects with), or None where it
+    /// uploaded matrices and none perspective (an orthographic overlay). A
+    /// program without an entry projects as automatic stereo cannot see
+    /// (matrices in uniform buffers, built in the shader, or none: a
+    /// full-screen pass).
+    uploads: Vec<(u32, Option<Perspective>)>,
     /// This frame is not measured: draws leave their projection unread.
     unmeasured: bool,
     /// The program has begun transform feedback: draws check whether it
     /// is capturing.
     feedback: bool,
     /// A perspective draw reached the window's eyes this measured frame:
-    /// their depth holds its scene, drawn with this projection (a program
-    /// that draws off screen and then only passes a picture through the
-    /// window leaves none, and is measured in its target).
-    window_drawn: Option<(Perspective, Viewport)>,
-    /// The render target with eyes and depth a perspective draw reached
-    /// last this measured frame (its arrays and size, and the draw's
-    /// projection): where automatic convergence measures a frame whose
-    /// scene is not in the window's eyes.
-    target_drawn: Option<(Attachments, (u32, u32), Perspective, Viewport)>,
+    /// their depth holds its scene, drawn with this projection (None: a
+    /// draw whose projection automatic stereo cannot see, taken where no
+    /// known perspective draw came; a program that draws off screen and
+    /// then only passes a picture through the window leaves none, and is
+    /// measured in its target).
+    window_drawn: Option<Scene>,
+
     /// Automatic convergence's buffers.
     pub measure: converge::Scratch,
-    /// The left eye's depth of the window's eyes and of the measured
-    /// target, copied when a draw that is not the scene's (a full-screen
-    /// pass with depth writes, an overlay) came into them after the
-    /// scene on a measured frame; `depth_copied` says which copy holds
-    /// the frame's scene ([`render_targets::copy_left_depth`]).
-    depth_copies: [render_targets::DepthCopy; 2],
-    depth_copied: [bool; 2],
+    /// The left eye's depth of the window's eyes, copied when a draw that
+    /// is not the scene's (a full-screen pass with depth writes, an
+    /// overlay) came into them after the scene on a measured frame;
+    /// `depth_copied`: it holds the frame's scene
+    /// ([`render_targets::copy_left_depth`]; a render target's is the
+    /// share group's, [`render_targets::SceneTarget`]).
+    depth_copy: render_targets::DepthCopy,
+    depth_copied: bool,
     /// The texture units holding textures with eyes, as last scanned, and
     /// the twins' generation then; None: to be scanned again (a binding
     /// changed: the texture commands, glPopAttrib, a display list).
@@ -382,6 +386,20 @@ impl AutoState {
         s
     }
 
+    /// The settings of the draw about to be made ([`DrawSettings`]).
+    ///
+    /// # Safety
+    /// The program's context is current on this thread.
+    unsafe fn draw_settings(&mut self, f: &AutoFns) -> DrawSettings {
+        let mut nv = self.settings();
+        // SAFETY: contract.
+        let (c, depth) = unsafe { draw_convergence(f, self) };
+        if let Some(c) = c {
+            let _ = nv.parameter_f(GL_STEREO_CONVERGENCE_NV, c);
+        }
+        DrawSettings { nv, depth }
+    }
+
     /// The state the fixed-function stand-in depends on may have changed
     /// (glEnable, glDisable, glPopAttrib, a display list, glLight*,
     /// glLightModel*, glColorMaterial): read it again at the next
@@ -444,17 +462,30 @@ enum Path {
     Layers { fixed: bool, target: Option<Target> },
 }
 
+/// The settings of one draw: the context's, its convergence the draw's
+/// own where automatic convergence chose a depth ([`draw_convergence`]),
+/// and then, for a draw whose projection is not known, the depth form's
+/// (z_c, k).
+struct DrawSettings {
+    nv: StereoSettings,
+    depth: Option<(f32, f32)>,
+}
+
 /// The uniform's value for `eye` (None: neutral) with `settings`; `layer`
-/// whether the stage writes the eye's layer.
-fn eye_value(settings: &StereoSettings, eye: Option<Eye>, with_layer: bool) -> [f32; 4] {
-    let c = settings.convergence();
+/// whether the stage writes the eye's layer: (e·s, C, layer, 0), or in
+/// the depth form (e·s, z_c, layer, k) ([`crate::auto::vertex`]).
+fn eye_value(settings: &DrawSettings, eye: Option<Eye>, with_layer: bool) -> [f32; 4] {
+    let (c, k) = match settings.depth {
+        Some((z, k)) => (z, k),
+        None => (settings.nv.convergence(), 0.0),
+    };
     match eye {
         None => [0.0, c, -1.0, 0.0],
         Some(e) => [
-            (e.sign() * settings.effective_separation()) as f32,
+            (e.sign() * settings.nv.effective_separation()) as f32,
             c,
             if with_layer { layer(e) as f32 } else { -1.0 },
-            0.0,
+            k,
         ],
     }
 }
@@ -784,7 +815,7 @@ unsafe fn load_projection(f: &AutoFns, projection: &[f64; 16], mode: u32) {
 unsafe fn eyes(
     t: &Tables,
     path: Path,
-    settings: &StereoSettings,
+    settings: &DrawSettings,
     layered: &Attachments,
     sampled: &Sampled,
     restore: bool,
@@ -842,7 +873,7 @@ unsafe fn eyes(
                     layered.attach(GL_DRAW_FRAMEBUFFER, Some(eye));
                     if let Some(m) = saved.as_ref().filter(|_| fixed) {
                         let mono = DMat4::from_cols_array(&m.projection);
-                        if let Some(p) = fixed::eye_projection(settings, &mono, eye) {
+                        if let Some(p) = fixed::eye_projection(&settings.nv, &mono, eye) {
                             load_projection(f, &p.to_cols_array(), m.mode);
                         }
                     }
@@ -864,7 +895,7 @@ unsafe fn eyes(
                     let mut now = [0.0f64; 16];
                     (f.get_doublev)(GL_PROJECTION_MATRIX, now.as_mut_ptr());
                     let mono = DMat4::from_cols_array(&m.projection);
-                    let right = fixed::eye_projection(settings, &mono, Eye::Right)
+                    let right = fixed::eye_projection(&settings.nv, &mono, Eye::Right)
                         .map_or(m.projection, |p| p.to_cols_array());
                     if now == right.map(|v| v as f32 as f64) || now == right {
                         load_projection(f, &m.projection, integer(f, GL_MATRIX_MODE) as u32);
@@ -1383,9 +1414,7 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     }
     // SAFETY: GL's contract: `count` matrices of 16 floats at `value`.
     let value = unsafe { std::slice::from_raw_parts(value, 16 * count as usize) };
-    let Some(p) = Perspective::from_upload(value, transpose) else {
-        return;
-    };
+    let p = Perspective::from_upload(value, transpose);
     let program = if at == 1 {
         call.u32(0)
     } else {
@@ -1395,57 +1424,111 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     if program == 0 {
         return;
     }
+    // A perspective matrix is what the program projects with; another one
+    // (a model-view beside it, an orthographic overlay) counts only where
+    // no perspective one came.
     cur.with_auto(
         |st, _| match st.uploads.iter_mut().find(|(q, _)| *q == program) {
-            Some(u) => u.1 = p,
+            Some(u) if p.is_some() => u.1 = p,
+            Some(_) => {}
             None => st.uploads.push((program, p)),
         },
     );
 }
 
-/// The projection of a draw of a measured frame, where automatic
-/// convergence can map its depth back to distance: fixed function's
-/// perspective projection, or the perspective matrix last uploaded to
-/// the draw's program. None on other frames, or for a draw with neither.
+/// How a draw projects, as automatic convergence can tell.
+#[derive(Clone, Copy, Debug)]
+enum Projection {
+    /// A perspective camera of these depth terms.
+    Perspective(Perspective),
+    /// No perspective: orthographic, w = 1 (nothing to converge).
+    Flat,
+    /// A program whose matrices automatic stereo cannot see.
+    Unknown,
+}
+
+/// How the draw about to be made projects: fixed function's projection
+/// matrix, or what the draw's program uploaded.
 ///
 /// # Safety
 /// The program's context is current (callers).
-unsafe fn draw_perspective(f: &AutoFns, st: &AutoState) -> Option<Perspective> {
-    if st.unmeasured || live::convergence().is_some() {
-        return None;
-    }
+unsafe fn projection(f: &AutoFns, st: &AutoState) -> Projection {
     // SAFETY: contract.
     unsafe {
         match vertex_program(f) {
-            Some((p, _)) => st.uploads.iter().find(|(q, _)| *q == p).map(|u| u.1),
+            Some((p, _)) => match st.uploads.iter().find(|(q, _)| *q == p) {
+                Some((_, Some(persp))) => Projection::Perspective(*persp),
+                Some((_, None)) => Projection::Flat,
+                None => Projection::Unknown,
+            },
             None => {
                 let mut m = [0.0f64; 16];
                 (f.get_doublev)(GL_PROJECTION_MATRIX, m.as_mut_ptr());
-                Perspective::from_matrix(&m)
+                Perspective::from_matrix(&m).map_or(Projection::Flat, Projection::Perspective)
             }
         }
     }
 }
 
-/// A draw that is not the scene's comes into the window's eyes (`which`
-/// 0) or the measured target (1) whose depth array `array` holds this
-/// measured frame's scene: its left eye is copied before the draw may
-/// overwrite it, once per scene drawn.
+/// The convergence of the draw about to be made, where automatic
+/// convergence chose a depth (the scene's projection was not known):
+/// (the distance, for a draw whose perspective is known; the depth form's
+/// (z_c, k), for one whose projection is not). (None, None): the
+/// settings' convergence as it is.
+///
+/// # Safety
+/// The program's context is current (callers).
+unsafe fn draw_convergence(f: &AutoFns, st: &AutoState) -> (Option<f32>, Option<(f32, f32)>) {
+    if live::convergence().is_some() {
+        return (None, None);
+    }
+    let Some((z, alpha)) = live::automatic_depth() else {
+        return (None, None);
+    };
+    // SAFETY: contract.
+    match unsafe { projection(f, st) } {
+        Projection::Perspective(p) => (p.distance_at(f64::from(z)).map(|c| c as f32), None),
+        Projection::Flat => (None, None),
+        Projection::Unknown => (None, Some((z, 1.0 / (z - alpha)))),
+    }
+}
+
+/// The projection of a draw of a measured frame: Some(known perspective)
+/// or Some(None) for one automatic stereo cannot see; None on other
+/// frames, and for flat draws (nothing there to converge on).
+///
+/// # Safety
+/// The program's context is current (callers).
+unsafe fn draw_perspective(f: &AutoFns, st: &AutoState) -> Option<Option<Perspective>> {
+    if st.unmeasured || live::convergence().is_some() {
+        return None;
+    }
+    // SAFETY: contract.
+    match unsafe { projection(f, st) } {
+        Projection::Perspective(p) => Some(Some(p)),
+        Projection::Unknown => Some(None),
+        Projection::Flat => None,
+    }
+}
+
+/// A draw that is not the scene's comes into depth `array` holding this
+/// measured frame's scene (drawn with a known perspective: `known`), not
+/// yet kept (`copied`): its left eye is copied into `copy` before the
+/// draw may overwrite it, once per scene drawn.
 ///
 /// # Safety
 /// The program's context is current on this thread.
-unsafe fn keep_scene_depth(st: &mut AutoState, which: usize, array: u32) {
-    let scene = if which == 0 {
-        st.window_drawn.is_some()
-    } else {
-        st.target_drawn.is_some()
-    };
-    if st.unmeasured || !scene || st.depth_copied[which] || array == 0 {
+unsafe fn keep_scene_depth(
+    measured: bool,
+    known: bool,
+    array: u32,
+    (copy, copied): (&mut render_targets::DepthCopy, &mut bool),
+) {
+    if !measured || !known || *copied || array == 0 {
         return;
     }
     // SAFETY: contract.
-    st.depth_copied[which] =
-        unsafe { render_targets::copy_left_depth(array, &mut st.depth_copies[which]) };
+    *copied = unsafe { render_targets::copy_left_depth(array, copy) };
 }
 
 /// What automatic convergence reads of a frame at its present, in the
@@ -1458,25 +1541,33 @@ unsafe fn keep_scene_depth(st: &mut AutoState, which: usize, array: u32) {
 ///
 /// # Safety
 /// The program's context is current on this thread.
-pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge::Frame> {
+pub unsafe fn frame_geometry(
+    st: &mut AutoState,
+    group: u64,
+    frame: u64,
+) -> Option<converge::Frame> {
     // The next frame's draws read their projections if it is measured.
-    st.unmeasured = (frame + 1) % converge::PERIOD != 0;
+    st.unmeasured = !converge::measures(frame + 1);
     let copied = std::mem::take(&mut st.depth_copied);
-    let copy = |i: usize, a: Attachments| match copied[i] {
-        true => a.with_depth_copy(st.depth_copies[i].texture),
-        false => a,
-    };
     let window = st
         .window_drawn
         .take()
-        .map(|(p, vp)| (p, vp, copied[0].then(|| st.depth_copies[0].texture)));
-    let target = st
-        .target_drawn
-        .take()
-        .map(|(a, size, p, vp)| (copy(1, a), size, p, vp));
+        .map(|scene| (scene, copied.then_some(st.depth_copy.texture)));
+    let target = render_targets::with_group(group, |targets| {
+        let s = &mut targets.scene;
+        let copied = std::mem::take(&mut s.copied);
+        s.drawn.take().map(|(a, size, scene)| {
+            let a = if copied {
+                a.with_depth_copy(s.copy.texture)
+            } else {
+                a
+            };
+            (a, size, scene)
+        })
+    });
     if live::convergence().is_some()
         || !live::auto_on()
-        || frame % converge::PERIOD != 0
+        || !converge::measures(frame)
         || (window.is_none() && target.is_none())
     {
         return None;
@@ -1489,7 +1580,12 @@ pub unsafe fn frame_geometry(st: &mut AutoState, frame: u64) -> Option<converge:
         (f.get_doublev)(GL_DEPTH_RANGE, range.as_mut_ptr());
         let mut clear = 1.0f64;
         (f.get_doublev)(GL_DEPTH_CLEAR_VALUE, &mut clear);
+        // GL 4.5's clip control (a core context of an older GL raises an
+        // error, which the caller keeps apart, and leaves the default).
+        let mut mode = GL_NEGATIVE_ONE_TO_ONE as i32;
+        (f.get_integerv)(GL_CLIP_DEPTH_MODE, &mut mode);
         Some(converge::Frame {
+            zero_to_one: mode as u32 == GL_ZERO_TO_ONE,
             depth_range: (range[0], range[1]),
             clear_depth: clear,
             window,
@@ -1544,17 +1640,31 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     let perspective = if blit {
                         None
                     } else {
-                        draw_perspective(f, st).map(|p| {
+                        draw_perspective(f, st).map(|perspective| {
                             let mut vp = [0i32; 4];
                             (f.get_integerv)(GL_VIEWPORT, vp.as_mut_ptr());
-                            (p, (vp[0], vp[1], vp[2], vp[3]))
+                            Scene {
+                                perspective,
+                                viewport: (vp[0], vp[1], vp[2], vp[3]),
+                            }
                         })
                     };
-                    if fbo == window_fbo && perspective.is_some() {
+                    // A known perspective draw is the scene; one whose
+                    // projection is unknown only where none known came.
+                    let known = |s: &Option<Scene>| s.is_some_and(|s| s.perspective.is_some());
+                    if fbo == window_fbo && known(&perspective) {
                         st.window_drawn = perspective;
-                        st.depth_copied[0] = false;
+                        st.depth_copied = false;
                     } else if fbo == window_fbo && !blit {
-                        keep_scene_depth(st, 0, layered.depth());
+                        keep_scene_depth(
+                            !st.unmeasured,
+                            known(&st.window_drawn),
+                            layered.depth(),
+                            (&mut st.depth_copy, &mut st.depth_copied),
+                        );
+                        if perspective.is_some() && !known(&st.window_drawn) {
+                            st.window_drawn = perspective;
+                        }
                     }
                     if !blit {
                         // Between glBegin and glEnd (the layer's list is
@@ -1584,14 +1694,36 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             (app_fbo, layered) = (fbo, a);
                             // Measured: the last one with depth (a scene;
                             // the post-processing passes after it have none).
-                            if let (Some((p, vp)), true) = (perspective, a.has_depth()) {
-                                let size = render_targets::size(targets, context, fbo);
-                                st.target_drawn = size.map(|s| (a, s, p, vp));
-                                st.depth_copied[1] = false;
-                            } else if !blit
-                                && st.target_drawn.is_some_and(|t| t.0.depth() == a.depth())
-                            {
-                                keep_scene_depth(st, 1, a.depth());
+                            let size = render_targets::size(targets, context, fbo);
+                            match (perspective, size, a.has_depth()) {
+                                (Some(scene), Some(s), true) if scene.perspective.is_some() => {
+                                    targets.scene.drawn = Some((a, s, scene));
+                                    targets.scene.copied = false;
+                                }
+                                _ if blit => {}
+                                (p, size, depth) => {
+                                    let scene = &mut targets.scene;
+                                    if let Some((t, _, s)) = scene.drawn {
+                                        if t.depth() == a.depth() {
+                                            keep_scene_depth(
+                                                !st.unmeasured,
+                                                s.perspective.is_some(),
+                                                a.depth(),
+                                                (&mut scene.copy, &mut scene.copied),
+                                            );
+                                        }
+                                    }
+                                    // Unknown projections where no known one came.
+                                    let unknown_first = targets
+                                        .scene
+                                        .drawn
+                                        .is_none_or(|t| t.2.perspective.is_none());
+                                    if let (Some(scene), Some(s), true, true) =
+                                        (p, size, depth, unknown_first)
+                                    {
+                                        targets.scene.drawn = Some((a, s, scene));
+                                    }
+                                }
                             }
                         }
                     }
@@ -1620,7 +1752,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         let plain = st.compiling_plain;
                         st.lists.insert(list, plain);
                         if execute {
-                            let settings = st.settings();
+                            let settings = st.draw_settings(f);
                             let path = choose(t, cur, st, app_fbo, !plain);
                             eyes(
                                 t,
@@ -1674,7 +1806,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         draw();
                         (f.end_list)();
                         st.in_begin = false;
-                        let settings = st.settings();
+                        let settings = st.draw_settings(f);
                         let path = choose(t, cur, st, app_fbo, false);
                         let list = st.list;
                         eyes(
@@ -1691,9 +1823,9 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     }
                     _ if st.in_begin => return draw(),
                     (Family::RasterPixels, name) => {
-                        let settings = st.settings();
+                        let settings = st.draw_settings(f);
                         let q = &mut st.queries;
-                        return pixels(t, &settings, app_fbo, &layered, name, call, q, draw);
+                        return pixels(t, &settings.nv, app_fbo, &layered, name, call, q, draw);
                     }
                     (Family::Blit, _) => {
                         if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
@@ -1729,7 +1861,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                 // matrices put back between the eyes (it may move them).
                 let plain =
                     lists && call.name == "glCallList" && st.lists.get(&call.u32(0)) == Some(&true);
-                let settings = st.settings();
+                let settings = st.draw_settings(f);
                 let path = choose(t, cur, st, app_fbo, lists && !plain);
                 if st.feedback && call.family == Family::Draw {
                     // Transform feedback captures what the mono program

@@ -16,6 +16,11 @@
 //! the left eye and +1 for the right, s the effective separation, C the
 //! convergence, and the eye's layer of the emulated framebuffer (or −1
 //! where the draw goes elsewhere: gl_Layer is then the shader's own).
+//! Where automatic convergence knows the screen only as a depth z_c of a
+//! projection it does not know (matrices in uniform buffers, built in the
+//! shader), the uniform is (e·s, z_c, layer, k) and w − C is computed as
+//! (z_c·w − z)·k ([`shift_statement`]): equal for clip z = α·w + β with
+//! k = 1/(z_c − α), whatever β.
 //! Positions with w == 1 (orthographic HUDs, text, full-screen passes) are
 //! left exactly as they were; so is everything when e·s is 0.
 //!
@@ -214,15 +219,24 @@ fn uniform_declaration(version: Version, location: Option<u32>) -> String {
 
 /// The rule's statements, indented for a function body.
 fn rule(layer: LayerWrite) -> String {
-    let mut s = format!(
-        "    if (gl_Position.w != 1.0)\n        gl_Position.x += {EYE_UNIFORM}.x * (gl_Position.w - {EYE_UNIFORM}.y);\n"
-    );
+    let mut s = shift_statement();
     if let Some(builtin) = layer.builtin() {
         s.push_str(&format!(
             "    if ({EYE_UNIFORM}.z >= 0.0)\n        {builtin} = int({EYE_UNIFORM}.z);\n"
         ));
     }
     s
+}
+
+/// The shift of gl_Position.x for the eye (module docs): w − C is
+/// `gls_auto_eye.w` = 0's form; with `gls_auto_eye.w` = k ≠ 0 the same
+/// w − C computed from the clip depth, (z_c·w − z)·k, where the
+/// convergence is a depth z_c of a projection automatic stereo does not
+/// know ([`crate::auto::converge`]).
+pub fn shift_statement() -> String {
+    format!(
+        "    if (gl_Position.w != 1.0)\n        gl_Position.x += {EYE_UNIFORM}.x * ({EYE_UNIFORM}.w == 0.0 ? gl_Position.w - {EYE_UNIFORM}.y : ({EYE_UNIFORM}.y * gl_Position.w - gl_Position.z) * {EYE_UNIFORM}.w);\n"
+    )
 }
 
 /// `source` with the eye's shift applied to every position its `stage`

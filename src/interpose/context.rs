@@ -1093,7 +1093,7 @@ impl StereoContext {
         // context says of this one.
         let measured = if self.auto {
             // SAFETY: the program's context is current on this thread.
-            unsafe { crate::auto::runtime::frame_geometry(&mut st.auto, drawn.frames) }
+            unsafe { crate::auto::runtime::frame_geometry(&mut st.auto, self.group, drawn.frames) }
         } else {
             None
         };
