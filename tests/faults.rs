@@ -501,7 +501,7 @@ fn glstereo_run_without_libgl_refuses_every_call_naming_the_package_and_nothing_
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(127), "{how:?}: {stderr}");
         assert!(
-            stderr.contains("libGL.so.1") && !stderr.contains("glstereo"),
+            stderr.contains("libGL.so.1") && !stderr.contains("glstereo:"),
             "{how:?}: {stderr}"
         );
     }

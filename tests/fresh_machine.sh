@@ -91,6 +91,7 @@ mount --bind "$toolchain" "$root/opt/rust" && mounted="$root/opt/rust $mounted"
 mount -o remount,bind,ro "$root/opt/rust"
 
 git clone -q --no-hardlinks "$top" "$root/root/glstereo"
+touch "$root/.started"
 git -C "$root/root/glstereo" checkout -q "$commit"
 say "make test at $(git -C "$top" log -1 --format='%h %s' "$commit" | cut -c1-72)"
 
@@ -103,7 +104,7 @@ chroot "$root" /usr/bin/env -i HOME=/root USER=root LANG=C.UTF-8 TERM=dumb \
 # A crash's core files (core_pattern "core": in the crashed test's
 # directory) are kept beside the log for gdb.
 if [ "$status" != 0 ]; then
-    find "$root/root/glstereo" -name 'core*' -type f -newer "$log" 2>/dev/null |
+    find "$root/root/glstereo" -name 'core*' -type f -newer "$root/.started" 2>/dev/null |
         while read -r core; do
             cp "$core" "$base/glstereo-fresh-$$-$(basename "$(dirname "$core")")-$(basename "$core")"
             say "kept $core"
