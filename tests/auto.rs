@@ -615,13 +615,7 @@ fn square_targets_seen_from_a_light_stay_mono_and_window_sized_ones_get_eyes() {
 #[test]
 fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = build_once("auto_passes", |out| {
-        compile_plain(
-            &common::root().join("tests/c/auto_passes.c"),
-            out,
-            &["-lGL", "-lX11"],
-        )
-    });
+    let exe = client("auto_passes");
     let x = Xvfb::start(W + 40, H + 40);
     let mut failures = Vec::new();
     for case in [
@@ -691,13 +685,7 @@ fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
 #[test]
 fn automatic_convergence_finds_the_centre_where_the_matrices_are_in_a_uniform_buffer() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = build_once("auto_ubo", |out| {
-        compile_plain(
-            &common::root().join("tests/c/auto_ubo.c"),
-            out,
-            &["-lGL", "-lX11"],
-        )
-    });
+    let exe = client("auto_ubo");
     let x = Xvfb::start(W + 40, H + 40);
     let dir = common::scratch("auto-ubo");
     let o = common::run_ok(

@@ -953,41 +953,19 @@ unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
         let (name, target) = source(o, &shape);
         complete_for(f, o, || {
             for layer in 0..2 {
-                (f.copy_image_sub_data)(
-                    name,
-                    target,
-                    0,
-                    0,
-                    0,
-                    0,
-                    t.array,
-                    array_target,
-                    0,
-                    0,
-                    0,
-                    layer,
-                    shape.width,
-                    shape.height,
-                    1,
+                copy_layer(
+                    f,
+                    (name, target, 0, 0),
+                    (t.array, array_target, 0, layer),
+                    (0, 0, shape.width, shape.height),
                 );
             }
             if !t.view {
-                (f.copy_image_sub_data)(
-                    name,
-                    target,
-                    0,
-                    0,
-                    0,
-                    0,
-                    t.right,
-                    GL_TEXTURE_2D,
-                    0,
-                    0,
-                    0,
-                    0,
-                    shape.width,
-                    shape.height,
-                    1,
+                copy_layer(
+                    f,
+                    (name, target, 0, 0),
+                    (t.right, GL_TEXTURE_2D, 0, 0),
+                    (0, 0, shape.width, shape.height),
                 );
             }
         });
@@ -995,6 +973,25 @@ unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
             copy_sampling(f, tex, t.right);
         }
         Some(t)
+    }
+}
+
+/// One layer of one level of an image: name, glCopyImageSubData
+/// target, level, layer.
+type Layer = (u32, u32, i32, i32);
+
+/// glCopyImageSubData of rectangle (x, y, width, height) from `from` to
+/// the same place of `to`.
+///
+/// # Safety
+/// A context of the objects' share group is current; the rectangle is
+/// inside both, of one format class.
+unsafe fn copy_layer(f: &TargetFns, from: Layer, to: Layer, (x, y, w, h): (i32, i32, i32, i32)) {
+    // SAFETY: contract.
+    unsafe {
+        (f.copy_image_sub_data)(
+            from.0, from.1, from.2, x, y, from.3, to.0, to.1, to.2, x, y, to.3, w, h, 1,
+        )
     }
 }
 
@@ -1108,41 +1105,19 @@ pub unsafe fn resolve(targets: &mut Targets, context: usize, drawing: u32) {
                 GL_TEXTURE_2D_ARRAY
             };
             complete_for(f, t.object, || {
-                (f.copy_image_sub_data)(
-                    t.array,
-                    array_target,
-                    0,
-                    0,
-                    0,
-                    0,
-                    name,
-                    target,
-                    0,
-                    0,
-                    0,
-                    0,
-                    t.shape.width,
-                    t.shape.height,
-                    1,
+                copy_layer(
+                    f,
+                    (t.array, array_target, 0, 0),
+                    (name, target, 0, 0),
+                    (0, 0, t.shape.width, t.shape.height),
                 )
             });
             if !t.view {
-                (f.copy_image_sub_data)(
-                    t.array,
-                    array_target,
-                    0,
-                    0,
-                    0,
-                    1,
-                    t.right,
-                    GL_TEXTURE_2D,
-                    0,
-                    0,
-                    0,
-                    0,
-                    t.shape.width,
-                    t.shape.height,
-                    1,
+                copy_layer(
+                    f,
+                    (t.array, array_target, 0, 1),
+                    (t.right, GL_TEXTURE_2D, 0, 0),
+                    (0, 0, t.shape.width, t.shape.height),
                 );
             }
             if let Object::Texture(tex) = t.object {
@@ -1261,22 +1236,11 @@ pub unsafe fn copied_from_eyes(
                 // Layer 0 takes what the program's copy wrote.
                 let t = &targets.twins[i];
                 complete_for(f, o, || {
-                    (f.copy_image_sub_data)(
-                        texture,
-                        GL_TEXTURE_2D,
-                        0,
-                        xoff,
-                        yoff,
-                        0,
-                        t.array,
-                        GL_TEXTURE_2D_ARRAY,
-                        0,
-                        xoff,
-                        yoff,
-                        0,
-                        w,
-                        h,
-                        1,
+                    copy_layer(
+                        f,
+                        (texture, GL_TEXTURE_2D, 0, 0),
+                        (t.array, GL_TEXTURE_2D_ARRAY, 0, 0),
+                        (xoff, yoff, w, h),
                     )
                 });
             }
@@ -1296,22 +1260,11 @@ pub unsafe fn copied_from_eyes(
         (f.copy_texture_sub_image_2d)(t.right, 0, xoff, yoff, x, y, w, h);
         source.attach(GL_READ_FRAMEBUFFER, None);
         if !t.view {
-            (f.copy_image_sub_data)(
-                t.right,
-                GL_TEXTURE_2D,
-                0,
-                xoff,
-                yoff,
-                0,
-                t.array,
-                GL_TEXTURE_2D_ARRAY,
-                0,
-                xoff,
-                yoff,
-                1,
-                w,
-                h,
-                1,
+            copy_layer(
+                f,
+                (t.right, GL_TEXTURE_2D, 0, 0),
+                (t.array, GL_TEXTURE_2D_ARRAY, 0, 1),
+                (xoff, yoff, w, h),
             );
         }
     }
@@ -1413,22 +1366,11 @@ pub unsafe fn copy_left_depth(array: u32, copy: &mut DepthCopy) -> bool {
                 return false;
             }
         }
-        (f.copy_image_sub_data)(
-            array,
-            GL_TEXTURE_2D_ARRAY,
-            0,
-            0,
-            0,
-            0,
-            copy.texture,
-            GL_TEXTURE_2D,
-            0,
-            0,
-            0,
-            0,
-            size.0,
-            size.1,
-            1,
+        copy_layer(
+            f,
+            (array, GL_TEXTURE_2D_ARRAY, 0, 0),
+            (copy.texture, GL_TEXTURE_2D, 0, 0),
+            (0, 0, size.0, size.1),
         );
         true
     }

@@ -1,0 +1,77 @@
+#!/bin/sh
+# What automatic stereo costs a modern renderer: each of glmark2's scenes
+# (Debian's glmark2-x11, GLX) run mono without the layer, then under
+# `glstereo-run --auto`, ROUNDS times alternated, on a private Xvfb; prints
+# each scene's frame rates and the ratio of the medians (--auto / mono).
+# And glxgears under --auto against its own -stereo mode (display lists).
+#
+#   sh benches/auto_glmark2.sh [ROUNDS [SECONDS]]   (default 3 rounds, 4 s a scene)
+#
+# Uses the release build (cargo build --release -p glstereo-preload).
+# Run it on a quiet machine: llvmpipe takes both cores.
+set -u
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+ROUNDS=${1:-3}
+SECONDS_PER=${2:-4}
+RUN="$ROOT/target/release/glstereo-run"
+[ -x "$RUN" ] || { echo "build first: cargo build --release -p glstereo-preload" >&2; exit 1; }
+command -v glmark2 >/dev/null || { echo "install glmark2-x11" >&2; exit 1; }
+command -v glxgears >/dev/null || { echo "install mesa-utils" >&2; exit 1; }
+
+Xvfb :91 -screen 0 1024x768x24 -nolisten tcp >/dev/null 2>&1 &
+XVFB=$!
+trap 'kill $XVFB 2>/dev/null' EXIT INT TERM
+sleep 2
+export DISPLAY=:91
+
+SCENES="build:use-vbo=true texture:texture-filter=linear shading:shading=phong
+bump:bump-render=high-poly effect2d:kernel=0,1,0;1,-4,1;0,1,0;
+pulsar:quads=5:texture=false:light=false
+desktop:windows=4:effect=blur:blur-radius=5:passes=1:separable=true
+desktop:windows=4:effect=shadow
+buffer:update-fraction=0.5:update-dispersion=0.9:columns=200:update-method=map:interleave=false
+ideas:speed=duration jellyfish terrain shadow refract
+conditionals:vertex-steps=0:fragment-steps=5 function:fragment-steps=5:fragment-complexity=low
+loop:vertex-steps=5:fragment-steps=5:fragment-loop=false"
+
+fps() {
+    "$@" 2>/dev/null | sed -n 's/.*FPS: \([0-9]*\).*/\1/p' | tail -n 1
+}
+
+median() {
+    tr ' ' '\n' | grep -v '^$' | sort -n | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'
+}
+
+printf '%-28s %-18s %-18s %s\n' scene "mono fps" "--auto fps" "ratio of medians"
+for scene in $SCENES; do
+    mono=""
+    auto=""
+    i=0
+    while [ "$i" -lt "$ROUNDS" ]; do
+        mono="$mono $(fps glmark2 -s 800x600 -b "$scene:duration=$SECONDS_PER")"
+        auto="$auto $(fps "$RUN" --auto -m side-by-side-half glmark2 -s 800x600 -b "$scene:duration=$SECONDS_PER")"
+        i=$((i + 1))
+    done
+    m=$(echo "$mono" | median)
+    a=$(echo "$auto" | median)
+    printf '%-28s %-18s %-18s %s\n' "$(echo "$scene" | cut -c1-28)" "$mono" "$auto" \
+        "$(awk -v a="$a" -v m="$m" 'BEGIN {printf "%.2f", (m > 0) ? a / m : 0}')"
+done
+
+# glxgears: --auto (display lists of geometry only: the fast path) against
+# its own quad-buffer stereo under the layer.
+gears() {
+    timeout $((SECONDS_PER * 2 + 3)) "$@" 2>/dev/null | sed -n 's/.*= \([0-9.]*\) FPS.*/\1/p' | tail -n 1
+}
+auto=""
+stereo=""
+i=0
+while [ "$i" -lt "$ROUNDS" ]; do
+    auto="$auto $(gears "$RUN" --auto -m side-by-side-half glxgears -geometry 300x300)"
+    stereo="$stereo $(gears "$RUN" -m side-by-side-half glxgears -stereo -geometry 300x300)"
+    i=$((i + 1))
+done
+a=$(echo "$auto" | median)
+s=$(echo "$stereo" | median)
+printf '%-28s %-18s %-18s %s\n' "glxgears --auto / -stereo" "$stereo" "$auto" \
+    "$(awk -v a="$a" -v s="$s" 'BEGIN {printf "%.2f", (s > 0) ? a / s : 0}')"
