@@ -1,6 +1,7 @@
 //! Automatic convergence: where automatic stereo puts the screen when the
 //! user has not (`GLSTEREO_CONVERGENCE=auto`, the default). Every
-//! [`PERIOD`] frames (every frame until one finds the scene: [`measures`])
+//! [`PERIOD`] frames (every one of the first [`EAGER`] until one finds the
+//! scene: [`measures`])
 //! the layer reads the left eye's depth in the central
 //! window of the program's viewport (the window's eyes when the frame drew
 //! into them, else the stereoized render target it drew into last: a
@@ -34,13 +35,20 @@ use crate::math::frustum::Frustum;
 /// Frames between two measurements (the first at the first present).
 pub const PERIOD: u64 = 30;
 
+/// Frames at the start that are all measured until one finds the scene.
+pub const EAGER: u64 = 2 * PERIOD;
+
 /// Whether frame `frame` (counted from 0) is measured: every
-/// [`PERIOD`]th, and every one until a measurement found the scene (a
-/// program that presents a few frames and then only on events — Blender,
-/// a viewer waiting for input — may draw its scene after the first).
+/// [`PERIOD`]th, and each of the first [`EAGER`] until a measurement
+/// found the scene (a program that presents a few frames and then only
+/// on events — Blender, a viewer waiting for input — may draw its scene
+/// after the first; one whose depth never holds its scene, a 2D game, is
+/// not read every frame for ever).
 pub fn measures(frame: u64) -> bool {
     frame % PERIOD == 0
-        || (live::automatic_convergence().is_none() && live::automatic_depth().is_none())
+        || (frame < EAGER
+            && live::automatic_convergence().is_none()
+            && live::automatic_depth().is_none())
 }
 
 /// What the program's context says of a frame at its present
