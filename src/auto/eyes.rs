@@ -613,8 +613,14 @@ impl LayeredEyes {
 
     /// What a draw attaches.
     pub fn attachments(&self) -> Attachments {
+        self.attachments_in([0, 1])
+    }
+
+    /// [`Self::attachments`] with pair `order[i]` at GL_COLOR_ATTACHMENT0 + i.
+    pub fn attachments_in(&self, order: [usize; 2]) -> Attachments {
         let mut colour = [0; 8];
-        colour[..2].copy_from_slice(&self.colour);
+        colour[0] = self.colour[order[0]];
+        colour[1] = self.colour[order[1]];
         Attachments {
             api: self.api,
             colour,

@@ -26,7 +26,7 @@
 //! user linked it, and says why ([`LinkOutcome::Kept`]): that program
 //! draws both eyes unshifted.
 
-use crate::auto::glsl::Scan;
+use crate::auto::glsl::{Profile, Scan};
 use crate::auto::vertex::{self, LayerWrite, NotCovered, Options, Rewrite, Stage, shift_position};
 use crate::stereo::outputs::LinkFns;
 
@@ -68,14 +68,21 @@ fn options(stage: Stage, scan: &Scan, index: LayerWrite, location: Option<u32>) 
         } else {
             LayerWrite::None
         },
-        location,
+        // GLSL ES has explicit uniform locations from 3.10 on and no
+        // extension for them before: the uniform is looked up by name.
+        location: if scan.version.profile == Profile::Es && scan.version.number < 310 {
+            None
+        } else {
+            location
+        },
     }
 }
 
 /// Rewrites the last vertex-processing stage of the linked `program`
 /// (module docs). `index` is where the eye's index goes (gl_Layer or
 /// gl_ViewportIndex: the target's form), `location` the reserved uniform
-/// location to try.
+/// location to try; `es`: the context is OpenGL ES, where a source
+/// without `#version` is GLSL ES 1.00 ([`vertex::as_es_compiles`]).
 ///
 /// # Safety
 /// A GL context must be current on this thread and `program` one of its
@@ -86,6 +93,7 @@ pub unsafe fn shift_last_stage(
     program: u32,
     index: LayerWrite,
     location: Option<u32>,
+    es: bool,
 ) -> LinkOutcome {
     // SAFETY: contract.
     unsafe {
@@ -113,6 +121,11 @@ pub unsafe fn shift_last_stage(
                     "the {} shader has no GLSL source (SPIR-V)",
                     stage.name()
                 ));
+            };
+            let source = if es {
+                vertex::as_es_compiles(source)
+            } else {
+                source
             };
             let scan = vertex::scan(&source);
             match shift_position(&source, stage, options(stage, &scan, index, location)) {
@@ -185,11 +198,17 @@ pub fn shift_separable(
     strings: &[&str],
     index: LayerWrite,
     location: Option<u32>,
+    es: bool,
 ) -> Result<Option<String>, NotCovered> {
     let Some(stage) = Stage::from_gl(shader_type) else {
         return Ok(None);
     };
     let source = strings.concat();
+    let source = if es {
+        vertex::as_es_compiles(source)
+    } else {
+        source
+    };
     let scan = vertex::scan(&source);
     match shift_position(&source, stage, options(stage, &scan, index, location))? {
         Rewrite::Shifted(text) => Ok(Some(text)),
@@ -490,8 +509,13 @@ mod tests {
             for (name, stages, layer) in programs() {
                 let program = f.p.program(&stages);
                 let before = f.link.attached_shaders(program);
-                let outcome =
-                    shift_last_stage(&f.link, program, LayerWrite::FromUniform, Some(f.location));
+                let outcome = shift_last_stage(
+                    &f.link,
+                    program,
+                    LayerWrite::FromUniform,
+                    Some(f.location),
+                    false,
+                );
                 let LinkOutcome::Shifted(s) = outcome else {
                     panic!("{name}: {outcome:?}");
                 };
@@ -567,7 +591,13 @@ mod tests {
             // Fragment shader only: fixed-function vertices.
             let program = f.p.program(&[(GL_FRAGMENT_SHADER, FS_110)]);
             assert!(matches!(
-                shift_last_stage(&f.link, program, LayerWrite::FromUniform, Some(f.location)),
+                shift_last_stage(
+                    &f.link,
+                    program,
+                    LayerWrite::FromUniform,
+                    Some(f.location),
+                    false
+                ),
                 LinkOutcome::NotNeeded(_)
             ));
             // The program's own identifier in our namespace.
@@ -575,8 +605,13 @@ mod tests {
                 (GL_VERTEX_SHADER, "#version 330\nuniform vec4 gls_auto_eye;\nvoid main() { gl_Position = gls_auto_eye; }\n"),
                 (GL_FRAGMENT_SHADER, FS_110),
             ]);
-            let outcome =
-                shift_last_stage(&f.link, program, LayerWrite::FromUniform, Some(f.location));
+            let outcome = shift_last_stage(
+                &f.link,
+                program,
+                LayerWrite::FromUniform,
+                Some(f.location),
+                false,
+            );
             assert!(
                 matches!(&outcome, LinkOutcome::Kept(why) if why.contains("gls_auto_eye")),
                 "{outcome:?}"
@@ -625,11 +660,18 @@ mod tests {
             &[&src[..20], &src[20..]],
             LayerWrite::FromUniform,
             Some(f.location),
+            false,
         )
         .unwrap()
         .expect("a vertex stage is shifted");
         assert_eq!(
-            shift_separable(GL_FRAGMENT_SHADER, &[FS_110], LayerWrite::FromUniform, None),
+            shift_separable(
+                GL_FRAGMENT_SHADER,
+                &[FS_110],
+                LayerWrite::FromUniform,
+                None,
+                false
+            ),
             Ok(None)
         );
         let c = CString::new(out).unwrap();
@@ -792,7 +834,7 @@ mod tests {
             };
             // Under the layer.
             let mono = p.program(stages);
-            let outcome = shift_last_stage(&f.link, mono, index, Some(f.location));
+            let outcome = shift_last_stage(&f.link, mono, index, Some(f.location), false);
             assert!(matches!(outcome, LinkOutcome::Shifted(_)), "{outcome:?}");
             (p.use_program)(mono);
             let lm = (p.get_uniform_location)(mono, c"m".as_ptr());
@@ -958,9 +1000,15 @@ mod tests {
         unsafe {
             let separable = |ty: u32, src: &str, rewrite: bool| -> u32 {
                 let src = match rewrite {
-                    true => shift_separable(ty, &[src], LayerWrite::FromUniform, Some(f.location))
-                        .unwrap()
-                        .unwrap_or(src.to_owned()),
+                    true => shift_separable(
+                        ty,
+                        &[src],
+                        LayerWrite::FromUniform,
+                        Some(f.location),
+                        false,
+                    )
+                    .unwrap()
+                    .unwrap_or(src.to_owned()),
                     false => src.to_owned(),
                 };
                 let cs = CString::new(src).unwrap();

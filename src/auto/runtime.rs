@@ -72,6 +72,7 @@ use crate::shims::nv3dvision::{
 use crate::stereo::outputs::LinkFns;
 
 const GL_CURRENT_PROGRAM: u32 = 0x8B8D;
+const GL_VERSION: u32 = 0x1F02;
 const GL_PROGRAM_PIPELINE_BINDING: u32 = 0x825A;
 const GL_DRAW_FRAMEBUFFER_BINDING: u32 = 0x8CA6;
 const GL_READ_FRAMEBUFFER_BINDING: u32 = 0x8CAA;
@@ -139,6 +140,7 @@ gl_fns! {
     /// The GL functions of automatic stereo at run time, below the layer.
     pub struct AutoFns {
         get_integerv = c"glGetIntegerv": fn(u32, *mut i32);
+        get_string = c"glGetString": fn(u32) -> *const u8;
         get_floatv = c"glGetFloatv": fn(u32, *mut f32);
         get_doublev = c"glGetDoublev": fn(u32, *mut f64);
         is_enabled = c"glIsEnabled": fn(u32) -> u8;
@@ -199,20 +201,29 @@ fn tables() -> Option<&'static Tables> {
         .as_ref()
 }
 
-/// What the layer knows of a program after its link: the uniform's
-/// location when its last vertex stage was rewritten.
-static PROGRAMS: Mutex<Option<HashMap<(u64, u32), i32>>> = Mutex::new(None);
+/// Where a rewritten program's eye uniform is, and whether its last
+/// vertex stage writes the eye's layer (not in GLSL ES, whose vertex
+/// stages cannot: its draws attach each eye's layers in turn).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Rewritten {
+    location: i32,
+    layer: bool,
+}
 
-fn record(group: u64, program: u32, location: Option<i32>) {
+/// What the layer knows of a program after its link: where its eye
+/// uniform is when its last vertex stage was rewritten.
+static PROGRAMS: Mutex<Option<HashMap<(u64, u32), Rewritten>>> = Mutex::new(None);
+
+fn record(group: u64, program: u32, rewritten: Option<Rewritten>) {
     let mut p = PROGRAMS.lock().unwrap_or_else(|e| e.into_inner());
     let map = p.get_or_insert_with(HashMap::new);
-    match location {
-        Some(l) => map.insert((group, program), l),
+    match rewritten {
+        Some(r) => map.insert((group, program), r),
         None => map.remove(&(group, program)),
     };
 }
 
-fn location_of(group: u64, program: u32) -> Option<i32> {
+fn rewritten(group: u64, program: u32) -> Option<Rewritten> {
     let p = PROGRAMS.lock().unwrap_or_else(|e| e.into_inner());
     p.as_ref()?.get(&(group, program)).copied()
 }
@@ -295,6 +306,10 @@ pub struct AutoState {
     /// the twins' generation then; None: to be scanned again (a binding
     /// changed: the texture commands, glPopAttrib, a display list).
     sampled: Option<(u64, Sampled)>,
+    /// The context is OpenGL ES (None: not asked yet). Its render targets
+    /// stay mono: giving them eyes takes GL 4.5's direct state access,
+    /// which ES lacks.
+    es: Option<bool>,
     /// The program's counting queries active now ([`Counting`]).
     queries: Vec<Counting>,
     /// Ended counting queries that have segments: (the program's name,
@@ -390,6 +405,24 @@ impl AutoState {
     ///
     /// # Safety
     /// The program's context is current on this thread.
+    /// Whether the context is OpenGL ES (asked once).
+    ///
+    /// # Safety
+    /// The program's context is current on this thread.
+    unsafe fn es(&mut self, f: &AutoFns) -> bool {
+        // SAFETY: contract.
+        *self.es.get_or_insert_with(|| {
+            let es = unsafe { context_is_es(f) };
+            if es {
+                crate::report::tell(
+                    "an OpenGL ES context: its own framebuffer objects (render targets) \
+                     stay mono (giving them eyes takes direct state access, which ES lacks)",
+                );
+            }
+            es
+        })
+    }
+
     unsafe fn draw_settings(&mut self, f: &AutoFns) -> DrawSettings {
         let mut nv = self.settings();
         // SAFETY: contract.
@@ -708,7 +741,7 @@ unsafe fn shifted(f: &AutoFns, group: u64, name: &str) -> bool {
     // SAFETY: contract.
     match unsafe { vertex_program(f) } {
         None => true,
-        Some((p, _)) => location_of(group, p).is_some(),
+        Some((p, _)) => rewritten(group, p).is_some(),
     }
 }
 
@@ -725,14 +758,14 @@ unsafe fn choose(
     // SAFETY: the program's context is current (callers).
     unsafe {
         let program = vertex_program(f);
-        let target = program.and_then(|(p, separate)| {
-            let location = location_of(cur.group(), p)?;
-            Some(Target {
+        let program_rewritten = program.and_then(|(p, _)| rewritten(cur.group(), p));
+        let target = program
+            .zip(program_rewritten)
+            .map(|((p, separate), r)| Target {
                 program: p,
-                location,
+                location: r.location,
                 separate,
-            })
-        });
+            });
         if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
             return Path::Mono(target);
         }
@@ -743,9 +776,17 @@ unsafe fn choose(
             };
         }
         match (program, target) {
-            (Some(_), Some(target)) => Path::Uniform {
-                target,
-                standin: false,
+            (Some(_), Some(target)) if program_rewritten.is_some_and(|r| r.layer) => {
+                Path::Uniform {
+                    target,
+                    standin: false,
+                }
+            }
+            // A stage that cannot write the layer (GLSL ES): the shift by
+            // the uniform, the eye's layers attached in turn.
+            (Some(_), Some(target)) => Path::Layers {
+                fixed: false,
+                target: Some(target),
             },
             (Some(_), None) => Path::Layers {
                 fixed: false,
@@ -1576,18 +1617,19 @@ pub unsafe fn frame_geometry(
     let f = &t.gl;
     // SAFETY: contract.
     unsafe {
-        let mut range = [0.0f64; 2];
-        (f.get_doublev)(GL_DEPTH_RANGE, range.as_mut_ptr());
-        let mut clear = 1.0f64;
-        (f.get_doublev)(GL_DEPTH_CLEAR_VALUE, &mut clear);
+        // Single precision: OpenGL ES has no glGetDoublev.
+        let mut range = [0.0f32; 2];
+        (f.get_floatv)(GL_DEPTH_RANGE, range.as_mut_ptr());
+        let mut clear = 1.0f32;
+        (f.get_floatv)(GL_DEPTH_CLEAR_VALUE, &mut clear);
         // GL 4.5's clip control (a core context of an older GL raises an
         // error, which the caller keeps apart, and leaves the default).
         let mut mode = GL_NEGATIVE_ONE_TO_ONE as i32;
         (f.get_integerv)(GL_CLIP_DEPTH_MODE, &mut mode);
         Some(converge::Frame {
             zero_to_one: mode as u32 == GL_ZERO_TO_ONE,
-            depth_range: (range[0], range[1]),
-            clear_depth: clear,
+            depth_range: (f64::from(range[0]), f64::from(range[1])),
+            clear_depth: f64::from(clear),
             window,
             target,
         })
@@ -1636,6 +1678,9 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                 let blit = call.family == Family::Blit;
                 let mut sampled = Sampled::default();
                 if st.compiling.is_none() {
+                    // OpenGL ES: no render targets in stereo, no depth copies
+                    // (both made with direct state access).
+                    let es = st.es(f);
                     let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
                     let perspective = if blit {
                         None
@@ -1657,7 +1702,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         st.depth_copied = false;
                     } else if fbo == window_fbo && !blit {
                         keep_scene_depth(
-                            !st.unmeasured,
+                            !st.unmeasured && !es,
                             known(&st.window_drawn),
                             layered.depth(),
                             (&mut st.depth_copy, &mut st.depth_copied),
@@ -1676,7 +1721,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             st.sampled(targets)
                         };
                     }
-                    if fbo != app_fbo {
+                    if fbo != app_fbo && !es {
                         // The policy's facts about this draw
                         // (render_targets, "The policy").
                         let read = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32;
@@ -2003,20 +2048,48 @@ pub unsafe fn linked(group: u64, program: u32) {
     };
     // SAFETY: contract.
     let outcome = unsafe {
-        link::shift_last_stage(&t.link, program, LayerWrite::FromUniform, Some(location))
+        link::shift_last_stage(
+            &t.link,
+            program,
+            LayerWrite::FromUniform,
+            Some(location),
+            context_is_es(&t.gl),
+        )
     };
     // SAFETY: contract.
     let at = unsafe { located(t, program, &outcome) };
     record(group, program, at);
 }
 
+/// Whether the context current on this thread is an OpenGL ES one (its
+/// GL_VERSION begins "OpenGL ES", as every ES version's must).
+///
+/// # Safety
+/// A context is current on this thread.
+unsafe fn context_is_es(f: &AutoFns) -> bool {
+    // SAFETY: contract; NULL or a NUL-terminated string of the driver.
+    unsafe {
+        let v = (f.get_string)(GL_VERSION);
+        !v.is_null()
+            && std::ffi::CStr::from_ptr(v.cast())
+                .to_bytes()
+                .starts_with(b"OpenGL ES")
+    }
+}
+
 /// Where the eye's uniform of `program` is after `outcome`.
-unsafe fn located(t: &Tables, program: u32, outcome: &LinkOutcome) -> Option<i32> {
+unsafe fn located(t: &Tables, program: u32, outcome: &LinkOutcome) -> Option<Rewritten> {
     match outcome {
         LinkOutcome::Shifted(s) => match s.location {
-            Some(l) => Some(l as i32),
+            Some(l) => Some(Rewritten {
+                location: l as i32,
+                layer: s.layer,
+            }),
             // SAFETY: contract of the callers.
-            None => unsafe { uniform_location(t, program) },
+            None => unsafe { uniform_location(t, program) }.map(|location| Rewritten {
+                location,
+                layer: s.layer,
+            }),
         },
         LinkOutcome::Kept(why) => {
             crate::report::warn(&format!(
@@ -2041,7 +2114,9 @@ unsafe fn uniform_location(t: &Tables, program: u32) -> Option<i32> {
 pub fn separable_source(kind: u32, strings: &[&str]) -> Option<String> {
     let t = tables()?;
     let location = reserved_location(&t.gl)?;
-    match link::shift_separable(kind, strings, LayerWrite::FromUniform, Some(location)) {
+    // SAFETY: the program's context is current (the caller's call).
+    let es = unsafe { context_is_es(&t.gl) };
+    match link::shift_separable(kind, strings, LayerWrite::FromUniform, Some(location), es) {
         Ok(s) => s,
         Err(why) => {
             crate::report::warn(&format!(
@@ -2064,7 +2139,14 @@ pub unsafe fn created(group: u64, program: u32) {
     };
     // SAFETY: contract.
     let at = unsafe { uniform_location(t, program) };
-    record(group, program, at);
+    // Its stage writes the layer where GLSL can: not in OpenGL ES.
+    // SAFETY: contract.
+    let layer = !unsafe { context_is_es(&t.gl) };
+    record(
+        group,
+        program,
+        at.map(|location| Rewritten { location, layer }),
+    );
 }
 
 /// glStereoParameterfNV / glStereoParameteriNV (`Ok(f)` / `Err(i)` as

@@ -375,6 +375,19 @@ pub fn scan(source: &str) -> Scan {
     glsl::scan(source)
 }
 
+/// `source` as an OpenGL ES context compiles it: without a `#version`
+/// directive it is GLSL ES 1.00 there (GLSL 1.10 in desktop GL, which
+/// [`scan`] assumes), so it gets the directive, and `#line 0` after it,
+/// which keeps every line's number (in ES 1.00 the line after `#line N`
+/// is N + 1). A source with a `#version` is returned as it is.
+pub fn as_es_compiles(source: String) -> String {
+    if glsl::scan(&source).after_version == 0 {
+        format!("#version 100\n#line 0\n{source}")
+    } else {
+        source
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

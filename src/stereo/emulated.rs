@@ -204,6 +204,14 @@ pub struct BufferFormats {
     /// stencil one array, all made through this API and attached layered,
     /// so one draw reaches both eyes by its layer.
     pub layered: Option<LayeredApi>,
+    /// The program's context is OpenGL ES, whose glDrawBuffers on a
+    /// framebuffer object takes GL_COLOR_ATTACHMENTi only at position i
+    /// (ES 3.2 §15.2.1; desktop GL takes any order): with layered eyes the
+    /// pair drawn into (the back pair) is kept at GL_COLOR_ATTACHMENT0 and
+    /// the front pair at 1, the pairs re-attached at each swap
+    /// ([`EmulatedFramebuffer::swap`]) where desktop GL only exchanges the
+    /// draw buffers.
+    pub positional: bool,
 }
 
 impl BufferFormats {
@@ -220,6 +228,7 @@ impl BufferFormats {
             },
             in_place: None,
             layered: None,
+            positional: false,
         }
     }
 
@@ -238,6 +247,7 @@ impl BufferFormats {
             },
             in_place: None,
             layered: None,
+            positional: false,
         }
     }
 
@@ -868,8 +878,8 @@ impl EmulatedFramebuffer {
     unsafe fn attach_storage(&self, gl: &Gl) -> Result<()> {
         // SAFETY: the application context is current with app_fbo bound.
         unsafe {
-            if let Some(eyes) = &self.layered {
-                eyes.attachments().attach(GL_FRAMEBUFFER, None);
+            if let Some(attachments) = self.layered_attachments() {
+                attachments.attach(GL_FRAMEBUFFER, None);
                 let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
                 if status != GL_FRAMEBUFFER_COMPLETE {
                     return Err(Error::Gl(format!(
@@ -920,14 +930,40 @@ impl EmulatedFramebuffer {
     fn attachment(&self, b: Option<ColorBuffer>) -> u32 {
         b.map_or(GL_NONE, |b| {
             let slot = self.slot_of[b.index()];
-            // Layered eyes: a pair's two buffers are one attachment.
+            // Layered eyes: a pair's two buffers are one attachment, at
+            // the pair's index, or (positional) the back pair at 0.
             let slot = if self.layered.is_some() {
-                crate::auto::eyes::pair(slot)
+                self.pair_position(crate::auto::eyes::pair(slot))
             } else {
                 slot
             };
             GL_COLOR_ATTACHMENT0 + slot as u32
         })
+    }
+
+    /// The attachment index of layered pair `pair`: the pair's own, or
+    /// with [`BufferFormats::positional`] 0 for the back pair and 1 for
+    /// the front one.
+    fn pair_position(&self, pair: usize) -> usize {
+        if !self.formats.positional {
+            return pair;
+        }
+        let back = crate::auto::eyes::pair(self.slot_of[ColorBuffer::BackLeft.index()]);
+        usize::from(pair != back)
+    }
+
+    /// The layered eyes' attachments as the program's framebuffer object
+    /// has them (the back pair at attachment 0 with
+    /// [`BufferFormats::positional`], else each pair at its index), if this framebuffer
+    /// has layered eyes.
+    pub fn layered_attachments(&self) -> Option<crate::auto::eyes::Attachments> {
+        let eyes = self.layered.as_ref()?;
+        let order = [0, 1].map(|position| {
+            (0..2)
+                .find(|&p| self.pair_position(p) == position)
+                .unwrap_or(position)
+        });
+        Some(eyes.attachments_in(order))
     }
 
     /// The attachments glDrawBuffers must get for the current draw state.
@@ -1193,6 +1229,15 @@ impl EmulatedFramebuffer {
         );
         // SAFETY: contract.
         unsafe {
+            if self.formats.positional && self.layered.is_some() && self.app_fbo != 0 {
+                // The new back pair moves to attachment 0 (the draw
+                // buffers below then name it where ES allows).
+                self.with_bound(gl, GL_DRAW_FRAMEBUFFER, GL_DRAW_FRAMEBUFFER_BINDING, || {
+                    if let Some(a) = self.layered_attachments() {
+                        a.attach(GL_DRAW_FRAMEBUFFER, None);
+                    }
+                });
+            }
             self.apply_draw(gl);
             self.apply_read(gl);
         }
