@@ -834,6 +834,116 @@ gls_result gls_config_get_attrib(const struct gls_config *config,
 void gls_config_free(struct gls_config *config);
 
 /**
+ * `eglGetDisplay`: the real call; the display's platform is remembered.
+ */
+void *gls_egl_get_display(void *native_display);
+
+/**
+ * `eglGetPlatformDisplay` (EGL 1.5).
+ */
+void *gls_egl_get_platform_display(uint32_t platform,
+                                   void *native_display,
+                                   const ptrdiff_t *attrib_list);
+
+/**
+ * `eglGetPlatformDisplayEXT` (EGL_EXT_platform_base).
+ */
+void *gls_egl_get_platform_display_ext(uint32_t platform,
+                                       void *native_display,
+                                       const int32_t *attrib_list);
+
+/**
+ * `eglCreateContext`: under `--auto`, an automatic-stereo context.
+ */
+void *gls_egl_create_context(void *dpy,
+                             void *config,
+                             void *share_context,
+                             const int32_t *attrib_list);
+
+/**
+ * `eglDestroyContext`: an automatic-stereo context current on a thread is
+ * destroyed, with the layer's, when it is released.
+ */
+uint32_t gls_egl_destroy_context(void *dpy, void *ctx);
+
+/**
+ * `eglMakeCurrent`: an automatic-stereo context on a surface draws into
+ * that surface's emulated framebuffer.
+ */
+uint32_t gls_egl_make_current(void *dpy, void *draw, void *read, void *ctx);
+
+/**
+ * `eglReleaseThread`.
+ */
+uint32_t gls_egl_release_thread(void);
+
+/**
+ * `eglSwapBuffers`: an automatic-stereo surface shows both eyes composed
+ * in GLSTEREO_MODE.
+ */
+uint32_t gls_egl_swap_buffers(void *dpy, void *surface);
+
+/**
+ * `eglSwapBuffersWithDamageKHR`: as [`gls_egl_swap_buffers`] (the
+ * composite is new everywhere: the whole surface is presented).
+ */
+uint32_t gls_egl_swap_buffers_with_damage_khr(void *dpy,
+                                              void *surface,
+                                              const int32_t *rects,
+                                              int32_t n_rects);
+
+/**
+ * `eglSwapBuffersWithDamageEXT`: as [`gls_egl_swap_buffers_with_damage_khr`].
+ */
+uint32_t gls_egl_swap_buffers_with_damage_ext(void *dpy,
+                                              void *surface,
+                                              const int32_t *rects,
+                                              int32_t n_rects);
+
+/**
+ * `eglCreateWindowSurface`: the real call (the X window behind it is
+ * remembered for the live keys).
+ */
+void *gls_egl_create_window_surface(void *dpy,
+                                    void *config,
+                                    size_t win,
+                                    const int32_t *attrib_list);
+
+/**
+ * `eglCreatePlatformWindowSurface` (EGL 1.5).
+ */
+void *gls_egl_create_platform_window_surface(void *dpy,
+                                             void *config,
+                                             void *native_window,
+                                             const ptrdiff_t *attrib_list);
+
+/**
+ * `eglCreatePlatformWindowSurfaceEXT` (EGL_EXT_platform_base).
+ */
+void *gls_egl_create_platform_window_surface_ext(void *dpy,
+                                                 void *config,
+                                                 void *native_window,
+                                                 const int32_t *attrib_list);
+
+/**
+ * `eglDestroySurface`: the surface's stereo buffers go with it, in every
+ * context that has them.
+ */
+uint32_t gls_egl_destroy_surface(void *dpy, void *surface);
+
+/**
+ * `eglTerminate`: the layer's contexts on the display go first.
+ */
+uint32_t gls_egl_terminate(void *dpy);
+
+/**
+ * `eglGetProcAddress` below the layer: the real libEGL's function for
+ * `procname` (the preload hands out its own functions for the names it
+ * replaces before asking this). NULL `procname`: NULL, as libEGL answers.
+ */
+void *gls_egl_get_proc_address(const char *procname);
+
+/**
  * getgdesc(inquiry): GD_XPMAX and GD_YPMAX give the emulated screen's
  * width and height in pixels (1280 and 1024 by default; SGI's programs
  * use getgdesc(GD_XPMAX) - 1 as the last column); GD_STEREO gives 1 (the

@@ -1,5 +1,6 @@
 //! Link settings of libglstereo_preload.so, and the stub libraries that
-//! stand for libGL.so.1, libGLX.so.0 and libOpenGL.so.0 when a program
+//! stand for libGL.so.1, libGLX.so.0, libOpenGL.so.0, libEGL.so.1 and
+//! libGLESv2.so.2 when a program
 //! dlopens them (glstereo::interpose::next says why).
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -45,10 +46,12 @@ const GENERATED: &[Family] = &[
 ];
 
 /// Each stub's file name (also its soname) and the library it stands for.
-const STUBS: [(&str, &str); 3] = [
+const STUBS: [(&str, &str); 5] = [
     ("libglstereo_stub_GL.so", "libGL.so.1"),
     ("libglstereo_stub_GLX.so", "libGLX.so.0"),
     ("libglstereo_stub_OpenGL.so", "libOpenGL.so.0"),
+    ("libglstereo_stub_EGL.so", "libEGL.so.1"),
+    ("libglstereo_stub_GLESv2.so", "libGLESv2.so.2"),
 ];
 
 fn main() {

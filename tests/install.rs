@@ -66,6 +66,8 @@ fn make_install_gives_a_c_library_pkg_config_and_glstereo_run() {
         "lib/libglstereo_stub_GL.so".into(),
         "lib/libglstereo_stub_GLX.so".into(),
         "lib/libglstereo_stub_OpenGL.so".into(),
+        "lib/libglstereo_stub_EGL.so".into(),
+        "lib/libglstereo_stub_GLESv2.so".into(),
         "lib/pkgconfig/glstereo.pc".into(),
         "include/glstereo.h".into(),
         "include/glstereo/compat.h".into(),

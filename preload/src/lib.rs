@@ -31,6 +31,7 @@ use std::ffi::{c_char, c_int, c_uchar, c_ulong, c_void};
 use std::sync::atomic::{AtomicPtr, Ordering};
 
 use glstereo::auto::entry_points::Family;
+use glstereo::ffi::egl as gls_egl;
 use glstereo::ffi::interpose as gls;
 use glstereo::interpose::controls;
 use glstereo::interpose::draws::Call;
@@ -246,6 +247,152 @@ export! {
     glGetProgramBinaryOES => gls_gl_get_program_binary_oes(program: u32, buf_size: i32, length: *mut i32, binary_format: *mut u32, binary: *mut c_void);
     glProgramBinary => gls_gl_program_binary(program: u32, binary_format: u32, binary: *const c_void, length: i32);
     glProgramBinaryOES => gls_gl_program_binary_oes(program: u32, binary_format: u32, binary: *const c_void, length: i32);
+}
+
+/// The EGL functions, exported as [`export!`] exports GLX's: each enters
+/// the layer and calls glstereo's `gls_egl_*` implementation; entered
+/// again from inside the layer it forwards to the next definition of its
+/// name (a layer below, then libEGL: [`egl_pass_down`]).
+macro_rules! egl_export {
+    ($( $name:ident => $target:ident ( $($arg:ident : $ty:ty),* ) -> $ret:ty ; )*) => {
+        /// The bodies of the EGL exports, at addresses of this library's own.
+        mod egl_local {
+            use super::*;
+            $(
+                pub(super) unsafe extern "C" fn $name($($arg: $ty),*) -> $ret {
+                    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+                    let (_inside, depth) = next::enter();
+                    if depth > 0 {
+                        let f = egl_pass_down(&NEXT, concat!(stringify!($name), "\0"), depth);
+                        // SAFETY: the next definition of this function, with its
+                        // signature, and the caller's arguments.
+                        return unsafe {
+                            std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($ty),*) -> $ret>(f)($($arg),*)
+                        };
+                    }
+                    // SAFETY: the caller's arguments, under the contract of the
+                    // EGL function this replaces, which the target shares.
+                    unsafe { gls_egl::$target($($arg),*) }
+                }
+            )*
+        }
+
+        $(
+            #[doc = concat!("`", stringify!($name), "`: see `", stringify!($target), "` in glstereo.h.")]
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn $name($($arg: $ty),*) -> $ret {
+                // SAFETY: the caller's arguments, forwarded.
+                unsafe { egl_local::$name($($arg),*) }
+            }
+        )*
+
+        /// This library's own function standing for EGL function `name`,
+        /// for eglGetProcAddress.
+        fn own_egl_export(name: &[u8]) -> Option<*mut c_void> {
+            match name {
+                $( n if n == stringify!($name).as_bytes() => Some(egl_local::$name as *mut c_void), )*
+                b"eglGetProcAddress" => Some(local_egl_get_proc_address as *mut c_void),
+                _ => None,
+            }
+        }
+    };
+}
+
+/// [`pass_down`] for an EGL export: the next definition of `name`
+/// (cached in `slot`), or libEGL's own, nested [`next::NESTING_LIMIT`]
+/// deep. A process whose libEGL lacks the function cannot have reached the
+/// export through libEGL: the process ends with a message.
+fn egl_pass_down(slot: &AtomicPtr<c_void>, name: &'static str, depth: u32) -> *mut c_void {
+    let cname = std::ffi::CStr::from_bytes_with_nul(name.as_bytes()).expect("NUL-terminated");
+    if depth >= next::NESTING_LIMIT {
+        next::loop_detected(name.trim_end_matches('\0'));
+        let f = next::bottom_egl_symbol(cname);
+        if f.is_null() {
+            no_egl(cname);
+        }
+        slot.store(f, Ordering::Release);
+        return f;
+    }
+    let mut f = slot.load(Ordering::Acquire);
+    if f.is_null() {
+        f = next::next_egl_symbol(cname);
+        if f.is_null() {
+            no_egl(cname);
+        }
+        slot.store(f, Ordering::Release);
+    }
+    f
+}
+
+fn no_egl(name: &std::ffi::CStr) -> ! {
+    eprintln!(
+        "glstereo: {} re-entered and libEGL.so.1 has no such function; aborting",
+        name.to_string_lossy()
+    );
+    std::process::abort();
+}
+
+egl_export! {
+    eglGetDisplay => gls_egl_get_display(native_display: *mut c_void) -> *mut c_void;
+    eglGetPlatformDisplay => gls_egl_get_platform_display(platform: u32, native_display: *mut c_void, attrib_list: *const isize) -> *mut c_void;
+    eglGetPlatformDisplayEXT => gls_egl_get_platform_display_ext(platform: u32, native_display: *mut c_void, attrib_list: *const i32) -> *mut c_void;
+    eglCreateContext => gls_egl_create_context(dpy: *mut c_void, config: *mut c_void, share_context: *mut c_void, attrib_list: *const i32) -> *mut c_void;
+    eglDestroyContext => gls_egl_destroy_context(dpy: *mut c_void, ctx: *mut c_void) -> u32;
+    eglMakeCurrent => gls_egl_make_current(dpy: *mut c_void, draw: *mut c_void, read: *mut c_void, ctx: *mut c_void) -> u32;
+    eglReleaseThread => gls_egl_release_thread() -> u32;
+    eglSwapBuffers => gls_egl_swap_buffers(dpy: *mut c_void, surface: *mut c_void) -> u32;
+    eglSwapBuffersWithDamageKHR => gls_egl_swap_buffers_with_damage_khr(dpy: *mut c_void, surface: *mut c_void, rects: *const i32, n_rects: i32) -> u32;
+    eglSwapBuffersWithDamageEXT => gls_egl_swap_buffers_with_damage_ext(dpy: *mut c_void, surface: *mut c_void, rects: *const i32, n_rects: i32) -> u32;
+    eglCreateWindowSurface => gls_egl_create_window_surface(dpy: *mut c_void, config: *mut c_void, win: usize, attrib_list: *const i32) -> *mut c_void;
+    eglCreatePlatformWindowSurface => gls_egl_create_platform_window_surface(dpy: *mut c_void, config: *mut c_void, native_window: *mut c_void, attrib_list: *const isize) -> *mut c_void;
+    eglCreatePlatformWindowSurfaceEXT => gls_egl_create_platform_window_surface_ext(dpy: *mut c_void, config: *mut c_void, native_window: *mut c_void, attrib_list: *const i32) -> *mut c_void;
+    eglDestroySurface => gls_egl_destroy_surface(dpy: *mut c_void, surface: *mut c_void) -> u32;
+    eglTerminate => gls_egl_terminate(dpy: *mut c_void) -> u32;
+}
+
+/// eglGetProcAddress's body, at an address of this library's own: this
+/// library's functions for the EGL and GL names it replaces (so a
+/// function found this way is guarded as the direct link is), the function
+/// below the layer for every other name.
+unsafe extern "C" fn local_egl_get_proc_address(name: *const c_char) -> *mut c_void {
+    static NEXT: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+    let (_inside, depth) = next::enter();
+    if depth > 0 {
+        let gpa = egl_pass_down(&NEXT, "eglGetProcAddress\0", depth);
+        // SAFETY: the next eglGetProcAddress, with the caller's name.
+        return unsafe {
+            std::mem::transmute::<*mut c_void, unsafe extern "C" fn(*const c_char) -> *mut c_void>(
+                gpa,
+            )(name)
+        };
+    }
+    if !name.is_null() {
+        // SAFETY: non-NULL, NUL-terminated (EGL's contract).
+        let n = unsafe { std::ffi::CStr::from_ptr(name) }.to_bytes();
+        let gl = n.starts_with(b"gl") && !n.starts_with(b"glX");
+        let generated =
+            || generated::lookup(n).filter(|_| glstereo::interpose::real::loaded().is_ok());
+        let own = own_egl_export(n).or_else(|| {
+            if gl {
+                own_export(n).or_else(generated)
+            } else {
+                None
+            }
+        });
+        if let Some(f) = own {
+            return f;
+        }
+    }
+    // SAFETY: a NUL-terminated name or NULL (answered NULL there).
+    unsafe { gls_egl::gls_egl_get_proc_address(name) }
+}
+
+/// `eglGetProcAddress`: this library's functions for the EGL and GL names
+/// it replaces, the function below the layer for every other name.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn eglGetProcAddress(name: *const c_char) -> *mut c_void {
+    // SAFETY: EGL's contract.
+    unsafe { local_egl_get_proc_address(name) }
 }
 
 /// A function as `glXGetProcAddress` returns it.

@@ -15,6 +15,7 @@
 pub(crate) mod boundary;
 pub mod core;
 pub mod display;
+pub mod egl;
 pub(crate) mod handles;
 pub mod irisgl;
 pub mod math;

@@ -28,13 +28,13 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::ThreadId;
 
-use x11_dl::glx::GLXContext;
 use x11_dl::xlib;
 
 use super::capture;
 use super::real::{Real, loaded, real};
 use super::registry;
 use super::settings;
+use super::wsi::Wsi;
 use crate::backend::glx::{trap_replied_x_errors, trap_x_errors};
 use crate::backend::xshm::{Connection, ShmImage, ShmSlot};
 use crate::error::{Error, Result};
@@ -46,10 +46,6 @@ use crate::output::gl::{GlCompositor, Job};
 use crate::profile::{self, Stage};
 use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
 use crate::stereo::emulated::{BufferFormats, DrawSelection, EmulatedFramebuffer, ReadSelection};
-
-/// GLX_WIDTH / GLX_HEIGHT for glXQueryDrawable.
-const GLX_WIDTH: i32 = 0x801D;
-const GLX_HEIGHT: i32 = 0x801E;
 
 /// Orders binds, to find the context a drawable was bound to last.
 static BIND_TICK: AtomicU64 = AtomicU64::new(1);
@@ -181,6 +177,8 @@ impl CtxState {
 
 /// A stereo context of the program.
 pub struct StereoContext {
+    /// The window system that made it.
+    wsi: Wsi,
     display: usize,
     ctx: usize,
     ours: usize,
@@ -302,44 +300,6 @@ pub fn set_current(new: Option<Current>) {
     }
 }
 
-/// What was current on this thread, as the real GLX says, to put back.
-struct Saved {
-    display: *mut xlib::Display,
-    draw: u64,
-    read: u64,
-    ctx: GLXContext,
-}
-
-impl Saved {
-    fn now(r: &Real) -> Saved {
-        // SAFETY: plain getters of the calling thread's GLX state.
-        unsafe {
-            Saved {
-                display: (r.glx.glXGetCurrentDisplay)(),
-                draw: (r.glx.glXGetCurrentDrawable)(),
-                read: (r.glx.glXGetCurrentReadDrawable)(),
-                ctx: (r.glx.glXGetCurrentContext)(),
-            }
-        }
-    }
-
-    fn restore(&self, r: &Real, fallback_display: usize) {
-        // SAFETY: the state that was current a moment ago (or none).
-        unsafe {
-            if self.ctx.is_null() {
-                (r.glx.glXMakeContextCurrent)(
-                    fallback_display as *mut xlib::Display,
-                    0,
-                    0,
-                    std::ptr::null_mut(),
-                );
-            } else {
-                (r.glx.glXMakeContextCurrent)(self.display, self.draw, self.read, self.ctx);
-            }
-        }
-    }
-}
-
 /// Deletes the program-side objects of destroyed drawables' buffers (their
 /// framebuffer objects, which hold the textures) and finishes the
 /// program's rendering, so that nothing renders into their memory when the
@@ -361,60 +321,6 @@ unsafe fn free_program_side(gl: &Gl, gone: &mut [(u64, Drawn)]) {
     }
 }
 
-/// XGetGeometry of X drawable `x`: its size, None when the request
-/// fails or the size is empty. One round trip, whose reply also tells that
-/// the server has processed every earlier request. Its X error is not
-/// trapped here: callers trap it.
-fn geometry(r: &Real, dpy: *mut xlib::Display, x: u64) -> Option<(u32, u32)> {
-    let (mut root, mut px, mut py) = (0, 0, 0);
-    let (mut w, mut h, mut border, mut depth) = (0u32, 0u32, 0u32, 0u32);
-    // SAFETY: valid display and out-pointers; a bad drawable is an X
-    // error, which the caller traps.
-    let ok = unsafe {
-        (r.xlib.XGetGeometry)(
-            dpy,
-            x,
-            &mut root,
-            &mut px,
-            &mut py,
-            &mut w,
-            &mut h,
-            &mut border,
-            &mut depth,
-        )
-    };
-    (ok != 0 && w > 0 && h > 0).then_some((w, h))
-}
-
-/// The size of a drawable: XGetGeometry of its X drawable (the window
-/// behind a GLX window), else glXQueryDrawable (pbuffers). X errors of
-/// these requests are trapped, never reach the program. Takes the
-/// registry's lock: never call it with a context's state locked.
-pub(super) fn drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(u32, u32)> {
-    let dpy = display as *mut xlib::Display;
-    let x = registry::with(|reg| reg.x_drawable(display, drawable));
-    // One round trip: XGetGeometry's reply brings its error, if any.
-    if let (Some(size), 0) = trap_replied_x_errors(&r.xlib, dpy, || geometry(r, dpy, x)) {
-        return Ok(size);
-    }
-    let ((w, h), err) = trap_x_errors(&r.xlib, dpy, || {
-        let (mut w, mut h) = (0u32, 0u32);
-        // SAFETY: valid display and out-pointers; errors trapped.
-        unsafe {
-            (r.glx.glXQueryDrawable)(dpy, drawable, GLX_WIDTH, &mut w);
-            (r.glx.glXQueryDrawable)(dpy, drawable, GLX_HEIGHT, &mut h);
-        }
-        (w, h)
-    });
-    if err == 0 && w > 0 && h > 0 {
-        Ok((w, h))
-    } else {
-        Err(Error::invalid_operation(format!(
-            "drawable {drawable:#x} has no size (X error {err}): it was destroyed?"
-        )))
-    }
-}
-
 impl StereoContext {
     /// The stereo state of program context `ctx`, presented with the
     /// layer's context `ours` (which shares its objects); its emulated
@@ -427,7 +333,22 @@ impl StereoContext {
         formats: BufferFormats,
         group: u64,
     ) -> Arc<StereoContext> {
+        Self::new_on(Wsi::Glx, display, ctx, ours, shape, formats, group)
+    }
+
+    /// [`Self::new`] for a context of window system `wsi` (`display` and
+    /// the contexts are that system's handles).
+    pub fn new_on(
+        wsi: Wsi,
+        display: usize,
+        ctx: usize,
+        ours: usize,
+        shape: FramebufferShape,
+        formats: BufferFormats,
+        group: u64,
+    ) -> Arc<StereoContext> {
         Arc::new(StereoContext {
+            wsi,
             display,
             ctx,
             ours,
@@ -453,12 +374,17 @@ impl StereoContext {
         })
     }
 
-    /// The `Display*` it was made on.
+    /// The window system that made it.
+    pub fn wsi(&self) -> Wsi {
+        self.wsi
+    }
+
+    /// The `Display*` (`EGLDisplay`) it was made on.
     pub fn display(&self) -> usize {
         self.display
     }
 
-    /// The program's `GLXContext`.
+    /// The program's `GLXContext` (`EGLContext`).
     pub fn context(&self) -> usize {
         self.ctx
     }
@@ -509,7 +435,7 @@ impl StereoContext {
         let eyes = st
             .fbs
             .get(&drawable)
-            .and_then(|d| d.fb.layered().map(|e| (d.fb.app_fbo(), e.attachments())));
+            .and_then(|d| d.fb.layered_attachments().map(|a| (d.fb.app_fbo(), a)));
         f(&mut st.auto, eyes)
     }
 
@@ -611,14 +537,8 @@ impl StereoContext {
             return;
         }
         if let Ok(r) = real() {
-            // SAFETY: the program's context, which it destroyed, current
-            // nowhere now.
-            unsafe {
-                (r.glx.glXDestroyContext)(
-                    self.display as *mut xlib::Display,
-                    self.ctx as GLXContext,
-                )
-            };
+            // The program's context, which it destroyed, current nowhere now.
+            self.wsi.destroy_context(r, self.display, self.ctx);
         }
         self.destroy_ours();
     }
@@ -632,14 +552,9 @@ impl StereoContext {
         self.end_of_share_group();
         self.release_images(Connection::Open);
         if let Ok(r) = real() {
-            // SAFETY: our own context, current nowhere (it is only made
-            // current inside the layer's calls).
-            unsafe {
-                (r.glx.glXDestroyContext)(
-                    self.display as *mut xlib::Display,
-                    self.ours as GLXContext,
-                )
-            };
+            // Our own context, current nowhere (it is only made current
+            // inside the layer's calls).
+            self.wsi.destroy_context(r, self.display, self.ours);
         }
         // Neither context reads the layered eyes' memory any more.
         for drawn in self.lock().fbs.values_mut() {
@@ -649,15 +564,10 @@ impl StereoContext {
 
     /// Makes the layer's context current on `drawable`.
     fn make_ours_current(&self, r: &Real, drawable: u64) -> Result<()> {
-        // SAFETY: valid display; our context; a drawable the program uses.
-        let ok = unsafe {
-            (r.glx.glXMakeCurrent)(
-                self.display as *mut xlib::Display,
-                drawable,
-                self.ours as GLXContext,
-            )
-        };
-        if ok == 0 {
+        if !self
+            .wsi
+            .make_current(r, self.display, drawable, drawable, self.ours)
+        {
             return Err(Error::Gl(format!(
                 "the layer's context could not be made current on drawable {drawable:#x}"
             )));
@@ -676,9 +586,9 @@ impl StereoContext {
         self.check_open()?;
         let gl = &r.gl;
         // Sizes first: the registry lock is never taken under a state lock.
-        let mut wanted = vec![(draw, drawable_size(r, self.display, draw)?)];
+        let mut wanted = vec![(draw, self.wsi.drawable_size(r, self.display, draw)?)];
         if read != draw && read != 0 {
-            wanted.push((read, drawable_size(r, self.display, read)?));
+            wanted.push((read, self.wsi.drawable_size(r, self.display, read)?));
         }
         let gone_ids = self.gone_drawables(r, draw, read);
         let mut st = self.lock();
@@ -706,7 +616,7 @@ impl StereoContext {
         // SAFETY: the program's context is current.
         unsafe { free_program_side(gl, &mut gone) };
         if !stale.is_empty() || !gone.is_empty() {
-            let saved = Saved::now(r);
+            let saved = self.wsi.saved(r);
             let made = self.make_ours_current(r, draw).and_then(|()| {
                 // SAFETY: the layer's context is current.
                 unsafe { self.free_shared_side(r, gone) };
@@ -775,7 +685,7 @@ impl StereoContext {
         gone.extend(
             others
                 .into_iter()
-                .filter(|&d| drawable_size(r, self.display, d).is_err()),
+                .filter(|&d| self.wsi.drawable_size(r, self.display, d).is_err()),
         );
         gone
     }
@@ -867,7 +777,7 @@ impl StereoContext {
         program_current: bool,
         host: u64,
     ) -> Option<Vec<(u64, Drawn)>> {
-        let saved = Saved::now(r);
+        let saved = self.wsi.saved(r);
         let give_back = |mut gone: Vec<(u64, Drawn)>| {
             for (_, d) in &mut gone {
                 d.gone = true;
@@ -896,16 +806,9 @@ impl StereoContext {
     /// drawable (GLX 1.3 with GL ≥ 3.0 contexts; Mesa allows it), else on
     /// `host` (0: none), X errors trapped; false when neither works.
     fn make_current_anywhere(&self, r: &Real, ctx: usize, host: u64) -> bool {
-        let dpy = self.display as *mut xlib::Display;
-        let attempt = |d: u64| {
-            let (ok, err) = trap_x_errors(&r.xlib, dpy, || {
-                // SAFETY: an open display, a context of the program's or
-                // the layer's, current nowhere else (binding held, or
-                // current on this thread), and a drawable or None.
-                unsafe { (r.glx.glXMakeContextCurrent)(dpy, d, d, ctx as GLXContext) }
-            });
-            ok != 0 && err == 0
-        };
+        // A context of the program's or the layer's, current nowhere else
+        // (binding held, or current on this thread), and a drawable or none.
+        let attempt = |d: u64| self.wsi.make_current(r, self.display, d, d, ctx);
         attempt(0) || (host != 0 && attempt(host))
     }
 
@@ -978,7 +881,7 @@ impl StereoContext {
             drawn.viewport_checked = true;
             drawn.fb.size()
         };
-        if drawable_size(r, self.display, cur.draw)? == current_size {
+        if self.wsi.drawable_size(r, self.display, cur.draw)? == current_size {
             return Ok(());
         }
         self.bind(cur.draw, cur.read)
@@ -995,7 +898,7 @@ impl StereoContext {
             Some(d) => d.fb.size(),
             None => return Ok(()),
         };
-        if drawable_size(r, self.display, cur.draw)? == size {
+        if self.wsi.drawable_size(r, self.display, cur.draw)? == size {
             return Ok(());
         }
         self.bind(cur.draw, cur.read)
@@ -1011,21 +914,15 @@ impl StereoContext {
     pub fn present(self: &Arc<Self>, drawable: u64, flip: bool, here: bool) -> Result<()> {
         let r = loaded()?;
         self.check_open()?;
-        let saved = Saved::now(r);
+        let saved = self.wsi.saved(r);
         let _binding = (!here).then(|| self.hold_binding());
         if !here {
             // Not current on this thread (and not on another: checked by the
             // caller): bind it here for the flip.
-            // SAFETY: valid display and drawable; the program's context.
-            let ok = unsafe {
-                (r.glx.glXMakeContextCurrent)(
-                    self.display as *mut xlib::Display,
-                    drawable,
-                    drawable,
-                    self.ctx as GLXContext,
-                )
-            };
-            if ok == 0 {
+            if !self
+                .wsi
+                .make_current(r, self.display, drawable, drawable, self.ctx)
+            {
                 return Err(Error::Gl(
                     "the drawable's stereo context could not be made current".into(),
                 ));
@@ -1076,11 +973,11 @@ impl StereoContext {
         let window = match seen {
             Some(size) => size,
             None => profile::span(Stage::RoundTrip, || {
-                drawable_size(r, self.display, drawable)
+                self.wsi.drawable_size(r, self.display, drawable)
             })?,
         };
         profile::frame_start(|| window);
-        let x_window = registry::with(|reg| reg.x_drawable(self.display, drawable));
+        let x_window = self.wsi.x_drawable(self.display, drawable);
         let mut guard = self.lock();
         let st = &mut *guard;
         // The layer's own calls below keep the program's errors apart.
@@ -1128,20 +1025,23 @@ impl StereoContext {
     }
 
     /// In the layer's context, current on `drawable` (of the given size;
-    /// `x_window` is its X drawable): composes, captures, shows the frame
-    /// (from memory or with a swap), and follows a resized window.
+    /// `x_window` is the X display and X drawable behind it, where there
+    /// is one): composes, captures, shows the frame (from memory or with a
+    /// swap), and follows a resized window.
     fn compose_and_swap(
         &self,
         r: &Real,
         st: &mut CtxState,
-        (drawable, x_window): (u64, u64),
+        (drawable, x_window): (u64, Option<(usize, u64)>),
         (width, height): (u32, u32),
         frame_index: u64,
     ) -> Result<()> {
         let gl = &r.gl;
         let mode = super::live::mode();
         let options = super::live::options();
-        super::controls::presented(self.display, x_window, width, height);
+        if let Some((x_display, x_window)) = x_window {
+            super::controls::presented(x_display, x_window, width, height);
+        }
         let CtxState {
             fbs, compositor, ..
         } = st;
@@ -1163,28 +1063,25 @@ impl StereoContext {
         // must see every frame (MangoHud's HUD, VirtualGL's transport).
         // Some(size after the put) when the frame went out through MIT-SHM.
         let mut seen = None;
-        if r.swap_layered {
+        if self.wsi == Wsi::Glx && r.swap_layered {
             settings::tell(
                 "frames are presented through the glXSwapBuffers of a GL layer below glstereo \
                  (composed by GL, not put with MIT-SHM)",
             );
+        } else if self.wsi == Wsi::Egl && super::egl::swap_layered() {
+            settings::tell(
+                "frames are presented through the eglSwapBuffers of a layer below glstereo",
+            );
         }
-        let shown = if self.shape.double_buffered && !r.swap_layered {
-            // SAFETY: the layer's context is current on the drawable, whose
-            // X drawable is `x_window`; the job's textures are shared with it.
-            unsafe {
-                put_pixels(
-                    r,
-                    compositor,
-                    drawn,
-                    (self.display, x_window),
-                    (width, height),
-                    &job,
-                    &mut seen,
-                )
+        // GLX windows only: an EGL surface's frame goes through the real
+        // eglSwapBuffers (Wayland has no X server to put it to).
+        let shown = match x_window {
+            Some(x) if self.shape.double_buffered && !r.swap_layered && self.wsi == Wsi::Glx => {
+                // SAFETY: the layer's context is current on the drawable,
+                // whose X drawable is `x`; the job's textures are shared with it.
+                unsafe { put_pixels(r, compositor, drawn, x, (width, height), &job, &mut seen) }
             }
-        } else {
-            Ok(false)
+            _ => Ok(false),
         };
         // `in_gl`: the frame is shown through the window's GL buffers (the
         // swap, or the glFinish of a single-buffered window, below), even
@@ -1225,16 +1122,15 @@ impl StereoContext {
                 frame_index,
             });
         }
-        // SAFETY: valid display and drawable, current in our context.
-        unsafe {
-            if in_gl && self.shape.double_buffered {
-                profile::span(Stage::GlCompose, || {
-                    (r.glx.glXSwapBuffers)(self.display as *mut xlib::Display, drawable)
-                });
-            } else if in_gl {
-                // A single-buffered window was drawn in its front buffer.
-                gl.Finish();
-            }
+        if in_gl && self.shape.double_buffered {
+            // The drawable is current in our context.
+            profile::span(Stage::GlCompose, || {
+                self.wsi.swap(r, self.display, drawable)
+            });
+        } else if in_gl {
+            // A single-buffered window was drawn in its front buffer.
+            // SAFETY: our context is current.
+            unsafe { gl.Finish() };
         }
         // The frame is on the server when presenting returns: Mesa's
         // software swap sends the image in several requests without
@@ -1243,10 +1139,7 @@ impl StereoContext {
         // MIT-SHM put, put_pixels's size query was it.
         drawn.size_seen = seen.flatten();
         if seen.is_none() {
-            // SAFETY: a valid display.
-            profile::span(Stage::XSync, || unsafe {
-                (r.xlib.XSync)(self.display as *mut xlib::Display, xlib::False)
-            });
+            profile::span(Stage::XSync, || self.wsi.sync(r, self.display));
         }
         let (width, height) = drawn.size_seen.unwrap_or((width, height));
         if drawn.fb.size() != (width, height) {
@@ -1304,7 +1197,7 @@ unsafe fn put_pixels(
             &mut |put| {
                 let (size, err) = trap_replied_x_errors(&r.xlib, dpy, || {
                     put();
-                    profile::span(Stage::XSync, || geometry(r, dpy, x_window))
+                    profile::span(Stage::XSync, || super::wsi::geometry(r, dpy, x_window))
                 });
                 *seen = Some(size.filter(|_| err == 0));
             },

@@ -746,8 +746,7 @@ fn auto_deleted(names: &[u32], what: Deleted) {
 /// one the program made sharing with one.
 fn in_stereo_group(r: &Real) -> bool {
     stereo_current() || {
-        // SAFETY: a plain getter of the calling thread's GLX state.
-        let ctx = unsafe { (r.glx.glXGetCurrentContext)() } as usize;
+        let ctx = super::wsi::current_context(r);
         ctx != 0 && super::registry::with(|reg| reg.in_stereo_group(ctx))
     }
 }

@@ -191,6 +191,7 @@ pub mod context;
 pub mod controls;
 pub mod draws;
 pub mod dsa;
+pub mod egl;
 pub mod gl;
 pub mod glx;
 pub mod live;
@@ -198,6 +199,7 @@ pub mod next;
 pub mod real;
 pub mod registry;
 pub mod settings;
+pub mod wsi;
 
 /// Writes `glstereo: <message>` to stderr, once per distinct message
 /// ([`crate::report::warn`]): the layer has no return code to report

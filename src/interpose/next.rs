@@ -43,11 +43,13 @@
 //! them out. But `dlsym(handle, …)` on a handle from
 //! `dlopen("libGL.so.1")` searches that library and its dependencies only.
 //! So the preload replaces `dlopen` ([`dlopen_for_program`]): for
-//! libGL.so(.1), libGLX.so(.0) and libOpenGL.so(.0), by any path, it opens
+//! libGL.so(.1), libGLX.so(.0), libOpenGL.so(.0), libEGL.so(.1) and
+//! libGLESv2.so(.2), by any path, it opens
 //! the library as asked (same flags, same failure), then returns the handle
 //! of a small stub library installed beside the preload whose dependencies
 //! are, in order, the preload and that GL library
-//! (`libglstereo_stub_GL.so`, `…_GLX.so`, `…_OpenGL.so`, made by the
+//! (`libglstereo_stub_GL.so`, `…_GLX.so`, `…_OpenGL.so`, `…_EGL.so`,
+//! `…_GLESv2.so`, made by the
 //! preload's build script). dlsym on it finds the layer's replacement first
 //! and every other name in the real library; unknown names get dlsym's own
 //! NULL and dlerror; dlclose closes the stub (the real library stays while
@@ -287,6 +289,67 @@ pub fn bottom_symbol(name: &CStr) -> *mut c_void {
     if is_own(p) { std::ptr::null_mut() } else { p }
 }
 
+/// libEGL.so.1 as the next dlopen opens it (kept open for the process).
+fn next_libegl() -> *mut c_void {
+    static H: OnceLock<usize> = OnceLock::new();
+    // SAFETY: a NUL-terminated name.
+    *H.get_or_init(|| unsafe {
+        real_dlopen(c"libEGL.so.1".as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) as usize
+    }) as *mut c_void
+}
+
+/// libEGL.so.1 as libc's own dlopen opens it, under every layer.
+fn bottom_libegl() -> *mut c_void {
+    static H: OnceLock<usize> = OnceLock::new();
+    *H.get_or_init(|| match libc_dlopen() {
+        // SAFETY: libc's dlopen with a NUL-terminated name.
+        Some(f) => unsafe {
+            f(c"libEGL.so.1".as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) as usize
+        },
+        None => 0,
+    }) as *mut c_void
+}
+
+/// Whether libEGL.so.1 can be opened at all (under every layer).
+pub fn libegl_loadable() -> bool {
+    !bottom_libegl().is_null()
+}
+
+/// The next definition of EGL function `name` after the layer, as
+/// [`next_symbol`] finds GL's: the chain of preloaded libraries, then
+/// libEGL.so.1 (opened through the next dlopen), then libEGL's own
+/// ([`bottom_egl_symbol`]). NULL where no EGL has it.
+pub fn next_egl_symbol(name: &CStr) -> *mut c_void {
+    let p = lookup_in(libc::RTLD_NEXT, name);
+    if !p.is_null() {
+        return p;
+    }
+    let p = lookup_in(next_libegl(), name);
+    if !p.is_null() {
+        return p;
+    }
+    bottom_egl_symbol(name)
+}
+
+/// libEGL's own `name`, under every layer: from libEGL.so.1 opened with
+/// libc's dlopen, else (extension functions, which libEGL does not
+/// export) from its eglGetProcAddress. NULL without libEGL.
+pub fn bottom_egl_symbol(name: &CStr) -> *mut c_void {
+    let h = bottom_libegl();
+    let p = lookup_in(h, name);
+    if !p.is_null() {
+        return p;
+    }
+    type Gpa = unsafe extern "C" fn(*const c_char) -> *mut c_void;
+    let gpa = lookup_in(h, c"eglGetProcAddress");
+    if gpa.is_null() {
+        return std::ptr::null_mut();
+    }
+    // SAFETY: libEGL's eglGetProcAddress, with a NUL-terminated name.
+    let p = unsafe { std::mem::transmute::<*mut c_void, Gpa>(gpa)(name.as_ptr()) };
+    if is_own(p) { std::ptr::null_mut() } else { p }
+}
+
 /// Which GL library a dlopen names, by its file name in any directory:
 /// the stub that stands for it.
 fn stub_for(filename: &CStr) -> Option<&'static str> {
@@ -302,6 +365,10 @@ fn stub_for(filename: &CStr) -> Option<&'static str> {
         Some(STUB_GLX)
     } else if is(b"libOpenGL.so") {
         Some(STUB_OPENGL)
+    } else if is(b"libEGL.so") {
+        Some(STUB_EGL)
+    } else if is(b"libGLESv2.so") {
+        Some(STUB_GLESV2)
     } else {
         None
     }
@@ -313,6 +380,10 @@ pub const STUB_GL: &str = "libglstereo_stub_GL.so";
 pub const STUB_GLX: &str = "libglstereo_stub_GLX.so";
 /// The stub standing for libOpenGL.so.0.
 pub const STUB_OPENGL: &str = "libglstereo_stub_OpenGL.so";
+/// The stub standing for libEGL.so.1 (SDL2, GLFW, Qt and libepoxy open it).
+pub const STUB_EGL: &str = "libglstereo_stub_EGL.so";
+/// The stub standing for libGLESv2.so.2.
+pub const STUB_GLESV2: &str = "libglstereo_stub_GLESv2.so";
 
 /// The preload's `dlopen` (see the module doc).
 ///
@@ -371,7 +442,7 @@ mod tests {
 
     #[test]
     fn the_gl_libraries_are_recognised_by_file_name_in_any_directory() {
-        let cases: [(&CStr, Option<&str>); 14] = [
+        let cases: [(&CStr, Option<&str>); 17] = [
             (c"libGL.so.1", Some(STUB_GL)),
             (c"libGL.so", Some(STUB_GL)),
             (c"/usr/lib/x86_64-linux-gnu/libGL.so.1.7.0", Some(STUB_GL)),
@@ -381,8 +452,11 @@ mod tests {
             (c"/opt/x/libOpenGL.so.0.0.0", Some(STUB_OPENGL)),
             (c"libGLU.so.1", None),
             (c"libGLX_mesa.so.0", None),
-            (c"libGLESv2.so.2", None),
-            (c"libEGL.so.1", None),
+            (c"libGLESv2.so.2", Some(STUB_GLESV2)),
+            (c"libEGL.so.1", Some(STUB_EGL)),
+            (c"/usr/lib/x86_64-linux-gnu/libEGL.so", Some(STUB_EGL)),
+            (c"libEGL_mesa.so.0", None),
+            (c"libGLESv1_CM.so.1", None),
             (c"libGL.so1", None),
             (c"/usr/lib/libGL.so.1/libm.so.6", None),
             (c"", None),

@@ -3,7 +3,8 @@
 //! preloaded libraries, else libGL's ([`super::next`] says how, and why
 //! never the layer's own). GL functions come from the next
 //! `glXGetProcAddressARB` (libglvnd's dispatch stubs, which call the
-//! context current on the calling thread, or a layer's below).
+//! context current on the calling thread, or a layer's below) — from the
+//! next `eglGetProcAddress` in a process that draws through EGL.
 
 use std::ffi::{CStr, c_char, c_int, c_uchar, c_uint, c_ulong, c_void};
 use std::sync::OnceLock;
@@ -341,6 +342,20 @@ fn load() -> Result<Real, String> {
 /// up globally hands the layer's exports back), the next definition of
 /// the name ([`super::next::next_symbol`], which is never the layer's).
 fn gl_symbol(glx: &Glx, name: &CStr) -> *const c_void {
+    // A process that draws through EGL gets its GL functions from the next
+    // eglGetProcAddress: a layer below that wraps EGL (apitrace's
+    // egltrace, MangoHud) sees the layer's calls and the program's it
+    // forwards, as it would the program's own. (libglvnd hands out the
+    // same dispatch stubs either way.)
+    if let Some(e) = super::egl::egl_if_loaded() {
+        if !name.to_bytes().starts_with(b"glX") {
+            // SAFETY: NUL-terminated name; the next eglGetProcAddress.
+            let p = unsafe { (e.eglGetProcAddress)(name.as_ptr()) }.cast_const();
+            if !p.is_null() && !super::next::is_own(p) {
+                return p;
+            }
+        }
+    }
     // SAFETY: NUL-terminated name; the next glXGetProcAddressARB.
     let p = unsafe { (glx.glXGetProcAddressARB)(name.as_ptr() as *const u8) }
         .map_or(std::ptr::null(), |f| f as *const c_void);
