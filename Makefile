@@ -18,6 +18,10 @@ CARGO_PROFILE_FLAG := $(if $(filter release,$(PROFILE)),--release,)
 # tests/zink.rs.
 # libXtst, with which tests/keys.rs types the live keys (XTEST), and libXi's
 # headers for its XInput 2 client.
+# EGL and Wayland (tests/egl.rs): GLES and wayland-egl headers for the
+# oracle, weston (its headless backend is the Wayland server) and glmark2's
+# GLX, EGL and Wayland builds, the real programs of tests/egl.rs and
+# tests/auto_glmark2.rs.
 DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosmesa6 \
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind \
@@ -25,7 +29,9 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 qtbase5-dev qt6-base-dev libqt6opengl6-dev g++ \
                 openscenegraph mesa-utils apitrace mangohud renderdoccmd librenderdoc-dev \
                 python3-pil libimage-exiftool-perl mesa-vulkan-drivers \
-                libxtst6 libxi-dev
+                libxtst6 libxi-dev \
+                libgles-dev libwayland-dev weston glmark2-x11 glmark2-es2-x11 \
+                glmark2-wayland glmark2-es2-wayland
 
 .PHONY: all deps disk build header examples demo test check-sanitize check-fits lint bench clean install uninstall
 
@@ -138,7 +144,8 @@ install:
 	install -m 644 $(INSTALL_BUILT)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a
 	install -m 755 $(INSTALL_BUILT)/libglstereo_preload.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so
 	install -m 755 $(INSTALL_BUILT)/libglstereo_stub_GL.so $(INSTALL_BUILT)/libglstereo_stub_GLX.so \
-	  $(INSTALL_BUILT)/libglstereo_stub_OpenGL.so $(DESTDIR)$(INSTALL_LIBDIR)/
+	  $(INSTALL_BUILT)/libglstereo_stub_OpenGL.so $(INSTALL_BUILT)/libglstereo_stub_EGL.so \
+	  $(INSTALL_BUILT)/libglstereo_stub_GLESv2.so $(DESTDIR)$(INSTALL_LIBDIR)/
 	install -m 644 include/glstereo.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h
 	install -m 644 include/glstereo/*.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(INSTALL_LIBDIR)|' \
@@ -153,6 +160,7 @@ uninstall:
 	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GL.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GLX.so \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_OpenGL.so \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_EGL.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GLESv2.so \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig/glstereo.pc $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h \
 	  $(DESTDIR)$(INSTALL_BINDIR)/glstereo-run $(DESTDIR)$(INSTALL_MANDIR)/man1/glstereo-run.1
 	rm -rf $(DESTDIR)$(INSTALL_INCDIR)/glstereo

@@ -277,6 +277,40 @@ fn a_mono_qt5_opengl_widget_under_auto_shows_each_depth_with_its_parallax() {
     depths_program(&exe, &[], "qt5 depths", &[], "Qt 5 QOpenGLWidget");
 }
 
+/// The GLFW program with its context made through EGL
+/// (GLFW_EGL_CONTEXT_API): a desktop GL core context of libEGL's, on the
+/// X11 window (src/interpose/egl.rs).
+#[test]
+fn a_mono_glfw_program_on_egl_under_auto_shows_each_depth_with_its_parallax() {
+    let exe = c_client("glfw_depths", &["-lglfw"]);
+    depths_program(&exe, &["egl"], "glfw_depths", &[], "GLFW 3.3 core on EGL");
+}
+
+/// SDL2 forced to EGL on X11 (SDL_VIDEO_X11_FORCE_EGL) with an OpenGL ES
+/// 2.0 context and GLSL ES 1.00 shaders: SDL dlopens libEGL and
+/// libGLESv2, and every GL function comes from SDL_GL_GetProcAddress
+/// (eglGetProcAddress).
+#[test]
+fn a_mono_sdl2_gles2_program_on_egl_under_auto_shows_each_depth_with_its_parallax() {
+    let exe = c_client("sdl_depths", &["-lSDL2"]);
+    depths_program(&exe, &[], "sdl_depths", &[], "SDL2 OpenGL ES 2.0 on EGL");
+}
+
+/// Qt 5's EGL integration on X11 (QT_XCB_GL_INTEGRATION=xcb_egl): the
+/// QOpenGLWidget's framebuffer object and the window's composition, in
+/// desktop GL contexts of libEGL's.
+#[test]
+fn a_mono_qt5_opengl_widget_on_egl_under_auto_shows_each_depth_with_its_parallax() {
+    let exe = cxx_client("qt5_depths", &["Qt5Widgets"]);
+    depths_program(
+        &exe,
+        &["egl"],
+        "qt5 depths",
+        &[],
+        "Qt 5 QOpenGLWidget on EGL",
+    );
+}
+
 /// glxgears' gears (camera 40 units away: w ≈ 35…45) in one run per
 /// convergence: C 20 puts them all behind the screen (they move right by
 /// s·(1 − 20/40)·300/2 ≈ 5.25 window pixels), C 80 in front of it (left

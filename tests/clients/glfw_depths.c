@@ -16,6 +16,9 @@
  * It draws one frame, swaps, prints "report error E" and "ready", then
  * waits for a line on stdin (the test grabs the window, titled
  * "glfw_depths") and exits 0.
+ *
+ *   glfw_depths [egl]      egl: the context made through EGL
+ *                          (GLFW_EGL_CONTEXT_API) instead of GLX
  */
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -93,7 +96,7 @@ static void square(GLfloat *v, float x0, float y0, float x1, float y1, float w)
     }
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const int width = 240, height = 160;
     char line[64];
@@ -105,6 +108,9 @@ int main(void)
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    if (argc > 1 && argv[1][0] == 'e') {
+        glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_EGL_CONTEXT_API);
+    }
     GLFWwindow *window = glfwCreateWindow(width, height, "glfw_depths", NULL, NULL);
     if (window == NULL) {
         fprintf(stderr, "no window\n");

@@ -18,6 +18,9 @@
  * "report error E" and "ready", then waits for a line on stdin (the test
  * grabs the window, titled "qt5 depths") and exits 0; 2 when the widget
  * was not shown.
+ *
+ *   qt5_depths [egl]      egl: Qt's EGL integration on X11
+ *                         (QT_XCB_GL_INTEGRATION=xcb_egl) instead of GLX
  */
 #include <QApplication>
 #include <QEventLoop>
@@ -32,6 +35,7 @@
 #include <QWidget>
 
 #include <cstdio>
+#include <cstring>
 
 static const int width = 240, height = 160;
 
@@ -98,6 +102,9 @@ private:
 
 int main(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "egl") == 0) {
+        qputenv("QT_XCB_GL_INTEGRATION", "xcb_egl");
+    }
     QApplication app(argc, argv);
     QWidget top;
     top.setWindowTitle("qt5 depths");

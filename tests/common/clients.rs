@@ -416,6 +416,13 @@ impl Renderer {
         panic!("{} did not quit on Escape:\n{err}", self.what);
     }
 
+    /// Kills the program (one that never quits by itself, as glmark2 on
+    /// Wayland) and returns its stderr.
+    pub fn stop(mut self) -> String {
+        let _ = self.child.kill();
+        self.stderr()
+    }
+
     pub fn stderr(&mut self) -> String {
         let _ = self.child.wait();
         let mut s = String::new();

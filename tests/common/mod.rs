@@ -8,6 +8,7 @@ use std::process::{Command, Output};
 pub mod clients;
 pub mod photo;
 pub mod preload;
+pub mod weston;
 pub mod xvfb;
 
 /// The crate root.

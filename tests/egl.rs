@@ -1,0 +1,395 @@
+//! Automatic stereo for programs that draw through EGL (issue 31): OpenGL
+//! ES and desktop GL contexts of libEGL, on X11 windows (Xvfb) and as
+//! native Wayland clients (weston's headless backend, started here).
+//!
+//! - tests/c/egl_auto_oracle.c draws one scene as a mono OpenGL ES program
+//!   (GLSL ES 3.00, and GLSL ES 1.00 without a #version line) and, without
+//!   the layer, each eye with 3D Vision's rule applied by hand: the eyes
+//!   `glstereo-run --auto` captures are those pixel for pixel, on X11 and on
+//!   Wayland. Without --auto the layer changes no pixel of it.
+//! - glmark2 (Debian's glmark2-es2-x11, glmark2-es2-wayland,
+//!   glmark2-wayland) under --auto: both eyes drawn, the same content
+//!   shifted along rows only, at depth (near and far apart), in the
+//!   captures and in what the window shows (the X window grabbed; weston's
+//!   screen read with weston-screenshooter).
+//!
+//! SDL2, GLFW and Qt 5 on EGL are in tests/auto_clients.rs.
+
+mod common;
+#[path = "common/parallax.rs"]
+mod parallax;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use common::clients::{Renderer, build_once, one_renderer_at_a_time};
+use common::preload::{Screen, built};
+use common::weston::Weston;
+use common::xvfb::Xvfb;
+use glstereo::image::Image;
+
+const W: u32 = 200;
+const H: u32 = 150;
+const SEPARATION: &str = "100";
+const CONVERGENCE: &str = "4";
+
+fn oracle() -> PathBuf {
+    build_once("egl_auto_oracle", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_auto_oracle.c"),
+            out,
+            &[
+                "-lEGL",
+                "-lGLESv2",
+                "-lX11",
+                "-lwayland-client",
+                "-lwayland-egl",
+            ],
+        )
+    })
+}
+
+/// Where a program runs: an X server, or a Wayland compositor.
+enum Server {
+    X(Xvfb),
+    Wayland(Weston),
+}
+
+impl Server {
+    fn name(&self) -> &'static str {
+        match self {
+            Server::X(_) => "x11",
+            Server::Wayland(_) => "wayland",
+        }
+    }
+
+    fn on<'a>(&self, cmd: &'a mut Command) -> &'a mut Command {
+        match self {
+            Server::X(x) => cmd.env("DISPLAY", &x.display).env_remove("WAYLAND_DISPLAY"),
+            Server::Wayland(w) => w.client(cmd),
+        }
+    }
+}
+
+/// The eye the oracle draws itself with the rule applied by hand (`run`:
+/// directly, or under glstereo-run without --auto).
+fn by_hand(server: &Server, api: &str, eye: &str, dir: &Path, layer: bool) -> Image {
+    let out = dir.join(format!("hand-{eye}-{}.rgba", u8::from(layer)));
+    let mut cmd = if layer {
+        let mut c = Command::new(&built().run);
+        c.arg(oracle());
+        c
+    } else {
+        Command::new(oracle())
+    };
+    common::run_ok(
+        server
+            .on(&mut cmd)
+            .args([server.name(), api, eye, SEPARATION, CONVERGENCE])
+            .arg(&out),
+    );
+    Image::from_pixels(W, H, std::fs::read(&out).unwrap()).unwrap()
+}
+
+/// The eyes glstereo-run --auto captures of the mono oracle (frame
+/// `frames`), and its stdout.
+fn under_auto(server: &Server, api: &str, frames: u32, dir: &Path) -> ([Image; 2], String) {
+    let o = common::run_ok(
+        server
+            .on(&mut Command::new(&built().run))
+            .args([
+                "--auto",
+                "--separation",
+                SEPARATION,
+                "--convergence",
+                CONVERGENCE,
+            ])
+            .arg("--capture")
+            .arg(dir)
+            .arg(oracle())
+            .args([server.name(), api, "mono", "frames", &frames.to_string()]),
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !stderr.contains("glstereo:"),
+        "the layer complained: {stderr}"
+    );
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-{frames:06}.png"))));
+    (eyes, String::from_utf8_lossy(&o.stdout).into_owned())
+}
+
+fn differing(a: &Image, b: &Image) -> Vec<(u32, u32, [u8; 4], [u8; 4])> {
+    let mut d = Vec::new();
+    for y in 0..a.height() {
+        for x in 0..a.width() {
+            let (p, q) = (a.get(x, y), b.get(x, y));
+            if (0..3).any(|c| p[c].abs_diff(q[c]) > 2) {
+                d.push((x, y, p, q));
+            }
+        }
+    }
+    d
+}
+
+fn compare_with_the_oracle(server: &Server, api: &str) {
+    let what = format!("{} {api}", server.name());
+    let dir = common::scratch(&format!("egl-{}-{api}", server.name()));
+    let hand = ["left", "right"].map(|eye| by_hand(server, api, eye, &dir, false));
+    // Three frames: the eyes of the last, after two presents and flips.
+    let (eyes, stdout) = under_auto(server, api, 3, &dir);
+    for (n, eye) in ["left", "right"].into_iter().enumerate() {
+        let d = differing(&eyes[n], &hand[n]);
+        assert!(
+            d.is_empty(),
+            "{what}, {eye} eye: {} pixels differ from the eye drawn by hand, \
+             e.g. (x, y, --auto, by hand) {:?}",
+            d.len(),
+            &d[..d.len().min(8)]
+        );
+    }
+    assert!(
+        differing(&eyes[0], &eyes[1]).len() > 500,
+        "{what}: the eyes are alike"
+    );
+    // glReadPixels reads the left eye, as the mono program would read its
+    // one buffer; the program saw no GL error.
+    let p = eyes[0].get(50, H - 1 - 75);
+    assert!(
+        stdout.contains(&format!("read {} {} {}\n", p[0], p[1], p[2])),
+        "{what}: glReadPixels gave {stdout:?}, the left eye has {p:?}"
+    );
+    assert!(stdout.contains("error 0x0"), "{what}: {stdout}");
+    // Without --auto the layer changes nothing of an EGL program.
+    for eye in ["left", "right"] {
+        let n = usize::from(eye == "right");
+        let under = by_hand(server, api, eye, &dir, true);
+        assert!(
+            differing(&under, &hand[n]).is_empty(),
+            "{what}: under glstereo-run without --auto the {eye} eye the program draws differs"
+        );
+    }
+}
+
+#[test]
+fn an_opengl_es_program_on_x11_under_auto_equals_each_eye_drawn_by_hand() {
+    let _one = one_renderer_at_a_time();
+    let server = Server::X(Xvfb::start(W + 40, H + 40));
+    compare_with_the_oracle(&server, "es3");
+    compare_with_the_oracle(&server, "es100");
+}
+
+#[test]
+fn an_opengl_es_wayland_client_under_auto_equals_each_eye_drawn_by_hand() {
+    let _one = one_renderer_at_a_time();
+    let server = Server::Wayland(Weston::start(640, 480));
+    compare_with_the_oracle(&server, "es3");
+    compare_with_the_oracle(&server, "es100");
+}
+
+/// Parallax between two eye images (the halves of a side-by-side-half
+/// picture, or full captures), as a viewer sees it: enough textured
+/// blocks matched, nearly all on their rows, near and far apart.
+fn check_depth(left: &Image, right: &Image, min_spread: i32, what: &str) {
+    assert!(
+        differing(left, right).len() > 200,
+        "{what}: the eyes are alike (no stereo)"
+    );
+    let p = parallax::measure(left, right, 48, 3);
+    let matched = p.matches.len();
+    assert!(
+        matched >= 20,
+        "{what}: only {matched} blocks matched between the eyes ({})",
+        p.summary()
+    );
+    // Smooth shading matches a row or two off now and then; a picture
+    // moved or distorted vertically would match off its rows mostly.
+    assert!(
+        p.off_rows() * 3 <= matched,
+        "{what}: {} of {matched} blocks matched off their rows: the eyes are not the same \
+         content shifted along rows ({})",
+        p.off_rows(),
+        p.summary()
+    );
+    let (lo, hi) = (p.quantile(0.1).unwrap(), p.quantile(0.9).unwrap());
+    assert!(
+        hi - lo >= min_spread,
+        "{what}: shifts p10 {lo} to p90 {hi}: the scene is flat ({})",
+        p.summary()
+    );
+    eprintln!("{what}: {}", p.summary());
+}
+
+/// The last captured eyes in `dir` (the last frame whose two eyes are
+/// both written: the program may have been stopped in the middle of one).
+fn last_captured(dir: &Path, what: &str) -> [Image; 2] {
+    let last = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .filter_map(|e| {
+            let n = e.file_name().to_string_lossy().into_owned();
+            n.strip_prefix("left-").map(str::to_owned)
+        })
+        .filter(|n| dir.join(format!("right-{n}")).exists())
+        .max()
+        .unwrap_or_else(|| panic!("{what}: nothing captured in {}", dir.display()));
+    ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-{last}"))))
+}
+
+/// glmark2's window size.
+const SIZE: (u32, u32) = (800, 600);
+
+/// `glmark2` binary `exe` under --auto (separation 100 %, automatic
+/// convergence), side by side, capturing into `dir`, running scene `bench`
+/// for `seconds`.
+fn glmark2(server: &Server, exe: &str, bench: &str, seconds: u32, dir: &Path) -> Command {
+    let mut cmd = Command::new(&built().run);
+    server
+        .on(&mut cmd)
+        .args([
+            "--auto",
+            "--separation",
+            "100",
+            "-m",
+            "side-by-side-half",
+            "--capture",
+        ])
+        .arg(dir)
+        .args([
+            exe,
+            "-s",
+            &format!("{}x{}", SIZE.0, SIZE.1),
+            "-b",
+            &format!("{bench}:duration={seconds}"),
+        ]);
+    cmd
+}
+
+/// The glmark2 window on weston's screen `shot`: the bounding box (x, y,
+/// w, h) of what differs from `empty`, the screen before it mapped, below
+/// the panel (whose clock changes).
+fn window_box(shot: &Image, empty: &Image) -> Option<(u32, u32, u32, u32)> {
+    const PANEL: u32 = 40;
+    let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
+    for y in PANEL..shot.height() {
+        for x in 0..shot.width() {
+            if shot.get(x, y) != empty.get(x, y) {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+        }
+    }
+    (x1 > x0 && y1 > y0).then(|| (x0, y0, x1 - x0 + 1, y1 - y0 + 1))
+}
+
+/// The left and right halves of `img`'s region (x, y, w, h).
+fn halves_of(img: &Image, (x0, y0, w, h): (u32, u32, u32, u32)) -> [Image; 2] {
+    let hw = w / 2;
+    [x0, x0 + hw].map(|x| Image::from_fn(hw, h, |i, j| img.get(x + i, y0 + j)))
+}
+
+#[test]
+fn glmark2_es2_on_x11_under_auto_shows_its_scene_at_depth_in_both_halves() {
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(1024, 768);
+    let server = Server::X(x);
+    let dir = common::scratch("egl-glmark2-es2-x11");
+    let what = "glmark2-es2 (X11) build";
+    let mut run = Renderer::start(glmark2(&server, "glmark2-es2", "build", 60, &dir), what);
+    let Server::X(x) = &server else {
+        unreachable!()
+    };
+    let screen = Screen::open(&x.display);
+    let (window, shot) = run.picture(
+        &screen,
+        |s| s.find_window("glmark2 2023.01"),
+        |shot| {
+            let [l, r] = halves_of(shot, (0, 0, shot.width(), shot.height()));
+            let lit = |img: &Image| common::clients::count(img, |p| p[0] > 40) > 400;
+            lit(&l) && lit(&r)
+        },
+    );
+    let stderr = run.quit(&screen, window);
+    let _ = glstereo::capture::write_png(&shot, &dir.join("window.png"));
+    assert!(!stderr.contains("glstereo:"), "{what}: {stderr}");
+    assert_eq!((shot.width(), shot.height()), SIZE, "{what}: window size");
+    let [l, r] = halves_of(&shot, (0, 0, SIZE.0, SIZE.1));
+    // Half-width eyes: shifts are halved.
+    check_depth(&l, &r, 2, &format!("{what}, the window"));
+    let [l, r] = last_captured(&dir, what);
+    check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
+}
+
+/// glmark2 on weston: its eyes captured, and weston's screen (its
+/// composition of the program's surface) with the two halves at depth.
+fn glmark2_on_wayland(exe: &str, bench: &str) {
+    let _one = one_renderer_at_a_time();
+    let server = Server::Wayland(Weston::start(1024, 768));
+    let Server::Wayland(weston) = &server else {
+        unreachable!()
+    };
+    let what = format!("{exe} {bench}");
+    let dir = common::scratch(&format!("egl-{exe}-{bench}"));
+    let shots = common::scratch(&format!("egl-{exe}-{bench}-screen"));
+    // The empty desktop, once the shell has drawn it: the same twice.
+    let mut empty: Option<Image> = None;
+    for _ in 0..40 {
+        std::thread::sleep(std::time::Duration::from_millis(500));
+        let shot = weston.screenshot(&shots);
+        let below_panel = |a: &Image, b: &Image| {
+            (40..a.height()).all(|y| (0..a.width()).all(|x| a.get(x, y) == b.get(x, y)))
+        };
+        match (&empty, shot) {
+            (Some(e), Some(s)) if below_panel(e, &s) => break,
+            (_, s) => empty = s,
+        }
+    }
+    let empty = empty.unwrap_or_else(|| panic!("{what}: weston showed no desktop"));
+    let run = Renderer::start(glmark2(&server, exe, bench, 60, &dir), &what);
+    // The screen once the program has presented a few frames.
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    let mut seen = None;
+    let mut last_box = None;
+    while std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_secs(2));
+        let frames = std::fs::read_dir(&dir).map_or(0, |d| d.count());
+        // Automatic convergence has settled after the first frames.
+        if frames < 90 {
+            continue;
+        }
+        let Some(shot) = weston.screenshot(&shots) else {
+            continue;
+        };
+        let _ = glstereo::capture::write_png(&shot, &shots.join("last.png"));
+        last_box = window_box(&shot, &empty);
+        if let Some(b) = last_box.filter(|b| b.2 == SIZE.0 && b.3 == SIZE.1) {
+            let [l, r] = halves_of(&shot, b);
+            let lit = |img: &Image| common::clients::count(img, |p| p[0] > 40) > 400;
+            if lit(&l) && lit(&r) {
+                seen = Some((shot, b));
+                break;
+            }
+        }
+    }
+    let stderr = run.stop();
+    assert!(!stderr.contains("glstereo:"), "{what}: {stderr}");
+    let (shot, b) = seen.unwrap_or_else(|| {
+        panic!(
+            "{what}: weston never showed an 800x600 window with both halves drawn (last seen \
+             at {last_box:?}): {stderr}"
+        )
+    });
+    let _ = glstereo::capture::write_png(&shot, &shots.join("screen.png"));
+    let [l, r] = halves_of(&shot, b);
+    check_depth(&l, &r, 2, &format!("{what}, weston's screen"));
+    let [l, r] = last_captured(&dir, &what);
+    check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
+}
+
+#[test]
+fn glmark2_es2_wayland_under_auto_shows_its_scene_at_depth_on_weston() {
+    glmark2_on_wayland("glmark2-es2-wayland", "build");
+}
+
+#[test]
+fn glmark2_wayland_desktop_gl_under_auto_shows_its_scene_at_depth_on_weston() {
+    glmark2_on_wayland("glmark2-wayland", "shadow");
+}
