@@ -99,14 +99,17 @@ pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame, scra
         (source, (eyes.width(), eyes.height()), scene)
     });
     let target = frame.target.map(|(t, size, scene)| (Some(t), size, scene));
+    // A scene whose projection is known comes first: the window's eyes
+    // may hold only a pass whose projection cannot be seen (a full-screen
+    // quad of a program that uploads no matrix, composing a render target
+    // the scene went into: glmark2's terrain), whose flat depth is not the
+    // scene's; the window before the target otherwise.
+    let mut places: Vec<_> = window.into_iter().chain(target).collect();
+    places.sort_by_key(|(_, _, scene)| scene.perspective.is_none());
     // SAFETY: contract.
-    let Some(found) = window
-        .into_iter()
-        .chain(target)
-        .find_map(|(source, size, scene)| unsafe {
-            centre_of(gl, eyes, fbo, frame, (source, &scene), size, scratch)
-        })
-    else {
+    let Some(found) = places.into_iter().find_map(|(source, size, scene)| unsafe {
+        centre_of(gl, eyes, fbo, frame, (source, &scene), size, scratch)
+    }) else {
         return;
     };
     match found {
