@@ -276,6 +276,60 @@ pub fn identifiers(text: &str) -> Vec<(usize, &str)> {
     out
 }
 
+/// The names gl_Position is computed from in a comment-free vertex-stage
+/// source: the identifiers on the right of its assignments, and of the
+/// assignments to those (`vec4 eye = ModelView * p; gl_Position =
+/// Projection * eye;` gives Projection, eye, ModelView and p), in order
+/// of first appearance. Functions are not followed (their names are
+/// listed, not their bodies). Automatic convergence takes the matrices a
+/// program uploads to these names as its camera: a light's or a shadow
+/// map's matrix uploaded beside it (glmark2's refract) is not.
+pub fn position_names(text: &str) -> Vec<String> {
+    // Statements: the text between ; { and }, outside preprocessor lines.
+    let mut code = String::with_capacity(text.len());
+    for (start, end, line) in logical_lines(text) {
+        if directive(&line).is_none() {
+            code.push_str(&text[start..end]);
+        }
+        code.push('\n');
+    }
+    let statements: Vec<(Vec<&str>, Vec<&str>)> = code
+        .split([';', '{', '}'])
+        .filter_map(|st| {
+            let b = st.as_bytes();
+            // The first plain or compound assignment: an '=' that is not
+            // part of ==, <=, >= or !=.
+            let eq = (0..b.len()).find(|&i| {
+                b[i] == b'='
+                    && b.get(i + 1) != Some(&b'=')
+                    && (i == 0 || !matches!(b[i - 1], b'=' | b'<' | b'>' | b'!'))
+            })?;
+            fn ids(t: &str) -> Vec<&str> {
+                identifiers(t).into_iter().map(|(_, id)| id).collect()
+            }
+            Some((ids(&st[..eq]), ids(&st[eq + 1..])))
+        })
+        .collect();
+    let mut names: Vec<String> = vec!["gl_Position".to_owned()];
+    loop {
+        let before = names.len();
+        for (lhs, rhs) in &statements {
+            if lhs.iter().any(|l| names.iter().any(|n| n == l)) {
+                for r in rhs {
+                    if !names.iter().any(|n| n == r) {
+                        names.push((*r).to_owned());
+                    }
+                }
+            }
+        }
+        if names.len() == before {
+            break;
+        }
+    }
+    names.remove(0);
+    names
+}
+
 /// The text of a comment-free source after byte `at`, blanks skipped.
 pub fn after(text: &str, at: usize) -> &str {
     text[at..].trim_start()
@@ -328,6 +382,38 @@ pub fn out_per_vertex_members(text: &str) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_names_gl_position_comes_from_leave_out_a_lights_matrix() {
+        // glmark2's light-refract.vert, shortened.
+        let src = "attribute vec3 position;\nuniform mat4 ModelViewProjectionMatrix;\n\
+                   uniform mat4 LightMatrix;\nvarying vec4 MapCoord;\nvoid main(void)\n{\n\
+                   vec4 current_position = vec4(position, 1.0);\n\
+                   MapCoord = LightMatrix * current_position;\n\
+                   gl_Position = ModelViewProjectionMatrix * current_position;\n}\n";
+        assert_eq!(
+            position_names(src),
+            [
+                "ModelViewProjectionMatrix",
+                "current_position",
+                "vec4",
+                "position"
+            ]
+        );
+    }
+
+    #[test]
+    fn the_names_gl_position_comes_from_through_locals_and_compound_assignments() {
+        let src = "#version 330\n#define X (a == b)\nuniform mat4 P, MV, Shadow;\n\
+                   void main() {\n  vec4 eye = MV * vec4(pos, 1.0);\n  if (k <= 2) {\n\
+                   shadow = Shadow * eye; }\n  gl_Position = P * eye;\n  gl_Position.xy *= scale;\n}\n";
+        assert_eq!(
+            position_names(src),
+            ["P", "eye", "scale", "MV", "vec4", "pos"]
+        );
+        // Nothing assigned to gl_Position: nothing.
+        assert!(position_names("void main() { x = y; }").is_empty());
+    }
 
     #[test]
     fn early_declarations_go_before_the_first_token_outside_conditionals() {

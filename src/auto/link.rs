@@ -26,7 +26,7 @@
 //! user linked it, and says why ([`LinkOutcome::Kept`]): that program
 //! draws both eyes unshifted.
 
-use crate::auto::glsl::{Profile, Scan};
+use crate::auto::glsl::{self, Profile, Scan};
 use crate::auto::vertex::{self, LayerWrite, NotCovered, Options, Rewrite, Stage, shift_position};
 use crate::stereo::outputs::LinkFns;
 
@@ -34,7 +34,7 @@ const GL_SHADER_TYPE: u32 = 0x8B4F;
 const GL_LINK_STATUS: u32 = 0x8B82;
 
 /// What a successful rewrite did.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Shifted {
     /// The stage that was rewritten.
     pub stage: Stage,
@@ -44,6 +44,10 @@ pub struct Shifted {
     /// Whether the stage writes gl_Layer (false for ES shaders: their
     /// eye's target must be chosen outside the shader).
     pub layer: bool,
+    /// The names the stage computes gl_Position from
+    /// ([`glsl::position_names`]): the program's camera matrices among
+    /// them.
+    pub position: Vec<String>,
 }
 
 /// What [`shift_last_stage`] did.
@@ -178,6 +182,7 @@ pub unsafe fn shift_last_stage(
                 stage,
                 location: used.location,
                 layer: used.layer == LayerWrite::FromUniform,
+                position: glsl::position_names(&glsl::blank_comments(&source)),
             });
         }
         (fns.link_program)(program);

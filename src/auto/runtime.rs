@@ -208,6 +208,11 @@ fn tables() -> Option<&'static Tables> {
 struct Rewritten {
     location: i32,
     layer: bool,
+    /// The locations of the uniforms its last vertex stage computes
+    /// gl_Position from (the camera's matrices; −1: none more); all −1
+    /// where none was found (the position comes from a function, a
+    /// uniform block): every upload is looked at then.
+    projecting: [i32; 4],
 }
 
 /// What the layer knows of a program after its link: where its eye
@@ -1465,6 +1470,20 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     if program == 0 {
         return;
     }
+    // Where the program's position is known to come from named uniforms,
+    // only uploads to those are its camera: a light's matrix (a shadow
+    // map's lookup, glmark2's refract) is perspective too.
+    let location = call.u32(at) as i32;
+    if let Some(r) = rewritten(cur.group(), program) {
+        let known = r.projecting.iter().filter(|&&l| l >= 0);
+        if r.projecting[0] >= 0
+            && !known
+                .clone()
+                .any(|&l| l >= location && l < location + count)
+        {
+            return;
+        }
+    }
     // A perspective matrix is what the program projects with; another one
     // (a model-view beside it, an orthographic overlay) counts only where
     // no perspective one came.
@@ -2080,17 +2099,23 @@ unsafe fn context_is_es(f: &AutoFns) -> bool {
 /// Where the eye's uniform of `program` is after `outcome`.
 unsafe fn located(t: &Tables, program: u32, outcome: &LinkOutcome) -> Option<Rewritten> {
     match outcome {
-        LinkOutcome::Shifted(s) => match s.location {
-            Some(l) => Some(Rewritten {
-                location: l as i32,
-                layer: s.layer,
-            }),
+        LinkOutcome::Shifted(s) => {
             // SAFETY: contract of the callers.
-            None => unsafe { uniform_location(t, program) }.map(|location| Rewritten {
-                location,
-                layer: s.layer,
-            }),
-        },
+            let projecting = unsafe { projecting(t, program, &s.position) };
+            match s.location {
+                Some(l) => Some(Rewritten {
+                    location: l as i32,
+                    layer: s.layer,
+                    projecting,
+                }),
+                // SAFETY: contract of the callers.
+                None => unsafe { uniform_location(t, program) }.map(|location| Rewritten {
+                    location,
+                    layer: s.layer,
+                    projecting,
+                }),
+            }
+        }
         LinkOutcome::Kept(why) => {
             crate::report::warn(&format!(
                 "a program is drawn unshifted in both eyes (automatic stereo): {why}"
@@ -2099,6 +2124,32 @@ unsafe fn located(t: &Tables, program: u32, outcome: &LinkOutcome) -> Option<Rew
         }
         LinkOutcome::NotNeeded(_) => None,
     }
+}
+
+/// The locations of the uniforms among `names` (what gl_Position is
+/// computed from) in the linked `program`: up to four, the rest −1.
+/// More than four is not a camera: none then.
+///
+/// # Safety
+/// `program`'s context is current.
+unsafe fn projecting(t: &Tables, program: u32, names: &[String]) -> [i32; 4] {
+    let mut out = [-1; 4];
+    let mut n = 0;
+    for name in names.iter().take(32) {
+        let Ok(c) = std::ffi::CString::new(name.as_str()) else {
+            continue;
+        };
+        // SAFETY: contract; a NUL-terminated name.
+        let l = unsafe { (t.gl.get_uniform_location)(program, c.as_ptr()) };
+        if l >= 0 {
+            if n == out.len() {
+                return [-1; 4];
+            }
+            out[n] = l;
+            n += 1;
+        }
+    }
+    out
 }
 
 unsafe fn uniform_location(t: &Tables, program: u32) -> Option<i32> {
@@ -2145,7 +2196,11 @@ pub unsafe fn created(group: u64, program: u32) {
     record(
         group,
         program,
-        at.map(|location| Rewritten { location, layer }),
+        at.map(|location| Rewritten {
+            location,
+            layer,
+            projecting: [-1; 4],
+        }),
     );
 }
 
