@@ -1,9 +1,11 @@
 #!/bin/sh
 # What automatic stereo costs a modern renderer: each of glmark2's scenes
 # (Debian's glmark2-x11, GLX) run mono without the layer, then under
-# `glstereo-run --auto`, ROUNDS times alternated, on a private Xvfb; prints
-# each scene's frame rates and the ratio of the medians (--auto / mono).
-# And glxgears under --auto against its own -stereo mode (display lists).
+# `glstereo-run` without --auto, then under `glstereo-run --auto`, ROUNDS
+# times alternated, on a private Xvfb; prints each scene's frame rates and
+# the ratios of the medians (layer / mono, --auto / mono). Then the same
+# for a few scenes of glmark2-es2 (EGL, OpenGL ES; GLMARK2_ES_SCENES), and
+# glxgears under --auto against its own -stereo mode (display lists).
 #
 #   sh benches/auto_glmark2.sh [ROUNDS [SECONDS]]   (default 3 rounds, 4 s a scene)
 #
@@ -42,21 +44,40 @@ median() {
     tr ' ' '\n' | grep -v '^$' | sort -n | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'
 }
 
-printf '%-28s %-18s %-18s %s\n' scene "mono fps" "--auto fps" "ratio of medians"
-for scene in $SCENES; do
-    mono=""
-    auto=""
-    i=0
-    while [ "$i" -lt "$ROUNDS" ]; do
-        mono="$mono $(fps glmark2 -s 800x600 -b "$scene:duration=$SECONDS_PER")"
-        auto="$auto $(fps "$RUN" --auto -m side-by-side-half glmark2 -s 800x600 -b "$scene:duration=$SECONDS_PER")"
-        i=$((i + 1))
+ratio() {
+    awk -v a="$1" -v m="$2" 'BEGIN {printf "%.2f", (m > 0) ? a / m : 0}'
+}
+
+# table EXE SCENES: mono, the layer without --auto, --auto.
+table() {
+    exe=$1
+    printf '%-28s %-16s %-16s %-16s %s\n' "$exe scene" "mono fps" "layer fps" "--auto fps" \
+        "layer/mono auto/mono"
+    for scene in $2; do
+        mono=""
+        layer=""
+        auto=""
+        i=0
+        while [ "$i" -lt "$ROUNDS" ]; do
+            mono="$mono $(fps "$exe" -s 800x600 -b "$scene:duration=$SECONDS_PER")"
+            layer="$layer $(fps "$RUN" "$exe" -s 800x600 -b "$scene:duration=$SECONDS_PER")"
+            auto="$auto $(fps "$RUN" --auto -m side-by-side-half "$exe" -s 800x600 -b "$scene:duration=$SECONDS_PER")"
+            i=$((i + 1))
+        done
+        m=$(echo "$mono" | median)
+        l=$(echo "$layer" | median)
+        a=$(echo "$auto" | median)
+        printf '%-28s %-16s %-16s %-16s %s %s\n' "$(echo "$scene" | cut -c1-28)" "$mono" "$layer" \
+            "$auto" "$(ratio "$l" "$m")" "$(ratio "$a" "$m")"
     done
-    m=$(echo "$mono" | median)
-    a=$(echo "$auto" | median)
-    printf '%-28s %-18s %-18s %s\n' "$(echo "$scene" | cut -c1-28)" "$mono" "$auto" \
-        "$(awk -v a="$a" -v m="$m" 'BEGIN {printf "%.2f", (m > 0) ? a / m : 0}')"
-done
+}
+
+table glmark2 "$SCENES"
+if command -v glmark2-es2 >/dev/null; then
+    table glmark2-es2 "${GLMARK2_ES_SCENES:-build:use-vbo=true shading:shading=phong texture:texture-filter=linear refract}"
+else
+    echo "glmark2-es2 not installed (glmark2-es2-x11): its EGL scenes skipped"
+fi
 
 # glxgears: --auto (display lists of geometry only: the fast path) against
 # its own quad-buffer stereo under the layer.

@@ -186,39 +186,6 @@ fn an_opengl_es_wayland_client_under_auto_equals_each_eye_drawn_by_hand() {
     compare_with_the_oracle(&server, "es100");
 }
 
-/// Parallax between two eye images (the halves of a side-by-side-half
-/// picture, or full captures), as a viewer sees it: enough textured
-/// blocks matched, nearly all on their rows, near and far apart.
-fn check_depth(left: &Image, right: &Image, min_spread: i32, what: &str) {
-    assert!(
-        differing(left, right).len() > 200,
-        "{what}: the eyes are alike (no stereo)"
-    );
-    let p = parallax::measure(left, right, 48, 3);
-    let matched = p.matches.len();
-    assert!(
-        matched >= 20,
-        "{what}: only {matched} blocks matched between the eyes ({})",
-        p.summary()
-    );
-    // Smooth shading matches a row or two off now and then; a picture
-    // moved or distorted vertically would match off its rows mostly.
-    assert!(
-        p.off_rows() * 3 <= matched,
-        "{what}: {} of {matched} blocks matched off their rows: the eyes are not the same \
-         content shifted along rows ({})",
-        p.off_rows(),
-        p.summary()
-    );
-    let (lo, hi) = (p.quantile(0.1).unwrap(), p.quantile(0.9).unwrap());
-    assert!(
-        hi - lo >= min_spread,
-        "{what}: shifts p10 {lo} to p90 {hi}: the scene is flat ({})",
-        p.summary()
-    );
-    eprintln!("{what}: {}", p.summary());
-}
-
 /// The last captured eyes in `dir` (the last frame whose two eyes are
 /// both written: the program may have been stopped in the middle of one).
 fn last_captured(dir: &Path, what: &str) -> [Image; 2] {
@@ -313,9 +280,9 @@ fn glmark2_es2_on_x11_under_auto_shows_its_scene_at_depth_in_both_halves() {
     assert_eq!((shot.width(), shot.height()), SIZE, "{what}: window size");
     let [l, r] = halves_of(&shot, (0, 0, SIZE.0, SIZE.1));
     // Half-width eyes: shifts are halved.
-    check_depth(&l, &r, 2, &format!("{what}, the window"));
+    parallax::check_depth(&l, &r, 2, &format!("{what}, the window"));
     let [l, r] = last_captured(&dir, what);
-    check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
+    parallax::check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
 }
 
 /// glmark2 on weston: its eyes captured, and weston's screen (its
@@ -379,9 +346,9 @@ fn glmark2_on_wayland(exe: &str, bench: &str) {
     });
     let _ = glstereo::capture::write_png(&shot, &shots.join("screen.png"));
     let [l, r] = halves_of(&shot, b);
-    check_depth(&l, &r, 2, &format!("{what}, weston's screen"));
+    parallax::check_depth(&l, &r, 2, &format!("{what}, weston's screen"));
     let [l, r] = last_captured(&dir, &what);
-    check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
+    parallax::check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
 }
 
 #[test]

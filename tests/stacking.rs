@@ -736,3 +736,134 @@ fn renderdoc_captures_a_stereo_core_program_in_either_order() {
         );
     }
 }
+
+// ---- EGL programs ----------------------------------------------------------
+
+/// MangoHud's text in `img`, drawn magenta (MANGOHUD_CONFIG text_color):
+/// glmark2's build scene has nothing magenta.
+fn magenta_pixels(img: &Image) -> u32 {
+    count(img, |p| p[0] > 180 && p[1] < 90 && p[2] > 180)
+}
+
+/// A half of glmark2's window with its scene drawn: more than its clear
+/// colour.
+fn glmark2_drawn(img: &Image) -> bool {
+    let first = img.get(0, img.height() - 1);
+    count(img, |p| (0..3).any(|c| p[c].abs_diff(first[c]) > 8)) > 2000
+}
+
+#[test]
+fn mangohuds_hud_shows_over_both_eyes_of_an_egl_program_under_auto_in_either_order() {
+    // glmark2-es2 (EGL, OpenGL ES) dlopens libEGL.so.1; MangoHud hooks
+    // eglSwapBuffers. Without glstereo MangoHud shows no HUD here (its hook
+    // is not reached through glmark2's handle); the layer's libEGL stub
+    // passes the swap down to it.
+    let _one = one_renderer_at_a_time();
+    for (what, mangohud_first) in [
+        ("glstereo-run --auto mangohud glmark2-es2", false),
+        ("mangohud glstereo-run --auto glmark2-es2", true),
+    ] {
+        let x = Xvfb::start(800, 600);
+        let mut cmd = if mangohud_first {
+            let mut c = Command::new("mangohud");
+            c.arg(&built().run);
+            c
+        } else {
+            Command::new(&built().run)
+        };
+        cmd.args(["--auto", "-m", "side-by-side-half"]);
+        if !mangohud_first {
+            cmd.arg("mangohud");
+        }
+        cmd.args(["glmark2-es2", "-s", "640x480", "-b", "build:duration=60"])
+            .env("DISPLAY", &x.display)
+            .env(
+                "MANGOHUD_CONFIG",
+                "position=top-left,font_size=24,text_color=FF00FF",
+            );
+        let mut run = Renderer::start(cmd, what);
+        let screen = Screen::open(&x.display);
+        let (window, shot) = run.picture(
+            &screen,
+            |s| s.find_window("glmark2 2023.01"),
+            |shot| {
+                let (l, r) = squeezed_halves(shot);
+                glmark2_drawn(&l) && glmark2_drawn(&r) && magenta_pixels(shot) > 50
+            },
+        );
+        let stderr = run.quit(&screen, window);
+        let _ = glstereo::capture::write_png(
+            &shot,
+            &common::scratch(&format!("mangohud-egl-{mangohud_first}")).join("window.png"),
+        );
+        let (left, right) = squeezed_halves(&shot);
+        assert!(
+            glmark2_drawn(&left) && glmark2_drawn(&right),
+            "{what}: both eyes"
+        );
+        assert!(
+            differing(&left, &right) > left.width() * left.height() / 200,
+            "{what}: the halves are one eye twice"
+        );
+        assert!(
+            magenta_pixels(&shot) > 50,
+            "{what}: no HUD ({} magenta pixels)\n{stderr}",
+            magenta_pixels(&shot)
+        );
+    }
+}
+
+#[test]
+fn apitraces_egltrace_records_an_egl_program_under_auto_that_replays_cleanly() {
+    // `apitrace trace --api egl glstereo-run --auto PROG`: egltrace.so below
+    // glstereo records the program's calls the layer forwards and the
+    // layer's own (its context, the eyes' draws, the composite), and
+    // eglretrace replays them without a failed compile or link.
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(640, 480);
+    let trace = common::scratch("apitrace-egl").join("glmark2-es2.trace");
+    let _ = std::fs::remove_file(&trace);
+    let mut cmd = Command::new("apitrace");
+    cmd.args(["trace", "--api", "egl", "-o"])
+        .arg(&trace)
+        .arg(&built().run)
+        .args(["--auto", "-m", "side-by-side-half"])
+        .args(["glmark2-es2", "-s", "320x240", "-b", "build:duration=2"])
+        .env("DISPLAY", &x.display);
+    let out = common::run_ok(&mut cmd);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("FPS:"),
+        "glmark2-es2 under egltrace and glstereo ran no scene:\n{stdout}"
+    );
+    let replay = Command::new("eglretrace")
+        .arg(&trace)
+        .env("DISPLAY", &x.display)
+        .output()
+        .expect("eglretrace runs");
+    let said = format!(
+        "{}{}",
+        String::from_utf8_lossy(&replay.stdout),
+        String::from_utf8_lossy(&replay.stderr)
+    );
+    assert!(
+        replay.status.success(),
+        "eglretrace exited {}:\n{said}",
+        replay.status
+    );
+    for bad in ["compilation failed", "link failed", "error"] {
+        assert!(!said.contains(bad), "eglretrace says {bad:?}:\n{said}");
+    }
+    let dump = common::run_ok(Command::new("apitrace").arg("dump").arg(&trace));
+    let dump = String::from_utf8_lossy(&dump.stdout);
+    // The program's context and the layer's desktop GL context sharing it,
+    // the rewritten vertex stage linked, the eyes presented.
+    for call in [
+        "eglBindAPI(api = EGL_OPENGL_API)",
+        "glLinkProgram(",
+        "glBindFramebuffer(",
+        "eglSwapBuffers(",
+    ] {
+        assert!(dump.contains(call), "no {call} in the trace");
+    }
+}

@@ -151,3 +151,64 @@ impl Parallax {
         )
     }
 }
+
+/// How many pixels of `a` and `b` (same size) differ by more than 2 in a
+/// colour channel.
+pub fn differing_pixels(a: &Image, b: &Image) -> usize {
+    let mut n = 0;
+    for y in 0..a.height() {
+        for x in 0..a.width() {
+            let (p, q) = (a.get(x, y), b.get(x, y));
+            n += usize::from((0..3).any(|c| p[c].abs_diff(q[c]) > 2));
+        }
+    }
+    n
+}
+
+/// Checks two eye images as a viewer sees them (the halves of a
+/// side-by-side-half picture, or full captures): they differ, enough
+/// textured blocks match, nearly all on their rows (smooth shading
+/// matches a row or two off now and then; a picture moved or distorted
+/// vertically would match off its rows mostly), and near and far are
+/// apart: shifts from p10 to p90 span at least `min_spread` pixels.
+/// Returns the measure for further checks.
+pub fn check_depth(left: &Image, right: &Image, min_spread: i32, what: &str) -> Parallax {
+    check_depth_of(left, right, 20, min_spread, what)
+}
+
+/// [`check_depth`] with at least `min_matched` blocks matched (a small
+/// object, smoothly shaded, has few textured blocks).
+pub fn check_depth_of(
+    left: &Image,
+    right: &Image,
+    min_matched: usize,
+    min_spread: i32,
+    what: &str,
+) -> Parallax {
+    assert!(
+        differing_pixels(left, right) > 200,
+        "{what}: the eyes are alike (no stereo)"
+    );
+    let p = measure(left, right, 48, 3);
+    let matched = p.matches.len();
+    assert!(
+        matched >= min_matched,
+        "{what}: only {matched} blocks matched between the eyes ({})",
+        p.summary()
+    );
+    assert!(
+        p.off_rows() * 3 <= matched,
+        "{what}: {} of {matched} blocks matched off their rows: the eyes are not the same \
+         content shifted along rows ({})",
+        p.off_rows(),
+        p.summary()
+    );
+    let (lo, hi) = (p.quantile(0.1).unwrap(), p.quantile(0.9).unwrap());
+    assert!(
+        hi - lo >= min_spread,
+        "{what}: shifts p10 {lo} to p90 {hi}: the scene is flat ({})",
+        p.summary()
+    );
+    eprintln!("{what}: {}", p.summary());
+    p
+}
