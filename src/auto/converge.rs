@@ -71,6 +71,12 @@ pub struct Frame {
     /// looks (a program that draws its scene off screen and blits it or
     /// shows it as a textured quad).
     pub target: Option<(Attachments, (u32, u32), Scene)>,
+    /// The median distance of the origins of the objects the frame's
+    /// perspective draws placed (their combined model-view-projection
+    /// matrices' clip w of (0, 0, 0)): the centre of interest where the
+    /// depth holds no scene (translucent geometry drawn without depth
+    /// writes: glmark2's jellyfish, its buffer grid).
+    pub origin: Option<f64>,
 }
 
 /// How a frame's scene was drawn where automatic convergence measures it.
@@ -107,9 +113,13 @@ pub unsafe fn measure(gl: &Gl, eyes: &LayeredEyes, fbo: u32, frame: &Frame, scra
     let mut places: Vec<_> = window.into_iter().chain(target).collect();
     places.sort_by_key(|(_, _, scene)| scene.perspective.is_none());
     // SAFETY: contract.
-    let Some(found) = places.into_iter().find_map(|(source, size, scene)| unsafe {
-        centre_of(gl, eyes, fbo, frame, (source, &scene), size, scratch)
-    }) else {
+    let Some(found) = places
+        .into_iter()
+        .find_map(|(source, size, scene)| unsafe {
+            centre_of(gl, eyes, fbo, frame, (source, &scene), size, scratch)
+        })
+        .or(frame.origin.map(Centre::Distance))
+    else {
         return;
     };
     match found {
@@ -244,13 +254,22 @@ impl Perspective {
     /// `transpose` (row-major when true): the last perspective one
     /// (a projection, or a projection times the matrices before it).
     pub fn from_upload(value: &[f32], transpose: bool) -> Option<Perspective> {
+        Perspective::from_upload_with_origin(value, transpose).map(|(p, _)| p)
+    }
+
+    /// [`Perspective::from_upload`], with the clip w of the point (0, 0, 0)
+    /// the matrix takes: for a projection times the matrices before it,
+    /// the distance of the model's origin (0 for a projection alone).
+    pub fn from_upload_with_origin(value: &[f32], transpose: bool) -> Option<(Perspective, f64)> {
         value.chunks_exact(16).rev().find_map(|m| {
             let m: Vec<f64> = m.iter().map(|&v| f64::from(v)).collect();
-            if transpose {
+            // Element (3, 3) is the 16th value either way round.
+            let p = if transpose {
                 Perspective::of_rows([m[8], m[9], m[10], m[11]], [m[12], m[13], m[14], m[15]])
             } else {
                 Perspective::of_rows([m[2], m[6], m[10], m[14]], [m[3], m[7], m[11], m[15]])
-            }
+            };
+            p.map(|p| (p, m[15]))
         })
     }
 
@@ -396,6 +415,35 @@ mod tests {
         two.extend(DMat4::IDENTITY.to_cols_array().iter().map(|&v| v as f32));
         assert!(Perspective::from_upload(&two, false).is_some());
         assert_eq!(Perspective::from_upload(&f[..12], false), None);
+    }
+
+    #[test]
+    fn an_upload_gives_the_distance_of_its_models_origin() {
+        let proj = DMat4::perspective_rh_gl(0.9, 4.0 / 3.0, 0.5, 100.0);
+        let eye = glam::DVec3::new(3.0, 2.0, 9.0);
+        let view = DMat4::look_at_rh(eye, glam::DVec3::ZERO, glam::DVec3::Y);
+        let at = glam::DVec3::new(1.0, -2.0, 0.5);
+        let model = DMat4::from_translation(at) * DMat4::from_rotation_y(0.7);
+        // The distance of the model's origin along the view direction.
+        let want = -(view.transform_point3(at)).z;
+        let mvp = proj * view * model;
+        let f: Vec<f32> = mvp.to_cols_array().iter().map(|&v| v as f32).collect();
+        let t: Vec<f32> = mvp
+            .transpose()
+            .to_cols_array()
+            .iter()
+            .map(|&v| v as f32)
+            .collect();
+        for (value, transpose) in [(&f, false), (&t, true)] {
+            let (_, w) = Perspective::from_upload_with_origin(value, transpose).unwrap();
+            assert!((w - want).abs() < 1e-4 * want, "{w} against {want}");
+        }
+        // A projection alone places nothing.
+        let p: Vec<f32> = proj.to_cols_array().iter().map(|&v| v as f32).collect();
+        assert_eq!(
+            Perspective::from_upload_with_origin(&p, false).unwrap().1,
+            0.0
+        );
     }
 
     #[test]

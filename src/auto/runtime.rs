@@ -284,6 +284,13 @@ pub struct AutoState {
     /// (matrices in uniform buffers, built in the shader, or none: a
     /// full-screen pass).
     uploads: Vec<(u32, Option<Perspective>)>,
+    /// The clip w of the model's origin under each program's last
+    /// perspective upload (a combined model-view-projection matrix: the
+    /// distance of the object; 0 for a projection alone).
+    origins: Vec<(u32, f64)>,
+    /// The origins' distances of this measured frame's perspective draws
+    /// ([`converge::Frame::origin`]).
+    frame_origins: Vec<f64>,
     /// This frame is not measured: draws leave their projection unread.
     unmeasured: bool,
     /// The program has begun transform feedback: draws check whether it
@@ -1460,7 +1467,8 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     }
     // SAFETY: GL's contract: `count` matrices of 16 floats at `value`.
     let value = unsafe { std::slice::from_raw_parts(value, 16 * count as usize) };
-    let p = Perspective::from_upload(value, transpose);
+    let with_origin = Perspective::from_upload_with_origin(value, transpose);
+    let p = with_origin.map(|(p, _)| p);
     let program = if at == 1 {
         call.u32(0)
     } else {
@@ -1487,13 +1495,19 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     // A perspective matrix is what the program projects with; another one
     // (a model-view beside it, an orthographic overlay) counts only where
     // no perspective one came.
-    cur.with_auto(
-        |st, _| match st.uploads.iter_mut().find(|(q, _)| *q == program) {
+    cur.with_auto(|st, _| {
+        match st.uploads.iter_mut().find(|(q, _)| *q == program) {
             Some(u) if p.is_some() => u.1 = p,
             Some(_) => {}
             None => st.uploads.push((program, p)),
-        },
-    );
+        }
+        if let Some((_, origin)) = with_origin {
+            match st.origins.iter_mut().find(|(q, _)| *q == program) {
+                Some(o) => o.1 = origin,
+                None => st.origins.push((program, origin)),
+            }
+        }
+    });
 }
 
 /// How a draw projects, as automatic convergence can tell.
@@ -1609,6 +1623,15 @@ pub unsafe fn frame_geometry(
     // The next frame's draws read their projections if it is measured.
     st.unmeasured = !converge::measures(frame + 1);
     let copied = std::mem::take(&mut st.depth_copied);
+    let origin = {
+        let o = &mut st.frame_origins;
+        let median = (!o.is_empty()).then(|| {
+            let mid = o.len() / 2;
+            *o.select_nth_unstable_by(mid, f64::total_cmp).1
+        });
+        o.clear();
+        median
+    };
     let window = st
         .window_drawn
         .take()
@@ -1651,6 +1674,7 @@ pub unsafe fn frame_geometry(
             clear_depth: f64::from(clear),
             window,
             target,
+            origin,
         })
     }
 }
@@ -1713,6 +1737,19 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             }
                         })
                     };
+                    // Where the object it draws is (a fallback for a
+                    // scene that writes no depth).
+                    if perspective.is_some_and(|s| s.perspective.is_some())
+                        && st.frame_origins.len() < 4096
+                    {
+                        if let Some((p, _)) = vertex_program(f) {
+                            if let Some(&(_, w)) = st.origins.iter().find(|(q, _)| *q == p) {
+                                if w > 0.0 && w.is_finite() {
+                                    st.frame_origins.push(w);
+                                }
+                            }
+                        }
+                    }
                     // A known perspective draw is the scene; one whose
                     // projection is unknown only where none known came.
                     let known = |s: &Option<Scene>| s.is_some_and(|s| s.perspective.is_some());
