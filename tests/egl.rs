@@ -360,3 +360,85 @@ fn glmark2_es2_wayland_under_auto_shows_its_scene_at_depth_on_weston() {
 fn glmark2_wayland_desktop_gl_under_auto_shows_its_scene_at_depth_on_weston() {
     glmark2_on_wayland("glmark2-wayland", "shadow");
 }
+
+fn churn() -> PathBuf {
+    build_once("egl_churn", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_churn.c"),
+            out,
+            &["-lEGL", "-lGLESv2", "-lX11"],
+        )
+    })
+}
+
+/// "usage rss MID END fds MID END" of tests/c/egl_churn.c.
+fn usage(lines: &str) -> (i64, i64, i64, i64) {
+    let l = lines
+        .lines()
+        .find_map(|l| l.strip_prefix("usage rss "))
+        .unwrap_or_else(|| panic!("no usage line in {lines}"));
+    let v: Vec<i64> = l
+        .split_whitespace()
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    (v[0], v[1], v[2], v[3])
+}
+
+#[test]
+fn a_hostile_egl_program_gets_mesas_every_answer_under_auto_and_its_memory_stays_flat() {
+    // Contexts and surfaces made and destroyed in every order (destroyed
+    // while current, the display terminated while current, the X window
+    // destroyed under its surface, a fork), windows resized to 1x1, 3x500
+    // and 640x2 between frames, calls EGL refuses: every result, error
+    // and read-back pixel as Mesa gives them without the layer; nothing
+    // on stderr; memory and descriptors flat from round 15 to 60.
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(800, 600);
+    let run = |layer: bool| {
+        let mut cmd = if layer {
+            let mut c = Command::new(&built().run);
+            c.arg("--auto").arg(churn());
+            c
+        } else {
+            Command::new(churn())
+        };
+        let out = cmd
+            .arg("60")
+            .env("DISPLAY", &x.display)
+            .output()
+            .expect("egl_churn runs");
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(
+            out.status.success(),
+            "egl_churn (layer {layer}) exited {}:\n{stderr}",
+            out.status
+        );
+        (stdout, stderr)
+    };
+    let (mesa, _) = run(false);
+    let (ours, stderr) = run(true);
+    assert!(
+        mesa.contains("done\n") && mesa.contains("child exited 0"),
+        "{mesa}"
+    );
+    let strip = |s: &str| -> Vec<String> {
+        s.lines()
+            .filter(|l| !l.starts_with("usage "))
+            .map(str::to_owned)
+            .collect()
+    };
+    let (a, b) = (strip(&mesa), strip(&ours));
+    for (i, (m, o)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(m, o, "line {i}: Mesa said {m:?}, under --auto {o:?}");
+    }
+    assert_eq!(a.len(), b.len(), "{ours}");
+    assert!(!stderr.contains("glstereo"), "{stderr}");
+    let (m0, m1, _, _) = usage(&mesa);
+    let (r0, r1, f0, f1) = usage(&ours);
+    assert!(
+        r1 - r0 <= (m1 - m0) + 2048,
+        "resident memory from round 15 to 60: {r0} to {r1} KB under --auto, {m0} to {m1} KB without"
+    );
+    assert_eq!(f0, f1, "descriptors from round 15 to 60");
+}

@@ -863,6 +863,17 @@ impl StereoContext {
         Ok(())
     }
 
+    /// The size of `drawable` when the window system can tell it; an EGL
+    /// surface destroyed while current has none and keeps its buffers
+    /// (EGL keeps the surface until it is released), so None, quietly.
+    fn live_size(&self, r: &Real, drawable: u64) -> Result<Option<(u32, u32)>> {
+        match self.wsi.drawable_size(r, self.display, drawable) {
+            Ok(size) => Ok(Some(size)),
+            Err(_) if self.wsi == Wsi::Egl => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+
     /// glViewport in this context (current here on `cur`): the first call
     /// of a frame with a size other than the buffers' checks whether the
     /// window was resized, and if so resizes the buffers before the program
@@ -881,7 +892,10 @@ impl StereoContext {
             drawn.viewport_checked = true;
             drawn.fb.size()
         };
-        if self.wsi.drawable_size(r, self.display, cur.draw)? == current_size {
+        if self
+            .live_size(r, cur.draw)?
+            .is_none_or(|s| s == current_size)
+        {
             return Ok(());
         }
         self.bind(cur.draw, cur.read)
@@ -898,7 +912,7 @@ impl StereoContext {
             Some(d) => d.fb.size(),
             None => return Ok(()),
         };
-        if self.wsi.drawable_size(r, self.display, cur.draw)? == size {
+        if self.live_size(r, cur.draw)?.is_none_or(|s| s == size) {
             return Ok(());
         }
         self.bind(cur.draw, cur.read)

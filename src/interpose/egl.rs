@@ -763,6 +763,13 @@ pub unsafe fn swap_buffers(
 ) -> Result<EglBoolean> {
     let e = egl()?;
     let here = current().filter(|c| c.display == dpy as usize && c.draw == surface as u64);
+    // A surface destroyed while current (EGL keeps it until released)
+    // can no longer be swapped: the real call says so (EGL_BAD_SURFACE),
+    // as it would without the layer.
+    let mut w: EglInt = 0;
+    // SAFETY: a query of the program's handles; EGL checks them.
+    let here = here
+        .filter(|_| unsafe { (e.eglQuerySurface)(dpy, surface, EGL_WIDTH, &mut w) } != EGL_FALSE);
     if let Some(c) = here {
         if let Err(err) = c.sc.present(surface as u64, true, true) {
             super::warn(&format!("presenting the stereo frame: {err}"));
