@@ -442,3 +442,37 @@ fn a_hostile_egl_program_gets_mesas_every_answer_under_auto_and_its_memory_stays
     );
     assert_eq!(f0, f1, "descriptors from round 15 to 60");
 }
+
+#[test]
+fn two_threads_drawing_through_egl_under_auto_each_read_their_own_picture() {
+    // tests/c/egl_threads.c: two threads, one EGLDisplay, a window,
+    // surface and ES 2 context each, 300 frames each with read-backs.
+    // Run five times: a race shows as a wrong read-back, an error or a
+    // crash now and then, not every time.
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(400, 300);
+    let program = build_once("egl_threads", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_threads.c"),
+            out,
+            &["-lEGL", "-lGLESv2", "-lX11", "-lpthread"],
+        )
+    });
+    for round in 0..5 {
+        let out = Command::new(&built().run)
+            .args(["--auto", "-m", "side-by-side"])
+            .arg(&program)
+            .arg("300")
+            .env("DISPLAY", &x.display)
+            .output()
+            .expect("egl_threads runs");
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            out.status.success() && stdout.contains("thread 0 ok 300\nthread 1 ok 300\n"),
+            "round {round}: exited {}:\n{stdout}{stderr}",
+            out.status
+        );
+        assert!(!stderr.contains("glstereo"), "round {round}: {stderr}");
+    }
+}
