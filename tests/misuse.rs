@@ -100,6 +100,15 @@ fn run(exe: &Path, args: &[&str], display: Option<&str>) -> Output {
     o
 }
 
+/// Builds tests/c/misuse_egl.c against glstereo.h (the gls_egl_ names)
+/// and libEGL (the real ones, its oracle).
+fn build_egl() -> PathBuf {
+    let exe = common::scratch("misuse-egl").join("misuse_egl");
+    let src = common::root().join("tests/c/misuse_egl.c");
+    common::compile_c(&[src], &exe, &["-lEGL", "-lGLESv2", "-lX11"]);
+    exe
+}
+
 /// Builds tests/c/misuse_glx.c: against glstereo.h (the gls_ names), or
 /// with `preload` as a plain GLX program (the real names, no glstereo) to
 /// run under glstereo-run.
@@ -146,9 +155,11 @@ fn every_export_of_the_header_has_a_misuse_case() {
     let o = run(&exe, &[], None);
     let x = common::xvfb::Xvfb::start(320, 240);
     let glx = run(&build_glx("misuse-layer", false), &[], Some(&x.display));
+    let egl = run(&build_egl(), &[], Some(&x.display));
     let declared = header_functions();
     let mut exercised = covered(&o);
     exercised.extend(covered(&glx));
+    exercised.extend(covered(&egl));
     assert!(
         declared.len() > 80,
         "the header parser found only {declared:?}"
@@ -157,17 +168,17 @@ fn every_export_of_the_header_has_a_misuse_case() {
     let unknown: Vec<_> = exercised.difference(&declared).collect();
     assert!(
         missing.is_empty(),
-        "exports of include/glstereo.h without a case in tests/c/misuse.c or \
-         tests/c/misuse_glx.c: {missing:?}"
+        "exports of include/glstereo.h without a case in tests/c/misuse.c, \
+         tests/c/misuse_glx.c or tests/c/misuse_egl.c: {missing:?}"
     );
     assert!(
         unknown.is_empty(),
         "the misuse suites exercise names the header does not declare: {unknown:?}"
     );
-    let (library, layer) = (passed(&o), passed(&glx));
+    let (library, layer, egl) = (passed(&o), passed(&glx), passed(&egl));
     assert!(
-        library > 1000 && layer > 400,
-        "only {library} + {layer} checks ran: was a section skipped?"
+        library > 1000 && layer > 400 && egl > 50,
+        "only {library} + {layer} + {egl} checks ran: was a section skipped?"
     );
 }
 
