@@ -104,7 +104,9 @@ chroot "$root" /usr/bin/env -i HOME=/root USER=root LANG=C.UTF-8 TERM=dumb \
 # A crash's core files (core_pattern "core": in the crashed test's
 # directory) are kept beside the log for gdb.
 if [ "$status" != 0 ]; then
-    find "$root/root/glstereo" -name 'core*' -type f -newer "$root/.started" 2>/dev/null |
+    # "core" or "core.PID" (core_uses_pid): not core_stereo-*, core.rs.html.
+    find "$root/root/glstereo" -type f \( -name core -o -name 'core.[0-9]*' \) \
+        -newer "$root/.started" 2>/dev/null |
         while read -r core; do
             cp "$core" "$base/glstereo-fresh-$$-$(basename "$(dirname "$core")")-$(basename "$core")"
             say "kept $core"
