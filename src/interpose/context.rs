@@ -268,6 +268,46 @@ pub fn forget_current() {
     }
 }
 
+/// After the window system's real make-current succeeded (glXMakeCurrent,
+/// glXMakeContextCurrent, eglMakeCurrent): `sc`, the stereo record of the
+/// context made current (None: a mono context, or a release), gets its
+/// emulated framebuffer bound on `draw`/`read` and becomes this thread's
+/// current record; `binding` (the context's binding lock, held across the
+/// real call) goes; then the context current here `before`, if now current
+/// nowhere, is told (the buffers of drawables destroyed while it was
+/// current on them go). A context whose framebuffer cannot be bound runs
+/// in mono, said once.
+pub fn made_current<B>(
+    before: Option<Current>,
+    sc: Option<Arc<StereoContext>>,
+    display: usize,
+    (draw, read): (u64, u64),
+    binding: B,
+) {
+    let next = match sc {
+        Some(sc) if draw != 0 && !sc.unusable() => match sc.bind(draw, read) {
+            Ok(()) => Some(Current {
+                sc,
+                display,
+                draw,
+                read,
+            }),
+            Err(e) => {
+                super::warn(&format!("{e}; this context runs in mono"));
+                None
+            }
+        },
+        _ => None,
+    };
+    set_current(next);
+    drop(binding);
+    if let Some(old) = before {
+        if current().is_none_or(|now| !Arc::ptr_eq(&now.sc, &old.sc)) {
+            old.sc.released();
+        }
+    }
+}
+
 /// Records what is current on this thread now.
 pub fn set_current(new: Option<Current>) {
     let me = std::thread::current().id();

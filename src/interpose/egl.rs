@@ -44,9 +44,9 @@
 
 use std::collections::HashMap;
 use std::ffi::{CStr, c_char, c_void};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Mutex, OnceLock};
 
-use super::context::{Current, StereoContext, current, set_current};
+use super::context::{StereoContext, current, set_current};
 use super::real::loaded;
 use super::registry;
 use super::settings;
@@ -702,30 +702,8 @@ pub unsafe fn make_current(
         return Ok(ok);
     }
     let (draw, read) = (draw as u64, read as u64);
-    let next = match sc {
-        Some(sc) if draw != 0 && !sc.unusable() => {
-            match sc.bind(draw, if read == 0 { draw } else { read }) {
-                Ok(()) => Some(Current {
-                    sc,
-                    display: dpy as usize,
-                    draw,
-                    read: if read == 0 { draw } else { read },
-                }),
-                Err(e) => {
-                    super::warn(&format!("{e}; this context runs in mono"));
-                    None
-                }
-            }
-        }
-        _ => None,
-    };
-    set_current(next);
-    drop(binding);
-    if let Some(old) = before {
-        if current().is_none_or(|now| !Arc::ptr_eq(&now.sc, &old.sc)) {
-            old.sc.released();
-        }
-    }
+    let read = if read == 0 { draw } else { read };
+    super::context::made_current(before, sc, dpy as usize, (draw, read), binding);
     Ok(ok)
 }
 

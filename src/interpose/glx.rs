@@ -17,7 +17,6 @@
 //! stereo context the program asks to be indirect is made direct.
 
 use std::ffi::{c_int, c_ulong};
-use std::sync::Arc;
 
 use x11_dl::glx::{GLXContext, GLXFBConfig};
 use x11_dl::xlib::{Display, XExtCodes, XVisualInfo};
@@ -25,7 +24,7 @@ use x11_dl::xlib::{Display, XExtCodes, XVisualInfo};
 use super::attribs::{
     read_pair_list, read_visual_list, strip_fbconfig_stereo, strip_visual_stereo,
 };
-use super::context::{Current, StereoContext, current, set_current};
+use super::context::{StereoContext, current, made_current};
 use super::real::{Real, loaded};
 use super::registry;
 use super::settings;
@@ -857,30 +856,7 @@ pub unsafe fn make_current(
         return Ok(ok);
     }
     let read = read.unwrap_or(draw);
-    let next = match sc {
-        Some(sc) if draw != 0 && !sc.unusable() => match sc.bind(draw, read) {
-            Ok(()) => Some(Current {
-                sc,
-                display: dpy as usize,
-                draw,
-                read,
-            }),
-            Err(e) => {
-                super::warn(&format!("{e}; this context runs in mono"));
-                None
-            }
-        },
-        _ => None,
-    };
-    set_current(next);
-    drop(binding);
-    // The context current here before, now current nowhere: the buffers
-    // of drawables destroyed while it was current on them go.
-    if let Some(old) = before {
-        if current().is_none_or(|now| !Arc::ptr_eq(&now.sc, &old.sc)) {
-            old.sc.released();
-        }
-    }
+    made_current(before, sc, dpy as usize, (draw, read), binding);
     Ok(ok)
 }
 
