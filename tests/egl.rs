@@ -186,6 +186,48 @@ fn an_opengl_es_wayland_client_under_auto_equals_each_eye_drawn_by_hand() {
     compare_with_the_oracle(&server, "es100");
 }
 
+/// The program resizes its window after its first frame (XResizeWindow,
+/// or wl_egl_window_resize): the eyes follow, at the new size.
+fn follows_a_resize(server: &Server) {
+    let what = format!("the oracle on {} resized to 160x120", server.name());
+    let dir = common::scratch(&format!("egl-resize-{}", server.name()));
+    let o = common::run_ok(
+        server
+            .on(&mut Command::new(&built().run))
+            .args(["--auto", "--separation", SEPARATION, "--capture"])
+            .arg(&dir)
+            .arg(oracle())
+            .args([server.name(), "es3", "mono", "frames", "3", "resize"]),
+    );
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("error 0x0"), "{what}: {stdout}");
+    let first = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000001.png"))));
+    let [l, r] = last_captured(&dir, &what);
+    assert_eq!(
+        (first[0].width(), first[0].height()),
+        (W, H),
+        "{what}: first frame"
+    );
+    for eye in [&l, &r] {
+        assert_eq!(
+            (eye.width(), eye.height()),
+            (160, 120),
+            "{what}: the last frame's size"
+        );
+    }
+    assert!(
+        differing(&l, &r).len() > 100,
+        "{what}: the eyes are alike after the resize"
+    );
+}
+
+#[test]
+fn an_egl_window_the_program_resizes_is_followed_on_x11_and_wayland() {
+    let _one = one_renderer_at_a_time();
+    follows_a_resize(&Server::X(Xvfb::start(W + 40, H + 40)));
+    follows_a_resize(&Server::Wayland(Weston::start(640, 480)));
+}
+
 /// The last captured eyes in `dir` (the last frame whose two eyes are
 /// both written: the program may have been stopped in the middle of one).
 fn last_captured(dir: &Path, what: &str) -> [Image; 2] {

@@ -7,12 +7,14 @@
  * k = e * s (e = -1 left, +1 right; s = 0.07 * S / 100); orthographic
  * projections (w = 1) are left as they are.
  *
- *   egl_auto_oracle x11|wayland es3|es100 mono [blit] [frames N]
+ *   egl_auto_oracle x11|wayland es3|es100 mono [blit] [frames N [resize]]
  *       draws the scene N times (default 1), swapping after each (run under
  *       glstereo-run --auto --capture: the eyes are the captures); prints
  *       "read R G B" of glReadPixels at (50, 75) before the last swap and
  *       "error 0x..." at the end; with blit, each frame is drawn into a
- *       framebuffer object of the window's size and blitted into the window
+ *       framebuffer object of the window's size and blitted into the window;
+ *       with resize, the window is made 160x120 after the first frame
+ *       (XResizeWindow, or wl_egl_window_resize) and drawn at that size
  *   egl_auto_oracle x11|wayland es3|es100 left|right S C OUT
  *       draws that eye by hand and writes its pixels to OUT (RGBA, rows top
  *       first)
@@ -214,6 +216,7 @@ int main(int argc, char **argv)
     int blit = mono && argc > at && strcmp(argv[at], "blit") == 0;
     if (blit) at++;
     int frames = mono && argc > at + 1 && strcmp(argv[at], "frames") == 0 ? atoi(argv[at + 1]) : 1;
+    int resize = frames > 1 && argc > at + 2 && strcmp(argv[at + 2], "resize") == 0;
 
     EGLDisplay dpy;
     EGLSurface surface;
@@ -290,6 +293,14 @@ int main(int argc, char **argv)
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         }
         if (i + 1 < frames) eglSwapBuffers(dpy, surface);
+        if (resize && i == 0) {
+            if (wayland) {
+                wl_egl_window_resize(wl_window, 160, 120, 0, 0);
+            } else {
+                XResizeWindow(x, win, 160, 120);
+                XSync(x, False);
+            }
+        }
     }
     if (mono) {
         GLubyte px[4] = {0};
