@@ -74,10 +74,23 @@ fn scene(x: &Xvfb, bench: &str) -> ([Image; 2], String) {
             drawn(&l) && drawn(&r)
         },
     );
-    // A second grab a moment later: the first drawn frame may still be
-    // the one at convergence 0 (the measure comes from the first frames).
+    // The first frames are drawn at convergence 0, everything at the far
+    // limit, until the first measure (on a loaded machine, seconds): grab
+    // again until the halves are not all at one shift other than 0 (a 2D
+    // scene is all at 0).
     std::thread::sleep(std::time::Duration::from_millis(1500));
-    let shot = screen.grab(window);
+    let mut shot = screen.grab(window);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    while std::time::Instant::now() < deadline {
+        let [l, r] = halves(&shot);
+        let p = parallax::measure(&l, &r, 48, 3);
+        let (lo, hi) = (p.quantile(0.1), p.quantile(0.9));
+        if lo != hi || lo.is_none_or(|v| v == 0) {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(500));
+        shot = screen.grab(window);
+    }
     let stderr = run.quit(&screen, window);
     let dir = common::scratch("auto-glmark2");
     let name = bench.split(':').next().unwrap_or(bench);

@@ -316,13 +316,28 @@ fn glmark2_es2_on_x11_under_auto_shows_its_scene_at_depth_in_both_halves() {
             lit(&l) && lit(&r)
         },
     );
+    // The first frames are drawn at convergence 0 (everything at the far
+    // limit) until the first measure: on a loaded machine, a few seconds.
+    // Grab again until the halves are not one shift everywhere.
+    let mut shot = shot;
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    while std::time::Instant::now() < deadline {
+        let [l, r] = halves_of(&shot, (0, 0, shot.width(), shot.height()));
+        let p = parallax::measure(&l, &r, 48, 3);
+        if p.quantile(0.1) != p.quantile(0.9) {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(500));
+        shot = screen.grab(window);
+    }
     let stderr = run.quit(&screen, window);
     let _ = glstereo::capture::write_png(&shot, &dir.join("window.png"));
     assert!(!stderr.contains("glstereo:"), "{what}: {stderr}");
     assert_eq!((shot.width(), shot.height()), SIZE, "{what}: window size");
     let [l, r] = halves_of(&shot, (0, 0, SIZE.0, SIZE.1));
-    // Half-width eyes: shifts are halved.
-    parallax::check_depth(&l, &r, 2, &format!("{what}, the window"));
+    // Half-width eyes: shifts are halved, and a small smooth object has
+    // few textured blocks.
+    parallax::check_depth_of(&l, &r, 12, 2, &format!("{what}, the window"));
     let [l, r] = last_captured(&dir, what);
     parallax::check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
 }
@@ -388,7 +403,7 @@ fn glmark2_on_wayland(exe: &str, bench: &str) {
     });
     let _ = glstereo::capture::write_png(&shot, &shots.join("screen.png"));
     let [l, r] = halves_of(&shot, b);
-    parallax::check_depth(&l, &r, 2, &format!("{what}, weston's screen"));
+    parallax::check_depth_of(&l, &r, 12, 2, &format!("{what}, weston's screen"));
     let [l, r] = last_captured(&dir, &what);
     parallax::check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
 }
