@@ -417,6 +417,11 @@ mod tests {
         assert_eq!(Perspective::from_upload(&f[..12], false), None);
     }
 
+    /// `m` as a program uploads it: f32, column-major and transposed.
+    fn as_uploaded(m: DMat4) -> [Vec<f32>; 2] {
+        [m, m.transpose()].map(|m| m.to_cols_array().iter().map(|&v| v as f32).collect())
+    }
+
     #[test]
     fn an_upload_gives_the_distance_of_its_models_origin() {
         let proj = DMat4::perspective_rh_gl(0.9, 4.0 / 3.0, 0.5, 100.0);
@@ -426,14 +431,7 @@ mod tests {
         let model = DMat4::from_translation(at) * DMat4::from_rotation_y(0.7);
         // The distance of the model's origin along the view direction.
         let want = -(view.transform_point3(at)).z;
-        let mvp = proj * view * model;
-        let f: Vec<f32> = mvp.to_cols_array().iter().map(|&v| v as f32).collect();
-        let t: Vec<f32> = mvp
-            .transpose()
-            .to_cols_array()
-            .iter()
-            .map(|&v| v as f32)
-            .collect();
+        let [f, t] = as_uploaded(proj * view * model);
         for (value, transpose) in [(&f, false), (&t, true)] {
             let (_, w) = Perspective::from_upload_with_origin(value, transpose).unwrap();
             assert!((w - want).abs() < 1e-4 * want, "{w} against {want}");
@@ -465,14 +463,7 @@ mod tests {
             let m = mvp.to_cols_array();
             let got = Perspective::from_matrix(&m).unwrap();
             assert!((got.a - want.a).abs() < 1e-9 && (got.b - want.b).abs() < 1e-9);
-            // As a program uploads it: f32, either way round.
-            let f: Vec<f32> = m.iter().map(|&v| v as f32).collect();
-            let t: Vec<f32> = mvp
-                .transpose()
-                .to_cols_array()
-                .iter()
-                .map(|&v| v as f32)
-                .collect();
+            let [f, t] = as_uploaded(mvp);
             for (value, transpose) in [(&f, false), (&t, true)] {
                 let got = Perspective::from_upload(value, transpose).unwrap();
                 assert!(
