@@ -608,7 +608,8 @@ fn square_targets_seen_from_a_light_stay_mono_and_window_sized_ones_get_eyes() {
 /// scene reaches the window through framebuffer objects of its own — a
 /// half-size copy, a G-buffer with a depth texture sampled later, a
 /// multisample target and its resolve blit, ping-pong blurs, mipmaps, a
-/// glCopyTexSubImage2D and a blit between targets, a regions texture not
+/// glCopyTexSubImage2D and a blit between targets, glCopyImageSubData of a
+/// depth texture and of a colour rectangle, a regions texture not
 /// redrawn in the second frame — and each eye equals the program's own
 /// frame drawn with the rule applied by hand to its camera (never to the
 /// light of its shadow map, never to its full-screen passes).
@@ -619,7 +620,15 @@ fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
     let x = Xvfb::start(W + 40, H + 40);
     let mut failures = Vec::new();
     for case in [
-        "half", "mrt", "msaa", "pingpong", "mipmap", "copy", "shadow", "regions",
+        "half",
+        "mrt",
+        "msaa",
+        "pingpong",
+        "mipmap",
+        "copy",
+        "copyimage",
+        "shadow",
+        "regions",
     ] {
         let dir = common::scratch(&format!("auto-passes-{case}"));
         let hand = ["left", "right"].map(|eye| {

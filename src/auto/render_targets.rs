@@ -1270,6 +1270,125 @@ pub unsafe fn copied_from_eyes(
     }
 }
 
+/// One image of a glCopyImageSubData: name, target, level, x, y, z.
+pub type Image = (u32, u32, i32, i32, i32, i32);
+
+/// The object of an image of glCopyImageSubData that can have eyes (a
+/// 2D or 2D multisample texture or a renderbuffer; its level 0 and layer
+/// 0 where it is read).
+fn image_object((name, target, level, _, _, z): Image) -> Option<Object> {
+    match target {
+        _ if level != 0 || z != 0 => None,
+        GL_TEXTURE_2D | GL_TEXTURE_2D_MULTISAMPLE => Some(Object::Texture(name)),
+        t if t == GL_RENDERBUFFER as u32 => Some(Object::Renderbuffer(name)),
+        _ => None,
+    }
+}
+
+/// After the program's glCopyImageSubData of `w` × `h` × `depth` from
+/// `from` to `to` (the copy read the left eye of a source with eyes,
+/// which [`resolve`] put into the program's object): a destination copied
+/// from a source with eyes gets eyes of its own, its right eye copied from
+/// the source's (Blender copies its viewport's depth so its overlays can
+/// test against it: the right eye's overlays must test against the right
+/// eye's depth); a destination copied from a mono source is one picture
+/// again.
+///
+/// # Safety
+/// The program's context `context` is current on this thread.
+pub unsafe fn copied_image(
+    targets: &mut Targets,
+    context: usize,
+    from: Image,
+    to: Image,
+    (w, h, depth): (i32, i32, i32),
+) {
+    let Some(f) = fns() else {
+        return;
+    };
+    let dst = match to.1 {
+        t if t == GL_RENDERBUFFER as u32 => Object::Renderbuffer(to.0),
+        _ => Object::Texture(to.0),
+    };
+    let from_eyes = image_object(from)
+        .filter(|_| depth == 1 && w > 0 && h > 0 && (to.2, to.5) == (0, 0))
+        .and_then(|o| targets.twin(o))
+        .map(|t| (t.array, t.shape));
+    // SAFETY: contract; names made here.
+    unsafe {
+        let Some((array, from_shape)) = from_eyes else {
+            return forget(targets, context, &[dst]);
+        };
+        let Some(shape) = shape(f, dst).filter(|s| s.samples == from_shape.samples) else {
+            return forget(targets, context, &[dst]);
+        };
+        let array_target = if shape.samples > 0 {
+            GL_TEXTURE_2D_MULTISAMPLE_ARRAY
+        } else {
+            GL_TEXTURE_2D_ARRAY
+        };
+        let (name, target) = source(dst, &shape);
+        match targets.twins.iter().position(|t| t.object == dst) {
+            Some(i) if targets.twins[i].shape == shape => {
+                // Layer 0 takes what the program's copy wrote.
+                let t = &targets.twins[i];
+                complete_for(f, dst, || {
+                    copy_rect(
+                        f,
+                        ((name, target, 0, 0), (to.3, to.4)),
+                        ((t.array, array_target, 0, 0), (to.3, to.4)),
+                        (w, h),
+                    )
+                });
+            }
+            found => {
+                if found.is_some() {
+                    forget(targets, context, &[dst]);
+                }
+                let Some(t) = make_twin(f, dst, shape) else {
+                    return;
+                };
+                targets.twins.push(t);
+                targets.generation += 1;
+            }
+        }
+        let t = targets.twin(dst).expect("made above");
+        copy_rect(
+            f,
+            ((array, array_target, 0, 1), (from.3, from.4)),
+            ((t.array, array_target, 0, 1), (to.3, to.4)),
+            (w, h),
+        );
+        if !t.view {
+            copy_rect(
+                f,
+                ((array, array_target, 0, 1), (from.3, from.4)),
+                ((t.right, GL_TEXTURE_2D, 0, 0), (to.3, to.4)),
+                (w, h),
+            );
+        }
+    }
+}
+
+/// glCopyImageSubData of a `w` × `h` rectangle from one layer at (x, y)
+/// to another at (x, y).
+///
+/// # Safety
+/// As [`copy_layer`].
+unsafe fn copy_rect(
+    f: &TargetFns,
+    (from, (fx, fy)): (Layer, (i32, i32)),
+    (to, (tx, ty)): (Layer, (i32, i32)),
+    (w, h): (i32, i32),
+) {
+    // SAFETY: contract.
+    unsafe {
+        (f.copy_image_sub_data)(
+            from.0, from.1, from.2, fx, fy, from.3, to.0, to.1, to.2, tx, ty, to.3, w, h, 1,
+        )
+    }
+}
+
 /// The program deleted framebuffers `fbos` of `context`.
 pub fn framebuffers_deleted(targets: &mut Targets, context: usize, fbos: &[u32]) {
     targets

@@ -1072,13 +1072,19 @@ unsafe fn texture_data<R: Returned>(
             if let Some(texture) = texture {
                 render_targets::mipmaps_made(targets, texture);
             }
-            // glCopyImageSubData wrote its destination (arguments 6, 7).
-            if call.name.starts_with("glCopyImageSubData") {
-                let o = match call.u32(7) {
-                    0x8D41 => render_targets::Object::Renderbuffer(call.u32(6)),
-                    _ => render_targets::Object::Texture(call.u32(6)),
+            // glCopyImageSubData wrote its destination: eye to eye from a
+            // source with eyes.
+            if call.name.starts_with("glCopyImageSubData") && call.args.len() == 15 {
+                let image = |i: usize| {
+                    let v = |k: usize| call.u32(i + k) as i32;
+                    (call.u32(i), call.u32(i + 1), v(2), v(3), v(4), v(5))
                 };
-                render_targets::forget(targets, context, &[o]);
+                let size = (
+                    call.u32(12) as i32,
+                    call.u32(13) as i32,
+                    call.u32(14) as i32,
+                );
+                render_targets::copied_image(targets, context, image(0), image(6), size);
             }
             r
         }

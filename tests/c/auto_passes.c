@@ -32,6 +32,12 @@
  *   copy      scene into target A; glCopyTexSubImage2D of A into a
  *             texture, and glBlitFramebuffer of A into target D; the left
  *             half of the window shows the texture, the right half D
+ *   copyimage scene into target A (colour and depth textures);
+ *             glCopyImageSubData of A's depth into a depth texture (as
+ *             Blender keeps its viewport's depth for its overlays) and of
+ *             a rectangle of A's colour to another place of a texture;
+ *             the left half of the window shows the colour copy, the
+ *             right half the depth copy (each unscaled)
  *   shadow    a 256x256 depth-only shadow map drawn from a light (a
  *             perspective of its own, never shifted), then the scene in
  *             the window, the red quad's shadow on the green one
@@ -326,6 +332,12 @@ static void frame(const char *name, int n)
             d = texture(GL_RGBA8, W, H, GL_LINEAR);
             fa = target(a, 0, 0, GL_DEPTH_COMPONENT24, W, H);
             fd = target(d, 0, 0, 0, W, H);
+        } else if (!strcmp(name, "copyimage")) {
+            a = texture(GL_RGBA8, W, H, GL_NEAREST);
+            c = texture(GL_RGBA8, W, H, GL_NEAREST);
+            depth = texture(GL_DEPTH_COMPONENT24, W, H, GL_NEAREST);
+            d = texture(GL_DEPTH_COMPONENT24, W, H, GL_NEAREST);
+            fa = target(a, 0, depth, 0, W, H);
         } else if (!strcmp(name, "shadow")) {
             depth = texture(GL_DEPTH_COMPONENT24, 256, 256, GL_NEAREST);
             fa = target(0, 0, depth, 0, 256, 256);
@@ -414,6 +426,27 @@ static void frame(const char *name, int n)
         pass(copy_prog, -1, -1, 1, 2);
         glBindTexture(GL_TEXTURE_2D, d);
         pass(copy_prog, 0, -1, 1, 2);
+    } else if (!strcmp(name, "copyimage")) {
+        glBindFramebuffer(GL_FRAMEBUFFER, fa);
+        glViewport(0, 0, W, H);
+        scene(0);
+        glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, d, GL_TEXTURE_2D, 0, 0, 0, 0, W, H, 1);
+        glCopyImageSubData(a, GL_TEXTURE_2D, 0, 8, 4, 0, c, GL_TEXTURE_2D, 0, 16, 12, 0, W - 40, H - 30, 1);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, W, H);
+        glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        /* Each copy at its own size (a texel boundary of a copy shown
+         * at half size is where nearest sampling may pick either
+         * texel): the colour's left half, the depth's right half. */
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, 0, W / 2, H);
+        glBindTexture(GL_TEXTURE_2D, c);
+        pass(copy_prog, -1, -1, 2, 2);
+        glScissor(W / 2, 0, W - W / 2, H);
+        glBindTexture(GL_TEXTURE_2D, d);
+        pass(copy_prog, -1, -1, 2, 2);
+        glDisable(GL_SCISSOR_TEST);
     } else if (!strcmp(name, "shadow")) {
         /* The light's pass: the scene's occluder and floor from the light,
          * depth only; the light's matrix, never shifted. */
