@@ -1,7 +1,7 @@
 //! Automatic convergence: where automatic stereo puts the screen when the
 //! user has not (`GLSTEREO_CONVERGENCE=auto`, the default). Every
-//! [`PERIOD`] frames (every one of the first [`EAGER`] until one finds the
-//! scene: [`measures`])
+//! [`PERIOD`] frames and at least every [`INTERVAL`] (every one of the
+//! first [`EAGER`] until one finds the scene: [`measures`], [`due`])
 //! the layer reads the left eye's depth in the central
 //! window of the program's viewport (the window's eyes when the frame drew
 //! into them, else the stereoized render target it drew into last: a
@@ -11,6 +11,15 @@
 //! perspective projection the frame was drawn with, and converges at the
 //! median: the centre of interest, as `gls_stereo_auto_converge` computes
 //! it for programs that ask ([`crate::analysis::centre_of_interest`]).
+//! The left eye is the program's view moved by the rule, each depth by
+//! its own amount: what it shows in the central window depends on the
+//! convergence it was drawn with, so a measurement that took the eye's
+//! pixels as they lie would find another centre at every convergence
+//! (objects near the window's edges come in or go out) and the next
+//! measurement would move it again. Each pixel is put back where the
+//! program's own view has it (moved by the rule's −e·s·(1 − C/w) for its
+//! distance w) and counted when that is inside the window: the centre is
+//! the program's, whatever the convergence.
 //! What the viewer looks at then sits at the screen, nearer things come
 //! out of it and farther ones go behind it.
 //!
@@ -25,7 +34,7 @@
 //! convergence stays where it was (0 at first: NV_3dvision_settings'
 //! initial value, the whole picture behind the screen).
 
-use crate::analysis::depth::{DepthCapture, DepthImage, DepthMapping};
+use crate::analysis::depth::{DEPTH_STEP_24, DepthCapture, DepthImage, DepthMapping};
 use crate::analysis::parallax::CONVERGENCE_WINDOW;
 use crate::auto::eyes::{Attachments, LayeredEyes};
 use crate::auto::live;
@@ -38,17 +47,36 @@ pub const PERIOD: u64 = 30;
 /// Frames at the start that are all measured until one finds the scene.
 pub const EAGER: u64 = 2 * PERIOD;
 
+/// The longest a program presenting slowly goes between two
+/// measurements ([`due`]).
+pub const INTERVAL: std::time::Duration = std::time::Duration::from_secs(1);
+
 /// Whether frame `frame` (counted from 0) is measured: every
 /// [`PERIOD`]th, and each of the first [`EAGER`] until a measurement
 /// found the scene (a program that presents a few frames and then only
 /// on events — Blender, a viewer waiting for input — may draw its scene
 /// after the first; one whose depth never holds its scene, a 2D game, is
-/// not read every frame for ever).
+/// not read every frame for ever). Other frames are measured when they
+/// are [`due`].
 pub fn measures(frame: u64) -> bool {
     frame % PERIOD == 0
         || (frame < EAGER
             && live::automatic_convergence().is_none()
             && live::automatic_depth().is_none())
+}
+
+/// Whether a frame whose first draw comes `since` after the last measured
+/// frame's present is measured whatever its number: a program that
+/// presents on events (Blender, a viewer waiting for input) draws 30
+/// frames over a minute and changes its view between two far apart; the
+/// first frame of a new view is measured then, as it is drawn. (What it
+/// finds shows from the next frame: a program that then stops drawing
+/// keeps the convergence before until it draws again, and one that
+/// accumulates samples of a still view over its next frames — Blender's
+/// viewport anti-aliasing — blends its first sample, at the convergence
+/// before, into the picture.)
+pub fn due(since: std::time::Duration) -> bool {
+    since >= INTERVAL
 }
 
 /// What the program's context says of a frame at its present
@@ -77,6 +105,9 @@ pub struct Frame {
     /// depth holds no scene (translucent geometry drawn without depth
     /// writes: glmark2's jellyfish, its buffer grid).
     pub origin: Option<f64>,
+    /// The left eye's e·s (signed: the rule moves its NDC x by
+    /// `left_shift`·(1 − C/w)).
+    pub left_shift: f64,
 }
 
 /// How a frame's scene was drawn where automatic convergence measures it.
@@ -181,6 +212,14 @@ unsafe fn centre_of(
     scratch: &mut Scratch,
 ) -> Option<Centre> {
     let (x, y, w, h) = window(scene.viewport);
+    let (vx, _, vw, _) = scene.viewport;
+    // A known projection: the whole width of the window's rows, whose
+    // pixels are put back where the program's view has them ([`centre`]).
+    let (x, w) = if scene.perspective.is_some() {
+        (vx, vw)
+    } else {
+        (x, w)
+    };
     let (x0, y0) = (x.max(0), y.max(0));
     let (x1, y1) = ((x + w).min(width as i32), (y + h).min(height as i32));
     if x1 <= x0 || y1 <= y0 {
@@ -200,7 +239,27 @@ unsafe fn centre_of(
     let size = (rect.2 as u32, rect.3 as u32);
     match &scene.perspective {
         Some(p) => {
-            centre(scratch, size, p, frame.depth_range, frame.clear_depth).map(Centre::Distance)
+            // The convergence the frame was drawn with.
+            let c = live::automatic_convergence()
+                .map(f64::from)
+                .or_else(|| live::automatic_depth().and_then(|(z, _)| p.distance_at(z.into())))
+                .unwrap_or(0.0);
+            let (wx, _, ww, _) = window(scene.viewport);
+            let seen = Seen {
+                left_shift: frame.left_shift,
+                convergence: c,
+                pixels_per_ndc: f64::from(vw) / 2.0,
+                window: (f64::from(wx - x0), f64::from(wx + ww - x0)),
+            };
+            centre(
+                scratch,
+                size,
+                p,
+                frame.depth_range,
+                frame.clear_depth,
+                &seen,
+            )
+            .map(Centre::Distance)
         }
         None => centre_depth(scratch, size, frame).map(Centre::Depth),
     }
@@ -341,27 +400,64 @@ pub struct Scratch {
     distances: Vec<f64>,
 }
 
+/// How the left eye's pixels read for a measurement lie against the
+/// program's own view ([`centre`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Seen {
+    /// [`Frame::left_shift`].
+    pub left_shift: f64,
+    /// The convergence the eye was drawn with.
+    pub convergence: f64,
+    /// Half the viewport's width: window pixels per NDC unit.
+    pub pixels_per_ndc: f64,
+    /// The central window's columns [from, to) in the pixels read.
+    pub window: (f64, f64),
+}
+
+impl Seen {
+    /// Whether a pixel of column `x` (its centre at x + ½) at distance
+    /// `w` lies in the window in the program's view.
+    fn inside(&self, x: usize, w: f64) -> bool {
+        let moved = self.left_shift * (1.0 - self.convergence / w) * self.pixels_per_ndc;
+        let at = x as f64 + 0.5 - moved;
+        at >= self.window.0 && at < self.window.1
+    }
+}
+
 /// The convergence for a frame: the median eye distance of the pixels of
-/// `scratch.depth` (`width` × `height` window depths, the central window)
-/// that hold geometry (not at `clear_depth`), drawn with `perspective` and
-/// glDepthRange `depth_range`. None when none does.
+/// `scratch.depth` (`width` × `height` window depths of the left eye: the
+/// central window's rows) that hold geometry (not at `clear_depth`) and
+/// lie in the central window in the program's own view (`seen`), drawn
+/// with `perspective` and glDepthRange `depth_range`. None when none
+/// does.
 pub fn centre(
     scratch: &mut Scratch,
     (width, height): (u32, u32),
     perspective: &Perspective,
-    depth_range: (f64, f64),
+    (near, far): (f64, f64),
     clear_depth: f64,
+    seen: &Seen,
 ) -> Option<f64> {
     let frustum = perspective.frustum()?;
-    let mapping = DepthMapping::new(&frustum, depth_range).ok()?;
-    let depth = std::mem::take(&mut scratch.depth);
-    let mut capture = DepthCapture::new(DepthImage::new(width, height, depth).ok()?);
-    capture.depth_range = depth_range;
-    capture.clear_depth = clear_depth;
+    let mapping = DepthMapping::new(&frustum, (near, far)).ok()?;
     let d = &mut scratch.distances;
     d.clear();
-    capture.for_each_covered(0.0, 1.0, |z| d.push(mapping.distance(f64::from(z))));
-    scratch.depth = capture.depth.into_values();
+    let width = width as usize;
+    if width == 0 || scratch.depth.len() < width * height as usize {
+        return None;
+    }
+    for row in scratch.depth.chunks_exact(width).take(height as usize) {
+        for (x, &z) in row.iter().enumerate() {
+            let z = f64::from(z);
+            if (z - clear_depth).abs() <= DEPTH_STEP_24 {
+                continue;
+            }
+            let w = mapping.distance(z);
+            if w.is_finite() && w > 0.0 && seen.inside(x, w) {
+                d.push(w);
+            }
+        }
+    }
     if d.is_empty() {
         return None;
     }
@@ -505,13 +601,109 @@ mod tests {
             depth: v,
             ..Default::default()
         };
-        let c = centre(&mut scratch, (5, 4), &p, (0.0, 1.0), 1.0).unwrap();
+        let all = Seen {
+            left_shift: -0.1,
+            convergence: 0.0,
+            pixels_per_ndc: 0.0,
+            window: (0.0, 5.0),
+        };
+        let c = centre(&mut scratch, (5, 4), &p, (0.0, 1.0), 1.0, &all).unwrap();
         assert!((c - 5.0).abs() < 1e-3, "{c}");
         // The buffers are kept for the next measurement.
         assert_eq!(scratch.depth.len(), 20);
         assert!(scratch.distances.capacity() >= 16);
         scratch.depth = vec![1.0; 20];
-        assert_eq!(centre(&mut scratch, (5, 4), &p, (0.0, 1.0), 1.0), None);
+        assert_eq!(
+            centre(&mut scratch, (5, 4), &p, (0.0, 1.0), 1.0, &all),
+            None
+        );
+    }
+
+    /// The left eye of a view at convergence `c`: each pixel of `view`
+    /// (distances, 0: nothing) moved by the rule, nearer over farther.
+    fn left_eye(view: &[f64], seen: &Seen, c: f64) -> Vec<f64> {
+        let mut eye = vec![0.0f64; view.len()];
+        for (x, &w) in view.iter().enumerate() {
+            if w == 0.0 {
+                continue;
+            }
+            let moved = seen.left_shift * (1.0 - c / w) * seen.pixels_per_ndc;
+            let to = (x as f64 + moved).round();
+            if to >= 0.0 && (to as usize) < eye.len() {
+                let e = &mut eye[to as usize];
+                if *e == 0.0 || w < *e {
+                    *e = w;
+                }
+            }
+        }
+        eye
+    }
+
+    #[test]
+    fn the_centre_is_the_programs_whatever_convergence_the_eye_was_drawn_with() {
+        let p = Perspective::from_matrix(&glu_perspective(1.0, 100.0)).unwrap();
+        let depth = |w: f64| {
+            if w == 0.0 {
+                1.0
+            } else {
+                ((-p.a + p.b / w) * 0.5 + 0.5) as f32
+            }
+        };
+        // One row of 80 pixels, the window [20, 60): a near object (w 2)
+        // over columns 4..20, left of the window, and a far one (w 8) over
+        // 20..40, inside it: in the program's view the centre is far.
+        let view: Vec<f64> = (0..80)
+            .map(|x| match x {
+                4..=19 => 2.0,
+                20..=39 => 8.0,
+                _ => 0.0,
+            })
+            .collect();
+        let base = Seen {
+            left_shift: -0.2,
+            convergence: 0.0,
+            pixels_per_ndc: 40.0,
+            window: (20.0, 60.0),
+        };
+        for c in [0.0, 2.0, 5.0, 8.0, 20.0] {
+            let seen = Seen {
+                convergence: c,
+                ..base
+            };
+            let eye = left_eye(&view, &seen, c);
+            let mut scratch = Scratch {
+                depth: eye.iter().map(|&w| depth(w)).collect(),
+                ..Default::default()
+            };
+            let got = centre(&mut scratch, (80, 1), &p, (0.0, 1.0), 1.0, &seen).unwrap();
+            assert!((got - 8.0).abs() < 1e-3, "convergence {c}: centre {got}");
+        }
+        // Taken as they lie, the eye's pixels give another centre at
+        // convergence 8 (the near object moved 24 pixels into the window,
+        // over the far one).
+        let c = 8.0;
+        let eye = left_eye(
+            &view,
+            &Seen {
+                convergence: c,
+                ..base
+            },
+            c,
+        );
+        let near_inside = eye[20..60].iter().filter(|&&w| w == 2.0).count();
+        let far_inside = eye[20..60].iter().filter(|&&w| w == 8.0).count();
+        assert!(
+            near_inside > far_inside,
+            "{near_inside} near, {far_inside} far"
+        );
+    }
+
+    #[test]
+    fn a_program_presenting_slowly_is_measured_every_interval() {
+        assert!(measures(EAGER + PERIOD), "every PERIODth frame");
+        assert!(!measures(EAGER + 1));
+        assert!(due(INTERVAL), "a frame an INTERVAL after the last");
+        assert!(!due(INTERVAL - std::time::Duration::from_millis(1)));
     }
 
     #[test]

@@ -293,6 +293,10 @@ pub struct AutoState {
     frame_origins: Vec<f64>,
     /// This frame is not measured: draws leave their projection unread.
     unmeasured: bool,
+    /// When the last measured frame was presented ([`converge::due`]).
+    measured_at: Option<std::time::Instant>,
+    /// This frame's first draw looked at the clock ([`converge::due`]).
+    clock_read: bool,
     /// The program has begun transform feedback: draws check whether it
     /// is capturing.
     feedback: bool,
@@ -1626,8 +1630,15 @@ pub unsafe fn frame_geometry(
     group: u64,
     frame: u64,
 ) -> Option<converge::Frame> {
-    // The next frame's draws read their projections if it is measured.
+    // This frame's draws read their projections if the last present
+    // said so (or its first draw found it due); the next frame's do if
+    // it is measured.
+    let measured = !st.unmeasured;
+    if measured {
+        st.measured_at = Some(std::time::Instant::now());
+    }
     st.unmeasured = !converge::measures(frame + 1);
+    st.clock_read = false;
     let copied = std::mem::take(&mut st.depth_copied);
     let origin = {
         let o = &mut st.frame_origins;
@@ -1656,7 +1667,7 @@ pub unsafe fn frame_geometry(
     });
     if live::convergence().is_some()
         || !live::auto_on()
-        || !converge::measures(frame)
+        || !measured
         || (window.is_none() && target.is_none())
     {
         return None;
@@ -1681,6 +1692,7 @@ pub unsafe fn frame_geometry(
             window,
             target,
             origin,
+            left_shift: crate::math::Eye::Left.sign() * st.settings().effective_separation(),
         })
     }
 }
@@ -1716,6 +1728,10 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
         let Some((mut app_fbo, mut layered)) = eyes_of else {
             return draw();
         };
+        if st.unmeasured && !st.clock_read {
+            st.clock_read = true;
+            st.unmeasured = !st.measured_at.is_some_and(|t| converge::due(t.elapsed()));
+        }
         let (window_fbo, window_eyes) = (app_fbo, layered);
         render_targets::with_group(group, |targets| {
             // SAFETY: the program's context is current on this thread.
