@@ -1231,31 +1231,9 @@ pub unsafe fn copied_from_eyes(
         let Some(shape) = shape(f, o).filter(|s| s.samples == 0) else {
             return forget(targets, context, &[o]);
         };
-        match targets.twins.iter().position(|t| t.object == o) {
-            Some(i) if targets.twins[i].shape == shape => {
-                // Layer 0 takes what the program's copy wrote.
-                let t = &targets.twins[i];
-                complete_for(f, o, || {
-                    copy_layer(
-                        f,
-                        (texture, GL_TEXTURE_2D, 0, 0),
-                        (t.array, GL_TEXTURE_2D_ARRAY, 0, 0),
-                        (xoff, yoff, w, h),
-                    )
-                });
-            }
-            found => {
-                if found.is_some() {
-                    forget(targets, context, &[o]);
-                }
-                let Some(t) = make_twin(f, o, shape) else {
-                    return;
-                };
-                targets.twins.push(t);
-                targets.generation += 1;
-            }
-        }
-        let t = targets.twin(o).expect("made above");
+        let Some(t) = twin_after_copy(f, targets, context, o, shape, (xoff, yoff, w, h)) else {
+            return;
+        };
         source.attach(GL_READ_FRAMEBUFFER, Some(Eye::Right));
         (f.copy_texture_sub_image_2d)(t.right, 0, xoff, yoff, x, y, w, h);
         source.attach(GL_READ_FRAMEBUFFER, None);
@@ -1268,6 +1246,49 @@ pub unsafe fn copied_from_eyes(
             );
         }
     }
+}
+
+/// After the program's copy into rectangle (x, y, w, h) of level 0 of
+/// `o` (now of `shape`): its twin, layer 0 given what the copy wrote, or
+/// a new one (both layers holding the object) where it had none of that
+/// shape. None where the driver makes none.
+///
+/// # Safety
+/// The program's context `context` is current on this thread.
+unsafe fn twin_after_copy<'t>(
+    f: &TargetFns,
+    targets: &'t mut Targets,
+    context: usize,
+    o: Object,
+    shape: Shape,
+    rect: (i32, i32, i32, i32),
+) -> Option<&'t Twin> {
+    // SAFETY: contract; names made here.
+    unsafe {
+        match targets.twins.iter().position(|t| t.object == o) {
+            Some(i) if targets.twins[i].shape == shape => {
+                let t = &targets.twins[i];
+                let (name, target) = source(o, &shape);
+                let array_target = if shape.samples > 0 {
+                    GL_TEXTURE_2D_MULTISAMPLE_ARRAY
+                } else {
+                    GL_TEXTURE_2D_ARRAY
+                };
+                complete_for(f, o, || {
+                    copy_layer(f, (name, target, 0, 0), (t.array, array_target, 0, 0), rect)
+                });
+            }
+            found => {
+                if found.is_some() {
+                    forget(targets, context, &[o]);
+                }
+                let t = make_twin(f, o, shape)?;
+                targets.twins.push(t);
+                targets.generation += 1;
+            }
+        }
+    }
+    targets.twin(o)
 }
 
 /// One image of a glCopyImageSubData: name, target, level, x, y, z.
@@ -1327,32 +1348,9 @@ pub unsafe fn copied_image(
         } else {
             GL_TEXTURE_2D_ARRAY
         };
-        let (name, target) = source(dst, &shape);
-        match targets.twins.iter().position(|t| t.object == dst) {
-            Some(i) if targets.twins[i].shape == shape => {
-                // Layer 0 takes what the program's copy wrote.
-                let t = &targets.twins[i];
-                complete_for(f, dst, || {
-                    copy_rect(
-                        f,
-                        ((name, target, 0, 0), (to.3, to.4)),
-                        ((t.array, array_target, 0, 0), (to.3, to.4)),
-                        (w, h),
-                    )
-                });
-            }
-            found => {
-                if found.is_some() {
-                    forget(targets, context, &[dst]);
-                }
-                let Some(t) = make_twin(f, dst, shape) else {
-                    return;
-                };
-                targets.twins.push(t);
-                targets.generation += 1;
-            }
-        }
-        let t = targets.twin(dst).expect("made above");
+        let Some(t) = twin_after_copy(f, targets, context, dst, shape, (to.3, to.4, w, h)) else {
+            return;
+        };
         copy_rect(
             f,
             ((array, array_target, 0, 1), (from.3, from.4)),
@@ -1370,8 +1368,8 @@ pub unsafe fn copied_image(
     }
 }
 
-/// glCopyImageSubData of a `w` × `h` rectangle from one layer at (x, y)
-/// to another at (x, y).
+/// glCopyImageSubData of a `w` × `h` rectangle from (fx, fy) of one
+/// layer to (tx, ty) of another.
 ///
 /// # Safety
 /// As [`copy_layer`].
