@@ -1332,15 +1332,28 @@ pub unsafe fn copied_image(
         _ => Object::Texture(to.0),
     };
     let from_eyes = image_object(from)
-        .filter(|_| depth == 1 && w > 0 && h > 0 && (to.2, to.5) == (0, 0))
+        .filter(|_| (to.2, to.5) == (0, 0))
         .and_then(|o| targets.twin(o))
         .map(|t| (t.array, t.shape));
     // SAFETY: contract; names made here.
     unsafe {
+        let to_shape = image_object(to).and_then(|o| shape(f, o));
+        // A copy GL refuses (outside either image, more than one layer of
+        // a 2D image, depth or stencil between other formats) changed
+        // nothing: neither does the layer.
+        let refused = |s: &Shape, (x, y): (i32, i32)| depth != 1 || !inside(s, (x, y, w, h));
+        let from_shape = image_object(from).and_then(|o| shape(f, o));
+        if to_shape.is_some_and(|s| refused(&s, (to.3, to.4)))
+            || from_shape.is_some_and(|s| refused(&s, (from.3, from.4)))
+            || matches!((from_shape, to_shape), (Some(a), Some(b))
+                if a.format != b.format && (depth_or_stencil(a.format) || depth_or_stencil(b.format)))
+        {
+            return;
+        }
         let Some((array, from_shape)) = from_eyes else {
             return forget(targets, context, &[dst]);
         };
-        let Some(shape) = shape(f, dst).filter(|s| s.samples == from_shape.samples) else {
+        let Some(shape) = to_shape.filter(|s| s.samples == from_shape.samples) else {
             return forget(targets, context, &[dst]);
         };
         let array_target = if shape.samples > 0 {
@@ -1366,6 +1379,35 @@ pub unsafe fn copied_image(
             );
         }
     }
+}
+
+/// Whether rectangle (x, y, w, h) is a non-empty part of level 0 of
+/// `shape`.
+fn inside(shape: &Shape, (x, y, w, h): (i32, i32, i32, i32)) -> bool {
+    let end = |at: i32, size: i32| i64::from(at) + i64::from(size);
+    w > 0
+        && h > 0
+        && x >= 0
+        && y >= 0
+        && end(x, w) <= i64::from(shape.width)
+        && end(y, h) <= i64::from(shape.height)
+}
+
+/// Whether `format` is a depth or stencil format (glCopyImageSubData
+/// copies those only to the very same format).
+fn depth_or_stencil(format: u32) -> bool {
+    matches!(
+        format,
+        0x1902 // GL_DEPTH_COMPONENT
+            | 0x84F9 // GL_DEPTH_STENCIL
+            | 0x81A5 // GL_DEPTH_COMPONENT16
+            | 0x81A6 // GL_DEPTH_COMPONENT24
+            | 0x81A7 // GL_DEPTH_COMPONENT32
+            | 0x8CAC // GL_DEPTH_COMPONENT32F
+            | 0x88F0 // GL_DEPTH24_STENCIL8
+            | 0x8CAD // GL_DEPTH32F_STENCIL8
+            | 0x8D48 // GL_STENCIL_INDEX8
+    )
 }
 
 /// glCopyImageSubData of a `w` × `h` rectangle from (fx, fy) of one

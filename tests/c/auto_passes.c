@@ -430,6 +430,29 @@ static void frame(const char *name, int n)
         glBindFramebuffer(GL_FRAMEBUFFER, fa);
         glViewport(0, 0, W, H);
         scene(0);
+        /* Copies GL refuses, from a texture with eyes under --auto: each
+         * error printed (the same with and without the layer), and none
+         * changes the picture. */
+        if (n == 1) {
+            static const struct { int src_level, sx, dst_level, dx, w, h, depth, to_colour; } bad[] = {
+                {0, 0, 0, 0, W + 1, H, 1, 1},    /* wider than both */
+                {0, W - 4, 0, 0, 8, 8, 1, 1},    /* past the source's edge */
+                {0, 0, 0, W - 4, 8, 8, 1, 1},    /* past the destination's edge */
+                {0, 0, 3, 0, 8, 8, 1, 1},        /* a level the destination lacks */
+                {0, 0, 0, 0, 8, 8, 2, 1},        /* two layers of a 2D image */
+                {0, 0, 0, 0, -1, 8, 1, 1},       /* a negative width */
+                {0, 0, 0, 0, 8, 8, 1, 0},        /* depth into colour */
+                {0, 0, 0, 0, 2147483647, 8, 1, 1}, /* an absurd width */
+            };
+            for (unsigned i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+                glCopyImageSubData(bad[i].to_colour ? a : depth, GL_TEXTURE_2D, bad[i].src_level, bad[i].sx,
+                                   0, 0, c, GL_TEXTURE_2D, bad[i].dst_level, bad[i].dx, 0, 0, bad[i].w,
+                                   bad[i].h, bad[i].depth);
+                printf("copyimage refused %u: 0x%x\n", i, glGetError());
+            }
+            glCopyImageSubData(a, GL_TEXTURE_2D, 0, 0, 0, 0, 12345, GL_TEXTURE_2D, 0, 0, 0, 0, 4, 4, 1);
+            printf("copyimage refused name: 0x%x\n", glGetError());
+        }
         glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, d, GL_TEXTURE_2D, 0, 0, 0, 0, W, H, 1);
         glCopyImageSubData(a, GL_TEXTURE_2D, 0, 8, 4, 0, c, GL_TEXTURE_2D, 0, 16, 12, 0, W - 40, H - 30, 1);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
