@@ -34,7 +34,7 @@
 //! convergence stays where it was (0 at first: NV_3dvision_settings'
 //! initial value, the whole picture behind the screen).
 
-use crate::analysis::depth::{DEPTH_STEP_24, DepthCapture, DepthImage, DepthMapping};
+use crate::analysis::depth::{DEPTH_STEP_24, DepthMapping};
 use crate::analysis::parallax::CONVERGENCE_WINDOW;
 use crate::auto::eyes::{Attachments, LayeredEyes};
 use crate::auto::live;
@@ -213,13 +213,29 @@ unsafe fn centre_of(
 ) -> Option<Centre> {
     let (x, y, w, h) = window(scene.viewport);
     let (vx, _, vw, _) = scene.viewport;
-    // A known projection: the whole width of the window's rows, whose
-    // pixels are put back where the program's view has them ([`centre`]).
-    let (x, w) = if scene.perspective.is_some() {
-        (vx, vw)
-    } else {
-        (x, w)
+    // How the frame's left eye was moved from the program's view: its
+    // pixels are put back ([`Seen`]) where the rule it was drawn with can
+    // be undone from what the depth says (a projection not known, drawn
+    // at a convergence chosen as a distance: as they lie, in the window).
+    let rule = match (
+        &scene.perspective,
+        live::automatic_convergence(),
+        live::automatic_depth(),
+    ) {
+        (Some(p), c, z) => Some(Rule::Distance(
+            c.map(f64::from)
+                .or_else(|| z.and_then(|(z, _)| p.distance_at(z.into())))
+                .unwrap_or(0.0),
+        )),
+        (None, Some(_), _) => None,
+        (None, None, Some((z, alpha))) => Some(Rule::Depth {
+            zc: z.into(),
+            alpha: alpha.into(),
+        }),
+        (None, None, None) => Some(Rule::Distance(0.0)),
     };
+    // The whole width of the window's rows where pixels are put back.
+    let (x, w) = if rule.is_some() { (vx, vw) } else { (x, w) };
     let (x0, y0) = (x.max(0), y.max(0));
     let (x1, y1) = ((x + w).min(width as i32), (y + h).min(height as i32));
     if x1 <= x0 || y1 <= y0 {
@@ -237,54 +253,66 @@ unsafe fn centre_of(
         return None;
     }
     let size = (rect.2 as u32, rect.3 as u32);
+    let (wx, _, ww, _) = window(scene.viewport);
+    let seen = Seen {
+        left_shift: frame.left_shift,
+        rule: rule.unwrap_or(Rule::Distance(0.0)),
+        pixels_per_ndc: if rule.is_some() {
+            f64::from(vw) / 2.0
+        } else {
+            0.0
+        },
+        window: (f64::from(wx - x0), f64::from(wx + ww - x0)),
+    };
     match &scene.perspective {
-        Some(p) => {
-            // The convergence the frame was drawn with.
-            let c = live::automatic_convergence()
-                .map(f64::from)
-                .or_else(|| live::automatic_depth().and_then(|(z, _)| p.distance_at(z.into())))
-                .unwrap_or(0.0);
-            let (wx, _, ww, _) = window(scene.viewport);
-            let seen = Seen {
-                left_shift: frame.left_shift,
-                convergence: c,
-                pixels_per_ndc: f64::from(vw) / 2.0,
-                window: (f64::from(wx - x0), f64::from(wx + ww - x0)),
-            };
-            centre(
-                scratch,
-                size,
-                p,
-                frame.depth_range,
-                frame.clear_depth,
-                &seen,
-            )
-            .map(Centre::Distance)
-        }
-        None => centre_depth(scratch, size, frame).map(Centre::Depth),
+        Some(p) => centre(
+            scratch,
+            size,
+            p,
+            frame.depth_range,
+            frame.clear_depth,
+            &seen,
+        )
+        .map(Centre::Distance),
+        None => centre_depth(scratch, size, frame, &seen).map(Centre::Depth),
     }
 }
 
 /// The NDC depth of the median of the pixels of `scratch.depth` that
-/// hold geometry (not at the frame's clear depth), for a projection that
-/// is not known: the same pixel [`centre`] finds, as a depth.
-fn centre_depth(scratch: &mut Scratch, (width, height): (u32, u32), frame: &Frame) -> Option<f64> {
-    let depth = std::mem::take(&mut scratch.depth);
-    let mut capture = DepthCapture::new(DepthImage::new(width, height, depth).ok()?);
-    capture.depth_range = frame.depth_range;
-    capture.clear_depth = frame.clear_depth;
+/// hold geometry (not at the frame's clear depth) and lie in the central
+/// window in the program's view (`seen`), for a projection that is not
+/// known: the same pixel [`centre`] finds, as a depth.
+fn centre_depth(
+    scratch: &mut Scratch,
+    (width, height): (u32, u32),
+    frame: &Frame,
+    seen: &Seen,
+) -> Option<f64> {
+    let (n, f) = frame.depth_range;
+    let ndc = |d: f64| {
+        let t = (d - n) / (f - n);
+        if frame.zero_to_one { t } else { 2.0 * t - 1.0 }
+    };
     let d = &mut scratch.distances;
     d.clear();
-    capture.for_each_covered(0.0, 1.0, |z| d.push(f64::from(z)));
-    scratch.depth = capture.depth.into_values();
+    let width = width as usize;
+    if width == 0 || scratch.depth.len() < width * height as usize {
+        return None;
+    }
+    for row in scratch.depth.chunks_exact(width).take(height as usize) {
+        for (x, &z) in row.iter().enumerate() {
+            let z = f64::from(z);
+            if (z - frame.clear_depth).abs() > DEPTH_STEP_24 && seen.inside(x, None, ndc(z)) {
+                d.push(z);
+            }
+        }
+    }
     if d.is_empty() {
         return None;
     }
     let mid = d.len() / 2;
     let (_, median, _) = d.select_nth_unstable_by(mid, f64::total_cmp);
-    let (n, f) = frame.depth_range;
-    let t = (*median - n) / (f - n);
-    Some(if frame.zero_to_one { t } else { 2.0 * t - 1.0 })
+    Some(ndc(*median))
 }
 
 /// The depth terms of a perspective camera: clip z = −`a`·w + `b`, where
@@ -400,15 +428,33 @@ pub struct Scratch {
     distances: Vec<f64>,
 }
 
+/// The rule a frame's eye was drawn with, as far as a measurement
+/// undoes it ([`Seen`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Rule {
+    /// At convergence C (a distance): NDC x moved by e·s·(1 − C/w).
+    Distance(f64),
+    /// At the NDC depth `zc` of a projection of depth offset `alpha`
+    /// (where the projection is not known): NDC x moved by
+    /// e·s·(zc − z)/(zc − alpha), z the pixel's NDC depth.
+    Depth {
+        /// The convergence's NDC depth.
+        zc: f64,
+        /// The projection's depth offset α.
+        alpha: f64,
+    },
+}
+
 /// How the left eye's pixels read for a measurement lie against the
-/// program's own view ([`centre`]).
+/// program's own view ([`centre`], [`centre_depth`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Seen {
     /// [`Frame::left_shift`].
     pub left_shift: f64,
-    /// The convergence the eye was drawn with.
-    pub convergence: f64,
-    /// Half the viewport's width: window pixels per NDC unit.
+    /// The rule the eye was drawn with.
+    pub rule: Rule,
+    /// Half the viewport's width: window pixels per NDC unit (0: the
+    /// pixels are taken as they lie).
     pub pixels_per_ndc: f64,
     /// The central window's columns [from, to) in the pixels read.
     pub window: (f64, f64),
@@ -416,10 +462,15 @@ pub struct Seen {
 
 impl Seen {
     /// Whether a pixel of column `x` (its centre at x + ½) at distance
-    /// `w` lies in the window in the program's view.
-    fn inside(&self, x: usize, w: f64) -> bool {
-        let moved = self.left_shift * (1.0 - self.convergence / w) * self.pixels_per_ndc;
-        let at = x as f64 + 0.5 - moved;
+    /// `w` (where known) and NDC depth `z` lies in the window in the
+    /// program's view.
+    fn inside(&self, x: usize, w: Option<f64>, z: f64) -> bool {
+        let ndc = match self.rule {
+            Rule::Distance(0.0) => 1.0,
+            Rule::Distance(c) => w.map_or(0.0, |w| 1.0 - c / w),
+            Rule::Depth { zc, alpha } => (zc - z) / (zc - alpha),
+        };
+        let at = x as f64 + 0.5 - self.left_shift * ndc * self.pixels_per_ndc;
         at >= self.window.0 && at < self.window.1
     }
 }
@@ -453,7 +504,7 @@ pub fn centre(
                 continue;
             }
             let w = mapping.distance(z);
-            if w.is_finite() && w > 0.0 && seen.inside(x, w) {
+            if w.is_finite() && w > 0.0 && seen.inside(x, Some(w), 0.0) {
                 d.push(w);
             }
         }
@@ -603,7 +654,7 @@ mod tests {
         };
         let all = Seen {
             left_shift: -0.1,
-            convergence: 0.0,
+            rule: Rule::Distance(0.0),
             pixels_per_ndc: 0.0,
             window: (0.0, 5.0),
         };
@@ -661,13 +712,13 @@ mod tests {
             .collect();
         let base = Seen {
             left_shift: -0.2,
-            convergence: 0.0,
+            rule: Rule::Distance(0.0),
             pixels_per_ndc: 40.0,
             window: (20.0, 60.0),
         };
         for c in [0.0, 2.0, 5.0, 8.0, 20.0] {
             let seen = Seen {
-                convergence: c,
+                rule: Rule::Distance(c),
                 ..base
             };
             let eye = left_eye(&view, &seen, c);
@@ -685,7 +736,7 @@ mod tests {
         let eye = left_eye(
             &view,
             &Seen {
-                convergence: c,
+                rule: Rule::Distance(c),
                 ..base
             },
             c,
@@ -696,6 +747,52 @@ mod tests {
             near_inside > far_inside,
             "{near_inside} near, {far_inside} far"
         );
+    }
+
+    #[test]
+    fn the_centre_as_a_depth_is_the_programs_whatever_depth_the_eye_was_drawn_at() {
+        // NDC depths: a near object (0.2) left of the window [20, 60) and a
+        // far one (0.9) inside it, in the program's view; window depth
+        // (z + 1) / 2, cleared to 1.
+        let view: Vec<f64> = (0..80)
+            .map(|x| match x {
+                4..=19 => 0.2,
+                20..=39 => 0.9,
+                _ => 1.0,
+            })
+            .collect();
+        let frame = Frame {
+            zero_to_one: false,
+            depth_range: (0.0, 1.0),
+            clear_depth: 1.0,
+            window: None,
+            target: None,
+            origin: None,
+            left_shift: -0.2,
+        };
+        for zc in [0.2, 0.5, 0.8] {
+            let seen = Seen {
+                left_shift: -0.2,
+                rule: Rule::Depth { zc, alpha: 1.0 },
+                pixels_per_ndc: 40.0,
+                window: (20.0, 60.0),
+            };
+            // The eye: each pixel moved by the rule, nearer over farther.
+            let mut eye = vec![1.0f64; 80];
+            for (x, &z) in view.iter().enumerate().filter(|(_, z)| **z < 1.0) {
+                let moved = -0.2 * (zc - z) / (zc - 1.0) * 40.0;
+                let to = (x as f64 + moved).round();
+                if (0.0..80.0).contains(&to) && z < eye[to as usize] {
+                    eye[to as usize] = z;
+                }
+            }
+            let mut scratch = Scratch {
+                depth: eye.iter().map(|&z| ((z + 1.0) / 2.0) as f32).collect(),
+                ..Default::default()
+            };
+            let got = centre_depth(&mut scratch, (80, 1), &frame, &seen).unwrap();
+            assert!((got - 0.9).abs() < 1e-6, "drawn at {zc}: centre {got}");
+        }
     }
 
     #[test]
