@@ -72,7 +72,10 @@
 //! 2D or 2D multisample binding is a texture with eyes holds that
 //! texture's right view instead (a binding does not end llvmpipe's
 //! scene). Blits from a target with eyes are made eye to eye; into one
-//! from a mono source, the same picture into both eyes. A new twin starts
+//! from a mono source, the same picture into both eyes. Copies of
+//! images (glCopyTexSubImage2D from a target with eyes, glCopyImageSubData
+//! from an object with eyes) give the destination eyes, copied eye to
+//! eye. A new twin starts
 //! with both layers holding what the program's object held.
 
 use crate::auto::eyes::Attachments;
