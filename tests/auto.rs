@@ -713,6 +713,50 @@ fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// A program that draws on events (tests/c/auto_ubo.c gap: 1.2 s
+/// without a frame, then the view twice as far away, as Blender's
+/// camera view entered seconds in): the first frame after the gap is
+/// measured although it is not a 30th, and the next frame converges on
+/// the new centre: the middle quad, now at w = 12, at the screen.
+#[test]
+fn a_frame_after_a_pause_is_measured_and_the_next_converges_on_the_new_view() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = client("auto_ubo");
+    let x = Xvfb::start(W + 40, H + 40);
+    let dir = common::scratch("auto-ubo-gap");
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .args(["--auto", "-v", "--separation", SEPARATION])
+            .arg("--capture")
+            .arg(&dir)
+            .arg(&exe)
+            .args(["4", "gap"])
+            .env("DISPLAY", &x.display),
+    );
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr),
+    );
+    assert!(stdout.contains("error 0x0"), "{stdout}");
+    let said = stderr
+        .lines()
+        .filter(|l| l.starts_with("glstereo: automatic convergence at depth"))
+        .count();
+    assert_eq!(said, 2, "one convergence for each view: {stderr}");
+    let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000004.png"))));
+    check_parallax_at(
+        &eyes,
+        &[
+            ([0, 255, 0], Some(12.0)),
+            ([255, 0, 0], Some(6.0)),
+            ([0, 0, 255], Some(24.0)),
+        ],
+        12.0,
+        0.5,
+        "the view after the pause",
+    );
+}
+
 /// The lines of a client's stdout that say what GL answered a refused
 /// call.
 fn refused(stdout: &str) -> String {

@@ -6,11 +6,16 @@
  *
  *   auto_ubo FRAMES    draws FRAMES frames, swapping each (run under
  *                      glstereo-run --auto --capture); prints "error 0x0"
+ *   auto_ubo FRAMES gap  the same, but waits 1.2 s before the third frame
+ *                      and draws it and the next ones twice as far away
+ *                      (every distance doubled, the picture the same size):
+ *                      a program that draws on events, its view changed
  *
  * The scene (glFrustum(-1, 1, -0.75, 0.75, 1, 1000) as a matrix in the
  * block): a green quad at w = 6 filling the middle half of the view, a
  * red one at w = 3 on its left, a blue one at w = 12 above it, on black.
  */
+#define _POSIX_C_SOURCE 200809L
 #define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -18,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "x_window.h"
 
@@ -54,6 +60,8 @@ static void quad(float x0, float y0, float x1, float y1, float z, float r, float
 int main(int argc, char **argv)
 {
     int frames = argc > 1 ? atoi(argv[1]) : 3;
+    int gap = argc > 2 && !strcmp(argv[2], "gap");
+    float k = 1.0f;
     static const int attrs[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
                                 GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB,
                                 None};
@@ -86,12 +94,17 @@ int main(int argc, char **argv)
     glEnableVertexAttribArray(1);
     glEnable(GL_DEPTH_TEST);
     for (int n = 0; n < frames; n++) {
+        if (gap && n == 2) {
+            struct timespec t = {1, 200000000};
+            nanosleep(&t, NULL);
+            k = 2.0f;
+        }
         glViewport(0, 0, W, H);
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        quad(-3.0f, -2.25f, 3.0f, 2.25f, -6.0f, 0.0f, 1.0f, 0.0f);
-        quad(-2.6f, -0.4f, -1.8f, 0.4f, -3.0f, 1.0f, 0.0f, 0.0f);
-        quad(-2.0f, 5.0f, 2.0f, 8.0f, -12.0f, 0.0f, 0.0f, 1.0f);
+        quad(-3.0f * k, -2.25f * k, 3.0f * k, 2.25f * k, -6.0f * k, 0.0f, 1.0f, 0.0f);
+        quad(-2.6f * k, -0.4f * k, -1.8f * k, 0.4f * k, -3.0f * k, 1.0f, 0.0f, 0.0f);
+        quad(-2.0f * k, 5.0f * k, 2.0f * k, 8.0f * k, -12.0f * k, 0.0f, 0.0f, 1.0f);
         glXSwapBuffers(x.display, x.window);
     }
     printf("error 0x%x\n", glGetError());
