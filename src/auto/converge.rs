@@ -446,7 +446,8 @@ pub enum Rule {
 }
 
 /// How the left eye's pixels read for a measurement lie against the
-/// program's own view ([`centre`], [`centre_depth`]).
+/// program's own view ([`centre`], and `centre_depth` where the
+/// projection is not known).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Seen {
     /// [`Frame::left_shift`].
