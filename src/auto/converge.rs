@@ -278,6 +278,31 @@ unsafe fn centre_of(
     }
 }
 
+/// Calls `f(column, window depth)` for every pixel of `depth` (`width` ×
+/// `height` window depths, rows bottom first) that holds geometry (not
+/// within one D24 step of `clear_depth`); None when `depth` is smaller
+/// than that.
+fn covered(
+    depth: &[f32],
+    (width, height): (u32, u32),
+    clear_depth: f64,
+    mut f: impl FnMut(usize, f64),
+) -> Option<()> {
+    let width = width as usize;
+    if width == 0 || depth.len() < width * height as usize {
+        return None;
+    }
+    for row in depth.chunks_exact(width).take(height as usize) {
+        for (x, &z) in row.iter().enumerate() {
+            let z = f64::from(z);
+            if (z - clear_depth).abs() > DEPTH_STEP_24 {
+                f(x, z);
+            }
+        }
+    }
+    Some(())
+}
+
 /// The NDC depth of the median of the pixels of `scratch.depth` that
 /// hold geometry (not at the frame's clear depth) and lie in the central
 /// window in the program's view (`seen`), for a projection that is not
@@ -295,18 +320,16 @@ fn centre_depth(
     };
     let d = &mut scratch.distances;
     d.clear();
-    let width = width as usize;
-    if width == 0 || scratch.depth.len() < width * height as usize {
-        return None;
-    }
-    for row in scratch.depth.chunks_exact(width).take(height as usize) {
-        for (x, &z) in row.iter().enumerate() {
-            let z = f64::from(z);
-            if (z - frame.clear_depth).abs() > DEPTH_STEP_24 && seen.inside(x, None, ndc(z)) {
+    covered(
+        &scratch.depth,
+        (width, height),
+        frame.clear_depth,
+        |x, z| {
+            if seen.inside(x, None, ndc(z)) {
                 d.push(z);
             }
-        }
-    }
+        },
+    )?;
     if d.is_empty() {
         return None;
     }
@@ -494,22 +517,12 @@ pub fn centre(
     let mapping = DepthMapping::new(&frustum, (near, far)).ok()?;
     let d = &mut scratch.distances;
     d.clear();
-    let width = width as usize;
-    if width == 0 || scratch.depth.len() < width * height as usize {
-        return None;
-    }
-    for row in scratch.depth.chunks_exact(width).take(height as usize) {
-        for (x, &z) in row.iter().enumerate() {
-            let z = f64::from(z);
-            if (z - clear_depth).abs() <= DEPTH_STEP_24 {
-                continue;
-            }
-            let w = mapping.distance(z);
-            if w.is_finite() && w > 0.0 && seen.inside(x, Some(w), 0.0) {
-                d.push(w);
-            }
+    covered(&scratch.depth, (width, height), clear_depth, |x, z| {
+        let w = mapping.distance(z);
+        if w.is_finite() && w > 0.0 && seen.inside(x, Some(w), 0.0) {
+            d.push(w);
         }
-    }
+    })?;
     if d.is_empty() {
         return None;
     }
@@ -671,6 +684,18 @@ mod tests {
         );
     }
 
+    /// One row of 80 pixels: `near` over columns 4..20 (left of the
+    /// window [20, 60)), `far` over 20..40 (inside it), `none` elsewhere.
+    fn row(near: f64, far: f64, none: f64) -> Vec<f64> {
+        (0..80)
+            .map(|x| match x {
+                4..=19 => near,
+                20..=39 => far,
+                _ => none,
+            })
+            .collect()
+    }
+
     /// The left eye of a view at convergence `c`: each pixel of `view`
     /// (distances, 0: nothing) moved by the rule, nearer over farther.
     fn left_eye(view: &[f64], seen: &Seen, c: f64) -> Vec<f64> {
@@ -704,13 +729,7 @@ mod tests {
         // One row of 80 pixels, the window [20, 60): a near object (w 2)
         // over columns 4..20, left of the window, and a far one (w 8) over
         // 20..40, inside it: in the program's view the centre is far.
-        let view: Vec<f64> = (0..80)
-            .map(|x| match x {
-                4..=19 => 2.0,
-                20..=39 => 8.0,
-                _ => 0.0,
-            })
-            .collect();
+        let view = row(2.0, 8.0, 0.0);
         let base = Seen {
             left_shift: -0.2,
             rule: Rule::Distance(0.0),
@@ -755,13 +774,7 @@ mod tests {
         // NDC depths: a near object (0.2) left of the window [20, 60) and a
         // far one (0.9) inside it, in the program's view; window depth
         // (z + 1) / 2, cleared to 1.
-        let view: Vec<f64> = (0..80)
-            .map(|x| match x {
-                4..=19 => 0.2,
-                20..=39 => 0.9,
-                _ => 1.0,
-            })
-            .collect();
+        let view = row(0.2, 0.9, 1.0);
         let frame = Frame {
             zero_to_one: false,
             depth_range: (0.0, 1.0),
