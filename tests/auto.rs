@@ -721,23 +721,9 @@ fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
 #[test]
 fn a_frame_after_a_pause_is_measured_and_the_next_converges_on_the_new_view() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = client("auto_ubo");
     let x = Xvfb::start(W + 40, H + 40);
     let dir = common::scratch("auto-ubo-gap");
-    let o = common::run_ok(
-        Command::new(&built().run)
-            .args(["--auto", "-v", "--separation", SEPARATION])
-            .arg("--capture")
-            .arg(&dir)
-            .arg(&exe)
-            .args(["4", "gap"])
-            .env("DISPLAY", &x.display),
-    );
-    let (stdout, stderr) = (
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr),
-    );
-    assert!(stdout.contains("error 0x0"), "{stdout}");
+    let stderr = run_ubo(&x, &dir, &["4", "gap"]);
     let said = stderr
         .lines()
         .filter(|l| l.starts_with("glstereo: automatic convergence at depth"))
@@ -767,6 +753,24 @@ fn refused(stdout: &str) -> String {
         .join("\n")
 }
 
+/// tests/c/auto_ubo.c `args` under `glstereo-run --auto -v` with the
+/// tests' separation, captured into `dir`: its stderr (it printed "error
+/// 0x0").
+fn run_ubo(x: &Xvfb, dir: &Path, args: &[&str]) -> String {
+    let o = common::run_ok(
+        Command::new(&built().run)
+            .args(["--auto", "-v", "--separation", SEPARATION])
+            .arg("--capture")
+            .arg(dir)
+            .arg(client("auto_ubo"))
+            .args(args)
+            .env("DISPLAY", &x.display),
+    );
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("error 0x0"), "{stdout}");
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
 /// Automatic convergence where the camera's matrix is in a uniform buffer
 /// (tests/c/auto_ubo.c), so no upload shows the projection: the centre
 /// of interest is found as a depth and the rule computed from each
@@ -777,20 +781,9 @@ fn refused(stdout: &str) -> String {
 #[test]
 fn automatic_convergence_finds_the_centre_where_the_matrices_are_in_a_uniform_buffer() {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = client("auto_ubo");
     let x = Xvfb::start(W + 40, H + 40);
     let dir = common::scratch("auto-ubo");
-    let o = common::run_ok(
-        Command::new(&built().run)
-            .args(["--auto", "--separation", SEPARATION])
-            .arg("--capture")
-            .arg(&dir)
-            .arg(&exe)
-            .arg("3")
-            .env("DISPLAY", &x.display),
-    );
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(stdout.contains("error 0x0"), "{stdout}");
+    run_ubo(&x, &dir, &["3"]);
     // Frame 0 is measured; the third frame is drawn with it.
     let eyes = ["left", "right"].map(|e| common::png(&dir.join(format!("{e}-000003.png"))));
     check_parallax_at(

@@ -256,12 +256,8 @@ unsafe fn centre_of(
     let (wx, _, ww, _) = window(scene.viewport);
     let seen = Seen {
         left_shift: frame.left_shift,
-        rule: rule.unwrap_or(Rule::Distance(0.0)),
-        pixels_per_ndc: if rule.is_some() {
-            f64::from(vw) / 2.0
-        } else {
-            0.0
-        },
+        rule,
+        pixels_per_ndc: f64::from(vw) / 2.0,
         window: (f64::from(wx - x0), f64::from(wx + ww - x0)),
     };
     match &scene.perspective {
@@ -475,10 +471,10 @@ pub enum Rule {
 pub struct Seen {
     /// [`Frame::left_shift`].
     pub left_shift: f64,
-    /// The rule the eye was drawn with.
-    pub rule: Rule,
-    /// Half the viewport's width: window pixels per NDC unit (0: the
-    /// pixels are taken as they lie).
+    /// The rule the eye was drawn with (None: one that cannot be undone;
+    /// the pixels are taken as they lie).
+    pub rule: Option<Rule>,
+    /// Half the viewport's width: window pixels per NDC unit.
     pub pixels_per_ndc: f64,
     /// The central window's columns [from, to) in the pixels read.
     pub window: (f64, f64),
@@ -490,9 +486,10 @@ impl Seen {
     /// program's view.
     fn inside(&self, x: usize, w: Option<f64>, z: f64) -> bool {
         let ndc = match self.rule {
-            Rule::Distance(0.0) => 1.0,
-            Rule::Distance(c) => w.map_or(0.0, |w| 1.0 - c / w),
-            Rule::Depth { zc, alpha } => (zc - z) / (zc - alpha),
+            None => 0.0,
+            Some(Rule::Distance(0.0)) => 1.0,
+            Some(Rule::Distance(c)) => w.map_or(0.0, |w| 1.0 - c / w),
+            Some(Rule::Depth { zc, alpha }) => (zc - z) / (zc - alpha),
         };
         let at = x as f64 + 0.5 - self.left_shift * ndc * self.pixels_per_ndc;
         at >= self.window.0 && at < self.window.1
@@ -668,7 +665,7 @@ mod tests {
         };
         let all = Seen {
             left_shift: -0.1,
-            rule: Rule::Distance(0.0),
+            rule: None,
             pixels_per_ndc: 0.0,
             window: (0.0, 5.0),
         };
@@ -732,13 +729,13 @@ mod tests {
         let view = row(2.0, 8.0, 0.0);
         let base = Seen {
             left_shift: -0.2,
-            rule: Rule::Distance(0.0),
+            rule: Some(Rule::Distance(0.0)),
             pixels_per_ndc: 40.0,
             window: (20.0, 60.0),
         };
         for c in [0.0, 2.0, 5.0, 8.0, 20.0] {
             let seen = Seen {
-                rule: Rule::Distance(c),
+                rule: Some(Rule::Distance(c)),
                 ..base
             };
             let eye = left_eye(&view, &seen, c);
@@ -756,7 +753,7 @@ mod tests {
         let eye = left_eye(
             &view,
             &Seen {
-                rule: Rule::Distance(c),
+                rule: Some(Rule::Distance(c)),
                 ..base
             },
             c,
@@ -787,7 +784,7 @@ mod tests {
         for zc in [0.2, 0.5, 0.8] {
             let seen = Seen {
                 left_shift: -0.2,
-                rule: Rule::Depth { zc, alpha: 1.0 },
+                rule: Some(Rule::Depth { zc, alpha: 1.0 }),
                 pixels_per_ndc: 40.0,
                 window: (20.0, 60.0),
             };

@@ -991,11 +991,7 @@ type Layer = (u32, u32, i32, i32);
 /// inside both, of one format class.
 unsafe fn copy_layer(f: &TargetFns, from: Layer, to: Layer, (x, y, w, h): (i32, i32, i32, i32)) {
     // SAFETY: contract.
-    unsafe {
-        (f.copy_image_sub_data)(
-            from.0, from.1, from.2, x, y, from.3, to.0, to.1, to.2, x, y, to.3, w, h, 1,
-        )
-    }
+    unsafe { copy_rect(f, (from, (x, y)), (to, (x, y)), (w, h)) }
 }
 
 /// The name and glCopyImageSubData target of a program object of `shape`.
@@ -1353,10 +1349,10 @@ pub unsafe fn copied_image(
         {
             return;
         }
-        let Some((array, from_shape)) = from_eyes else {
+        let Some((array, eyes_shape)) = from_eyes else {
             return forget(targets, context, &[dst]);
         };
-        let Some(shape) = to_shape.filter(|s| s.samples == from_shape.samples) else {
+        let Some(shape) = to_shape.filter(|s| s.samples == eyes_shape.samples) else {
             return forget(targets, context, &[dst]);
         };
         let array_target = if shape.samples > 0 {
