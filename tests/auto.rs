@@ -632,8 +632,30 @@ fn square_targets_seen_from_a_light_stay_mono_and_window_sized_ones_get_eyes() {
 /// light of its shadow map, never to its full-screen passes).
 #[test]
 fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
+    passes_as_drawn_by_hand(&client("auto_passes"), "glx");
+}
+
+/// The same program in OpenGL ES 3.2 through EGL (tests/c/auto_passes.c
+/// built with -DGLES): ES has no direct state access, so the layer gives
+/// its targets eyes by binding and binding back, naming each texture by
+/// the target the program defined it with — and each eye is again the
+/// eye drawn by hand, pixel for pixel, in every case.
+#[test]
+fn opengl_es_render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
+    let exe = build_once("auto_passes_es", |out| {
+        compile_plain(
+            &common::root().join("tests/c/auto_passes.c"),
+            out,
+            &["-DGLES", "-lEGL", "-lGLESv2", "-lX11"],
+        )
+    });
+    passes_as_drawn_by_hand(&exe, "es");
+}
+
+/// Every case of tests/c/auto_passes.c built as `exe`, under --auto and
+/// by hand (`what` names the build in the scratch directories).
+fn passes_as_drawn_by_hand(exe: &Path, what: &str) {
     let _one = common::clients::one_renderer_at_a_time();
-    let exe = client("auto_passes");
     let x = Xvfb::start(W + 40, H + 40);
     let mut failures = Vec::new();
     for case in [
@@ -647,12 +669,12 @@ fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
         "shadow",
         "regions",
     ] {
-        let dir = common::scratch(&format!("auto-passes-{case}"));
+        let dir = common::scratch(&format!("auto-passes-{what}-{case}"));
         let mut refused_by_hand = String::new();
         let hand = ["left", "right"].map(|eye| {
             let out = dir.join(format!("hand-{eye}.rgba"));
             let o = common::run_ok(
-                Command::new(&exe)
+                Command::new(exe)
                     .args([case, eye, SEPARATION, CONVERGENCE])
                     .arg(&out)
                     .env("DISPLAY", &x.display),
@@ -671,7 +693,7 @@ fn render_targets_get_eyes_where_stereo_flows_each_eye_as_drawn_by_hand() {
                 ])
                 .arg("--capture")
                 .arg(&dir)
-                .arg(&exe)
+                .arg(exe)
                 .args([case, "mono"])
                 .env("DISPLAY", &x.display),
         );

@@ -79,7 +79,6 @@
 //! with both layers holding what the program's object held.
 
 use crate::auto::eyes::Attachments;
-use crate::auto::gl_fns;
 use crate::math::Eye;
 
 const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE: u32 = 0x8CD0;
@@ -92,9 +91,7 @@ const GL_COLOR_ATTACHMENT0: u32 = 0x8CE0;
 const GL_DEPTH_ATTACHMENT: u32 = 0x8D00;
 const GL_STENCIL_ATTACHMENT: u32 = 0x8D20;
 const GL_DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
-const GL_DRAW_FRAMEBUFFER: u32 = 0x8CA9;
 const GL_READ_FRAMEBUFFER: u32 = 0x8CA8;
-const GL_FRAMEBUFFER_COMPLETE: u32 = 0x8CD5;
 const GL_TEXTURE: i32 = 0x1702;
 const GL_RENDERBUFFER: i32 = 0x8D41;
 const GL_TEXTURE_2D: u32 = 0x0DE1;
@@ -153,57 +150,10 @@ const COLOURS: u32 = 8;
 /// where the driver has fewer).
 const UNITS: i32 = 32;
 
-gl_fns! {
-    /// GL 4.5's direct state access, texture views and image copies:
-    /// giving a target eyes changes no binding of the program's.
-    pub struct TargetFns {
-        get_integerv = c"glGetIntegerv": fn(u32, *mut i32);
-        get_framebuffer_attachment_parameteriv = c"glGetNamedFramebufferAttachmentParameteriv": fn(u32, u32, u32, *mut i32);
-        get_texture_level_parameteriv = c"glGetTextureLevelParameteriv": fn(u32, i32, u32, *mut i32);
-        get_texture_parameteriv = c"glGetTextureParameteriv": fn(u32, u32, *mut i32);
-        get_texture_parameterfv = c"glGetTextureParameterfv": fn(u32, u32, *mut f32);
-        texture_parameterf = c"glTextureParameterf": fn(u32, u32, f32);
-        get_renderbuffer_parameteriv = c"glGetNamedRenderbufferParameteriv": fn(u32, u32, *mut i32);
-        create_textures = c"glCreateTextures": fn(u32, i32, *mut u32);
-        gen_textures = c"glGenTextures": fn(i32, *mut u32);
-        delete_textures = c"glDeleteTextures": fn(i32, *const u32);
-        texture_storage_3d = c"glTextureStorage3D": fn(u32, i32, u32, i32, i32, i32);
-        texture_storage_2d = c"glTextureStorage2D": fn(u32, i32, u32, i32, i32);
-        texture_storage_3d_multisample = c"glTextureStorage3DMultisample": fn(u32, i32, u32, i32, i32, i32, u8);
-        texture_view = c"glTextureView": fn(u32, u32, u32, u32, u32, u32, u32, u32);
-        tex_image_3d = c"glTexImage3D": fn(u32, i32, i32, i32, i32, i32, i32, u32, u32, *const std::ffi::c_void);
-        tex_image_2d = c"glTexImage2D": fn(u32, i32, i32, i32, i32, i32, u32, u32, *const std::ffi::c_void);
-        bind_buffer = c"glBindBuffer": fn(u32, u32);
-        texture_parameteri = c"glTextureParameteri": fn(u32, u32, i32);
-        framebuffer_texture = c"glNamedFramebufferTexture": fn(u32, u32, u32, i32);
-        framebuffer_renderbuffer = c"glNamedFramebufferRenderbuffer": fn(u32, u32, u32, u32);
-        check_framebuffer_status = c"glCheckNamedFramebufferStatus": fn(u32, u32) -> u32;
-        copy_image_sub_data = c"glCopyImageSubData": fn(u32, u32, i32, i32, i32, i32, u32, u32, i32, i32, i32, i32, i32, i32, i32);
-        generate_texture_mipmap = c"glGenerateTextureMipmap": fn(u32);
-        active_texture = c"glActiveTexture": fn(u32);
-        copy_texture_sub_image_2d = c"glCopyTextureSubImage2D": fn(u32, i32, i32, i32, i32, i32, i32, i32);
-        is_texture = c"glIsTexture": fn(u32) -> u8;
-        is_renderbuffer = c"glIsRenderbuffer": fn(u32) -> u8;
-        bind_texture = c"glBindTexture": fn(u32, u32);
-    }
-}
+mod api;
 
-/// The table, loaded once (None: no GL 4.5 here; render targets stay mono).
-fn fns() -> Option<&'static TargetFns> {
-    static FNS: std::sync::OnceLock<Option<TargetFns>> = std::sync::OnceLock::new();
-    FNS.get_or_init(|| {
-        // SAFETY: gl_proc returns the named GL function or NULL.
-        let t = unsafe { TargetFns::load(crate::auto::host::gl_proc) };
-        if t.is_none() {
-            crate::report::warn(
-                "automatic stereo of render targets needs GL 4.5's direct state access: \
-                 what programs draw into their own framebuffer objects stays mono",
-            );
-        }
-        t
-    })
-    .as_ref()
-}
+pub use api::ContextApi;
+use api::Gl;
 
 /// A program object that can have eyes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -293,6 +243,14 @@ pub struct Targets {
     looked: Vec<Looked>,
     /// Changes whenever a twin is made or goes ([`Targets::generation`]).
     generation: u64,
+    /// What the group's contexts are (asked at the first call that needs
+    /// it; EGL shares objects only between contexts of one API).
+    api: Option<ContextApi>,
+    /// OpenGL ES: the target each 2D or 2D multisample texture of the
+    /// program's was defined with (ES cannot be asked a texture's
+    /// target, and binding one to another target is an error the
+    /// program would see). A texture without one stays mono.
+    es_targets: std::collections::HashMap<u32, u32>,
 }
 
 /// Runs `f` with the render targets of the share group `group`.
@@ -335,7 +293,7 @@ impl Sampled {
 /// The program's context is current on this thread.
 pub unsafe fn sampled(targets: &Targets) -> Sampled {
     let mut s = Sampled::default();
-    let Some(f) = fns() else {
+    let Some(f) = api::common() else {
         return s;
     };
     if !targets
@@ -385,7 +343,7 @@ pub unsafe fn bind_eye(sampled: &Sampled, eye: Eye) -> Bound<'_> {
     if !bound.on {
         return bound;
     }
-    let Some(f) = fns() else {
+    let Some(f) = api::common() else {
         return Bound { on: false, ..bound };
     };
     // SAFETY: contract.
@@ -418,7 +376,7 @@ impl Bound<'_> {
         if !self.on {
             return;
         }
-        let Some(f) = fns() else {
+        let Some(f) = api::common() else {
             return;
         };
         // SAFETY: contract.
@@ -437,6 +395,30 @@ impl Targets {
     /// scan of the units ([`sampled`]) holds while it is the same.
     pub fn generation(&self) -> u64 {
         self.generation
+    }
+
+    /// The calls for the group's contexts (None: its render targets
+    /// stay mono).
+    ///
+    /// # Safety
+    /// A context of the group is current on this thread.
+    unsafe fn gl(&mut self) -> Option<Gl> {
+        // SAFETY: contract.
+        api::gl(unsafe { context_api(self) })
+    }
+
+    /// The target the layer names program object `o` by: a
+    /// renderbuffer's; in OpenGL ES a texture's as it was defined (None
+    /// where that was not seen); in desktop GL any (direct state access
+    /// needs none).
+    fn target_of(&self, o: Object) -> Option<u32> {
+        match o {
+            Object::Renderbuffer(_) => Some(GL_RENDERBUFFER as u32),
+            Object::Texture(t) if self.api == Some(ContextApi::Es) => {
+                self.es_targets.get(&t).copied()
+            }
+            Object::Texture(_) => Some(GL_TEXTURE_2D),
+        }
     }
 
     fn twin(&self, o: Object) -> Option<&Twin> {
@@ -473,43 +455,41 @@ impl Targets {
 /// stencil of one object as GL_DEPTH_STENCIL_ATTACHMENT), and whether the
 /// layer can give them eyes (Unsupported) — reading only what the
 /// framebuffer names, so no query raises a GL error.
-unsafe fn attached(f: &TargetFns, fbo: u32) -> (Vec<(u32, Object)>, bool) {
+unsafe fn attached(f: &Gl, targets: &Targets, fbo: u32) -> (Vec<(u32, Object)>, bool) {
     let mut out = Vec::new();
     let mut supported = true;
     // SAFETY: contract of the callers; one value per query.
     unsafe {
-        let at = |point, pname| {
-            let mut v = 0;
-            (f.get_framebuffer_attachment_parameteriv)(fbo, point, pname, &mut v);
-            v
-        };
-        let points = (0..COLOURS)
-            .map(|i| GL_COLOR_ATTACHMENT0 + i)
-            .chain([GL_DEPTH_ATTACHMENT, GL_STENCIL_ATTACHMENT]);
-        for point in points {
-            let name = at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME) as u32;
-            if name == 0 {
-                continue;
-            }
-            let object = match at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) {
-                GL_TEXTURE => {
-                    if at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL) != 0
-                        || at(point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED) != 0
-                        || at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER) != 0
-                        || at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE) != 0
-                    {
-                        supported = false;
-                    }
-                    Object::Texture(name)
-                }
-                GL_RENDERBUFFER => Object::Renderbuffer(name),
-                _ => {
-                    supported = false;
+        f.attachments(fbo, |at| {
+            let points = (0..COLOURS)
+                .map(|i| GL_COLOR_ATTACHMENT0 + i)
+                .chain([GL_DEPTH_ATTACHMENT, GL_STENCIL_ATTACHMENT]);
+            for point in points {
+                let name = at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME) as u32;
+                if name == 0 {
                     continue;
                 }
-            };
-            out.push((point, object));
-        }
+                let object = match at(point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) {
+                    GL_TEXTURE => {
+                        if at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL) != 0
+                            || at(point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED) != 0
+                            || at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER) != 0
+                            || at(point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE) != 0
+                        {
+                            supported = false;
+                        }
+                        Object::Texture(name)
+                    }
+                    GL_RENDERBUFFER => Object::Renderbuffer(name),
+                    _ => {
+                        supported = false;
+                        continue;
+                    }
+                };
+                supported &= targets.target_of(object).is_some();
+                out.push((point, object));
+            }
+        });
     }
     // One object at depth and stencil: a packed depth/stencil attachment.
     let depth = out.iter().position(|&(p, _)| p == GL_DEPTH_ATTACHMENT);
@@ -523,31 +503,10 @@ unsafe fn attached(f: &TargetFns, fbo: u32) -> (Vec<(u32, Object)>, bool) {
     (out, supported)
 }
 
-unsafe fn integer(f: &TargetFns, pname: u32) -> i32 {
+unsafe fn integer(f: &api::Common, pname: u32) -> i32 {
     let mut v = 0;
     // SAFETY: contract of the callers; one value.
     unsafe { (f.get_integerv)(pname, &mut v) };
-    v
-}
-
-unsafe fn level(f: &TargetFns, texture: u32, pname: u32) -> i32 {
-    let mut v = 0;
-    // SAFETY: contract of the callers; one value.
-    unsafe { (f.get_texture_level_parameteriv)(texture, 0, pname, &mut v) };
-    v
-}
-
-unsafe fn texture_int(f: &TargetFns, texture: u32, pname: u32) -> i32 {
-    let mut v = 0;
-    // SAFETY: contract of the callers; one value.
-    unsafe { (f.get_texture_parameteriv)(texture, pname, &mut v) };
-    v
-}
-
-unsafe fn renderbuffer(f: &TargetFns, rb: u32, pname: u32) -> i32 {
-    let mut v = 0;
-    // SAFETY: contract of the callers; one value.
-    unsafe { (f.get_renderbuffer_parameteriv)(rb, pname, &mut v) };
     v
 }
 
@@ -573,46 +532,45 @@ fn unsized_layout(format: u32) -> Option<(u32, u32)> {
     })
 }
 
-/// The shape of `o` now; None where it has no storage. A texture's
-/// levels: its immutable count, else the whole chain for colour (a
-/// program may make mipmaps later), one for depth and stencil.
-unsafe fn shape(f: &TargetFns, o: Object) -> Option<Shape> {
+/// The shape of `o` now, named by `target` ([`Targets::target_of`]);
+/// None where it has no storage or no known target. A texture's levels:
+/// its immutable count, else the whole chain for colour (a program may
+/// make mipmaps later), one for depth and stencil.
+unsafe fn shape(f: &Gl, o: Object, target: Option<u32>) -> Option<Shape> {
     // SAFETY: contract of the callers.
     unsafe {
         let s = match o {
             Object::Texture(t) => {
-                let (width, height) = (
-                    level(f, t, GL_TEXTURE_WIDTH),
-                    level(f, t, GL_TEXTURE_HEIGHT),
-                );
-                if level(f, t, GL_TEXTURE_DEPTH) != 1 {
+                let t = (t, target?);
+                let (width, height) = (f.level(t, GL_TEXTURE_WIDTH), f.level(t, GL_TEXTURE_HEIGHT));
+                if f.level(t, GL_TEXTURE_DEPTH) != 1 {
                     return None;
                 }
-                let samples = level(f, t, GL_TEXTURE_SAMPLES);
-                let depth_or_stencil = level(f, t, GL_TEXTURE_DEPTH_SIZE) > 0
-                    || level(f, t, GL_TEXTURE_STENCIL_SIZE) > 0;
-                let levels = if texture_int(f, t, GL_TEXTURE_IMMUTABLE_FORMAT) != 0 {
-                    texture_int(f, t, GL_TEXTURE_IMMUTABLE_LEVELS)
+                let samples = f.level(t, GL_TEXTURE_SAMPLES);
+                let depth_or_stencil = f.level(t, GL_TEXTURE_DEPTH_SIZE) > 0
+                    || f.level(t, GL_TEXTURE_STENCIL_SIZE) > 0;
+                let levels = if f.texture_int(t, GL_TEXTURE_IMMUTABLE_FORMAT) != 0 {
+                    f.texture_int(t, GL_TEXTURE_IMMUTABLE_LEVELS)
                 } else if depth_or_stencil || samples > 0 {
                     1
                 } else {
                     32 - (width.max(height).max(1) as u32).leading_zeros() as i32
                 };
                 Shape {
-                    format: level(f, t, GL_TEXTURE_INTERNAL_FORMAT) as u32,
+                    format: f.level(t, GL_TEXTURE_INTERNAL_FORMAT) as u32,
                     width,
                     height,
                     samples,
                     fixed_locations: samples == 0
-                        || level(f, t, GL_TEXTURE_FIXED_SAMPLE_LOCATIONS) != 0,
+                        || f.level(t, GL_TEXTURE_FIXED_SAMPLE_LOCATIONS) != 0,
                     levels: levels.max(1),
                 }
             }
             Object::Renderbuffer(rb) => Shape {
-                format: renderbuffer(f, rb, GL_RENDERBUFFER_INTERNAL_FORMAT) as u32,
-                width: renderbuffer(f, rb, GL_RENDERBUFFER_WIDTH),
-                height: renderbuffer(f, rb, GL_RENDERBUFFER_HEIGHT),
-                samples: renderbuffer(f, rb, GL_RENDERBUFFER_SAMPLES),
+                format: f.renderbuffer(rb, GL_RENDERBUFFER_INTERNAL_FORMAT) as u32,
+                width: f.renderbuffer(rb, GL_RENDERBUFFER_WIDTH),
+                height: f.renderbuffer(rb, GL_RENDERBUFFER_HEIGHT),
+                samples: f.renderbuffer(rb, GL_RENDERBUFFER_SAMPLES),
                 fixed_locations: true,
                 levels: 1,
             },
@@ -624,7 +582,8 @@ unsafe fn shape(f: &TargetFns, o: Object) -> Option<Shape> {
 /// What `attached` allows (rule 3's light test against the window's
 /// size `window`).
 unsafe fn structure(
-    f: &TargetFns,
+    f: &Gl,
+    targets: &Targets,
     attached: &[(u32, Object)],
     supported: bool,
     window: (i32, i32),
@@ -637,7 +596,7 @@ unsafe fn structure(
         let mut colours = attached
             .iter()
             .filter(|&&(p, _)| (GL_COLOR_ATTACHMENT0..GL_COLOR_ATTACHMENT0 + COLOURS).contains(&p))
-            .map(|&(_, o)| shape(f, o))
+            .map(|&(_, o)| shape(f, o, targets.target_of(o)))
             .peekable();
         if colours.peek().is_none() {
             return Structure::Light;
@@ -649,7 +608,10 @@ unsafe fn structure(
             };
             light &= s.width == s.height && (s.width, s.height) != window;
         }
-        if attached.iter().any(|&(_, o)| shape(f, o).is_none()) {
+        if attached
+            .iter()
+            .any(|&(_, o)| shape(f, o, targets.target_of(o)).is_none())
+        {
             return Structure::Unsupported;
         }
         if light {
@@ -674,10 +636,12 @@ pub unsafe fn eyes_of(
     eyes: &Attachments,
     draw: Draw,
 ) -> Option<Attachments> {
-    let f = fns()?;
     if fbo == 0 {
         return None;
     }
+    // SAFETY: contract.
+    let gl = unsafe { targets.gl() }?;
+    let f = &gl;
     // SAFETY: contract.
     unsafe {
         if let Some(i) = targets
@@ -687,7 +651,7 @@ pub unsafe fn eyes_of(
             let s = targets.stereo.swap_remove(i);
             restore_program_objects(f, &s);
         }
-        let (now, supported) = attached(f, fbo);
+        let (now, supported) = attached(f, targets, fbo);
         if let Some(i) = targets.stereo_at(context, fbo) {
             let ours = |&(p, o): &(u32, Object)| {
                 targets
@@ -724,11 +688,12 @@ pub unsafe fn eyes_of(
         let structure = match known {
             Some(s) => s,
             None => {
+                let window = (eyes.colour(), GL_TEXTURE_2D_ARRAY);
                 let window = (
-                    level(f, eyes.colour(), GL_TEXTURE_WIDTH),
-                    level(f, eyes.colour(), GL_TEXTURE_HEIGHT),
+                    f.level(window, GL_TEXTURE_WIDTH),
+                    f.level(window, GL_TEXTURE_HEIGHT),
                 );
-                let s = structure(f, &now, supported, window);
+                let s = structure(f, targets, &now, supported, window);
                 targets
                     .looked
                     .retain(|l| (l.context, l.fbo) != (context, fbo));
@@ -772,6 +737,51 @@ pub unsafe fn eyes_of(
     }
 }
 
+/// What the group's contexts are (asked once).
+///
+/// # Safety
+/// A context of the group is current on this thread.
+pub unsafe fn context_api(targets: &mut Targets) -> ContextApi {
+    // SAFETY: contract.
+    *targets
+        .api
+        .get_or_insert_with(|| unsafe { api::context_api() })
+}
+
+/// The program defined storage of `texture` through `target` (a
+/// glTexImage2D, glTexStorage2D(Multisample), glCopyTexImage2D naming
+/// the texture bound there): OpenGL ES keeps the target, the only way
+/// the layer may learn it (asked by binding, a wrong target raises an
+/// error the program would see).
+///
+/// # Safety
+/// A context of the group is current on this thread.
+pub unsafe fn texture_defined(targets: &mut Targets, texture: u32, target: u32) {
+    // SAFETY: contract.
+    let api = unsafe { context_api(targets) };
+    if api == ContextApi::Es
+        && texture != 0
+        && matches!(target, GL_TEXTURE_2D | GL_TEXTURE_2D_MULTISAMPLE)
+    {
+        targets.es_targets.insert(texture, target);
+    }
+}
+
+/// The program deleted `objects`: their eyes go ([`forget`]), and what
+/// the layer knew of them.
+///
+/// # Safety
+/// The program's context `context` is current on this thread.
+pub unsafe fn deleted(targets: &mut Targets, context: usize, objects: &[Object]) {
+    for o in objects {
+        if let Object::Texture(t) = o {
+            targets.es_targets.remove(t);
+        }
+    }
+    // SAFETY: contract.
+    unsafe { forget(targets, context, objects) }
+}
+
 /// The eyes of `fbo` of `context` when it has eyes already (to read from
 /// it eye by eye: a blit out of it), else None. `eyes`: the window's.
 pub fn known(
@@ -798,7 +808,7 @@ pub fn size(targets: &Targets, context: usize, fbo: u32) -> Option<(u32, u32)> {
 /// layered. None, with the program's objects attached again, where the
 /// framebuffer is then incomplete.
 unsafe fn stereoize(
-    f: &TargetFns,
+    f: &Gl,
     targets: &mut Targets,
     context: usize,
     fbo: u32,
@@ -807,7 +817,7 @@ unsafe fn stereoize(
     // SAFETY: contract of the callers; objects made here are named by GL.
     unsafe {
         for &(_, o) in now {
-            let shape = shape(f, o)?;
+            let shape = shape(f, o, targets.target_of(o))?;
             match targets.twins.iter().position(|t| t.object == o) {
                 Some(i) if targets.twins[i].shape == shape => {}
                 found => {
@@ -827,9 +837,9 @@ unsafe fn stereoize(
         };
         for &(point, o) in now {
             let array = targets.twin(o).expect("made above").array;
-            (f.framebuffer_texture)(fbo, point, array, 0);
+            f.framebuffer_texture(fbo, point, array, 0);
         }
-        if (f.check_framebuffer_status)(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE {
+        if !f.complete(fbo) {
             put_back(f, targets, &s, &[]);
             return None;
         }
@@ -848,7 +858,7 @@ unsafe fn stereoize(
 /// where the driver refuses (checked without raising a GL error: made
 /// storage is immutable, or has the size asked) or the format is one of
 /// no known layout.
-unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
+unsafe fn make_twin(f: &Gl, o: Object, shape: Shape) -> Option<Twin> {
     let unsized_format = unsized_layout(shape.format);
     // SAFETY: contract of the callers; names made here.
     unsafe {
@@ -867,29 +877,16 @@ unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
         };
         match unsized_format {
             None => {
-                (f.create_textures)(array_target, 1, &mut t.array);
-                if shape.samples > 0 {
-                    (f.texture_storage_3d_multisample)(
-                        t.array,
-                        shape.samples,
-                        shape.format,
-                        shape.width,
-                        shape.height,
-                        2,
-                        u8::from(shape.fixed_locations),
-                    );
-                } else {
-                    (f.texture_storage_3d)(
-                        t.array,
-                        shape.levels,
-                        shape.format,
-                        shape.width,
-                        shape.height,
-                        2,
-                    );
-                }
-                (f.gen_textures)(1, &mut t.right);
-                (f.texture_view)(
+                t.array = f.new_texture(array_target);
+                f.storage(
+                    (t.array, array_target),
+                    shape.levels,
+                    (shape.samples, shape.fixed_locations),
+                    shape.format,
+                    (shape.width, shape.height, 2),
+                );
+                (f.c.gen_textures)(1, &mut t.right);
+                (f.c.texture_view)(
                     t.right,
                     view_target,
                     t.array,
@@ -900,31 +897,31 @@ unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
                     1,
                 );
                 // A view made (no error raised) has immutable storage.
-                if texture_int(f, t.array, GL_TEXTURE_IMMUTABLE_FORMAT) == 0
-                    || texture_int(f, t.right, GL_TEXTURE_IMMUTABLE_FORMAT) == 0
+                if f.texture_int((t.array, array_target), GL_TEXTURE_IMMUTABLE_FORMAT) == 0
+                    || f.texture_int((t.right, view_target), GL_TEXTURE_IMMUTABLE_FORMAT) == 0
                 {
                     release(f, t);
                     return None;
                 }
             }
             Some((format, kind)) if shape.samples == 0 => {
-                (f.create_textures)(GL_TEXTURE_2D_ARRAY, 1, &mut t.array);
-                (f.create_textures)(GL_TEXTURE_2D, 1, &mut t.right);
+                t.array = f.new_texture(GL_TEXTURE_2D_ARRAY);
+                t.right = f.new_texture(GL_TEXTURE_2D);
                 // Mutable storage is given through a binding: the active
                 // unit's and the unpack buffer's are put back.
-                let pbo = integer(f, GL_PIXEL_UNPACK_BUFFER_BINDING) as u32;
+                let pbo = f.integer(GL_PIXEL_UNPACK_BUFFER_BINDING) as u32;
                 let was = [
-                    integer(f, GL_TEXTURE_BINDING_2D_ARRAY) as u32,
-                    integer(f, GL_TEXTURE_BINDING_2D) as u32,
+                    f.integer(GL_TEXTURE_BINDING_2D_ARRAY) as u32,
+                    f.integer(GL_TEXTURE_BINDING_2D) as u32,
                 ];
-                (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, 0);
-                (f.bind_texture)(GL_TEXTURE_2D_ARRAY, t.array);
-                (f.bind_texture)(GL_TEXTURE_2D, t.right);
+                (f.c.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, 0);
+                (f.c.bind_texture)(GL_TEXTURE_2D_ARRAY, t.array);
+                (f.c.bind_texture)(GL_TEXTURE_2D, t.right);
                 for l in 0..shape.levels {
                     let (w, h) = ((shape.width >> l).max(1), (shape.height >> l).max(1));
                     let none = std::ptr::null();
                     let internal = shape.format as i32;
-                    (f.tex_image_3d)(
+                    (f.c.tex_image_3d)(
                         GL_TEXTURE_2D_ARRAY,
                         l,
                         internal,
@@ -936,16 +933,18 @@ unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
                         kind,
                         none,
                     );
-                    (f.tex_image_2d)(GL_TEXTURE_2D, l, internal, w, h, 0, format, kind, none);
+                    (f.c.tex_image_2d)(GL_TEXTURE_2D, l, internal, w, h, 0, format, kind, none);
                 }
-                (f.bind_texture)(GL_TEXTURE_2D_ARRAY, was[0]);
-                (f.bind_texture)(GL_TEXTURE_2D, was[1]);
-                (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, pbo);
-                for tex in [t.array, t.right] {
-                    (f.texture_parameteri)(tex, GL_TEXTURE_MAX_LEVEL, shape.levels - 1);
+                (f.c.bind_texture)(GL_TEXTURE_2D_ARRAY, was[0]);
+                (f.c.bind_texture)(GL_TEXTURE_2D, was[1]);
+                (f.c.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, pbo);
+                let array = (t.array, GL_TEXTURE_2D_ARRAY);
+                let right = (t.right, GL_TEXTURE_2D);
+                for tex in [array, right] {
+                    f.set_texture_int(tex, GL_TEXTURE_MAX_LEVEL, shape.levels - 1);
                 }
-                if level(f, t.array, GL_TEXTURE_WIDTH) != shape.width
-                    || level(f, t.right, GL_TEXTURE_WIDTH) != shape.width
+                if f.level(array, GL_TEXTURE_WIDTH) != shape.width
+                    || f.level(right, GL_TEXTURE_WIDTH) != shape.width
                 {
                     release(f, t);
                     return None;
@@ -954,7 +953,7 @@ unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
             Some(_) => return None,
         }
         let (name, target) = source(o, &shape);
-        complete_for(f, o, || {
+        complete_for(f, o, &shape, || {
             for layer in 0..2 {
                 copy_layer(
                     f,
@@ -972,9 +971,7 @@ unsafe fn make_twin(f: &TargetFns, o: Object, shape: Shape) -> Option<Twin> {
                 );
             }
         });
-        if let Object::Texture(tex) = o {
-            copy_sampling(f, tex, t.right);
-        }
+        copy_sampling(f, o, &shape, t.right);
         Some(t)
     }
 }
@@ -989,7 +986,7 @@ type Layer = (u32, u32, i32, i32);
 /// # Safety
 /// A context of the objects' share group is current; the rectangle is
 /// inside both, of one format class.
-unsafe fn copy_layer(f: &TargetFns, from: Layer, to: Layer, (x, y, w, h): (i32, i32, i32, i32)) {
+unsafe fn copy_layer(f: &Gl, from: Layer, to: Layer, (x, y, w, h): (i32, i32, i32, i32)) {
     // SAFETY: contract.
     unsafe { copy_rect(f, (from, (x, y)), (to, (x, y)), (w, h)) }
 }
@@ -1008,44 +1005,42 @@ fn source(o: Object, shape: &Shape) -> (u32, u32) {
 /// and a program's render texture with a mipmap filter has no mipmaps
 /// until it makes them (glGenerateMipmap after drawing). Its minification
 /// filter is made GL_LINEAR meanwhile (which needs the base level only)
-/// and put back after.
-unsafe fn complete_for(f: &TargetFns, o: Object, f_copy: impl FnOnce()) {
+/// and put back after. A multisample texture has no filters.
+unsafe fn complete_for(f: &Gl, o: Object, shape: &Shape, f_copy: impl FnOnce()) {
     const GL_TEXTURE_MIN_FILTER: u32 = 0x2801;
     const GL_LINEAR: i32 = 0x2601;
     const GL_NEAREST: i32 = 0x2600;
-    let Object::Texture(t) = o else {
+    if !matches!(o, Object::Texture(_)) || shape.samples > 0 {
         return f_copy();
-    };
+    }
+    let t = source(o, shape);
     // SAFETY: contract of the callers.
     unsafe {
-        let min = texture_int(f, t, GL_TEXTURE_MIN_FILTER);
+        let min = f.texture_int(t, GL_TEXTURE_MIN_FILTER);
         let mipmapped = min != GL_LINEAR && min != GL_NEAREST && min != 0;
         if mipmapped {
-            (f.texture_parameteri)(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            f.set_texture_int(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         }
         f_copy();
         if mipmapped {
-            (f.texture_parameteri)(t, GL_TEXTURE_MIN_FILTER, min);
+            f.set_texture_int(t, GL_TEXTURE_MIN_FILTER, min);
         }
     }
 }
 
-/// The sampling state of the program's texture on its right view.
-unsafe fn copy_sampling(f: &TargetFns, texture: u32, right: u32) {
-    for p in SAMPLING {
-        let mut v = 0.0f32;
+/// The sampling state of the program's texture `o` (of `shape`) on its
+/// right view `right` (a multisample texture has none).
+unsafe fn copy_sampling(f: &Gl, o: Object, shape: &Shape, right: u32) {
+    if matches!(o, Object::Texture(_)) && shape.samples == 0 {
         // SAFETY: contract of the callers; valid pnames of both.
-        unsafe {
-            (f.get_texture_parameterfv)(texture, p, &mut v);
-            (f.texture_parameterf)(right, p, v);
-        }
+        unsafe { f.copy_parameters(source(o, shape), (right, GL_TEXTURE_2D), &SAMPLING) }
     }
 }
 
 /// Attaches the program's objects of `s` again at the points that still
 /// hold their twins' arrays (`now`: what is attached; empty: every
 /// point).
-unsafe fn put_back(f: &TargetFns, targets: &Targets, s: &Stereo, now: &[(u32, Object)]) {
+unsafe fn put_back(f: &Gl, targets: &Targets, s: &Stereo, now: &[(u32, Object)]) {
     for &(point, o) in &s.points {
         let array = targets.twin(o).map_or(0, |t| t.array);
         if !now.is_empty() && !now.contains(&(point, Object::Texture(array))) {
@@ -1054,20 +1049,18 @@ unsafe fn put_back(f: &TargetFns, targets: &Targets, s: &Stereo, now: &[(u32, Ob
         // SAFETY: contract of the callers.
         unsafe {
             match o {
-                Object::Texture(t) => (f.framebuffer_texture)(s.fbo, point, t, 0),
-                Object::Renderbuffer(rb) => {
-                    (f.framebuffer_renderbuffer)(s.fbo, point, GL_RENDERBUFFER as u32, rb)
-                }
+                Object::Texture(t) => f.framebuffer_texture(s.fbo, point, t, 0),
+                Object::Renderbuffer(rb) => f.framebuffer_renderbuffer(s.fbo, point, rb),
             }
         }
     }
 }
 
 /// Deletes the layer's objects of `t`.
-unsafe fn release(f: &TargetFns, t: Twin) {
+unsafe fn release(f: &Gl, t: Twin) {
     let names: Vec<u32> = [t.array, t.right].into_iter().filter(|&n| n != 0).collect();
     // SAFETY: contract of the callers; names made here.
-    unsafe { (f.delete_textures)(names.len() as i32, names.as_ptr()) };
+    unsafe { (f.c.delete_textures)(names.len() as i32, names.as_ptr()) };
 }
 
 /// Before a draw of `context` into `drawing` (its draw framebuffer), and
@@ -1078,9 +1071,11 @@ unsafe fn release(f: &TargetFns, t: Twin) {
 /// # Safety
 /// The program's context `context` is current on this thread.
 pub unsafe fn resolve(targets: &mut Targets, context: usize, drawing: u32) {
-    let Some(f) = fns() else {
+    // SAFETY: contract.
+    let Some(gl) = (unsafe { targets.gl() }) else {
         return;
     };
+    let f = &gl;
     let busy: Vec<Object> = targets
         .stereo_at(context, drawing)
         .map(|i| targets.stereo[i].points.iter().map(|&(_, o)| o).collect())
@@ -1094,16 +1089,16 @@ pub unsafe fn resolve(targets: &mut Targets, context: usize, drawing: u32) {
         // object: a program that redefined it loses the twin at its next
         // target decision, and is not written into meanwhile).
         unsafe {
-            if shape(f, t.object) != Some(t.shape) {
+            let (name, target) = source(t.object, &t.shape);
+            if shape(f, t.object, Some(target)) != Some(t.shape) {
                 continue;
             }
-            let (name, target) = source(t.object, &t.shape);
             let array_target = if t.shape.samples > 0 {
                 GL_TEXTURE_2D_MULTISAMPLE_ARRAY
             } else {
                 GL_TEXTURE_2D_ARRAY
             };
-            complete_for(f, t.object, || {
+            complete_for(f, t.object, &t.shape, || {
                 copy_layer(
                     f,
                     (t.array, array_target, 0, 0),
@@ -1119,9 +1114,7 @@ pub unsafe fn resolve(targets: &mut Targets, context: usize, drawing: u32) {
                     (0, 0, t.shape.width, t.shape.height),
                 );
             }
-            if let Object::Texture(tex) = t.object {
-                copy_sampling(f, tex, t.right);
-            }
+            copy_sampling(f, t.object, &t.shape, t.right);
         }
         t.dirty = false;
     }
@@ -1133,15 +1126,23 @@ pub unsafe fn resolve(targets: &mut Targets, context: usize, drawing: u32) {
 ///
 /// # Safety
 /// The program's context is current on this thread.
-pub unsafe fn mipmaps_made(targets: &Targets, texture: u32) {
-    let Some(f) = fns() else {
+pub unsafe fn mipmaps_made(targets: &mut Targets, texture: u32) {
+    // SAFETY: contract.
+    let Some(gl) = (unsafe { targets.gl() }) else {
         return;
     };
+    let f = &gl;
     if let Some(t) = targets.twin(Object::Texture(texture)) {
         if t.shape.levels > 1 && t.shape.samples == 0 {
             // SAFETY: contract; the array (its view) or the right texture
             // is complete at level 0.
-            unsafe { (f.generate_texture_mipmap)(if t.view { t.array } else { t.right }) };
+            unsafe {
+                f.generate_mipmap(if t.view {
+                    (t.array, GL_TEXTURE_2D_ARRAY)
+                } else {
+                    (t.right, GL_TEXTURE_2D)
+                })
+            };
         }
     }
 }
@@ -1154,12 +1155,14 @@ pub unsafe fn mipmaps_made(targets: &Targets, texture: u32) {
 /// # Safety
 /// The program's context `context` is current on this thread.
 pub unsafe fn forget(targets: &mut Targets, context: usize, objects: &[Object]) {
-    let Some(f) = fns() else {
-        return;
-    };
     if !targets.twins.iter().any(|t| objects.contains(&t.object)) {
         return;
     }
+    // SAFETY: contract.
+    let Some(gl) = (unsafe { targets.gl() }) else {
+        return;
+    };
+    let f = &gl;
     let mut kept = Vec::new();
     for s in std::mem::take(&mut targets.stereo) {
         if !s.points.iter().any(|(_, o)| objects.contains(o)) {
@@ -1188,18 +1191,22 @@ pub unsafe fn forget(targets: &mut Targets, context: usize, objects: &[Object]) 
 
 /// Attaches the program's own objects of `s` again (detaching those it
 /// deleted since, as GL detached them where it could).
-unsafe fn restore_program_objects(f: &TargetFns, s: &Stereo) {
+unsafe fn restore_program_objects(f: &Gl, s: &Stereo) {
     for &(point, o) in &s.points {
         // SAFETY: contract of the callers.
         unsafe {
             match o {
                 Object::Texture(t) => {
-                    let t = if (f.is_texture)(t) != 0 { t } else { 0 };
-                    (f.framebuffer_texture)(s.fbo, point, t, 0)
+                    let t = if (f.c.is_texture)(t) != 0 { t } else { 0 };
+                    f.framebuffer_texture(s.fbo, point, t, 0)
                 }
                 Object::Renderbuffer(rb) => {
-                    let rb = if (f.is_renderbuffer)(rb) != 0 { rb } else { 0 };
-                    (f.framebuffer_renderbuffer)(s.fbo, point, GL_RENDERBUFFER as u32, rb)
+                    let rb = if (f.c.is_renderbuffer)(rb) != 0 {
+                        rb
+                    } else {
+                        0
+                    };
+                    f.framebuffer_renderbuffer(s.fbo, point, rb)
                 }
             }
         }
@@ -1221,20 +1228,22 @@ pub unsafe fn copied_from_eyes(
     source: &Attachments,
     (xoff, yoff, x, y, w, h): (i32, i32, i32, i32, i32, i32),
 ) {
-    let Some(f) = fns() else {
+    // SAFETY: contract.
+    let Some(gl) = (unsafe { targets.gl() }) else {
         return;
     };
+    let f = &gl;
     let o = Object::Texture(texture);
     // SAFETY: contract; names made here.
     unsafe {
-        let Some(shape) = shape(f, o).filter(|s| s.samples == 0) else {
+        let Some(shape) = shape(f, o, targets.target_of(o)).filter(|s| s.samples == 0) else {
             return forget(targets, context, &[o]);
         };
         let Some(t) = twin_after_copy(f, targets, context, o, shape, (xoff, yoff, w, h)) else {
             return;
         };
         source.attach(GL_READ_FRAMEBUFFER, Some(Eye::Right));
-        (f.copy_texture_sub_image_2d)(t.right, 0, xoff, yoff, x, y, w, h);
+        f.copy_sub_image_2d((t.right, GL_TEXTURE_2D), 0, (xoff, yoff), (x, y, w, h));
         source.attach(GL_READ_FRAMEBUFFER, None);
         if !t.view {
             copy_layer(
@@ -1255,7 +1264,7 @@ pub unsafe fn copied_from_eyes(
 /// # Safety
 /// The program's context `context` is current on this thread.
 unsafe fn twin_after_copy<'t>(
-    f: &TargetFns,
+    f: &Gl,
     targets: &'t mut Targets,
     context: usize,
     o: Object,
@@ -1273,7 +1282,7 @@ unsafe fn twin_after_copy<'t>(
                 } else {
                     GL_TEXTURE_2D_ARRAY
                 };
-                complete_for(f, o, || {
+                complete_for(f, o, &shape, || {
                     copy_layer(f, (name, target, 0, 0), (t.array, array_target, 0, 0), rect)
                 });
             }
@@ -1305,6 +1314,20 @@ fn image_object((name, target, level, _, _, z): Image) -> Option<Object> {
     }
 }
 
+/// The shape of the object of `image` ([`image_object`]); None where it
+/// has none, or (OpenGL ES) where the target the program named is not
+/// the one the layer saw it defined with (asking by binding would raise
+/// an error the program could see).
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn image_shape(f: &Gl, targets: &Targets, image: Image) -> Option<Shape> {
+    let o = image_object(image)?;
+    let target = targets.target_of(o).filter(|&t| !f.es() || t == image.1)?;
+    // SAFETY: contract.
+    unsafe { shape(f, o, Some(target)) }
+}
+
 /// After the program's glCopyImageSubData of `w` × `h` × `depth` from
 /// `from` to `to` (the copy read the left eye of a source with eyes,
 /// which [`resolve`] put into the program's object): a destination copied
@@ -1323,9 +1346,11 @@ pub unsafe fn copied_image(
     to: Image,
     (w, h, depth): (i32, i32, i32),
 ) {
-    let Some(f) = fns() else {
+    // SAFETY: contract.
+    let Some(gl) = (unsafe { targets.gl() }) else {
         return;
     };
+    let f = &gl;
     let dst = match to.1 {
         t if t == GL_RENDERBUFFER as u32 => Object::Renderbuffer(to.0),
         _ => Object::Texture(to.0),
@@ -1336,12 +1361,12 @@ pub unsafe fn copied_image(
         .map(|t| (t.array, t.shape));
     // SAFETY: contract; names made here.
     unsafe {
-        let to_shape = image_object(to).and_then(|o| shape(f, o));
+        let to_shape = image_shape(f, targets, to);
         // A copy GL refuses (outside either image, more than one layer of
         // a 2D image, depth or stencil between other formats) changed
         // nothing: neither does the layer.
         let refused = |s: &Shape, (x, y): (i32, i32)| depth != 1 || !inside(s, (x, y, w, h));
-        let from_shape = image_object(from).and_then(|o| shape(f, o));
+        let from_shape = image_shape(f, targets, from);
         if to_shape.is_some_and(|s| refused(&s, (to.3, to.4)))
             || from_shape.is_some_and(|s| refused(&s, (from.3, from.4)))
             || matches!((from_shape, to_shape), (Some(a), Some(b))
@@ -1415,14 +1440,14 @@ fn depth_or_stencil(format: u32) -> bool {
 /// # Safety
 /// As [`copy_layer`].
 unsafe fn copy_rect(
-    f: &TargetFns,
+    f: &Gl,
     (from, (fx, fy)): (Layer, (i32, i32)),
     (to, (tx, ty)): (Layer, (i32, i32)),
     (w, h): (i32, i32),
 ) {
     // SAFETY: contract.
     unsafe {
-        (f.copy_image_sub_data)(
+        (f.c.copy_image_sub_data)(
             from.0, from.1, from.2, fx, fy, from.3, to.0, to.1, to.2, tx, ty, to.3, w, h, 1,
         )
     }
@@ -1471,39 +1496,42 @@ pub struct DepthCopy {
 /// # Safety
 /// The program's context is current on this thread; `array` is a 2D
 /// array texture of its share group (the window's eyes' or a twin's).
-pub unsafe fn copy_left_depth(array: u32, copy: &mut DepthCopy) -> bool {
-    let Some(f) = fns() else {
+pub unsafe fn copy_left_depth(api: ContextApi, array: u32, copy: &mut DepthCopy) -> bool {
+    let Some(gl) = api::gl(api) else {
         return false;
     };
+    let f = &gl;
     // SAFETY: contract; names made here.
     unsafe {
-        let format = level(f, array, GL_TEXTURE_INTERNAL_FORMAT) as u32;
+        let tex = (array, GL_TEXTURE_2D_ARRAY);
+        let format = f.level(tex, GL_TEXTURE_INTERNAL_FORMAT) as u32;
         let size = (
-            level(f, array, GL_TEXTURE_WIDTH),
-            level(f, array, GL_TEXTURE_HEIGHT),
+            f.level(tex, GL_TEXTURE_WIDTH),
+            f.level(tex, GL_TEXTURE_HEIGHT),
         );
         if size.0 <= 0 || size.1 <= 0 {
             return false;
         }
         if copy.texture == 0 || (copy.format, copy.size) != (format, size) {
             if copy.texture != 0 {
-                (f.delete_textures)(1, &copy.texture);
+                (f.c.delete_textures)(1, &copy.texture);
             }
             *copy = DepthCopy {
                 texture: 0,
                 format,
                 size,
             };
-            (f.create_textures)(GL_TEXTURE_2D, 1, &mut copy.texture);
+            copy.texture = f.new_texture(GL_TEXTURE_2D);
+            let copied = (copy.texture, GL_TEXTURE_2D);
             match unsized_layout(format) {
-                None => (f.texture_storage_2d)(copy.texture, 1, format, size.0, size.1),
+                None => f.storage(copied, 1, (0, true), format, (size.0, size.1, 0)),
                 Some((layout, kind)) => {
-                    let pbo = integer(f, GL_PIXEL_UNPACK_BUFFER_BINDING) as u32;
-                    let was = integer(f, GL_TEXTURE_BINDING_2D) as u32;
-                    (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, 0);
-                    (f.bind_texture)(GL_TEXTURE_2D, copy.texture);
+                    let pbo = f.integer(GL_PIXEL_UNPACK_BUFFER_BINDING) as u32;
+                    let was = f.integer(GL_TEXTURE_BINDING_2D) as u32;
+                    (f.c.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, 0);
+                    (f.c.bind_texture)(GL_TEXTURE_2D, copy.texture);
                     let none = std::ptr::null();
-                    (f.tex_image_2d)(
+                    (f.c.tex_image_2d)(
                         GL_TEXTURE_2D,
                         0,
                         format as i32,
@@ -1514,12 +1542,12 @@ pub unsafe fn copy_left_depth(array: u32, copy: &mut DepthCopy) -> bool {
                         kind,
                         none,
                     );
-                    (f.bind_texture)(GL_TEXTURE_2D, was);
-                    (f.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, pbo);
+                    (f.c.bind_texture)(GL_TEXTURE_2D, was);
+                    (f.c.bind_buffer)(GL_PIXEL_UNPACK_BUFFER, pbo);
                 }
             }
-            if level(f, copy.texture, GL_TEXTURE_WIDTH) != size.0 {
-                (f.delete_textures)(1, &copy.texture);
+            if f.level(copied, GL_TEXTURE_WIDTH) != size.0 {
+                (f.c.delete_textures)(1, &copy.texture);
                 copy.texture = 0;
                 return false;
             }

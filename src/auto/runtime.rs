@@ -322,10 +322,6 @@ pub struct AutoState {
     /// the twins' generation then; None: to be scanned again (a binding
     /// changed: the texture commands, glPopAttrib, a display list).
     sampled: Option<(u64, Sampled)>,
-    /// The context is OpenGL ES (None: not asked yet). Its render targets
-    /// stay mono: giving them eyes takes GL 4.5's direct state access,
-    /// which ES lacks.
-    es: Option<bool>,
     /// The program's counting queries active now ([`Counting`]).
     queries: Vec<Counting>,
     /// Ended counting queries that have segments: (the program's name,
@@ -421,24 +417,6 @@ impl AutoState {
     ///
     /// # Safety
     /// The program's context is current on this thread.
-    /// Whether the context is OpenGL ES (asked once).
-    ///
-    /// # Safety
-    /// The program's context is current on this thread.
-    unsafe fn es(&mut self, f: &AutoFns) -> bool {
-        // SAFETY: contract.
-        *self.es.get_or_insert_with(|| {
-            let es = unsafe { context_is_es(f) };
-            if es {
-                crate::report::tell(
-                    "an OpenGL ES context: its own framebuffer objects (render targets) \
-                     stay mono (giving them eyes takes direct state access, which ES lacks)",
-                );
-            }
-            es
-        })
-    }
-
     unsafe fn draw_settings(&mut self, f: &AutoFns) -> DrawSettings {
         let mut nv = self.settings();
         // SAFETY: contract.
@@ -1106,12 +1084,7 @@ unsafe fn texture_data<R: Returned>(
 unsafe fn texture_of(f: &AutoFns, call: &Call) -> Option<u32> {
     const GL_TEXTURE_2D_MULTISAMPLE: u32 = 0x9100;
     const GL_TEXTURE_BINDING_2D_MULTISAMPLE: u32 = 0x9104;
-    let n = call.name;
-    if n.starts_with("glTexture")
-        || n.starts_with("glCompressedTexture")
-        || n.starts_with("glClearTex")
-        || n.starts_with("glCopyTexture")
-    {
+    if names_texture(call) {
         return Some(call.u32(0));
     }
     // SAFETY: contract; one value.
@@ -1122,6 +1095,16 @@ unsafe fn texture_of(f: &AutoFns, call: &Call) -> Option<u32> {
             _ => None,
         }
     }
+}
+
+/// Whether a texture command names its texture (direct state access,
+/// glClearTex*) rather than a target of the active unit.
+fn names_texture(call: &Call) -> bool {
+    let n = call.name;
+    n.starts_with("glTexture")
+        || n.starts_with("glCompressedTexture")
+        || n.starts_with("glClearTex")
+        || n.starts_with("glCopyTexture")
 }
 
 /// A command that gives a texture new contents outside draws
@@ -1140,6 +1123,9 @@ unsafe fn texture_write<R: Returned>(
     if let Some(texture) = unsafe { texture_of(&t.gl, &call) }.filter(|&n| n != 0) {
         let context = cur.context();
         render_targets::with_group(cur.group(), |targets| unsafe {
+            if !names_texture(&call) {
+                render_targets::texture_defined(targets, texture, call.u32(0));
+            }
             render_targets::forget(
                 targets,
                 context,
@@ -1193,6 +1179,9 @@ unsafe fn read_call<R: Returned>(
                 let Some(texture) = texture_of(f, &call).filter(|&n| n != 0) else {
                     return r;
                 };
+                if !names_texture(&call) {
+                    render_targets::texture_defined(targets, texture, call.u32(0));
+                }
                 let read = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32;
                 let source = if read == window_fbo {
                     Some(window_eyes)
@@ -1233,7 +1222,7 @@ pub unsafe fn objects_deleted(host: &impl Host, objects: &[render_targets::Objec
     let context = host.context();
     // SAFETY: contract.
     render_targets::with_group(host.group(), |targets| unsafe {
-        render_targets::forget(targets, context, objects)
+        render_targets::deleted(targets, context, objects)
     });
 }
 
@@ -1603,6 +1592,7 @@ unsafe fn draw_perspective(f: &AutoFns, st: &AutoState) -> Option<Option<Perspec
 /// # Safety
 /// The program's context is current on this thread.
 unsafe fn keep_scene_depth(
+    api: render_targets::ContextApi,
     measured: bool,
     known: bool,
     array: u32,
@@ -1612,7 +1602,7 @@ unsafe fn keep_scene_depth(
         return;
     }
     // SAFETY: contract.
-    *copied = unsafe { render_targets::copy_left_depth(array, copy) };
+    *copied = unsafe { render_targets::copy_left_depth(api, array, copy) };
 }
 
 /// What automatic convergence reads of a frame at its present, in the
@@ -1743,9 +1733,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                 let blit = call.family == Family::Blit;
                 let mut sampled = Sampled::default();
                 if st.compiling.is_none() {
-                    // OpenGL ES: no render targets in stereo, no depth copies
-                    // (both made with direct state access).
-                    let es = st.es(f);
+                    let api = render_targets::context_api(targets);
                     let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
                     let perspective = if blit {
                         None
@@ -1780,7 +1768,8 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         st.depth_copied = false;
                     } else if fbo == window_fbo && !blit {
                         keep_scene_depth(
-                            !st.unmeasured && !es,
+                            api,
+                            !st.unmeasured,
                             known(&st.window_drawn),
                             layered.depth(),
                             (&mut st.depth_copy, &mut st.depth_copied),
@@ -1799,7 +1788,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             st.sampled(targets)
                         };
                     }
-                    if fbo != app_fbo && !es {
+                    if fbo != app_fbo {
                         // The policy's facts about this draw
                         // (render_targets, "The policy").
                         let read = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32;
@@ -1829,6 +1818,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                     if let Some((t, _, s)) = scene.drawn {
                                         if t.depth() == a.depth() {
                                             keep_scene_depth(
+                                                api,
                                                 !st.unmeasured,
                                                 s.perspective.is_some(),
                                                 a.depth(),

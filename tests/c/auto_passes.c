@@ -45,17 +45,26 @@
  *             window; frame 2: the region is not drawn again, only
  *             composited (a partial redraw, as Blender's window manager
  *             does)
+ *
+ * Built with -DGLES (auto_passes_es): the same program in OpenGL ES 3.2
+ * through EGL on an X11 window, its shaders GLSL ES 3.00 (issue 31: the
+ * render-target policy for EGL programs).
  */
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
-#include <GL/glx.h>
 #include <X11/Xlib.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef GLES
+#include <EGL/egl.h>
+#include <GLES3/gl32.h>
+#else
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/glx.h>
 
 #include "x_window.h"
+#endif
 
 #define W 200
 #define H 150
@@ -95,6 +104,46 @@ static GLuint program(const char *vs, const char *fs)
     return p;
 }
 
+#ifdef GLES
+#define FS_HEAD "#version 300 es\nprecision highp float;\nprecision highp sampler2D;\n"
+static const char *SCENE_VS =
+    "#version 300 es\n"
+    "uniform mat4 mvp; uniform mat4 light;\n"
+    "in vec3 pos; in vec3 col;\n"
+    "out vec3 c; out vec4 l;\n"
+    "void main() { c = col; l = light * vec4(pos, 1.0); gl_Position = mvp * vec4(pos, 1.0); }\n";
+static const char *SCENE_FS =
+    FS_HEAD
+    "in vec3 c; in vec4 l;\n"
+    "uniform sampler2D shadow; uniform float shadowed;\n"
+    "layout(location = 0) out vec4 o0; layout(location = 1) out vec4 o1;\n"
+    "void main() {\n"
+    "  float lit = 1.0;\n"
+    "  if (shadowed > 0.5) {\n"
+    "    vec3 p = l.xyz / l.w * 0.5 + 0.5;\n"
+    "    lit = p.z - 0.002 > texture(shadow, p.xy).r ? 0.4 : 1.0;\n"
+    "  }\n"
+    "  o0 = vec4(c * lit, 1.0);\n"
+    "  o1 = vec4(c.gbr * 0.5, 1.0);\n"
+    "}\n";
+static const char *PASS_VS =
+    "#version 300 es\n"
+    "in vec3 pos; out vec2 uv; uniform vec4 rect;\n"
+    "void main() { uv = pos.xy * 0.5 + 0.5; gl_Position = vec4(rect.xy + (pos.xy * 0.5 + 0.5) * rect.zw, 0.0, 1.0); }\n";
+static const char *COPY_FS =
+    FS_HEAD
+    "uniform sampler2D t; in vec2 uv; out vec4 o;\n"
+    "void main() { o = texture(t, uv); }\n";
+static const char *BLUR_FS =
+    FS_HEAD
+    "uniform sampler2D t; uniform vec2 step; in vec2 uv; out vec4 o;\n"
+    "void main() { o = (texture(t, uv - step) + 2.0 * texture(t, uv) + texture(t, uv + step)) * 0.25; }\n";
+static const char *GBUFFER_FS =
+    FS_HEAD
+    "uniform sampler2D c0; uniform sampler2D c1; uniform sampler2D d; in vec2 uv; out vec4 o;\n"
+    "void main() { float z = texture(d, uv).r;\n"
+    "  o = vec4(texture(c0, uv).rgb * 0.6 + texture(c1, uv).rgb * 0.4, 1.0) * (z < 1.0 ? 1.0 : 0.5); }\n";
+#else
 static const char *SCENE_VS =
     "#version 120\n"
     "uniform mat4 mvp; uniform mat4 light;\n"
@@ -131,6 +180,7 @@ static const char *GBUFFER_FS =
     "uniform sampler2D c0; uniform sampler2D c1; uniform sampler2D d; varying vec2 uv;\n"
     "void main() { float z = texture2D(d, uv).r;\n"
     "  gl_FragColor = vec4(texture2D(c0, uv).rgb * 0.6 + texture2D(c1, uv).rgb * 0.4, 1.0) * (z < 1.0 ? 1.0 : 0.5); }\n";
+#endif
 
 static GLuint scene_prog, copy_prog, blur_prog, gbuffer_prog;
 
@@ -266,7 +316,8 @@ static GLuint target(GLuint colour, GLuint colour1, GLuint depth_tex, GLenum dep
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb);
     }
     if (!colour) {
-        glDrawBuffer(GL_NONE);
+        GLenum none = GL_NONE;
+        glDrawBuffers(1, &none);
         glReadBuffer(GL_NONE);
     }
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
@@ -518,7 +569,37 @@ int main(int argc, char **argv)
         eye_k = (!strcmp(argv[2], "left") ? -1.0 : 1.0) * s;
         eye_c = atof(argv[4]);
     }
+#ifdef GLES
+    Display *xd = XOpenDisplay(NULL);
+    if (!xd) {
+        fprintf(stderr, "cannot open the X display\n");
+        return 1;
+    }
+    Window win = XCreateSimpleWindow(xd, DefaultRootWindow(xd), 0, 0, W, H, 0, 0, 0);
+    XStoreName(xd, win, "auto_passes_es");
+    XMapWindow(xd, win);
+    XSync(xd, False);
+    EGLDisplay dpy = eglGetDisplay((EGLNativeDisplayType)xd);
+    EGLint major, minor, n = 0;
+    EGLConfig config;
+    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RENDERABLE_TYPE,
+                                     EGL_OPENGL_ES3_BIT, EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8,
+                                     EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 24, EGL_NONE};
+    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2, EGL_NONE};
+    if (!eglInitialize(dpy, &major, &minor) || !eglBindAPI(EGL_OPENGL_ES_API) ||
+        !eglChooseConfig(dpy, config_attribs, &config, 1, &n) || n < 1) {
+        fprintf(stderr, "no EGL configuration\n");
+        return 1;
+    }
+    EGLSurface surface = eglCreateWindowSurface(dpy, config, (EGLNativeWindowType)win, NULL);
+    EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, ctx_attribs);
+    if (surface == EGL_NO_SURFACE || ctx == EGL_NO_CONTEXT || !eglMakeCurrent(dpy, surface, surface, ctx)) {
+        fprintf(stderr, "cannot make an OpenGL ES 3.2 context current\n");
+        return 1;
+    }
+#else
     struct x_window x = open_x_window_config(NULL, W, H);
+#endif
     scene_prog = program(SCENE_VS, SCENE_FS);
     copy_prog = program(PASS_VS, COPY_FS);
     blur_prog = program(PASS_VS, BLUR_FS);
@@ -529,7 +610,11 @@ int main(int argc, char **argv)
     glUniform1i(glGetUniformLocation(blur_prog, "t"), 0);
     for (int n = 0; n < 2; n++) {
         frame(name, n);
+#ifdef GLES
+        if (mono || n == 0) eglSwapBuffers(dpy, surface);
+#else
         if (mono || n == 0) glXSwapBuffers(x.display, x.window);
+#endif
     }
     if (!mono) {
         static unsigned char px[W * H * 4], out[W * H * 4];
