@@ -209,7 +209,11 @@
 //! draw into it samples a texture with eyes, a blit into it comes from a
 //! target with eyes, or a draw into it is moved per eye and it is not
 //! seen from a light (depth only, or square and not the window's size).
-//! Its objects then have 2-layer twins drawn exactly as the window's eyes
+//! The same policy holds in OpenGL ES 3.2 contexts, which have no direct
+//! state access: there each step binds what it needs and binds back, and
+//! a texture is named by the target the program defined it with (a
+//! texture whose definition the layer did not see — an EGLImage — stays
+//! mono). Its objects then have 2-layer twins drawn exactly as the window's eyes
 //! are (uniform and gl_Layer, no switch); the program's own objects hold
 //! the left eye, copied in before anything else reads them, and the
 //! right eye's draws sample the right layer (a texture binding does not
