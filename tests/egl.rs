@@ -500,6 +500,73 @@ fn a_hostile_egl_program_gets_mesas_every_answer_under_auto_and_its_memory_stays
     assert_eq!(f0, f1, "descriptors from round 15 to 60");
 }
 
+/// tests/c/egl_targets.c: an OpenGL ES 3.2 program's framebuffer
+/// objects of every kind ES has (2D textures of glTexImage2D and
+/// glTexStorage2D with mipmaps, cube map faces, 2D array layers,
+/// multisample textures and renderbuffers resolved by blits, a texture
+/// deleted while attached and its name made a cube map), 1x1 to 640x2,
+/// copies between them and copies ES refuses, a new share group every 8
+/// rounds. Its draws are orthographic (both eyes the mono picture), so
+/// under --auto — where its non-square targets get eyes, bound and bound
+/// back by the layer — every pixel read, binding and GL error must be
+/// Mesa's without the layer; memory and descriptors flat.
+#[test]
+fn an_opengl_es_programs_render_targets_of_every_kind_get_mesas_every_answer_under_auto() {
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(400, 300);
+    let exe = build_once("egl_targets", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_targets.c"),
+            out,
+            &["-lEGL", "-lGLESv2", "-lX11"],
+        )
+    });
+    let run = |layer: bool| {
+        let mut cmd = if layer {
+            let mut c = Command::new(&built().run);
+            c.arg("--auto").arg(&exe);
+            c
+        } else {
+            Command::new(&exe)
+        };
+        let out = cmd
+            .arg("96")
+            .env("DISPLAY", &x.display)
+            .output()
+            .expect("egl_targets runs");
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(
+            out.status.success(),
+            "egl_targets (layer {layer}) exited {}:\n{stderr}",
+            out.status
+        );
+        (stdout, stderr)
+    };
+    let (mesa, _) = run(false);
+    let (ours, stderr) = run(true);
+    assert!(mesa.contains("done\n"), "{mesa}");
+    let strip = |s: &str| -> Vec<String> {
+        s.lines()
+            .filter(|l| !l.starts_with("usage "))
+            .map(str::to_owned)
+            .collect()
+    };
+    let (a, b) = (strip(&mesa), strip(&ours));
+    for (i, (m, o)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(m, o, "line {i}: Mesa said {m:?}, under --auto {o:?}");
+    }
+    assert_eq!(a.len(), b.len(), "{ours}");
+    assert!(!stderr.contains("glstereo"), "{stderr}");
+    let (m0, m1, _, _) = usage(&mesa);
+    let (r0, r1, f0, f1) = usage(&ours);
+    assert!(
+        r1 - r0 <= (m1 - m0) + 2048,
+        "resident memory from round 24 to 96: {r0} to {r1} KB under --auto, {m0} to {m1} KB without"
+    );
+    assert_eq!(f0, f1, "descriptors from round 24 to 96");
+}
+
 #[test]
 fn two_threads_drawing_through_egl_under_auto_each_read_their_own_picture() {
     // tests/c/egl_threads.c: two threads, one EGLDisplay, a window,
