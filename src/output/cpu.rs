@@ -162,6 +162,7 @@ pub fn compose_fitted(
                 words,
                 stride: size.0 as usize,
                 size,
+                first: 0,
             };
             with_scratch(|scratch| {
                 frame.write([Some(l), Some(r)], 0..size.1, &mut target, scratch, |v| v);

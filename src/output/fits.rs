@@ -67,6 +67,7 @@ pub(super) fn written(
         words: as_words_mut(out.pixels_mut()).expect("aligned words"),
         stride: size.0 as usize,
         size,
+        first: 0,
     };
     let band = if frame.row_local() { band.max(1) } else { h };
     let mut y0 = 0;
@@ -234,6 +235,94 @@ fn random_windows_up_to_4096x4096_are_the_reference_fitted() {
             // Eyes of a smaller random size (a frame from before a resize).
             let eye = (rng.upto(1024), rng.upto(1024));
             windows.check(mode, eye, size, rng.next());
+        }
+    }
+}
+
+/// [`Frame::write_split`] — a window's frame composed in two bands at
+/// once, the lower on a helper thread — writes exactly the bytes
+/// [`Frame::write`] writes whole (itself checked against the reference
+/// above), for every format, with the eyes in place (GL's row order, as
+/// eye memory has them): windows at and above the split's threshold
+/// (square, odd, a column one pixel wide and 16384 high, rows two high)
+/// and random ones up to 2048x2048, eyes of the window's size or of
+/// another, buffers kept from case to case.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "many large frames: make test runs it with --release"
+)]
+fn a_window_composed_in_two_bands_at_once_equals_it_composed_whole() {
+    use super::rows::SPLIT_PIXELS;
+    let mut rng = Rng(0x0005_9117);
+    let mut sizes = vec![
+        (256, 256),
+        (257, 255),
+        (1, 16384),
+        (4, 16384),
+        (16384, 2),
+        (16384, 1),
+        (800, 600),
+        (4096, 17),
+        (5, 13109),
+        (255, 257),
+    ];
+    sizes.extend((0..16).map(|_| (rng.upto(2048), rng.upto(2048))));
+    let modes: Vec<OutputMode> = composites().collect();
+    let mut split_scratch: [[Scratch; 2]; 3] = Default::default();
+    let mut whole_scratch: [Scratch; 3] = Default::default();
+    let mut case = 0usize;
+    for &size in &sizes {
+        for k in 0..6 {
+            let mode = modes[case % modes.len()];
+            case += 1;
+            let eye = if k % 2 == 0 {
+                size
+            } else {
+                (rng.upto(700), rng.upto(700))
+            };
+            let (w, h) = eye;
+            let seed = rng.next();
+            let mut l = noise(w, h, seed);
+            let mut r = gradient(w, h, seed as u8);
+            l.flip_vertical();
+            r.flip_vertical();
+            let o = options(seed % 3 == 0);
+            let frame = Frame::new(mode, &o, case as u64, eye, size);
+            let eyes = [&l, &r].map(|b| EyeRows::gl(Rows::of_image(b), 0, h));
+            let big = u64::from(size.0) * u64::from(size.1) >= SPLIT_PIXELS && size.1 >= 2;
+            for simd in levels() {
+                let mut whole = Image::new(size.0, size.1);
+                let mut split = Image::new(size.0, size.1);
+                let mut two = false;
+                for (out, split_it) in [(&mut whole, false), (&mut split, true)] {
+                    let mut target = Target {
+                        words: as_words_mut(out.pixels_mut()).expect("aligned words"),
+                        stride: size.0 as usize,
+                        size,
+                        first: 0,
+                    };
+                    let s = &mut split_scratch[simd as usize];
+                    if split_it {
+                        two = frame.write_split_with(simd, eyes, 0..size.1, &mut target, s, |v| v);
+                    } else {
+                        let s = &mut whole_scratch[simd as usize];
+                        frame.write_with(simd, eyes, 0..size.1, &mut target, s, |v| v);
+                    }
+                }
+                assert_eq!(
+                    two, big,
+                    "{mode}: a {}x{} window split in two",
+                    size.0, size.1
+                );
+                assert!(
+                    split.pixels() == whole.pixels(),
+                    "{mode}: eyes {w}x{h} into a {}x{} window ({simd:?}, split: {big}, {o:?}): {:?}",
+                    size.0,
+                    size.1,
+                    split.max_difference(&whole)
+                );
+            }
         }
     }
 }

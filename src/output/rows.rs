@@ -108,17 +108,50 @@ impl<'a> EyeRows<'a> {
     }
 }
 
+/// Every signal blocked on this thread until dropped, when its mask is
+/// put back (a thread made meanwhile starts with all blocked).
+struct SignalsBlocked(Option<libc::sigset_t>);
+
+impl SignalsBlocked {
+    fn now() -> SignalsBlocked {
+        // SAFETY: plain libc calls on sets owned here.
+        unsafe {
+            let mut all: libc::sigset_t = std::mem::zeroed();
+            let mut was: libc::sigset_t = std::mem::zeroed();
+            libc::sigfillset(&mut all);
+            let ok = libc::pthread_sigmask(libc::SIG_BLOCK, &all, &mut was) == 0;
+            SignalsBlocked(ok.then_some(was))
+        }
+    }
+}
+
+impl Drop for SignalsBlocked {
+    fn drop(&mut self) {
+        if let Some(was) = self.0.take() {
+            // SAFETY: the mask this thread had.
+            unsafe { libc::pthread_sigmask(libc::SIG_SETMASK, &was, std::ptr::null_mut()) };
+        }
+    }
+}
+
+/// The target pixels from which [`Frame::write_split`] composes in two
+/// threads.
+pub(crate) const SPLIT_PIXELS: u64 = 1 << 16;
+
 /// Rows of RGBA8 words to write into (an image or a window's buffer).
 pub(crate) struct Target<'a> {
     pub(crate) words: &'a mut [u32],
     /// Words from one row to the next.
     pub(crate) stride: usize,
     pub(crate) size: (u32, u32),
+    /// The row `words` starts at: 0, but for the lower band of a split
+    /// write ([`Frame::write_split`]).
+    pub(crate) first: u32,
 }
 
 impl Target<'_> {
     fn row(&mut self, y: u32) -> &mut [u32] {
-        let at = y as usize * self.stride;
+        let at = (y - self.first) as usize * self.stride;
         &mut self.words[at..at + self.size.0 as usize]
     }
 }
@@ -335,6 +368,87 @@ impl Frame {
         px: impl Fn(u32) -> u32 + Copy,
     ) {
         self.write_with(Simd::Avx512, eyes, rows, target, scratch, px)
+    }
+
+    /// [`Frame::write`] of the rows `rows` of a whole target (`first` 0)
+    /// in two bands at once: the lower on a helper thread made for it,
+    /// the upper on this one, each with its own scratch. A window's frame
+    /// is composed after the renderer finished it, when its threads are
+    /// idle: two cores compose it in about half the time. The bytes are
+    /// [`Frame::write`]'s (each row is made from the eyes alone).
+    /// Targets below [`SPLIT_PIXELS`] are written here alone (a thread
+    /// costs tens of microseconds), and so is the whole target where no
+    /// thread can be made or the helper did not finish. True where two
+    /// threads wrote it.
+    pub(crate) fn write_split(
+        &self,
+        eyes: [Option<EyeRows<'_>>; 2],
+        rows: Range<u32>,
+        target: &mut Target<'_>,
+        scratch: &mut [Scratch; 2],
+        px: impl Fn(u32) -> u32 + Copy + Send + Sync,
+    ) -> bool {
+        self.write_split_with(Simd::Avx512, eyes, rows, target, scratch, px)
+    }
+
+    /// [`Frame::write_split`] with vector code of level `max` at most.
+    pub(crate) fn write_split_with(
+        &self,
+        max: Simd,
+        eyes: [Option<EyeRows<'_>>; 2],
+        rows: Range<u32>,
+        target: &mut Target<'_>,
+        scratch: &mut [Scratch; 2],
+        px: impl Fn(u32) -> u32 + Copy + Send + Sync,
+    ) -> bool {
+        let n = rows.end.saturating_sub(rows.start);
+        let (stride, size) = (target.stride, target.size);
+        if n < 2
+            || u64::from(n) * u64::from(size.0) < SPLIT_PIXELS
+            || target.first != 0
+            || rows.end > size.1
+        {
+            self.write_with(max, eyes, rows, target, &mut scratch[0], px);
+            return false;
+        }
+        let mid = rows.start + n / 2;
+        let [upper_scratch, lower_scratch] = scratch;
+        let done = std::thread::scope(|s| {
+            let (upper, lower) = target.words.split_at_mut(mid as usize * stride);
+            let mut upper = Target {
+                words: upper,
+                stride,
+                size,
+                first: 0,
+            };
+            let mut lower = Target {
+                words: lower,
+                stride,
+                size,
+                first: mid,
+            };
+            let end = rows.end;
+            // The helper takes none of the program's signals (as Mesa's
+            // threads do not): it starts with every signal blocked.
+            let all_blocked = SignalsBlocked::now();
+            let helper = std::thread::Builder::new()
+                .name("glstereo compose".into())
+                .spawn_scoped(s, move || {
+                    self.write_with(max, eyes, mid..end, &mut lower, lower_scratch, px)
+                });
+            drop(all_blocked);
+            match helper {
+                Ok(h) => {
+                    self.write_with(max, eyes, rows.start..mid, &mut upper, upper_scratch, px);
+                    h.join().is_ok()
+                }
+                Err(_) => false,
+            }
+        });
+        if !done {
+            self.write_with(max, eyes, rows, target, &mut scratch[0], px);
+        }
+        done
     }
 
     /// [`Frame::write`] with vector code of level `max` at most (tests
@@ -580,7 +694,7 @@ impl Frame {
         if a.len() != n as usize * w || b.len() != a.len() {
             return None;
         }
-        let at = t as usize * w;
+        let at = t.checked_sub(target.first)? as usize * w;
         let out = target.words.get_mut(at..at + n as usize * w)?;
         op.row(simd, self.stage, &mut scratch.memo, a, b, out, px);
         Some(n)

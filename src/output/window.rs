@@ -170,18 +170,19 @@ impl Default for WindowPaths {
             out: Image::new(1, 1),
             rows: RowPaths {
                 eyes: [Image::new(1, 1), Image::new(1, 1)],
-                scratch: Scratch::default(),
+                scratch: [Scratch::default(), Scratch::default()],
             },
         }
     }
 }
 
 /// What composing on the CPU reuses: the eyes read back (GL's row order,
-/// whole or a band at a time) and the row kernels' buffers.
+/// whole or a band at a time) and the row kernels' buffers (the second
+/// for the helper thread of a split write, [`Frame::write_split`]).
 #[derive(Debug)]
 struct RowPaths {
     eyes: [Image; 2],
-    scratch: Scratch,
+    scratch: [Scratch; 2],
 }
 
 /// Binds `texture` as the colour buffer of `fbo`, bound for reading.
@@ -377,6 +378,7 @@ impl WindowPaths {
             words,
             stride,
             size,
+            first: 0,
         };
         // SAFETY: contract.
         unsafe {
@@ -467,7 +469,7 @@ impl RowPaths {
         job: &Job,
         options: &OutputOptions,
         target: &mut Target<'_>,
-        px: impl Fn(u32) -> u32 + Copy,
+        px: impl Fn(u32) -> u32 + Copy + Send + Sync,
     ) -> Result<()> {
         let (w, h) = job.eye_size;
         let frame = Frame::new(job.mode, options, job.frame_index, (w, h), target.size);
@@ -484,7 +486,7 @@ impl RowPaths {
             .all(|(r, e)| r.is_none() || e.is_some())
         {
             profile::span(Stage::Compose, || {
-                frame.write(eyes, all, target, &mut self.scratch, px)
+                frame.write_split(eyes, all, target, &mut self.scratch, px)
             });
             return Ok(());
         }
@@ -517,7 +519,7 @@ impl RowPaths {
             };
             let eyes = [view(0), view(1)];
             profile::span(Stage::Compose, || {
-                frame.write(eyes, rows, target, &mut self.scratch, px)
+                frame.write(eyes, rows, target, &mut self.scratch[0], px)
             });
             y0 += n;
         }
@@ -546,6 +548,7 @@ impl RowPaths {
                     words,
                     stride,
                     size,
+                    first: 0,
                 };
                 // SAFETY: contract.
                 unsafe { self.write(gl, fbo, job, options, &mut target, |v| v) }
