@@ -441,6 +441,65 @@ fn usage(lines: &str) -> (i64, i64, i64, i64) {
     (v[0], v[1], v[2], v[3])
 }
 
+/// Runs `exe ROUNDS` (a program printing every answer it gets, then
+/// "usage rss MID END fds MID END") without the layer and under
+/// `glstereo-run --auto` on `x`: every line but the usage the same,
+/// nothing of the layer's on stderr, resident memory from the middle to
+/// the end growing no more than Mesa's own (2 MB of slack) and
+/// descriptors flat. Mesa's stdout.
+fn answers_as_mesa(x: &Xvfb, exe: &Path, rounds: &str) -> String {
+    let name = exe.file_name().unwrap_or_default().to_string_lossy();
+    let run = |layer: bool| {
+        let mut cmd = if layer {
+            let mut c = Command::new(&built().run);
+            c.arg("--auto").arg(exe);
+            c
+        } else {
+            Command::new(exe)
+        };
+        let out = cmd
+            .arg(rounds)
+            .env("DISPLAY", &x.display)
+            .output()
+            .unwrap_or_else(|e| panic!("{name} runs: {e}"));
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(
+            out.status.success(),
+            "{name} (layer {layer}) exited {}:\n{stderr}",
+            out.status
+        );
+        (stdout, stderr)
+    };
+    let (mesa, _) = run(false);
+    let (ours, stderr) = run(true);
+    assert!(mesa.contains("done\n"), "{mesa}");
+    let strip = |s: &str| -> Vec<String> {
+        s.lines()
+            .filter(|l| !l.starts_with("usage "))
+            .map(str::to_owned)
+            .collect()
+    };
+    let (a, b) = (strip(&mesa), strip(&ours));
+    for (i, (m, o)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(m, o, "{name} line {i}: Mesa said {m:?}, under --auto {o:?}");
+    }
+    assert_eq!(a.len(), b.len(), "{ours}");
+    assert!(!stderr.contains("glstereo"), "{stderr}");
+    let (m0, m1, _, _) = usage(&mesa);
+    let (r0, r1, f0, f1) = usage(&ours);
+    assert!(
+        r1 - r0 <= (m1 - m0) + 2048,
+        "{name}: resident memory from a quarter of the rounds to the end: {r0} to {r1} KB \
+         under --auto, {m0} to {m1} KB without"
+    );
+    assert_eq!(
+        f0, f1,
+        "{name}: descriptors from a quarter of the rounds to the end"
+    );
+    mesa
+}
+
 #[test]
 fn a_hostile_egl_program_gets_mesas_every_answer_under_auto_and_its_memory_stays_flat() {
     // Contexts and surfaces made and destroyed in every order (destroyed
@@ -451,53 +510,8 @@ fn a_hostile_egl_program_gets_mesas_every_answer_under_auto_and_its_memory_stays
     // on stderr; memory and descriptors flat from round 15 to 60.
     let _one = one_renderer_at_a_time();
     let x = Xvfb::start(800, 600);
-    let run = |layer: bool| {
-        let mut cmd = if layer {
-            let mut c = Command::new(&built().run);
-            c.arg("--auto").arg(churn());
-            c
-        } else {
-            Command::new(churn())
-        };
-        let out = cmd
-            .arg("60")
-            .env("DISPLAY", &x.display)
-            .output()
-            .expect("egl_churn runs");
-        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-        assert!(
-            out.status.success(),
-            "egl_churn (layer {layer}) exited {}:\n{stderr}",
-            out.status
-        );
-        (stdout, stderr)
-    };
-    let (mesa, _) = run(false);
-    let (ours, stderr) = run(true);
-    assert!(
-        mesa.contains("done\n") && mesa.contains("child exited 0"),
-        "{mesa}"
-    );
-    let strip = |s: &str| -> Vec<String> {
-        s.lines()
-            .filter(|l| !l.starts_with("usage "))
-            .map(str::to_owned)
-            .collect()
-    };
-    let (a, b) = (strip(&mesa), strip(&ours));
-    for (i, (m, o)) in a.iter().zip(&b).enumerate() {
-        assert_eq!(m, o, "line {i}: Mesa said {m:?}, under --auto {o:?}");
-    }
-    assert_eq!(a.len(), b.len(), "{ours}");
-    assert!(!stderr.contains("glstereo"), "{stderr}");
-    let (m0, m1, _, _) = usage(&mesa);
-    let (r0, r1, f0, f1) = usage(&ours);
-    assert!(
-        r1 - r0 <= (m1 - m0) + 2048,
-        "resident memory from round 15 to 60: {r0} to {r1} KB under --auto, {m0} to {m1} KB without"
-    );
-    assert_eq!(f0, f1, "descriptors from round 15 to 60");
+    let mesa = answers_as_mesa(&x, &churn(), "60");
+    assert!(mesa.contains("child exited 0"), "{mesa}");
 }
 
 /// tests/c/egl_targets.c: an OpenGL ES 3.2 program's framebuffer
@@ -521,50 +535,7 @@ fn an_opengl_es_programs_render_targets_of_every_kind_get_mesas_every_answer_und
             &["-lEGL", "-lGLESv2", "-lX11"],
         )
     });
-    let run = |layer: bool| {
-        let mut cmd = if layer {
-            let mut c = Command::new(&built().run);
-            c.arg("--auto").arg(&exe);
-            c
-        } else {
-            Command::new(&exe)
-        };
-        let out = cmd
-            .arg("96")
-            .env("DISPLAY", &x.display)
-            .output()
-            .expect("egl_targets runs");
-        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-        assert!(
-            out.status.success(),
-            "egl_targets (layer {layer}) exited {}:\n{stderr}",
-            out.status
-        );
-        (stdout, stderr)
-    };
-    let (mesa, _) = run(false);
-    let (ours, stderr) = run(true);
-    assert!(mesa.contains("done\n"), "{mesa}");
-    let strip = |s: &str| -> Vec<String> {
-        s.lines()
-            .filter(|l| !l.starts_with("usage "))
-            .map(str::to_owned)
-            .collect()
-    };
-    let (a, b) = (strip(&mesa), strip(&ours));
-    for (i, (m, o)) in a.iter().zip(&b).enumerate() {
-        assert_eq!(m, o, "line {i}: Mesa said {m:?}, under --auto {o:?}");
-    }
-    assert_eq!(a.len(), b.len(), "{ours}");
-    assert!(!stderr.contains("glstereo"), "{stderr}");
-    let (m0, m1, _, _) = usage(&mesa);
-    let (r0, r1, f0, f1) = usage(&ours);
-    assert!(
-        r1 - r0 <= (m1 - m0) + 2048,
-        "resident memory from round 24 to 96: {r0} to {r1} KB under --auto, {m0} to {m1} KB without"
-    );
-    assert_eq!(f0, f1, "descriptors from round 24 to 96");
+    answers_as_mesa(&x, &exe, "96");
 }
 
 #[test]

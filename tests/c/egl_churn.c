@@ -25,6 +25,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "proc_usage.h"
+
 static Display *x;
 static EGLDisplay dpy;
 static EGLConfig config;
@@ -96,25 +98,6 @@ static void draw(float red)
     glReadPixels(w / 2, h / 2, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, middle);
     printf("size %dx%d read %d %d %d / %d %d %d gl 0x%x\n", w, h, corner[0], corner[1],
            corner[2], middle[0], middle[1], middle[2], glGetError());
-}
-
-static void usage(long *rss, int *fds)
-{
-    FILE *f = fopen("/proc/self/statm", "r");
-    long pages = 0, resident = 0;
-    if (f) {
-        if (fscanf(f, "%ld %ld", &pages, &resident) != 2)
-            resident = 0;
-        fclose(f);
-    }
-    *rss = resident * (sysconf(_SC_PAGESIZE) / 1024);
-    *fds = 0;
-    DIR *d = opendir("/proc/self/fd");
-    if (d) {
-        while (readdir(d))
-            (*fds)++;
-        closedir(d);
-    }
 }
 
 static void init(void)

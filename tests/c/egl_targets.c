@@ -30,6 +30,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "proc_usage.h"
+
 static GLuint solid, textured;
 
 static GLuint program(const char *fs)
@@ -274,25 +276,6 @@ static void round_of(int kind, int w, int h, int ww, int wh)
     glDeleteRenderbuffers(1, &rb);
     glBindTexture(GL_TEXTURE_2D, 0);
     printf("round-end gl 0x%x\n", glGetError());
-}
-
-static void usage(long *rss, int *fds)
-{
-    FILE *f = fopen("/proc/self/statm", "r");
-    long pages = 0, resident = 0;
-    if (f) {
-        if (fscanf(f, "%ld %ld", &pages, &resident) != 2)
-            resident = 0;
-        fclose(f);
-    }
-    *rss = resident * (sysconf(_SC_PAGESIZE) / 1024);
-    *fds = 0;
-    DIR *d = opendir("/proc/self/fd");
-    if (d) {
-        while (readdir(d))
-            (*fds)++;
-        closedir(d);
-    }
 }
 
 int main(int argc, char **argv)
