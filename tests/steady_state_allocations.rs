@@ -135,17 +135,22 @@ fn window_frames_allocate_nothing_in_every_kind_of_window_path() {
     let c = d
         .choose_config(&[GLX_RGBA, GLX_DOUBLEBUFFER, GLX_STEREO, GLX_DEPTH_SIZE, 24])
         .unwrap();
-    let s = d.create_surface(&c, 96, 64).unwrap();
-    surface::make_current(Some(&s)).unwrap();
-    // CPU pixels, blit-mode pixels, a flipped CPU mode, GL composite read back.
-    for name in [
-        "anaglyph-red-cyan",
-        "side-by-side",
-        "top-bottom-half",
-        "anaglyph-red-cyan-dubois",
-    ] {
-        s.set_output(OutputMode::from_name(name).unwrap()).unwrap();
-        frames_allocate_nothing(&s, name);
+    // 96x64, and 320x240: a composite of 65536 pixels or more is written
+    // in two bands at once, the lower by the layer's helper thread (made
+    // at the first such frame, then kept).
+    for (w, h) in [(96, 64), (320, 240)] {
+        let s = d.create_surface(&c, w, h).unwrap();
+        surface::make_current(Some(&s)).unwrap();
+        // CPU pixels, blit-mode pixels, a flipped CPU mode, GL composite read back.
+        for name in [
+            "anaglyph-red-cyan",
+            "side-by-side",
+            "top-bottom-half",
+            "anaglyph-red-cyan-dubois",
+        ] {
+            s.set_output(OutputMode::from_name(name).unwrap()).unwrap();
+            frames_allocate_nothing(&s, &format!("{name} at {w}x{h}"));
+        }
+        surface::make_current(None).unwrap();
     }
-    surface::make_current(None).unwrap();
 }

@@ -254,6 +254,8 @@ fn random_windows_up_to_4096x4096_are_the_reference_fitted() {
 )]
 fn a_window_composed_in_two_bands_at_once_equals_it_composed_whole() {
     use super::rows::SPLIT_PIXELS;
+    // The helper is the process's: this test counts on having it.
+    let _turn = super::helper::turn();
     let mut rng = Rng(0x0005_9117);
     let mut sizes = vec![
         (256, 256),

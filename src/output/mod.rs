@@ -24,6 +24,7 @@ mod dubois_lut;
 #[cfg(test)]
 mod fits;
 pub mod gl;
+mod helper;
 mod kernels;
 pub mod layout;
 pub mod mode;

@@ -108,32 +108,6 @@ impl<'a> EyeRows<'a> {
     }
 }
 
-/// Every signal blocked on this thread until dropped, when its mask is
-/// put back (a thread made meanwhile starts with all blocked).
-struct SignalsBlocked(Option<libc::sigset_t>);
-
-impl SignalsBlocked {
-    fn now() -> SignalsBlocked {
-        // SAFETY: plain libc calls on sets owned here.
-        unsafe {
-            let mut all: libc::sigset_t = std::mem::zeroed();
-            let mut was: libc::sigset_t = std::mem::zeroed();
-            libc::sigfillset(&mut all);
-            let ok = libc::pthread_sigmask(libc::SIG_BLOCK, &all, &mut was) == 0;
-            SignalsBlocked(ok.then_some(was))
-        }
-    }
-}
-
-impl Drop for SignalsBlocked {
-    fn drop(&mut self) {
-        if let Some(was) = self.0.take() {
-            // SAFETY: the mask this thread had.
-            unsafe { libc::pthread_sigmask(libc::SIG_SETMASK, &was, std::ptr::null_mut()) };
-        }
-    }
-}
-
 /// The target pixels from which [`Frame::write_split`] composes in two
 /// threads.
 pub(crate) const SPLIT_PIXELS: u64 = 1 << 16;
@@ -371,15 +345,15 @@ impl Frame {
     }
 
     /// [`Frame::write`] of the rows `rows` of a whole target (`first` 0)
-    /// in two bands at once: the lower on a helper thread made for it,
-    /// the upper on this one, each with its own scratch. A window's frame
-    /// is composed after the renderer finished it, when its threads are
-    /// idle: two cores compose it in about half the time. The bytes are
-    /// [`Frame::write`]'s (each row is made from the eyes alone).
-    /// Targets below [`SPLIT_PIXELS`] are written here alone (a thread
-    /// costs tens of microseconds), and so is the whole target where no
-    /// thread can be made or the helper did not finish. True where two
-    /// threads wrote it.
+    /// in two bands at once: the lower on the layer's helper thread
+    /// ([`super::helper`]), the upper on this one, each with its own
+    /// scratch. A window's frame is composed after the renderer finished
+    /// it, when its threads are idle: two cores compose it in about half
+    /// the time. The bytes are [`Frame::write`]'s (each row is made from
+    /// the eyes alone). Targets below [`SPLIT_PIXELS`] are written here
+    /// alone (handing work over costs microseconds), and so is the lower
+    /// band where the helper is busy with another thread's frame, cannot
+    /// be made, or did not finish. True where two threads wrote it.
     pub(crate) fn write_split(
         &self,
         eyes: [Option<EyeRows<'_>>; 2],
@@ -413,40 +387,26 @@ impl Frame {
         }
         let mid = rows.start + n / 2;
         let [upper_scratch, lower_scratch] = scratch;
-        let done = std::thread::scope(|s| {
-            let (upper, lower) = target.words.split_at_mut(mid as usize * stride);
-            let mut upper = Target {
-                words: upper,
-                stride,
-                size,
-                first: 0,
-            };
-            let mut lower = Target {
-                words: lower,
-                stride,
-                size,
-                first: mid,
-            };
-            let end = rows.end;
-            // The helper takes none of the program's signals (as Mesa's
-            // threads do not): it starts with every signal blocked.
-            let all_blocked = SignalsBlocked::now();
-            let helper = std::thread::Builder::new()
-                .name("glstereo compose".into())
-                .spawn_scoped(s, move || {
-                    self.write_with(max, eyes, mid..end, &mut lower, lower_scratch, px)
-                });
-            drop(all_blocked);
-            match helper {
-                Ok(h) => {
-                    self.write_with(max, eyes, rows.start..mid, &mut upper, upper_scratch, px);
-                    h.join().is_ok()
-                }
-                Err(_) => false,
-            }
-        });
+        let (upper, lower) = target.words.split_at_mut(mid as usize * stride);
+        let mut upper = Target {
+            words: upper,
+            stride,
+            size,
+            first: 0,
+        };
+        let mut lower = Target {
+            words: lower,
+            stride,
+            size,
+            first: mid,
+        };
+        let end = rows.end;
+        let done = super::helper::both(
+            || self.write_with(max, eyes, rows.start..mid, &mut upper, upper_scratch, px),
+            &mut || self.write_with(max, eyes, mid..end, &mut lower, lower_scratch, px),
+        );
         if !done {
-            self.write_with(max, eyes, rows, target, &mut scratch[0], px);
+            self.write_with(max, eyes, mid..end, &mut lower, lower_scratch, px);
         }
         done
     }
