@@ -1065,8 +1065,14 @@ impl StereoContext {
         drawn.frames += 1;
         drawn.viewport_checked = false;
         let frame_index = drawn.frames - 1;
-        profile::span(Stage::SwitchIn, || self.make_ours_current(r, drawable))?;
+        // The layer's context is made current only when this frame needs
+        // GL of its own (a measure, a capture, a GL composite, a resize):
+        // a frame composed on the CPU from eyes in memory and put with
+        // MIT-SHM needs none, and each make-current costs a round trip on
+        // Mesa's software GLX.
+        let mut ours = false;
         if let Some(frame) = measured {
+            self.switch_in(r, drawable, &mut ours)?;
             let fb = &drawn.fb;
             if let Some(eyes) = fb.layered() {
                 let scratch = &mut st.auto.measure;
@@ -1075,13 +1081,25 @@ impl StereoContext {
                 unsafe { crate::auto::converge::measure(gl, eyes, fb.read_fbo(), &frame, scratch) };
             }
         }
-        self.compose_and_swap(r, st, (drawable, x_window), window, frame_index)
+        self.compose_and_swap(r, st, (drawable, x_window), window, frame_index, &mut ours)
     }
 
-    /// In the layer's context, current on `drawable` (of the given size;
-    /// `x_window` is the X display and X drawable behind it, where there
-    /// is one): composes, captures, shows the frame (from memory or with a
-    /// swap), and follows a resized window.
+    /// Makes the layer's context current on `drawable` unless `ours` says
+    /// it is already.
+    fn switch_in(&self, r: &Real, drawable: u64, ours: &mut bool) -> Result<()> {
+        if !*ours {
+            profile::span(Stage::SwitchIn, || self.make_ours_current(r, drawable))?;
+            *ours = true;
+        }
+        Ok(())
+    }
+
+    /// Composes, captures, shows the frame (from memory or with a swap) of
+    /// `drawable` (of the given size; `x_window` is the X display and X
+    /// drawable behind it, where there is one), and follows a resized
+    /// window. With the program's context current on the drawable, or the
+    /// layer's when `ours` says so; the layer's is made current where its
+    /// GL is needed.
     fn compose_and_swap(
         &self,
         r: &Real,
@@ -1089,6 +1107,7 @@ impl StereoContext {
         (drawable, x_window): (u64, Option<(usize, u64)>),
         (width, height): (u32, u32),
         frame_index: u64,
+        ours: &mut bool,
     ) -> Result<()> {
         let gl = &r.gl;
         let mode = super::live::mode();
@@ -1129,14 +1148,38 @@ impl StereoContext {
         }
         // GLX windows only: an EGL surface's frame goes through the real
         // eglSwapBuffers (Wayland has no X server to put it to).
+        let capturing = capture::sink();
         let shown = match x_window {
             Some(x) if self.shape.double_buffered && !r.swap_layered && self.wsi == Wsi::Glx => {
-                // SAFETY: the layer's context is current on the drawable,
-                // whose X drawable is `x`; the job's textures are shared with it.
-                unsafe { put_pixels(r, compositor, drawn, x, (width, height), &job, &mut seen) }
+                // SAFETY: the program finished the eyes (flip_and_show).
+                let in_place = match capturing {
+                    None if !*ours => unsafe { compositor.in_place_plan(&job) },
+                    _ => None,
+                };
+                if in_place.is_none() {
+                    self.switch_in(r, drawable, ours)?;
+                }
+                // SAFETY: the layer's context is current on the drawable
+                // (or the plan needs no GL), whose X drawable is `x`; the
+                // job's textures are shared with it.
+                unsafe {
+                    put_pixels(
+                        r,
+                        compositor,
+                        drawn,
+                        x,
+                        (width, height),
+                        &job,
+                        in_place,
+                        &mut seen,
+                    )
+                }
             }
             _ => Ok(false),
         };
+        if !matches!(shown, Ok(true)) {
+            self.switch_in(r, drawable, ours)?;
+        }
         // `in_gl`: the frame is shown through the window's GL buffers (the
         // swap, or the glFinish of a single-buffered window, below), even
         // when composing into them failed.
@@ -1155,7 +1198,7 @@ impl StereoContext {
         // binding framebuffer 0 after a swap (as reading back ends by doing)
         // fixes the window's size until the next swap, so a resize that
         // follows would be missed for a frame.
-        if let Some(sink) = capture::sink() {
+        if let Some(sink) = capturing {
             let (w, h) = drawn.fb.size();
             let mut left = Image::new(w, h);
             let mut right = Image::new(w, h);
@@ -1197,6 +1240,7 @@ impl StereoContext {
         }
         let (width, height) = drawn.size_seen.unwrap_or((width, height));
         if drawn.fb.size() != (width, height) {
+            self.switch_in(r, drawable, ours)?;
             // SAFETY: the layer's context is current.
             unsafe {
                 drawn.fb.resize(gl, width, height)?;
@@ -1215,12 +1259,15 @@ impl StereoContext {
 /// behind it run with X errors trapped (a window destroyed since the last
 /// frame must not end the program); when the put was sent, `seen` becomes
 /// Some(the window's size, None if it is gone), and the query's reply
-/// means the server has shown the frame.
+/// means the server has shown the frame. `in_place`: a plan of
+/// [`GlCompositor::in_place_plan`], composed without GL.
 ///
 /// # Safety
-/// The layer's context is current on the drawable; `display` is open and
-/// `x_window` is the drawable's X drawable; the job's textures are shared
-/// with the layer's context.
+/// The layer's context is current on the drawable, or `in_place` is Some
+/// and the eyes are finished; `display` is open and `x_window` is the
+/// drawable's X drawable; the job's textures are shared with the layer's
+/// context.
+#[allow(clippy::too_many_arguments)]
 unsafe fn put_pixels(
     r: &Real,
     compositor: &mut GlCompositor,
@@ -1228,15 +1275,20 @@ unsafe fn put_pixels(
     (display, x_window): (usize, u64),
     size: (u32, u32),
     job: &Job,
+    in_place: Option<crate::output::gl::PixelPlan>,
     seen: &mut Option<Option<(u32, u32)>>,
 ) -> Result<bool> {
     if drawn.image.unsupported() {
         return Ok(false);
     }
     let gl = &r.gl;
-    // SAFETY: the layer's context is current (contract).
-    let Some(plan) = (unsafe { compositor.pixel_plan(gl, job, size.0, size.1)? }) else {
-        return Ok(false);
+    let plan = match in_place {
+        Some(plan) => plan,
+        // SAFETY: the layer's context is current (contract).
+        None => match unsafe { compositor.pixel_plan(gl, job, size.0, size.1)? } {
+            Some(plan) => plan,
+            None => return Ok(false),
+        },
     };
     let dpy = display as *mut xlib::Display;
     // SAFETY: open display, the drawable's X drawable (contract); the
@@ -1247,7 +1299,10 @@ unsafe fn put_pixels(
             (dpy, x_window),
             size,
             || shm_image(r, dpy, x_window, size),
-            &mut |t| compositor.fill_pixels(gl, job, plan, t),
+            &mut |t| match in_place {
+                Some(_) => compositor.fill_in_place(job, plan, t),
+                None => compositor.fill_pixels(gl, job, plan, t),
+            },
             &mut |put| {
                 let (size, err) = trap_replied_x_errors(&r.xlib, dpy, || {
                     put();

@@ -831,6 +831,61 @@ impl GlCompositor {
         Ok((plan == Plan::Rows || size == (width, height)).then_some(PixelPlan(plan)))
     }
 
+    /// [`GlCompositor::pixel_plan`] for a frame composed on the CPU from
+    /// eyes that are all in place ([`Job::in_place`]) at any window size,
+    /// decided without a GL call (the renderer is known to be software from
+    /// an earlier frame): then [`GlCompositor::fill_in_place`] writes it
+    /// with any context current. None otherwise, or for a bad job (the GL
+    /// path reports it).
+    ///
+    /// # Safety
+    /// The rendering into the job's eyes has finished.
+    pub unsafe fn in_place_plan(&self, job: &Job) -> Option<PixelPlan> {
+        let (w, h) = job.eye_size;
+        if job.mode == OutputMode::Quad
+            || self.software != Some(true)
+            || cfg!(target_endian = "big")
+        {
+            return None;
+        }
+        check_composite(job.mode, &job.options, w, h).ok()?;
+        let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+        // SAFETY: contract.
+        let placed = job
+            .eyes
+            .iter()
+            .all(|e| unsafe { job.rows_in_place(e, w, h) }.is_some());
+        (unscaled && placed).then_some(PixelPlan(pixel_plan(unscaled)))
+    }
+
+    /// Writes the composite of `job` into `target` as [`GlCompositor::fill_pixels`]
+    /// does, for a plan of [`GlCompositor::in_place_plan`], without a GL call.
+    ///
+    /// # Errors
+    /// A bad job; an eye no longer in place (nothing is written then).
+    ///
+    /// # Safety
+    /// As [`GlCompositor::in_place_plan`]; the eyes stay allocated until
+    /// this returns.
+    pub unsafe fn fill_in_place(
+        &mut self,
+        job: &Job,
+        plan: PixelPlan,
+        mut target: crate::backend::PixelTarget<'_>,
+    ) -> Result<()> {
+        crate::fault::inject(crate::fault::Site::Compose);
+        debug_assert_eq!(plan.0, Plan::Rows);
+        let options = job.options.validated()?;
+        // SAFETY: contract.
+        if unsafe { self.window.fill_in_place(job, &options, &mut target)? } {
+            Ok(())
+        } else {
+            Err(Error::Gl(
+                "an eye is no longer in memory the CPU can read".into(),
+            ))
+        }
+    }
+
     /// Writes the composite of `job` into `target` (fitted to its size) as
     /// `plan` says, with buffers reused from frame to frame.
     ///

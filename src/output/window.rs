@@ -185,6 +185,23 @@ struct RowPaths {
     scratch: [Scratch; 2],
 }
 
+/// A window's image as rows of 32-bit words.
+fn words_of<'t>(target: &'t mut PixelTarget<'_>) -> Result<Target<'t>> {
+    let size = target.size;
+    let stride = target.stride / 4;
+    match as_words_mut(target.data) {
+        Some(words) if target.stride % 4 == 0 => Ok(Target {
+            words,
+            stride,
+            size,
+            first: 0,
+        }),
+        _ => Err(crate::error::Error::Gl(
+            "the window's image is not made of aligned 32-bit pixels".into(),
+        )),
+    }
+}
+
 /// Binds `texture` as the colour buffer of `fbo`, bound for reading.
 ///
 /// # Safety
@@ -364,22 +381,7 @@ impl WindowPaths {
     ) -> Result<()> {
         debug_assert_eq!(plan, Plan::Rows, "the compositor composes GL plans");
         let layout = target.layout;
-        let size = target.size;
-        let stride = target.stride / 4;
-        let words = match as_words_mut(target.data) {
-            Some(words) if target.stride % 4 == 0 => words,
-            _ => {
-                return Err(crate::error::Error::Gl(
-                    "the window's image is not made of aligned 32-bit pixels".into(),
-                ));
-            }
-        };
-        let mut target = Target {
-            words,
-            stride,
-            size,
-            first: 0,
-        };
+        let mut target = words_of(target)?;
         // SAFETY: contract.
         unsafe {
             let fbo = self.read_fbo(gl);
@@ -394,6 +396,35 @@ impl WindowPaths {
                 }),
             }
         }
+    }
+
+    /// [`WindowPaths::fill`] of [`Plan::Rows`] when every eye the frame
+    /// reads is in place: no GL call, so the program's context may be
+    /// current instead of the compositor's. Ok(false), nothing written,
+    /// when an eye would have to be read back.
+    ///
+    /// # Safety
+    /// The rendering into the job's eyes has finished; they are of the eye
+    /// size and stay allocated until this returns.
+    pub(crate) unsafe fn fill_in_place(
+        &mut self,
+        job: &Job,
+        options: &OutputOptions,
+        target: &mut PixelTarget<'_>,
+    ) -> Result<bool> {
+        let layout = target.layout;
+        let mut target = words_of(target)?;
+        // SAFETY: contract.
+        Ok(unsafe {
+            match layout {
+                PixelLayout::Bgrx => self
+                    .rows
+                    .write_in_place(job, options, &mut target, |v| PixelLayout::Bgrx.convert(v)),
+                PixelLayout::Rgbx => self
+                    .rows
+                    .write_in_place(job, options, &mut target, |v| PixelLayout::Rgbx.convert(v)),
+            }
+        })
     }
 
     unsafe fn cpu(
@@ -471,25 +502,15 @@ impl RowPaths {
         target: &mut Target<'_>,
         px: impl Fn(u32) -> u32 + Copy + Send + Sync,
     ) -> Result<()> {
+        // SAFETY: contract.
+        if unsafe { self.write_in_place(job, options, target, px) } {
+            return Ok(());
+        }
         let (w, h) = job.eye_size;
         let frame = Frame::new(job.mode, options, job.frame_index, (w, h), target.size);
         let reads = frame.reads();
         let rects = [0, 1].map(|i| reads[i].then_some(job.eyes[i]));
         let all = 0..target.size.1;
-        // SAFETY: the present (or capture) finished the rendering into the
-        // eyes, and the rows are used here, before any resize (contract).
-        let placed = rects.map(|r| r.and_then(|r| unsafe { job.rows_in_place(&r, w, h) }));
-        let eyes = placed.map(|p| p.and_then(|rows| EyeRows::gl(rows, 0, h)));
-        if rects
-            .iter()
-            .zip(&eyes)
-            .all(|(r, e)| r.is_none() || e.is_some())
-        {
-            profile::span(Stage::Compose, || {
-                frame.write_split(eyes, all, target, &mut self.scratch, px)
-            });
-            return Ok(());
-        }
         let band = if frame.row_local() {
             ((BAND_BYTES / (w as usize * 4)).max(1) as u32).min(h)
         } else {
@@ -524,6 +545,42 @@ impl RowPaths {
             y0 += n;
         }
         Ok(())
+    }
+
+    /// [`RowPaths::write`] when every eye the frame reads is in place
+    /// ([`Job::in_place`]): no GL call, so any context (or none) may be
+    /// current. False, with nothing written, when an eye would have to be
+    /// read back.
+    ///
+    /// # Safety
+    /// The rendering into the eyes has finished, and the job's eyes are of
+    /// the eye size and stay allocated until this returns.
+    unsafe fn write_in_place(
+        &mut self,
+        job: &Job,
+        options: &OutputOptions,
+        target: &mut Target<'_>,
+        px: impl Fn(u32) -> u32 + Copy + Send + Sync,
+    ) -> bool {
+        let (w, h) = job.eye_size;
+        let frame = Frame::new(job.mode, options, job.frame_index, (w, h), target.size);
+        let reads = frame.reads();
+        let rects = [0, 1].map(|i| reads[i].then_some(job.eyes[i]));
+        // SAFETY: contract.
+        let placed = rects.map(|r| r.and_then(|r| unsafe { job.rows_in_place(&r, w, h) }));
+        let eyes = placed.map(|p| p.and_then(|rows| EyeRows::gl(rows, 0, h)));
+        if !rects
+            .iter()
+            .zip(&eyes)
+            .all(|(r, e)| r.is_none() || e.is_some())
+        {
+            return false;
+        }
+        let all = 0..target.size.1;
+        profile::span(Stage::Compose, || {
+            frame.write_split(eyes, all, target, &mut self.scratch, px)
+        });
+        true
     }
 
     /// [`WindowPaths::cpu_image`] (`fbo` as for [`RowPaths::write`]).
