@@ -1107,6 +1107,13 @@ fn names_texture(call: &Call) -> bool {
         || n.starts_with("glCopyTexture")
 }
 
+/// Whether a texture command defines the texture's images (glTexImage*,
+/// glTexStorage*, glCopyTexImage*, through the active unit's target)
+/// rather than changing part of them (the *SubImage* commands).
+fn defines_texture(call: &Call) -> bool {
+    !names_texture(call) && !call.name.contains("SubImage")
+}
+
 /// A command that gives a texture new contents outside draws
 /// ([`Family::TextureWrite`]): a texture with eyes is one picture again.
 ///
@@ -1123,7 +1130,7 @@ unsafe fn texture_write<R: Returned>(
     if let Some(texture) = unsafe { texture_of(&t.gl, &call) }.filter(|&n| n != 0) {
         let context = cur.context();
         render_targets::with_group(cur.group(), |targets| unsafe {
-            if !names_texture(&call) {
+            if defines_texture(&call) {
                 render_targets::texture_defined(targets, texture, call.u32(0));
             }
             render_targets::forget(
@@ -1179,7 +1186,7 @@ unsafe fn read_call<R: Returned>(
                 let Some(texture) = texture_of(f, &call).filter(|&n| n != 0) else {
                     return r;
                 };
-                if !names_texture(&call) {
+                if defines_texture(&call) {
                     render_targets::texture_defined(targets, texture, call.u32(0));
                 }
                 let read = integer(f, GL_READ_FRAMEBUFFER_BINDING) as u32;

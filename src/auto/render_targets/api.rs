@@ -441,7 +441,6 @@ impl Gl {
     /// # Safety
     /// A context is current on this thread; `tex` a new texture of its
     /// target.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn storage(
         &self,
         tex: Tex,
@@ -555,7 +554,6 @@ impl Gl {
     ///
     /// # Safety
     /// As [`Self::level`]; the rectangle inside both.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn copy_sub_image_2d(
         &self,
         tex: Tex,
