@@ -618,6 +618,9 @@ impl Surface {
         })?;
         if let Some((width, height)) = self.platform.drawable_size() {
             let mode = self.effective_output();
+            if here && self.present_in_place(mode, (width, height))? {
+                return Ok(());
+            }
             let shown = self.with_compositor_as(!here, |gl, st| {
                 let resized = st.window != Some((width, height));
                 let job = gl_job(st, mode);
@@ -680,6 +683,40 @@ impl Surface {
             return shown.and(reattached);
         }
         self.platform.present()
+    }
+
+    /// Shows the frame in the window as pixels composed on the CPU from
+    /// eyes in memory, with the application context (current on this
+    /// thread) left current: no GL call, so the compositor context is not
+    /// made current (a make-current and back each frame). False, nothing
+    /// shown, when the frame needs the compositor's GL: the window changed
+    /// size, an eye is not in memory, the backend does not take pixels, or
+    /// the renderer is not yet known to be software (the first frame).
+    fn present_in_place(self: &Arc<Self>, mode: OutputMode, size: (u32, u32)) -> Result<bool> {
+        if !self.platform.accepts_pixels() {
+            return Ok(false);
+        }
+        // SAFETY: the application context is current on this thread (the
+        // caller checked); the CPU reads its eyes once it has finished.
+        profile::span(Stage::Finish, || unsafe { self.gl.Finish() });
+        let _compositing = self.compositing.recover();
+        let mut st = self.state.recover();
+        if st.window != Some(size) {
+            return Ok(false);
+        }
+        st.eyes_finished = true;
+        let job = gl_job(&st, mode);
+        st.eyes_finished = false;
+        // SAFETY: finished above.
+        let Some(plan) = (unsafe { st.compositor.in_place_plan(&job) }) else {
+            return Ok(false);
+        };
+        let compositor = &mut st.compositor;
+        self.platform.present_pixels(size, &mut |t| {
+            // SAFETY: finished above; the eyes stay allocated while the
+            // state is locked.
+            unsafe { compositor.fill_in_place(&job, plan, t) }
+        })
     }
 
     /// After a resize replaced eye textures made from memory
