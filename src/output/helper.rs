@@ -1,8 +1,10 @@
 //! One thread of the layer's that takes half of a window's composite
 //! ([`super::rows::Frame::write_split`]), made once per process at the
 //! first frame that wants it and kept: a frame hands it work through a
-//! channel of one slot and waits for its answer, so a steady frame makes
-//! no thread and allocates nothing.
+//! slot guarded by a mutex and a condition variable (futexes: neither
+//! allocates, where a channel's first blocking receive on a thread does)
+//! and waits for its answer, so a steady frame makes no thread and
+//! allocates nothing.
 //!
 //! It starts with every signal blocked (as Mesa's threads do), so the
 //! program's signals never run on it. One frame at a time uses it: a
@@ -11,23 +13,47 @@
 //! its first frame (and where the parent was using the helper at the
 //! fork, the child composes alone).
 
-use std::sync::Mutex;
-use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 
 /// Work for the helper: a closure borrowed by [`both`], which waits for
 /// it before its borrows end.
 struct Task(*mut (dyn FnMut() + Send + 'static));
 
 // SAFETY: the closure is Send, and only the helper touches it between the
-// send and the answer `both` waits for.
+// hand-over and the answer `both` waits for.
 unsafe impl Send for Task {}
+
+/// What the frame and the helper pass each other.
+#[derive(Default)]
+struct Slot {
+    /// Work handed over, not yet taken.
+    task: Option<Task>,
+    /// The helper's answer to the last task: whether it ran to its end
+    /// (false: it panicked).
+    answer: Option<bool>,
+}
+
+#[derive(Default)]
+struct Shared {
+    slot: Mutex<Slot>,
+    /// Signalled at each hand-over and each answer.
+    changed: Condvar,
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, Slot> {
+        self.slot.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    fn wait<'a>(&self, guard: MutexGuard<'a, Slot>) -> MutexGuard<'a, Slot> {
+        self.changed.wait(guard).unwrap_or_else(|e| e.into_inner())
+    }
+}
 
 struct Helper {
     /// The process that made it (a forked child has another id).
     pid: u32,
-    work: SyncSender<Task>,
-    /// Whether the task ran to its end (false: it panicked).
-    answers: Receiver<bool>,
+    shared: Arc<Shared>,
 }
 
 static HELPER: Mutex<Option<Helper>> = Mutex::new(None);
@@ -57,16 +83,25 @@ pub(crate) fn both(here: impl FnOnce(), there: &mut (dyn FnMut() + Send)) -> boo
             there,
         )
     });
-    if helper.work.send(task).is_err() {
-        *slot = None;
-        here();
-        return false;
+    let shared = &*helper.shared;
+    {
+        let mut s = shared.lock();
+        s.answer = None;
+        s.task = Some(task);
     }
+    shared.changed.notify_all();
     /// Waits for the helper's answer when dropped.
-    struct Answer<'a>(&'a Receiver<bool>, Option<bool>);
+    struct Answer<'a>(&'a Shared, Option<bool>);
     impl Answer<'_> {
         fn get(&mut self) -> bool {
-            *self.1.get_or_insert_with(|| self.0.recv().unwrap_or(false))
+            if self.1.is_none() {
+                let mut s = self.0.lock();
+                while s.answer.is_none() {
+                    s = self.0.wait(s);
+                }
+                self.1 = s.answer.take();
+            }
+            self.1 == Some(true)
         }
     }
     impl Drop for Answer<'_> {
@@ -74,7 +109,7 @@ pub(crate) fn both(here: impl FnOnce(), there: &mut (dyn FnMut() + Send)) -> boo
             self.get();
         }
     }
-    let mut answer = Answer(&helper.answers, None);
+    let mut answer = Answer(shared, None);
     here();
     answer.get()
 }
@@ -82,26 +117,35 @@ pub(crate) fn both(here: impl FnOnce(), there: &mut (dyn FnMut() + Send)) -> boo
 /// A new helper thread, started with every signal blocked; None where
 /// no thread can be made.
 fn start(pid: u32) -> Option<Helper> {
-    let (work, tasks) = sync_channel::<Task>(1);
-    let (done, answers) = sync_channel::<bool>(1);
+    let shared = Arc::new(Shared::default());
+    let theirs = Arc::clone(&shared);
     let blocked = SignalsBlocked::now();
     let made = std::thread::Builder::new()
         .name("glstereo compose".into())
         .spawn(move || {
-            while let Ok(Task(f)) = tasks.recv() {
+            let shared = &*theirs;
+            loop {
+                let Task(f) = {
+                    let mut s = shared.lock();
+                    loop {
+                        if let Some(task) = s.task.take() {
+                            break task;
+                        }
+                        s = shared.wait(s);
+                    }
+                };
                 let ran = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                     // SAFETY: `both` keeps the closure alive and untouched
-                    // until it has the answer sent below.
+                    // until it has the answer given below.
                     unsafe { (*f)() }
                 }))
                 .is_ok();
-                if done.send(ran).is_err() {
-                    break;
-                }
+                shared.lock().answer = Some(ran);
+                shared.changed.notify_all();
             }
         });
     drop(blocked);
-    made.ok().map(|_| Helper { pid, work, answers })
+    made.ok().map(|_| Helper { pid, shared })
 }
 
 /// Every signal blocked on this thread until dropped, when its mask is
