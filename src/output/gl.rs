@@ -157,6 +157,26 @@ impl Job {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelPlan(Plan);
 
+/// [`GlCompositor::pixel_plan`] for a window of `size`, `software` saying
+/// whether the renderer is (asked only for a good job).
+fn cpu_plan(
+    job: &Job,
+    size: (u32, u32),
+    software: impl FnOnce() -> bool,
+) -> Result<Option<PixelPlan>> {
+    let (w, h) = job.eye_size;
+    if job.mode == OutputMode::Quad {
+        return Ok(None);
+    }
+    let (_, composite) = check_composite(job.mode, &job.options, w, h)?;
+    if cfg!(target_endian = "big") || !software() {
+        return Ok(None);
+    }
+    let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+    let plan = pixel_plan(unscaled);
+    Ok((plan == Plan::Rows || composite == size).then_some(PixelPlan(plan)))
+}
+
 /// Which way a capture of the composite is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ComposePath {
@@ -817,18 +837,8 @@ impl GlCompositor {
         width: u32,
         height: u32,
     ) -> Result<Option<PixelPlan>> {
-        let (w, h) = job.eye_size;
-        if job.mode == OutputMode::Quad {
-            return Ok(None);
-        }
-        let (_, size) = check_composite(job.mode, &job.options, w, h)?;
         // SAFETY: contract.
-        if cfg!(target_endian = "big") || !unsafe { self.software(gl) } {
-            return Ok(None);
-        }
-        let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
-        let plan = pixel_plan(unscaled);
-        Ok((plan == Plan::Rows || size == (width, height)).then_some(PixelPlan(plan)))
+        cpu_plan(job, (width, height), || unsafe { self.software(gl) })
     }
 
     /// [`GlCompositor::pixel_plan`] for a frame composed on the CPU from
@@ -842,20 +852,14 @@ impl GlCompositor {
     /// The rendering into the job's eyes has finished.
     pub unsafe fn in_place_plan(&self, job: &Job) -> Option<PixelPlan> {
         let (w, h) = job.eye_size;
-        if job.mode == OutputMode::Quad
-            || self.software != Some(true)
-            || cfg!(target_endian = "big")
-        {
-            return None;
-        }
-        check_composite(job.mode, &job.options, w, h).ok()?;
-        let unscaled = job.eyes.iter().all(|e| (e.width, e.height) == (w, h));
+        // Rows fit any window size: the size given is not looked at.
+        let plan = cpu_plan(job, (0, 0), || self.software == Some(true)).ok()??;
         // SAFETY: contract.
         let placed = job
             .eyes
             .iter()
             .all(|e| unsafe { job.rows_in_place(e, w, h) }.is_some());
-        (unscaled && placed).then_some(PixelPlan(pixel_plan(unscaled)))
+        (plan.0 == Plan::Rows && placed).then_some(plan)
     }
 
     /// Writes the composite of `job` into `target` as [`GlCompositor::fill_pixels`]

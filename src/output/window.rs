@@ -185,6 +185,15 @@ struct RowPaths {
     scratch: [Scratch; 2],
 }
 
+/// The composite of `job` fitted to a target of `size`, and the eyes it
+/// reads (None for an eye it does not).
+fn frame_of(job: &Job, options: &OutputOptions, size: (u32, u32)) -> (Frame, [Option<TexRect>; 2]) {
+    let frame = Frame::new(job.mode, options, job.frame_index, job.eye_size, size);
+    let reads = frame.reads();
+    let rects = [0, 1].map(|i| reads[i].then_some(job.eyes[i]));
+    (frame, rects)
+}
+
 /// A window's image as rows of 32-bit words.
 fn words_of<'t>(target: &'t mut PixelTarget<'_>) -> Result<Target<'t>> {
     let size = target.size;
@@ -507,9 +516,7 @@ impl RowPaths {
             return Ok(());
         }
         let (w, h) = job.eye_size;
-        let frame = Frame::new(job.mode, options, job.frame_index, (w, h), target.size);
-        let reads = frame.reads();
-        let rects = [0, 1].map(|i| reads[i].then_some(job.eyes[i]));
+        let (frame, rects) = frame_of(job, options, target.size);
         let all = 0..target.size.1;
         let band = if frame.row_local() {
             ((BAND_BYTES / (w as usize * 4)).max(1) as u32).min(h)
@@ -563,9 +570,7 @@ impl RowPaths {
         px: impl Fn(u32) -> u32 + Copy + Send + Sync,
     ) -> bool {
         let (w, h) = job.eye_size;
-        let frame = Frame::new(job.mode, options, job.frame_index, (w, h), target.size);
-        let reads = frame.reads();
-        let rects = [0, 1].map(|i| reads[i].then_some(job.eyes[i]));
+        let (frame, rects) = frame_of(job, options, target.size);
         // SAFETY: contract.
         let placed = rects.map(|r| r.and_then(|r| unsafe { job.rows_in_place(&r, w, h) }));
         let eyes = placed.map(|p| p.and_then(|rows| EyeRows::gl(rows, 0, h)));
