@@ -45,6 +45,7 @@ pub mod math;
 pub mod output;
 mod profile;
 pub mod report;
+pub mod reproject;
 pub mod shims;
 pub mod stereo;
 pub mod surface;

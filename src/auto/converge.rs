@@ -401,6 +401,12 @@ impl Perspective {
         p.frustum().map(|_| p)
     }
 
+    /// The depth terms (a, b): a point at NDC depth z is at clip w
+    /// b / (z + a).
+    pub fn terms(&self) -> (f64, f64) {
+        (self.a, self.b)
+    }
+
     /// The distance (clip w) of a point at NDC depth `z`: b / (z + a);
     /// None where that is not a distance in front of the eye.
     pub fn distance_at(&self, z: f64) -> Option<f64> {

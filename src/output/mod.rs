@@ -25,7 +25,7 @@ mod dubois_lut;
 mod fits;
 pub mod gl;
 mod helper;
-mod kernels;
+pub(crate) mod kernels;
 pub mod layout;
 pub mod mode;
 pub mod options;

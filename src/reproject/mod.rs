@@ -1,0 +1,529 @@
+//! Both eyes from one rendered frame: `glstereo-run --auto=depth`
+//! (`GLSTEREO_AUTO=depth`). One colour + depth frame in, two eyes out;
+//! no GL here. The program renders once, mono; at its present the layer
+//! hands this module the frame's colour, the depth of its scene and the
+//! rule that turns a depth into a shift, and gets the two eyes
+//! automatic stereo's two rendered passes would have drawn
+//! ([`crate::auto`], "The rule"), as far as one picture holds them.
+//!
+//! # The shift of a pixel
+//!
+//! `--auto` moves each vertex of eye e (−1 left, +1 right) in clip space
+//! by x' = x + e·s·(w − C): in normalised device coordinates by
+//! e·s·(1 − C/w), in window pixels by e·k·(1 − C/w) with k = s·(viewport
+//! width)/2. For a perspective camera the clip w of a point is
+//! b / (z_ndc + a) ([`crate::auto::converge::Perspective`]), and z_ndc is
+//! an affine function of the window depth d (glDepthRange, glClipControl),
+//! so the disparity magnitude
+//!
+//! ```text
+//! D(d) = k·(1 − C/w) = k·(1 − C·(z_ndc(d) + a)/b) = offset + slope·d
+//! ```
+//!
+//! is affine in the window depth: one multiply and one add per pixel
+//! ([`Rule`]); the left eye's pixel moves by −D, the right eye's by +D.
+//! Where the projection is not known and the convergence was chosen as a
+//! depth, `--auto`'s depth form e·s·(z_c − z)/(z_c − α) is affine in
+//! z_ndc as well. D grows with the distance (nearer is smaller) in both
+//! forms, whatever the depth convention (reversed depth included): it is
+//! the order in which pixels hide each other.
+//!
+//! # Making an eye: forward, with a depth test on D, holes from the far side
+//!
+//! Each pixel of the scene's columns is put where its eye sees it
+//! (rounded to the nearest column); where two land on one column the one
+//! with the smaller D (the nearer) stays. Columns nothing lands on are
+//! holes: what the centre view hid behind a nearer object and the eye
+//! sees beside it. A hole is filled with the colour of whichever of its
+//! two neighbours is farther (larger D), so the background is stretched
+//! across it and a near object is never smeared over its edge.
+//!
+//! Three kinds of pixel:
+//! - **geometry**: moved by its D;
+//! - **nothing drawn** (the depth within one D24 step of the clear depth):
+//!   not moved, and behind everything: a clear colour, or a background
+//!   drawn flat (w = 1, no depth), is the same in both eyes of `--auto`;
+//! - **at the screen** (a depth of NaN: the layer marks the pixels a flat
+//!   draw wrote after the scene, a HUD or text): not moved, and in front
+//!   of everything, as the overlay was drawn over the scene.
+//!
+//! The choices this replaced, measured against `--auto`'s two rendered
+//! eyes, are in the README ("Automatic stereo from one render").
+//!
+//! # Kernels
+//!
+//! [`row_reference`] is the definition, pixel by pixel. [`row`] is the
+//! same operations in the same order: the shifts and the depth-test keys
+//! of a row computed [`N`] pixels at a time in loops over fixed-size
+//! arrays (compiled for AVX2 and AVX-512 by [`with_simd`]), then the
+//! scatter and the holes. `fits` proves the two equal, word for word, at
+//! every vector level and every size.
+
+use crate::output::kernels::{Simd, with_simd};
+
+#[cfg(test)]
+mod fits;
+
+/// Pixels per vector step of [`row`].
+const N: usize = 16;
+
+/// The largest shift, in pixels, either way: any larger D (a point at the
+/// eye, a depth the projection does not map) is clamped to it, far
+/// outside every window a server can make, so every column index stays
+/// in range of i32 arithmetic.
+pub const LIMIT: f32 = 1.0e6;
+
+/// Depth-test key of a hole (nothing has landed).
+const HOLE: f32 = f32::INFINITY;
+/// Key of a pixel where nothing was drawn: behind every geometry.
+const BACKGROUND: f32 = f32::MAX;
+/// Key of a pixel at the screen (an overlay): in front of everything.
+const OVERLAY: f32 = f32::NEG_INFINITY;
+
+/// How a frame's depths become shifts: D(d) = `offset` + `slope`·d
+/// pixels (module docs), the left eye's pixel moved by −D and the right
+/// eye's by +D; depths within `clear_step` of `clear` hold nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rule {
+    /// D at window depth 0, in pixels.
+    pub offset: f32,
+    /// D's change per unit of window depth, in pixels.
+    pub slope: f32,
+    /// The frame's clear depth (glClearDepth).
+    pub clear: f32,
+    /// Depths this close to `clear` hold nothing (one D24 step).
+    pub clear_step: f32,
+}
+
+impl Rule {
+    /// The rule of a perspective camera whose clip w is b / (z_ndc + a):
+    /// disparity magnitude k·(1 − C/w) for `k` pixels per unit of e·s·NDC
+    /// (s·viewport width/2) and convergence `c` (a distance), window depth
+    /// d = n + (f − n)·(z_ndc + 1)/2 for glDepthRange(n, f) (or
+    /// n + (f − n)·z_ndc with clip control's zero-to-one depth).
+    /// None where it maps nothing (a degenerate depth range or camera).
+    pub fn perspective(
+        (a, b): (f64, f64),
+        k: f64,
+        c: f64,
+        (near, far): (f64, f64),
+        zero_to_one: bool,
+        clear: f64,
+    ) -> Option<Rule> {
+        // z_ndc = p + q·d.
+        let (p, q) = ndc_of_window(near, far, zero_to_one)?;
+        // D = k − k·C·(z_ndc + a)/b.
+        let m = k * c / b;
+        Rule::affine(k - m * (p + a), -m * q, clear)
+    }
+
+    /// The rule of `--auto`'s depth form (a projection automatic stereo
+    /// cannot see, converged at NDC depth `zc` of a projection of depth
+    /// offset `alpha`): D = k·(z_c − z_ndc)/(z_c − α).
+    pub fn depth_form(
+        k: f64,
+        (zc, alpha): (f64, f64),
+        (near, far): (f64, f64),
+        zero_to_one: bool,
+        clear: f64,
+    ) -> Option<Rule> {
+        let (p, q) = ndc_of_window(near, far, zero_to_one)?;
+        let m = k / (zc - alpha);
+        Rule::affine(m * (zc - p), -m * q, clear)
+    }
+
+    /// No depth: every pixel where it is (both eyes the frame).
+    pub fn flat() -> Rule {
+        Rule {
+            offset: 0.0,
+            slope: 0.0,
+            clear: f32::NAN,
+            clear_step: 0.0,
+        }
+    }
+
+    fn affine(offset: f64, slope: f64, clear: f64) -> Option<Rule> {
+        (offset.is_finite() && slope.is_finite()).then_some(Rule {
+            offset: offset as f32,
+            slope: slope as f32,
+            clear: clear as f32,
+            clear_step: crate::analysis::depth::DEPTH_STEP_24 as f32,
+        })
+    }
+
+    /// The shift and the depth-test key of one pixel of window depth `d`:
+    /// (round(D) for geometry, else 0; D, [`BACKGROUND`] or [`OVERLAY`]).
+    #[inline(always)]
+    fn pixel(&self, d: f32) -> (i32, f32) {
+        let v = self.offset + self.slope * d;
+        let v = if v > LIMIT { LIMIT } else { v };
+        let v = if v < -LIMIT { -LIMIT } else { v };
+        let nothing = (d - self.clear).abs() <= self.clear_step;
+        let overlay = d.is_nan();
+        // NaN in v (a NaN depth, or a rule of NaN) is an overlay or 0.
+        let shift = (v + 0.5).floor() as i32;
+        if overlay {
+            (0, OVERLAY)
+        } else if nothing || v.is_nan() {
+            (0, BACKGROUND)
+        } else {
+            (shift, v)
+        }
+    }
+}
+
+/// (p, q) with z_ndc = p + q·d for window depth d and glDepthRange(n, f).
+fn ndc_of_window(n: f64, f: f64, zero_to_one: bool) -> Option<(f64, f64)> {
+    let range = f - n;
+    if !range.is_finite() || range == 0.0 {
+        return None;
+    }
+    Some(if zero_to_one {
+        (-n / range, 1.0 / range)
+    } else {
+        (-2.0 * n / range - 1.0, 2.0 / range)
+    })
+}
+
+/// The buffers of [`row`], kept from row to row and frame to frame (a
+/// frame allocates nothing once they have grown).
+#[derive(Debug, Default)]
+pub struct RowScratch {
+    shift: Vec<i32>,
+    key: Vec<f32>,
+    landed: Vec<f32>,
+    source: Vec<u32>,
+}
+
+impl RowScratch {
+    fn fit(&mut self, n: usize) {
+        self.shift.resize(n, 0);
+        self.key.resize(n, 0.0);
+        self.landed.resize(n, 0.0);
+    }
+}
+
+/// The two eyes' rows (`out[0]` left, `out[1]` right) of one row of the
+/// frame: `colour` (RGBA8 words) and `depth` (window depths), the columns
+/// `columns` (the scene's viewport on this row) made by `rule`, the
+/// others copied. The definition: one pixel at a time.
+///
+/// Panics unless the five rows are of one length and `columns` is in it.
+pub fn row_reference(
+    rule: &Rule,
+    columns: (usize, usize),
+    colour: &[u32],
+    depth: &[f32],
+    out: [&mut [u32]; 2],
+) {
+    let n = check(columns, colour, depth, &out);
+    let mut shift = vec![0i32; n];
+    let mut key = vec![0f32; n];
+    for x in 0..n {
+        (shift[x], key[x]) = rule.pixel(depth[x]);
+    }
+    let mut landed = vec![0f32; n];
+    for (eye, out) in out.into_iter().enumerate() {
+        land(eye, columns, colour, &shift, &key, &mut landed, out);
+    }
+}
+
+/// [`row_reference`] at vector level `simd` (capped by what the processor
+/// has), with `scratch` kept by the caller: the same words.
+pub(crate) fn row(
+    simd: Simd,
+    rule: &Rule,
+    columns: (usize, usize),
+    colour: &[u32],
+    depth: &[f32],
+    out: [&mut [u32]; 2],
+    scratch: &mut RowScratch,
+) {
+    let n = check(columns, colour, depth, &out);
+    scratch.fit(n);
+    with_simd(simd, |_| {
+        row_keys(rule, depth, &mut scratch.shift, &mut scratch.key);
+        let RowScratch {
+            shift, key, landed, ..
+        } = scratch;
+        for (eye, out) in out.into_iter().enumerate() {
+            land(eye, columns, colour, shift, key, landed, out);
+        }
+    });
+}
+
+/// [`row`] of a frame whose left eye is written where its colour is read
+/// (a layer read and written in place): `io` holds the colour and gets
+/// the left eye.
+pub(crate) fn row_in_place(
+    simd: Simd,
+    rule: &Rule,
+    columns: (usize, usize),
+    io: &mut [u32],
+    depth: &[f32],
+    right: &mut [u32],
+    scratch: &mut RowScratch,
+) {
+    let mut source = std::mem::take(&mut scratch.source);
+    source.clear();
+    source.extend_from_slice(io);
+    row(simd, rule, columns, &source, depth, [io, right], scratch);
+    scratch.source = source;
+}
+
+fn check(columns: (usize, usize), colour: &[u32], depth: &[f32], out: &[&mut [u32]; 2]) -> usize {
+    let n = colour.len();
+    assert!(
+        depth.len() == n && out.iter().all(|o| o.len() == n),
+        "rows of one length"
+    );
+    assert!(
+        columns.0 <= columns.1 && columns.1 <= n,
+        "columns {columns:?} of {n}"
+    );
+    n
+}
+
+/// Every pixel's shift and key, [`N`] at a time.
+#[inline(always)]
+fn row_keys(rule: &Rule, depth: &[f32], shift: &mut [i32], key: &mut [f32]) {
+    let mut d = depth.chunks_exact(N);
+    let mut s = shift.chunks_exact_mut(N);
+    let mut k = key.chunks_exact_mut(N);
+    for ((d, s), k) in (&mut d).zip(&mut s).zip(&mut k) {
+        let d: &[f32; N] = d.try_into().expect("N");
+        let s: &mut [i32; N] = s.try_into().expect("N");
+        let k: &mut [f32; N] = k.try_into().expect("N");
+        for i in 0..N {
+            (s[i], k[i]) = rule.pixel(d[i]);
+        }
+    }
+    let tail = d.remainder();
+    for ((d, s), k) in tail.iter().zip(s.into_remainder()).zip(k.into_remainder()) {
+        (*s, *k) = rule.pixel(*d);
+    }
+}
+
+/// One eye's row (`eye` 0 left: moved by −shift; 1 right: +shift): the
+/// scatter with its depth test, then the holes.
+#[inline(always)]
+fn land(
+    eye: usize,
+    (x0, x1): (usize, usize),
+    colour: &[u32],
+    shift: &[i32],
+    key: &[f32],
+    landed: &mut [f32],
+    out: &mut [u32],
+) {
+    out[..x0].copy_from_slice(&colour[..x0]);
+    out[x1..].copy_from_slice(&colour[x1..]);
+    if x0 == x1 {
+        return;
+    }
+    let landed = &mut landed[x0..x1];
+    landed.fill(HOLE);
+    let sign: i64 = if eye == 0 { -1 } else { 1 };
+    let span = (x1 - x0) as u64;
+    for x in x0..x1 {
+        let t = x as i64 + sign * i64::from(shift[x]) - x0 as i64;
+        // Only landings inside the columns (a negative t wraps past span).
+        if (t as u64) < span {
+            let t = t as usize;
+            if key[x] < landed[t] {
+                landed[t] = key[x];
+                out[x0 + t] = colour[x];
+            }
+        }
+    }
+    fill_holes(landed, &mut out[x0..x1], &colour[x0..x1]);
+}
+
+/// Each run of holes in `landed` takes the colour of its farther
+/// neighbour (the larger key; the left one when equal; the one there is
+/// at an end; `colour` where the whole row is holes).
+#[inline(always)]
+fn fill_holes(landed: &[f32], out: &mut [u32], colour: &[u32]) {
+    let n = landed.len();
+    let mut x = 0;
+    while x < n {
+        if landed[x] != HOLE {
+            x += 1;
+            continue;
+        }
+        let start = x;
+        while x < n && landed[x] == HOLE {
+            x += 1;
+        }
+        let from = match (start.checked_sub(1), (x < n).then_some(x)) {
+            (Some(l), Some(r)) => Some(if landed[l] >= landed[r] { l } else { r }),
+            (l, r) => l.or(r),
+        };
+        match from {
+            Some(f) => {
+                let c = out[f];
+                out[start..x].fill(c);
+            }
+            None => out[start..x].copy_from_slice(&colour[start..x]),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rule(offset: f32, slope: f32) -> Rule {
+        Rule {
+            offset,
+            slope,
+            clear: 1.0,
+            clear_step: 1e-7,
+        }
+    }
+
+    fn eyes(rule: &Rule, colour: &[u32], depth: &[f32]) -> [Vec<u32>; 2] {
+        let n = colour.len();
+        let (mut l, mut r) = (vec![0; n], vec![0; n]);
+        row_reference(rule, (0, n), colour, depth, [&mut l, &mut r]);
+        [l, r]
+    }
+
+    #[test]
+    fn a_pixel_moves_by_its_disparity_in_each_eye_and_its_hole_takes_the_far_side() {
+        // Far background (depth 0.9, D = 2) with a near object (0.1,
+        // D = -2) over columns 8..12: D = -2.5 + 5·d... take offset -2.5,
+        // slope 5: d 0.9 → 2.0, d 0.1 → -2.0.
+        let r = rule(-2.5, 5.0);
+        let colour: Vec<u32> = (0..20)
+            .map(|x| if (8..12).contains(&x) { 1000 + x } else { x })
+            .collect();
+        let depth: Vec<f32> = (0..20)
+            .map(|x| if (8..12).contains(&x) { 0.1 } else { 0.9 })
+            .collect();
+        let [left, right] = eyes(&r, &colour, &depth);
+        // Right eye: the object 2 columns left (6..10), the background 2
+        // right; the object's old columns 10..14 hold background from x=8..
+        // hidden in the centre: filled from the far side.
+        assert_eq!(&right[6..10], &colour[8..12], "{right:?}");
+        assert_eq!(right[14], 12, "background moved right by 2: {right:?}");
+        for x in 10..14 {
+            assert!(
+                right[x] < 1000,
+                "no near pixel smeared over its edge at {x}: {right:?}"
+            );
+        }
+        // Left eye: the mirror.
+        assert_eq!(&left[10..14], &colour[8..12], "{left:?}");
+        assert_eq!(left[4], 6);
+        for x in 6..10 {
+            assert!(left[x] < 1000, "{left:?}");
+        }
+    }
+
+    #[test]
+    fn nothing_drawn_stays_and_lies_behind_and_an_overlay_stays_in_front() {
+        // Geometry far (D = 3) left of nothing drawn (depth 1.0): it moves
+        // over the clear colour, which does not move.
+        let r = rule(3.0, 0.0);
+        let colour: Vec<u32> = (0..12).collect();
+        let mut depth = vec![0.5f32; 12];
+        for d in &mut depth[6..] {
+            *d = 1.0;
+        }
+        depth[2] = f32::NAN; // an overlay pixel among the geometry
+        let [left, right] = eyes(&r, &colour, &depth);
+        // Geometry x moved to x + 3 over the clear colour.
+        assert_eq!(&right[6..9], &[3, 4, 5], "{right:?}");
+        assert_eq!(&right[9..], &[9, 10, 11], "nothing drawn stays: {right:?}");
+        // Where the overlay's own scene pixel would have landed: a hole
+        // between two geometry pixels of one depth (the left one).
+        assert_eq!(right[5], 1, "{right:?}");
+        assert_eq!(right[2], 2, "the overlay stays at the screen: {right:?}");
+        assert_eq!(
+            left[2], 2,
+            "in front of the geometry landing there: {left:?}"
+        );
+        assert_eq!(&left[0..2], &[3, 4]);
+        // Holes between the overlay and what was not drawn: the far side.
+        assert_eq!(&left[3..6], &[6, 6, 6], "{left:?}");
+        assert_eq!(left[8], 8);
+    }
+
+    #[test]
+    fn the_rule_of_a_camera_is_autos_disparity_at_every_depth() {
+        use glam::DMat4;
+        let proj = DMat4::perspective_rh_gl(1.0, 4.0 / 3.0, 0.5, 50.0).to_cols_array();
+        let p = crate::auto::converge::Perspective::from_matrix(&proj).expect("perspective");
+        let (a, b) = p.terms();
+        let (k, c) = (7.0, 4.0);
+        for (range, zto) in [((0.0, 1.0), false), ((0.2, 0.9), false), ((0.0, 1.0), true)] {
+            let r = Rule::perspective((a, b), k, c, range, zto, 1.0).expect("rule");
+            for w in [0.6, 1.0, 4.0, 9.0, 40.0] {
+                // The point's NDC z from the matrix, then its window depth.
+                let clip = DMat4::from_cols_array(&proj) * glam::DVec4::new(0.0, 0.0, -w, 1.0);
+                let z = clip.z / clip.w;
+                let t = if zto { z } else { (z + 1.0) / 2.0 };
+                let d = range.0 + (range.1 - range.0) * t;
+                let want = k * (1.0 - c / w);
+                let got = f64::from(r.offset) + f64::from(r.slope) * d;
+                assert!(
+                    (got - want).abs() < 1e-3 * (1.0 + want.abs()),
+                    "w {w}: {got} against {want}"
+                );
+            }
+        }
+        assert_eq!(
+            Rule::perspective((a, b), k, c, (0.5, 0.5), false, 1.0),
+            None
+        );
+    }
+
+    #[test]
+    fn the_depth_form_is_autos_at_every_depth() {
+        let (k, zc, alpha) = (5.0, 0.6, 1.0);
+        let r = Rule::depth_form(k, (zc, alpha), (0.0, 1.0), false, 1.0).expect("rule");
+        for z in [-0.5, 0.0, 0.6, 0.95] {
+            let d = (z + 1.0) / 2.0;
+            let want = k * (zc - z) / (zc - alpha);
+            let got = f64::from(r.offset) + f64::from(r.slope) * d;
+            assert!((got - want).abs() < 1e-4, "z {z}: {got} against {want}");
+        }
+    }
+
+    #[test]
+    fn huge_and_absurd_depths_and_rules_give_columns_in_range() {
+        for r in [
+            rule(1e30, 1e30),
+            rule(-1e30, 0.0),
+            rule(f32::NAN, 1.0),
+            rule(0.0, f32::INFINITY),
+        ] {
+            let colour: Vec<u32> = (0..9).collect();
+            let depth = [
+                0.0,
+                0.5,
+                f32::NAN,
+                f32::INFINITY,
+                -1.0,
+                1.0,
+                1e38,
+                -0.0,
+                0.25,
+            ];
+            let [left, right] = eyes(&r, &colour, &depth);
+            for v in left.iter().chain(&right) {
+                assert!(*v < 9, "{r:?}: {left:?} {right:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_flat_rule_gives_the_frame_in_both_eyes() {
+        let colour: Vec<u32> = (0..33).map(|x| x * 7).collect();
+        let depth: Vec<f32> = (0..33).map(|x| x as f32 / 40.0).collect();
+        let [l, r] = eyes(&Rule::flat(), &colour, &depth);
+        assert_eq!(l, colour);
+        assert_eq!(r, colour);
+    }
+}
