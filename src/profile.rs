@@ -48,6 +48,9 @@ pub(crate) enum Stage {
     GlCompose,
     /// XShmPutImage and its flush.
     Put,
+    /// Both eyes made from the frame's colour and depth (`--auto=depth`):
+    /// the depth read and the kernel.
+    FromDepth,
 }
 
 #[cfg(feature = "profile-stages")]
@@ -56,7 +59,7 @@ mod on {
     use std::cell::RefCell;
     use std::time::{Duration, Instant};
 
-    const STAGES: [(Stage, &str); 11] = [
+    const STAGES: [(Stage, &str); 12] = [
         (Stage::Between, "between"),
         (Stage::Flip, "flip"),
         (Stage::Finish, "finish"),
@@ -68,6 +71,7 @@ mod on {
         (Stage::Compose, "compose"),
         (Stage::GlCompose, "gl-compose+swap"),
         (Stage::Put, "shm-put"),
+        (Stage::FromDepth, "from-depth"),
     ];
 
     #[derive(Default)]

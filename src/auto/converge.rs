@@ -108,6 +108,13 @@ pub struct Frame {
     /// The left eye's e·s (signed: the rule moves its NDC x by
     /// `left_shift`·(1 − C/w)).
     pub left_shift: f64,
+    /// Automatic convergence measures this frame ([`measure`]); a frame
+    /// whose eyes are made from its depth is recorded without it.
+    pub converges: bool,
+    /// `--auto=depth`: flat draws came into the window after its scene,
+    /// whose colour then is in the right eye's layer
+    /// ([`crate::auto::from_depth`]).
+    pub overlays: bool,
 }
 
 /// How a frame's scene was drawn where automatic convergence measures it.
@@ -786,6 +793,8 @@ mod tests {
             target: None,
             origin: None,
             left_shift: -0.2,
+            converges: true,
+            overlays: false,
         };
         for zc in [0.2, 0.5, 0.8] {
             let seen = Seen {

@@ -852,6 +852,11 @@ impl Attachments {
         self.colour[0]
     }
 
+    /// The colour array at GL_COLOR_ATTACHMENT0 + `i` (0: none).
+    pub fn colour_at(&self, i: usize) -> u32 {
+        self.colour.get(i).copied().unwrap_or(0)
+    }
+
     /// Attaches every array, every layer (the window's pair `p` at
     /// GL_COLOR_ATTACHMENT0 + p, a render target's at its points), and
     /// the depth and stencil arrays, to the framebuffer object bound at

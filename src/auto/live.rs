@@ -8,15 +8,19 @@
 //!
 //! | variable                | accepted                      | default |
 //! |-------------------------|-------------------------------|---------|
-//! | `GLSTEREO_AUTO`         | `0` `1` `true` `false` `yes` `no` | `0` |
+//! | `GLSTEREO_AUTO`         | `0` `1` `true` `false` `yes` `no`, `geometry` `depth` | `0` |
 //! | `GLSTEREO_SEPARATION`   | percent, 0 … 100              | `15` |
 //! | `GLSTEREO_CONVERGENCE`  | `auto`, or a distance > 0     | `auto` |
+//!
+//! `1` (and `true`, `yes`) is `geometry`: each frame rendered once per
+//! eye ([`crate::auto`]); `depth` renders it once and makes both eyes from
+//! its colour and depth ([`crate::reproject`]).
 //!
 //! A bad value is said once on stderr and the default is used
 //! (glstereo-run refuses bad values before the program starts).
 
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicU32, AtomicU64, Ordering};
 
 use crate::report::warn;
 
@@ -31,10 +35,33 @@ pub const ENV_CONVERGENCE: &str = "GLSTEREO_CONVERGENCE";
 /// amount, already the library's initial value for NV_3dvision_settings.
 pub const DEFAULT_SEPARATION: f32 = 15.0;
 
+/// How automatic stereo makes the eyes of a mono program.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AutoMode {
+    /// Every draw made once per eye, its vertices moved by the rule
+    /// (`--auto`, `--auto=geometry`): exact, about twice the rendering.
+    Geometry,
+    /// The frame rendered once, mono; both eyes made from its colour and
+    /// depth at the present (`--auto=depth`, [`crate::reproject`]).
+    Depth,
+}
+
+impl AutoMode {
+    /// The name glstereo-run and `GLSTEREO_AUTO` take.
+    pub fn name(self) -> &'static str {
+        match self {
+            AutoMode::Geometry => "geometry",
+            AutoMode::Depth => "depth",
+        }
+    }
+}
+
 /// The live settings.
 struct Live {
     /// Mono programs get automatic stereo (glstereo-run --auto).
     auto: bool,
+    /// [`AutoMode`] as 0 (geometry) or 1 (depth).
+    mode: AtomicU8,
     /// Automatic stereo is on (3D Vision's Ctrl+T,
     /// glEnable(GL_3DVISION_STEREO_NV)); only with `auto`.
     auto_on: AtomicBool,
@@ -56,14 +83,13 @@ fn live() -> &'static Live {
     static LIVE: OnceLock<Live> = OnceLock::new();
     LIVE.get_or_init(|| {
         let auto = match std::env::var(ENV_AUTO).ok().as_deref().map(str::trim) {
-            None | Some("") => false,
-            Some(v) => parse_flag(v).unwrap_or_else(|| {
-                warn(&format!(
-                    "{ENV_AUTO}={v:?} is not 0 or 1; automatic stereo is off"
-                ));
-                false
+            None | Some("") => None,
+            Some(v) => parse_auto(v).unwrap_or_else(|e| {
+                warn(&format!("{e}; automatic stereo is off"));
+                None
             }),
         };
+        let (auto, mode) = (auto.is_some(), auto.unwrap_or(AutoMode::Geometry));
         let separation = std::env::var(ENV_SEPARATION)
             .ok()
             .filter(|v| !v.trim().is_empty())
@@ -82,6 +108,7 @@ fn live() -> &'static Live {
             });
         Live {
             auto,
+            mode: AtomicU8::new(mode as u8),
             auto_on: AtomicBool::new(auto),
             separation: AtomicU32::new(separation.to_bits()),
             convergence: AtomicU32::new(convergence.unwrap_or(f32::NAN).to_bits()),
@@ -97,6 +124,22 @@ fn parse_flag(v: &str) -> Option<bool> {
         "1" | "true" | "yes" => Some(true),
         "0" | "false" | "no" => Some(false),
         _ => None,
+    }
+}
+
+/// GLSTEREO_AUTO: Some(mode) for automatic stereo (`1`, `true`, `yes`,
+/// `geometry`: [`AutoMode::Geometry`]; `depth`), None for off (`0`,
+/// `false`, `no`), any case.
+pub fn parse_auto(v: &str) -> crate::Result<Option<AutoMode>> {
+    match v.trim().to_ascii_lowercase().as_str() {
+        "geometry" => Ok(Some(AutoMode::Geometry)),
+        "depth" => Ok(Some(AutoMode::Depth)),
+        f => match parse_flag(f) {
+            Some(on) => Ok(on.then_some(AutoMode::Geometry)),
+            None => Err(crate::Error::invalid_value(format!(
+                "{ENV_AUTO}={v:?} is not 0, 1, geometry or depth"
+            ))),
+        },
     }
 }
 
@@ -138,6 +181,27 @@ pub fn auto_on() -> bool {
 /// Turns automatic stereo on or off (only where it was requested).
 pub fn set_auto_on(on: bool) {
     live().auto_on.store(on, Ordering::Relaxed);
+}
+
+/// How automatic stereo makes the eyes now ([`AutoMode`]).
+pub fn auto_mode() -> AutoMode {
+    match live().mode.load(Ordering::Relaxed) {
+        0 => AutoMode::Geometry,
+        _ => AutoMode::Depth,
+    }
+}
+
+/// Makes the eyes so from the next frame on (only where automatic stereo
+/// was requested).
+pub fn set_auto_mode(mode: AutoMode) {
+    live().mode.store(mode as u8, Ordering::Relaxed);
+}
+
+/// Whether this frame's eyes are made from its depth: automatic stereo
+/// requested, in [`AutoMode::Depth`] (on or off: off, both eyes are the
+/// frame).
+pub fn from_depth() -> bool {
+    live().auto && auto_mode() == AutoMode::Depth
 }
 
 /// Automatic stereo's separation now, percent (0 … 100).
@@ -235,6 +299,13 @@ mod tests {
             assert!(parse_convergence(bad).is_err(), "{bad}");
         }
         assert_eq!(parse_flag("Yes"), Some(true));
+        assert_eq!(parse_auto(" Depth ").unwrap(), Some(AutoMode::Depth));
+        assert_eq!(parse_auto("geometry").unwrap(), Some(AutoMode::Geometry));
+        assert_eq!(parse_auto("1").unwrap(), Some(AutoMode::Geometry));
+        assert_eq!(parse_auto("no").unwrap(), None);
+        for bad in ["bogus", "deep", "2", ""] {
+            assert!(parse_auto(bad).is_err(), "{bad}");
+        }
         assert_eq!(parse_flag("nope"), None);
     }
 }

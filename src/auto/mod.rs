@@ -318,6 +318,7 @@ pub mod converge;
 pub mod entry_points;
 pub mod eyes;
 pub mod fixed;
+pub mod from_depth;
 pub mod glsl;
 pub mod host;
 pub mod link;

@@ -1489,6 +1489,38 @@ pub struct DepthCopy {
     size: (i32, i32),
 }
 
+/// Copies layer 0 (the left eye) of the colour array `array` into its
+/// layer 1 (`--auto=depth`, where the right eye's layer is the layer's
+/// own: [`crate::auto::from_depth`]); false where it cannot be.
+///
+/// # Safety
+/// The program's context is current on this thread; `array` is a 2D
+/// array texture of its share group (the window's eyes').
+pub unsafe fn copy_left_colour(api: ContextApi, array: u32) -> bool {
+    let Some(gl) = api::gl(api) else {
+        return false;
+    };
+    let f = &gl;
+    // SAFETY: contract.
+    unsafe {
+        let tex = (array, GL_TEXTURE_2D_ARRAY);
+        let size = (
+            f.level(tex, GL_TEXTURE_WIDTH),
+            f.level(tex, GL_TEXTURE_HEIGHT),
+        );
+        if array == 0 || size.0 <= 0 || size.1 <= 0 || f.level(tex, GL_TEXTURE_DEPTH) < 2 {
+            return false;
+        }
+        copy_layer(
+            f,
+            (array, GL_TEXTURE_2D_ARRAY, 0, 0),
+            (array, GL_TEXTURE_2D_ARRAY, 0, 1),
+            (0, 0, size.0, size.1),
+        );
+    }
+    true
+}
+
 /// Copies layer 0 (the left eye) of the depth array `array` into `copy`
 /// (made, or made again for another size or format); false where it
 /// cannot be.

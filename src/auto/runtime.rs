@@ -310,6 +310,8 @@ pub struct AutoState {
 
     /// Automatic convergence's buffers.
     pub measure: converge::Scratch,
+    /// The buffers of eyes made from depth ([`crate::auto::from_depth`]).
+    pub from_depth: crate::auto::from_depth::Scratch,
     /// The left eye's depth of the window's eyes, copied when a draw that
     /// is not the scene's (a full-screen pass with depth writes, an
     /// overlay) came into them after the scene on a measured frame;
@@ -318,6 +320,10 @@ pub struct AutoState {
     /// share group's, [`render_targets::SceneTarget`]).
     depth_copy: render_targets::DepthCopy,
     depth_copied: bool,
+    /// `--auto=depth`: a flat draw (an overlay: a HUD, text) came into the
+    /// window's eyes after this frame's scene, and the scene's colour was
+    /// copied into the right eye's layer before it ([`keep_scene_colour`]).
+    colour_kept: bool,
     /// The texture units holding textures with eyes, as last scanned, and
     /// the twins' generation then; None: to be scanned again (a binding
     /// changed: the texture commands, glPopAttrib, a display list).
@@ -861,6 +867,31 @@ unsafe fn eyes(
     // SAFETY: the program's context is current with the layered eyes'
     // framebuffer object bound for drawing (checked by `choose`).
     unsafe {
+        // Eyes made from the frame's depth: a draw into the eyes is made
+        // once, mono, as the program made it, into the left eye's layer
+        // (a rewritten program's uniform unshifted, layer 0; fixed
+        // function as it is, without the stand-in).
+        if live::from_depth() {
+            match path {
+                Path::Mono(_) => {}
+                Path::Uniform {
+                    target,
+                    standin: false,
+                }
+                | Path::Layers {
+                    target: Some(target),
+                    ..
+                } => {
+                    let mut left = eye_value(settings, None, false);
+                    left[2] = layer(Eye::Left) as f32;
+                    set_uniform(f, target, left);
+                    draw();
+                    set_uniform(f, target, eye_value(settings, None, false));
+                    return;
+                }
+                Path::Uniform { .. } | Path::Layers { .. } => return draw(),
+            }
+        }
         match path {
             Path::Mono(target) => {
                 if let Some(target) = target {
@@ -1458,7 +1489,7 @@ unsafe fn query_object<R: Returned>(
 /// names): a perspective projection among the matrices is remembered for
 /// automatic convergence, while the convergence is automatic.
 fn learn_projection(cur: &impl Host, call: &Call) {
-    if live::convergence().is_some() {
+    if live::convergence().is_some() && !live::from_depth() {
         return;
     }
     // glProgramUniform* take the program first.
@@ -1580,7 +1611,7 @@ unsafe fn draw_convergence(f: &AutoFns, st: &AutoState) -> (Option<f32>, Option<
 /// # Safety
 /// The program's context is current (callers).
 unsafe fn draw_perspective(f: &AutoFns, st: &AutoState) -> Option<Option<Perspective>> {
-    if st.unmeasured || live::convergence().is_some() {
+    if !records(st) {
         return None;
     }
     // SAFETY: contract.
@@ -1588,6 +1619,43 @@ unsafe fn draw_perspective(f: &AutoFns, st: &AutoState) -> Option<Option<Perspec
         Projection::Perspective(p) => Some(Some(p)),
         Projection::Unknown => Some(None),
         Projection::Flat => None,
+    }
+}
+
+/// Whether this frame's draws record where its scene is and how it
+/// projects: a frame automatic convergence measures, and every frame
+/// whose eyes are made from its depth.
+fn records(st: &AutoState) -> bool {
+    live::from_depth() || (!st.unmeasured && live::convergence().is_none())
+}
+
+/// `--auto=depth`: a flat draw (w = 1: a HUD, text, a 2D pass) comes
+/// into the window's eyes after the frame's scene: the colour its draw
+/// buffer holds now (the scene) is copied into that array's right-eye
+/// layer, which nothing else draws in this mode, so that the present
+/// tells the pixels flat draws changed and keeps them at the screen
+/// ([`crate::auto::from_depth`]). Once per scene.
+///
+/// # Safety
+/// The program's context is current on this thread, the window's eyes'
+/// framebuffer object bound for drawing.
+unsafe fn keep_scene_colour(
+    f: &AutoFns,
+    api: render_targets::ContextApi,
+    layered: &Attachments,
+) -> bool {
+    const GL_DRAW_BUFFER0: u32 = 0x8825;
+    const GL_COLOR_ATTACHMENT0: u32 = 0x8CE0;
+    if !live::from_depth() {
+        return false;
+    }
+    // SAFETY: contract.
+    unsafe {
+        let buffer = integer(f, GL_DRAW_BUFFER0) as u32;
+        let Some(i) = buffer.checked_sub(GL_COLOR_ATTACHMENT0).filter(|&i| i < 8) else {
+            return false;
+        };
+        render_targets::copy_left_colour(api, layered.colour_at(i as usize))
     }
 }
 
@@ -1637,6 +1705,7 @@ pub unsafe fn frame_geometry(
     st.unmeasured = !converge::measures(frame + 1);
     st.clock_read = false;
     let copied = std::mem::take(&mut st.depth_copied);
+    let overlays = std::mem::take(&mut st.colour_kept);
     let origin = {
         let o = &mut st.frame_origins;
         let median = (!o.is_empty()).then(|| {
@@ -1662,11 +1731,8 @@ pub unsafe fn frame_geometry(
             (a, size, scene)
         })
     });
-    if live::convergence().is_some()
-        || !live::auto_on()
-        || !measured
-        || (window.is_none() && target.is_none())
-    {
+    let converges = measured && live::convergence().is_none() && live::auto_on();
+    if !(converges || live::from_depth()) || (window.is_none() && target.is_none()) {
         return None;
     }
     let t = tables()?;
@@ -1690,6 +1756,8 @@ pub unsafe fn frame_geometry(
             target,
             origin,
             left_shift: crate::math::Eye::Left.sign() * st.settings().effective_separation(),
+            converges,
+            overlays,
         })
     }
 }
@@ -1773,10 +1841,14 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     if fbo == window_fbo && known(&perspective) {
                         st.window_drawn = perspective;
                         st.depth_copied = false;
+                        st.colour_kept = false;
                     } else if fbo == window_fbo && !blit {
+                        if perspective.is_none() && known(&st.window_drawn) && !st.colour_kept {
+                            st.colour_kept = keep_scene_colour(f, api, &layered);
+                        }
                         keep_scene_depth(
                             api,
-                            !st.unmeasured,
+                            records(st),
                             known(&st.window_drawn),
                             layered.depth(),
                             (&mut st.depth_copy, &mut st.depth_copied),
@@ -1826,7 +1898,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                         if t.depth() == a.depth() {
                                             keep_scene_depth(
                                                 api,
-                                                !st.unmeasured,
+                                                records(st),
                                                 s.perspective.is_some(),
                                                 a.depth(),
                                                 (&mut scene.copy, &mut scene.copied),
@@ -1942,13 +2014,16 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         return;
                     }
                     _ if st.in_begin => return draw(),
+                    (Family::RasterPixels, _) if live::from_depth() => return draw(),
                     (Family::RasterPixels, name) => {
                         let settings = st.draw_settings(f);
                         let q = &mut st.queries;
                         return pixels(t, &settings.nv, app_fbo, &layered, name, call, q, draw);
                     }
                     (Family::Blit, _) => {
-                        if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+                        if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo
+                            || live::from_depth()
+                        {
                             return draw();
                         }
                         // Each eye from the same eye of the source where it

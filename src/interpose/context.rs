@@ -1071,14 +1071,36 @@ impl StereoContext {
         // MIT-SHM needs none, and each make-current costs a round trip on
         // Mesa's software GLX.
         let mut ours = false;
-        if let Some(frame) = measured {
+        if let Some(frame) = measured.as_ref().filter(|f| f.converges) {
             self.switch_in(r, drawable, &mut ours)?;
             let fb = &drawn.fb;
             if let Some(eyes) = fb.layered() {
                 let scratch = &mut st.auto.measure;
                 // SAFETY: the layer's context, sharing the program's
                 // objects, is current; `read_fbo` is of that context.
-                unsafe { crate::auto::converge::measure(gl, eyes, fb.read_fbo(), &frame, scratch) };
+                unsafe { crate::auto::converge::measure(gl, eyes, fb.read_fbo(), frame, scratch) };
+            }
+        }
+        // Eyes made from the frame's depth (--auto=depth): the program
+        // drew its frame once, into the left eye.
+        if self.auto && crate::auto::live::from_depth() {
+            self.switch_in(r, drawable, &mut ours)?;
+            let scratch = &mut st.auto.from_depth;
+            // SAFETY: the layer's context, sharing the program's objects,
+            // is current; the program's frame is finished (above).
+            let made = profile::span(Stage::FromDepth, || unsafe {
+                crate::auto::from_depth::make(gl, &drawn.fb, measured.as_ref(), scratch)
+            });
+            match made {
+                Ok(m) => settings::tell(&format!(
+                    "automatic stereo from depth: each frame rendered once, both eyes made from \
+                     its colour and depth ({})",
+                    match m {
+                        crate::auto::from_depth::Made::FromDepth => "this frame at depth",
+                        crate::auto::from_depth::Made::Flat => "this frame flat",
+                    }
+                )),
+                Err(e) => crate::report::warn(&format!("{e}")),
             }
         }
         self.compose_and_swap(r, st, (drawable, x_window), window, frame_index, &mut ours)

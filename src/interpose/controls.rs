@@ -7,11 +7,13 @@
 //! | Ctrl+F3 / Ctrl+F4        | separation down / up, 5 points (0 … 100 %)    | `--auto`   |
 //! | Ctrl+F5 / Ctrl+F6        | convergence ÷ 1.1 / × 1.1                      | `--auto`   |
 //! | Ctrl+T                   | automatic stereo off / on                     | `--auto`   |
+//! | Ctrl+F2                  | eyes rendered (geometry) / made from depth    | `--auto`   |
 //! | Ctrl+F7 / Ctrl+Shift+F7  | next / previous output format ([`FORMAT_CYCLE`]) | every stereo window |
 //! | Ctrl+F8                  | exchange the eyes / put them back             | every stereo window |
 //!
 //! The first five are 3D Vision's (its "depth amount" and convergence
-//! keys and its on/off key); F7 and F8 are the next free keys of that row.
+//! keys and its on/off key); F7 and F8 are the next free keys of that row,
+//! and F2 the one before it (3D Vision had none there).
 //! A change takes effect at the next frame (each setting lives in
 //! [`super::live`], read at every present and draw) and is said once on
 //! stderr, e.g. `glstereo: separation 20% (Ctrl+F3/F4)`.
@@ -141,6 +143,8 @@ pub enum Control {
     ConvergenceUp,
     /// Ctrl+T.
     AutoToggle,
+    /// Ctrl+F2: `--auto`'s two kinds ([`live::AutoMode`]).
+    AutoModeToggle,
     /// Ctrl+F7.
     NextFormat,
     /// Ctrl+Shift+F7.
@@ -160,6 +164,7 @@ impl Control {
                 | Control::ConvergenceDown
                 | Control::ConvergenceUp
                 | Control::AutoToggle
+                | Control::AutoModeToggle
         )
     }
 }
@@ -174,10 +179,20 @@ enum Key {
     F7,
     F8,
     T,
+    F2,
 }
 
 impl Key {
-    const ALL: [Key; 7] = [Key::F3, Key::F4, Key::F5, Key::F6, Key::F7, Key::F8, Key::T];
+    const ALL: [Key; 8] = [
+        Key::F3,
+        Key::F4,
+        Key::F5,
+        Key::F6,
+        Key::F7,
+        Key::F8,
+        Key::T,
+        Key::F2,
+    ];
 
     fn keysym(self) -> u32 {
         match self {
@@ -187,6 +202,7 @@ impl Key {
             Key::F6 => keysym::XK_F6,
             Key::F7 => keysym::XK_F7,
             Key::F8 => keysym::XK_F8,
+            Key::F2 => keysym::XK_F2,
             Key::T => keysym::XK_t,
         }
     }
@@ -220,6 +236,7 @@ fn control_of(key: Key, state: u32) -> Option<Control> {
         (Key::F5, false) => Control::ConvergenceDown,
         (Key::F6, false) => Control::ConvergenceUp,
         (Key::T, false) => Control::AutoToggle,
+        (Key::F2, false) => Control::AutoModeToggle,
         (Key::F7, false) => Control::NextFormat,
         (Key::F7, true) => Control::PreviousFormat,
         (Key::F8, false) => Control::SwapEyes,
@@ -483,6 +500,20 @@ fn apply(c: Control) -> String {
             format!(
                 "automatic stereo {} (Ctrl+T)",
                 if on { "on" } else { "off" }
+            )
+        }
+        Control::AutoModeToggle => {
+            let mode = match live::auto_mode() {
+                live::AutoMode::Geometry => live::AutoMode::Depth,
+                live::AutoMode::Depth => live::AutoMode::Geometry,
+            };
+            live::set_auto_mode(mode);
+            format!(
+                "automatic stereo {} (Ctrl+F2)",
+                match mode {
+                    live::AutoMode::Geometry => "renders both eyes (geometry)",
+                    live::AutoMode::Depth => "makes both eyes from one render's depth (depth)",
+                }
             )
         }
         Control::NextFormat | Control::PreviousFormat => {
@@ -981,6 +1012,7 @@ mod tests {
             (Key::F5, Control::ConvergenceDown),
             (Key::F6, Control::ConvergenceUp),
             (Key::T, Control::AutoToggle),
+            (Key::F2, Control::AutoModeToggle),
             (Key::F7, Control::NextFormat),
             (Key::F8, Control::SwapEyes),
         ];
@@ -1008,7 +1040,7 @@ mod tests {
             control_of(Key::F7, CONTROL | SHIFT),
             Some(Control::PreviousFormat)
         );
-        for key in [Key::F3, Key::F4, Key::F5, Key::F6, Key::F8, Key::T] {
+        for key in [Key::F2, Key::F3, Key::F4, Key::F5, Key::F6, Key::F8, Key::T] {
             assert_eq!(control_of(key, CONTROL | SHIFT), None, "{key:?}");
         }
     }

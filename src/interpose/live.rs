@@ -23,9 +23,10 @@ use crate::output::options::OutputOptions;
 use super::settings;
 
 pub use crate::auto::live::{
-    DEFAULT_SEPARATION, ENV_AUTO, ENV_CONVERGENCE, ENV_SEPARATION, auto_on, auto_requested,
-    automatic_convergence, convergence, parse_convergence, parse_separation, separation,
-    set_auto_on, set_automatic_convergence, set_convergence, set_separation,
+    AutoMode, DEFAULT_SEPARATION, ENV_AUTO, ENV_CONVERGENCE, ENV_SEPARATION, auto_mode, auto_on,
+    auto_requested, automatic_convergence, convergence, from_depth, parse_auto,
+    parse_convergence, parse_separation, separation, set_auto_mode, set_auto_on,
+    set_automatic_convergence, set_convergence, set_separation,
 };
 
 /// The live settings.

@@ -132,6 +132,12 @@ impl Rule {
         Rule::affine(m * (zc - p), -m * q, clear)
     }
 
+    /// Every pixel holding geometry moved by the same `k` (convergence 0:
+    /// the whole picture behind the screen).
+    pub fn constant(k: f64, clear: f64) -> Rule {
+        Rule::affine(k, 0.0, clear).unwrap_or_else(Rule::flat)
+    }
+
     /// No depth: every pixel where it is (both eyes the frame).
     pub fn flat() -> Rule {
         Rule {
@@ -269,6 +275,17 @@ pub(crate) fn row_in_place(
     source.extend_from_slice(io);
     row(simd, rule, columns, &source, depth, [io, right], scratch);
     scratch.source = source;
+}
+
+/// Marks the pixels of a row where `colour` differs from `scene` (the
+/// row as the scene left it, before flat draws over it) as overlays: a
+/// depth of NaN, at the screen in both eyes.
+pub fn mark_overlays(colour: &[u32], scene: &[u32], depth: &mut [f32]) {
+    for ((c, s), d) in colour.iter().zip(scene).zip(depth) {
+        if c != s {
+            *d = f32::NAN;
+        }
+    }
 }
 
 fn check(columns: (usize, usize), colour: &[u32], depth: &[f32], out: &[&mut [u32]; 2]) -> usize {

@@ -494,6 +494,34 @@ impl EyePixels {
         }
     }
 
+    /// Width and height in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Row `y` (0: the bottom one) as RGBA8 words to read and write in
+    /// place; None past the last row, or where the rows are not aligned
+    /// to words.
+    ///
+    /// # Safety
+    /// The contract of [`EyePixels`] holds while the row is used, and
+    /// nothing else reads or writes the row meanwhile (GL has finished
+    /// with it, and no other row view of the same row is alive).
+    #[allow(clippy::mut_from_ref)] // a view of shared memory, as the contract says
+    pub unsafe fn row_words_mut(&self, y: u32) -> Option<&mut [u32]> {
+        if y >= self.height || self.stride % 4 != 0 || self.rows as usize % 4 != 0 {
+            return None;
+        }
+        // SAFETY: inside the mapping (row checked above), aligned to
+        // words, the mapping writable (PROT_WRITE); exclusive by contract.
+        Some(unsafe {
+            std::slice::from_raw_parts_mut(
+                self.rows.add(y as usize * self.stride).cast::<u32>().cast_mut(),
+                self.width as usize,
+            )
+        })
+    }
+
     /// The rows of the rectangle at (`x`, `y`) (bottom row), `width` ×
     /// `height` texels; None if it is not inside the texture.
     ///

@@ -77,7 +77,8 @@ fn describe(mode: OutputMode) -> String {
 
 fn help() -> String {
     let mut s = String::from(
-        "Usage: glstereo-run [-m MODE] [-s] [-a [--separation S] [--convergence C]] [-v]\n\
+        "Usage: glstereo-run [-m MODE] [-s] [-a|--auto=depth [--separation S] [--convergence C]]\n\
+         \x20                   [-v]\
          \x20                   [-c DIR [-f FORMATS] [-q N]] [--] PROGRAM [ARGS...]\n\
          \n\
          Runs PROGRAM, an unmodified OpenGL (GLX) program, with glstereo's stereo\n\
@@ -99,6 +100,10 @@ fn help() -> String {
          \x20                     is shown in stereo all the same, every vertex moved\n\
          \x20                     per eye as NVIDIA 3D Vision Automatic moved it\n\
          \x20                     (GLSTEREO_AUTO=1)\n\
+         \x20     --auto=depth    automatic stereo from one render: each frame drawn\n\
+         \x20                     once, both eyes made from its colour and depth (faster;\n\
+         \x20                     what depth cannot hold is flat: GLSTEREO_AUTO=depth)\n\
+         \x20     --auto=geometry the same as --auto\n\
          \x20     --separation S  automatic stereo's separation, percent 0..100: far\n\
          \x20                     geometry S% of 7% of the width apart (default 15;\n\
          \x20                     GLSTEREO_SEPARATION)\n\
@@ -146,7 +151,8 @@ fn help() -> String {
     s.push_str(
         "\nKeys in the program's window (never passed to it; GLSTEREO_KEYS=0: off):\n\
          \x20 Ctrl+F7, Ctrl+Shift+F7  next, previous format      Ctrl+F8  exchange the eyes\n\
-         \x20 automatic stereo: Ctrl+F3/F4 separation, Ctrl+F5/F6 convergence, Ctrl+T on/off\n",
+         \x20 automatic stereo: Ctrl+F3/F4 separation, Ctrl+F5/F6 convergence, Ctrl+T on/off,\n\
+         \x20                    Ctrl+F2 geometry or depth\n",
     );
     s.push_str(
         "\nEnvironment: GLSTEREO_MODE, GLSTEREO_SWAP_EYES, GLSTEREO_AUTO, GLSTEREO_SEPARATION,\n\
@@ -164,7 +170,7 @@ fn help() -> String {
 struct Request {
     mode: Option<OutputMode>,
     swap_eyes: bool,
-    auto: bool,
+    auto: Option<live::AutoMode>,
     separation: Option<String>,
     convergence: Option<String>,
     capture: Option<PathBuf>,
@@ -184,7 +190,7 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
     let mut req = Request {
         mode: None,
         swap_eyes: false,
-        auto: false,
+        auto: None,
         separation: None,
         convergence: None,
         capture: None,
@@ -210,6 +216,22 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
                 .cloned()
                 .ok_or_else(|| format!("{name} needs a value"))
         };
+        // An option that takes no value refuses one given with `=` (a
+        // typo, or an option of a newer version, must not pass silently).
+        let plain = |name: &str| -> Result<(), String> {
+            match &inline {
+                Some(v) => Err(format!(
+                    "{name} takes no value (given {name}={}; see glstereo-run --help)",
+                    v.to_string_lossy()
+                )),
+                None => Ok(()),
+            }
+        };
+        match flag.as_str() {
+            "-h" | "--help" | "-V" | "--version" | "-s" | "--swap-eyes" | "-v" | "--verbose"
+            | "-a" => plain(&flag)?,
+            _ => {}
+        }
         match flag.as_str() {
             "-h" | "--help" => return Ok(Parsed::Help),
             "-V" | "--version" => return Ok(Parsed::Version),
@@ -220,7 +242,22 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
                 req.mode = Some(mode);
             }
             "-s" | "--swap-eyes" => req.swap_eyes = true,
-            "-a" | "--auto" => req.auto = true,
+            "-a" => req.auto = Some(live::AutoMode::Geometry),
+            "--auto" => {
+                req.auto = Some(match &inline {
+                    None => live::AutoMode::Geometry,
+                    Some(v) => live::parse_auto(&v.to_string_lossy())
+                        .ok()
+                        .flatten()
+                        .ok_or_else(|| {
+                            format!(
+                                "--auto={} is not a kind of automatic stereo: --auto, \
+                                 --auto=geometry or --auto=depth",
+                                v.to_string_lossy()
+                            )
+                        })?,
+                })
+            }
             "--separation" => {
                 let v = value(&flag)?.to_string_lossy().into_owned();
                 live::parse_separation(&v).map_err(|e| format!("--separation: {e}"))?;
@@ -318,8 +355,8 @@ fn run(req: Request) -> Result<std::io::Error, String> {
     if req.swap_eyes {
         cmd.env(ENV_SWAP_EYES, "1");
     }
-    if req.auto {
-        cmd.env(live::ENV_AUTO, "1");
+    if let Some(mode) = req.auto {
+        cmd.env(live::ENV_AUTO, mode.name());
     }
     if let Some(s) = &req.separation {
         cmd.env(live::ENV_SEPARATION, s);
