@@ -1,13 +1,16 @@
 #!/bin/sh
 # What automatic stereo costs a modern renderer: each of glmark2's scenes
 # (Debian's glmark2-x11, GLX) run mono without the layer, then under
-# `glstereo-run` without --auto, then under `glstereo-run --auto`, ROUNDS
-# times alternated, on a private Xvfb; prints each scene's frame rates and
-# the ratios of the medians (layer / mono, --auto / mono). Then the same
+# `glstereo-run` without --auto, then under `glstereo-run --auto` (two
+# rendered eyes) and `--auto=depth` (one render, eyes from its depth),
+# ROUNDS times alternated, on a private Xvfb; prints each scene's frame
+# rates and the ratios of the medians (layer / mono, --auto / mono,
+# --auto=depth / mono, --auto=depth / --auto). Then the same
 # for a few scenes of glmark2-es2 (EGL, OpenGL ES; GLMARK2_ES_SCENES), and
 # glxgears under --auto against its own -stereo mode (display lists).
 #
-#   sh benches/auto_glmark2.sh [ROUNDS [SECONDS]]   (default 3 rounds, 4 s a scene)
+#   sh benches/auto_glmark2.sh [ROUNDS [SECONDS [SIZE]]]
+#       (default 3 rounds, 4 s a scene, 800x600; the Xvfb screen fits SIZE)
 #
 # Uses the release build (cargo build --release -p glstereo-preload).
 # Run it on a quiet machine: llvmpipe takes both cores.
@@ -15,12 +18,14 @@ set -u
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 ROUNDS=${1:-3}
 SECONDS_PER=${2:-4}
+SIZE=${3:-800x600}
 RUN="$ROOT/target/release/glstereo-run"
 [ -x "$RUN" ] || { echo "build first: cargo build --release -p glstereo-preload" >&2; exit 1; }
 command -v glmark2 >/dev/null || { echo "install glmark2-x11" >&2; exit 1; }
 command -v glxgears >/dev/null || { echo "install mesa-utils" >&2; exit 1; }
 
-Xvfb :91 -screen 0 1024x768x24 -nolisten tcp >/dev/null 2>&1 &
+SW=$(( ${SIZE%x*} + 64 )); SH=$(( ${SIZE#*x} + 64 ))
+Xvfb :91 -screen 0 ${SW}x${SH}x24 -nolisten tcp >/dev/null 2>&1 &
 XVFB=$!
 trap 'kill $XVFB 2>/dev/null' EXIT INT TERM
 sleep 2
@@ -51,24 +56,28 @@ ratio() {
 # table EXE SCENES: mono, the layer without --auto, --auto.
 table() {
     exe=$1
-    printf '%-28s %-16s %-16s %-16s %s\n' "$exe scene" "mono fps" "layer fps" "--auto fps" \
-        "layer/mono auto/mono"
+    printf '%-28s %-16s %-16s %-16s %-16s %s\n' "$exe scene" "mono fps" "layer fps" \
+        "--auto fps" "depth fps" "layer/mono auto/mono depth/mono depth/auto"
     for scene in $2; do
         mono=""
         layer=""
         auto=""
+        depth=""
         i=0
         while [ "$i" -lt "$ROUNDS" ]; do
-            mono="$mono $(fps "$exe" -s 800x600 -b "$scene:duration=$SECONDS_PER")"
-            layer="$layer $(fps "$RUN" "$exe" -s 800x600 -b "$scene:duration=$SECONDS_PER")"
-            auto="$auto $(fps "$RUN" --auto -m side-by-side-half "$exe" -s 800x600 -b "$scene:duration=$SECONDS_PER")"
+            mono="$mono $(fps "$exe" -s "$SIZE" -b "$scene:duration=$SECONDS_PER")"
+            layer="$layer $(fps "$RUN" "$exe" -s "$SIZE" -b "$scene:duration=$SECONDS_PER")"
+            auto="$auto $(fps "$RUN" --auto -m side-by-side-half "$exe" -s "$SIZE" -b "$scene:duration=$SECONDS_PER")"
+            depth="$depth $(fps "$RUN" --auto=depth -m side-by-side-half "$exe" -s "$SIZE" -b "$scene:duration=$SECONDS_PER")"
             i=$((i + 1))
         done
         m=$(echo "$mono" | median)
         l=$(echo "$layer" | median)
         a=$(echo "$auto" | median)
-        printf '%-28s %-16s %-16s %-16s %s %s\n' "$(echo "$scene" | cut -c1-28)" "$mono" "$layer" \
-            "$auto" "$(ratio "$l" "$m")" "$(ratio "$a" "$m")"
+        d=$(echo "$depth" | median)
+        printf '%-28s %-16s %-16s %-16s %-16s %s %s %s %s\n' "$(echo "$scene" | cut -c1-28)" \
+            "$mono" "$layer" "$auto" "$depth" "$(ratio "$l" "$m")" "$(ratio "$a" "$m")" \
+            "$(ratio "$d" "$m")" "$(ratio "$d" "$a")"
     done
 }
 

@@ -53,10 +53,16 @@ fn drawn(img: &Image) -> bool {
 /// and returns its window's halves once both are drawn, and what it said
 /// on stderr.
 fn scene(x: &Xvfb, exe: &str, bench: &str) -> ([Image; 2], String) {
-    let what = format!("{exe} {bench}");
+    scene_in(x, "--auto", exe, bench)
+}
+
+/// [`scene`] under `auto` (`--auto`, or `--auto=depth`: one render, the
+/// eyes made from its depth).
+fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> ([Image; 2], String) {
+    let what = format!("{exe} {bench} ({auto})");
     let mut cmd = Command::new(&built().run);
     cmd.env("DISPLAY", &x.display)
-        .args(["--auto", "--separation", "100", "-m", "side-by-side-half"])
+        .args([auto, "--separation", "100", "-m", "side-by-side-half"])
         .args([
             exe,
             "-s",
@@ -95,7 +101,7 @@ fn scene(x: &Xvfb, exe: &str, bench: &str) -> ([Image; 2], String) {
     let stderr = run.quit(&screen, window);
     let dir = common::scratch("auto-glmark2");
     let name = bench.split(':').next().unwrap_or(bench);
-    let _ = glstereo::capture::write_png(&shot, &dir.join(format!("{exe}-{name}.png")));
+    let _ = glstereo::capture::write_png(&shot, &dir.join(format!("{exe}-{name}{auto}.png")));
     assert_eq!(
         (shot.width(), shot.height()),
         SIZE,
@@ -108,8 +114,13 @@ fn scene(x: &Xvfb, exe: &str, bench: &str) -> ([Image; 2], String) {
 /// `spread` half-width pixels, the median within `centre` of the screen
 /// (the far limit is 7 % of the 400-pixel half: 28 pixels).
 fn at_depth(x: &Xvfb, exe: &str, bench: &str, spread: i32, centre: i32) {
-    let what = format!("{exe} {bench}");
-    let ([l, r], stderr) = scene(x, exe, bench);
+    at_depth_in(x, "--auto", exe, bench, spread, centre);
+}
+
+/// [`at_depth`] under `auto` ([`scene_in`]).
+fn at_depth_in(x: &Xvfb, auto: &str, exe: &str, bench: &str, spread: i32, centre: i32) {
+    let what = format!("{exe} {bench} ({auto})");
+    let ([l, r], stderr) = scene_in(x, auto, exe, bench);
     assert!(
         !stderr.contains("does not compile") && !stderr.contains("does not link"),
         "{what}: a rewrite failed:\n{stderr}"
@@ -177,6 +188,34 @@ fn glmarks_2d_scenes_are_the_same_in_both_eyes() {
         assert!(
             n == 0,
             "glmark2 {bench}: {n} pixels differ between the eyes of a 2D scene"
+        );
+    }
+}
+
+/// `--auto=depth`: glmark2 renders each frame once and both eyes are
+/// made from its colour and depth: the object scenes and the scenes drawn
+/// through render targets (terrain's passes: the depth is its scene
+/// target's) at depth with their centre at the screen, as under `--auto`;
+/// the 2D scenes the same in both eyes.
+#[test]
+fn glmarks_scenes_from_depth_are_at_depth_and_its_2d_scenes_flat() {
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(1024, 768);
+    let depth = "--auto=depth";
+    at_depth_in(&x, depth, "glmark2", "build:use-vbo=true", 3, 6);
+    at_depth_in(&x, depth, "glmark2", "texture:texture-filter=linear", 3, 6);
+    at_depth_in(&x, depth, "glmark2", "terrain", 6, 10);
+    at_depth_in(&x, depth, "glmark2", "refract", 3, 6);
+    at_depth_in(&x, depth, "glmark2-es2", "refract", 3, 6);
+    for bench in [
+        "effect2d:kernel=0,1,0;1,-4,1;0,1,0;",
+        "desktop:windows=4:effect=blur:blur-radius=5:passes=1:separable=true",
+    ] {
+        let ([l, r], _) = scene_in(&x, depth, "glmark2", bench);
+        let n = parallax::differing_pixels(&l, &r);
+        assert!(
+            n == 0,
+            "glmark2 {bench} (--auto=depth): {n} pixels differ between the eyes of a 2D scene"
         );
     }
 }

@@ -31,6 +31,9 @@ use crate::stereo::eye_memory::EyePixels;
 pub struct Scratch {
     depth: Vec<f32>,
     row: RowScratch,
+    /// The eyes read back and made, where they are not in memory: left
+    /// (and the overlays' scene), right.
+    eyes: [Vec<u32>; 2],
 }
 
 /// How a frame's eyes were made ([`make`]).
@@ -45,8 +48,10 @@ pub enum Made {
 
 /// Makes both eyes of `fb`'s front buffers from its front-left colour
 /// (the program's mono frame) and the depth `frame` says holds the scene
-/// (None: none drawn this frame). Err when the eyes are not in memory
-/// the CPU can write (a hardware renderer; `GLSTEREO_EYE_MEMORY=0`).
+/// (None: none drawn this frame): in place where the eyes are memory the
+/// CPU reads and writes (llvmpipe), else read back and written again
+/// with GL (a hardware renderer, an OpenGL ES context,
+/// `GLSTEREO_EYE_MEMORY=0`).
 ///
 /// # Safety
 /// The layer's context, sharing the program's objects, is current; the
@@ -61,11 +66,8 @@ pub unsafe fn make(
         fb.pixels(ColorBuffer::FrontLeft),
         fb.pixels(ColorBuffer::FrontRight),
     ) else {
-        return Err(crate::Error::Gl(
-            "--auto=depth needs the eyes in memory (Mesa's llvmpipe with \
-             GLSTEREO_EYE_MEMORY unset): this renderer keeps them on its own"
-                .into(),
-        ));
+        // SAFETY: contract.
+        return unsafe { make_through_gl(gl, fb, frame, scratch) };
     };
     let (w, h) = left.size();
     if right.size() != (w, h) {
@@ -122,6 +124,146 @@ pub unsafe fn make(
                 Ok(Made::Flat)
             }
         }
+    }
+}
+
+/// [`make`] where the eyes are GL's own: the front-left (and, with
+/// overlays, front-right) colour read back, both eyes made on the CPU
+/// and written into the front textures.
+///
+/// # Safety
+/// As [`make`].
+unsafe fn make_through_gl(
+    gl: &Gl,
+    fb: &EmulatedFramebuffer,
+    frame: Option<&Frame>,
+    scratch: &mut Scratch,
+) -> crate::Result<Made> {
+    let (w, h) = fb.size();
+    let n = w as usize * h as usize;
+    let textures = [ColorBuffer::FrontLeft, ColorBuffer::FrontRight].map(|b| fb.texture(b));
+    if n == 0 || textures.contains(&0) {
+        return Err(crate::Error::invalid_operation("no front buffers to make eyes in"));
+    }
+    let made = match frame.filter(|_| live::auto_on()) {
+        // SAFETY: contract.
+        Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth) },
+        None => None,
+    };
+    let Some((rule, (vx, vy, vw, vh), window)) = made else {
+        // Both eyes the frame: one copy on the GPU's side.
+        // SAFETY: contract.
+        unsafe { read_texture(gl, fb, textures[0], (w, h), &mut scratch.eyes[0])? };
+        // SAFETY: as above; the buffer holds w × h words.
+        unsafe { write_texture(gl, textures[1], (w, h), &scratch.eyes[0]) };
+        return Ok(Made::Flat);
+    };
+    let overlays = window && frame.is_some_and(|f| f.overlays);
+    let [left, right] = &mut scratch.eyes;
+    // SAFETY: contract.
+    unsafe {
+        read_texture(gl, fb, textures[0], (w, h), left)?;
+        if overlays {
+            read_texture(gl, fb, textures[1], (w, h), right)?;
+        } else {
+            right.clear();
+            right.resize(n, 0);
+        }
+    }
+    let columns = (
+        vx.clamp(0, w as i32) as usize,
+        (vx + vw).clamp(0, w as i32) as usize,
+    );
+    let rows = vy.clamp(0, h as i32) as usize..(vy + vh).clamp(0, h as i32) as usize;
+    let simd = Simd::detected();
+    let w = w as usize;
+    for (y, ((l, r), depth)) in left
+        .chunks_exact_mut(w)
+        .zip(right.chunks_exact_mut(w))
+        .zip(scratch.depth.chunks_exact_mut(w))
+        .enumerate()
+    {
+        if rows.contains(&y) && columns.0 < columns.1 {
+            if overlays {
+                reproject::mark_overlays(l, r, depth);
+            }
+            reproject::row_in_place(simd, &rule, columns, l, depth, r, &mut scratch.row);
+        } else {
+            r.copy_from_slice(l);
+        }
+    }
+    // SAFETY: contract; each buffer holds w × h words.
+    unsafe {
+        write_texture(gl, textures[0], fb.size(), left);
+        write_texture(gl, textures[1], fb.size(), right);
+    }
+    Ok(Made::FromDepth)
+}
+
+/// Reads the RGBA8 texture `texture` (`size`) into `out`, rows bottom
+/// first, through `fb`'s read framebuffer.
+///
+/// # Safety
+/// As [`make`].
+unsafe fn read_texture(
+    gl: &Gl,
+    fb: &EmulatedFramebuffer,
+    texture: u32,
+    (w, h): (u32, u32),
+    out: &mut Vec<u32>,
+) -> crate::Result<()> {
+    use crate::gl::enums::*;
+    out.clear();
+    out.resize(w as usize * h as usize, 0);
+    // SAFETY: contract; `out` holds w × h words.
+    unsafe {
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fb.read_fbo());
+        gl.FramebufferTexture2D(
+            GL_READ_FRAMEBUFFER,
+            GL_COLOR_ATTACHMENT0,
+            GL_TEXTURE_2D,
+            texture,
+            0,
+        );
+        gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+        gl.ReadPixels(
+            0,
+            0,
+            w as i32,
+            h as i32,
+            GL_RGBA,
+            GL_UNSIGNED_BYTE,
+            out.as_mut_ptr().cast(),
+        );
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        gl.check("reading the frame for --auto=depth")
+    }
+}
+
+/// Writes `pixels` (rows bottom first) into the RGBA8 texture `texture`.
+///
+/// # Safety
+/// As [`make`]; `pixels` holds `w` × `h` words.
+unsafe fn write_texture(gl: &Gl, texture: u32, (w, h): (u32, u32), pixels: &[u32]) {
+    use crate::gl::enums::*;
+    // SAFETY: contract.
+    unsafe {
+        gl.BindTexture(GL_TEXTURE_2D, texture);
+        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl.TexSubImage2D(
+            GL_TEXTURE_2D,
+            0,
+            0,
+            0,
+            w as i32,
+            h as i32,
+            GL_RGBA,
+            GL_UNSIGNED_BYTE,
+            pixels.as_ptr().cast(),
+        );
+        gl.BindTexture(GL_TEXTURE_2D, 0);
     }
 }
 
