@@ -30,7 +30,8 @@ use crate::stereo::eye_memory::EyePixels;
 #[derive(Debug, Default)]
 pub struct Scratch {
     depth: Vec<f32>,
-    row: RowScratch,
+    /// Each band's ([`made_into`]).
+    rows: [RowScratch; 2],
     /// The eyes read back and made, where they are not in memory: left
     /// (and the overlays' scene), right.
     eyes: [Vec<u32>; 2],
@@ -78,50 +79,150 @@ pub unsafe fn make(
         Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth) },
         None => None,
     };
-    // Overlays drawn over the window's scene: the pixels that differ from
-    // the scene's colour kept in the right eye's layer.
-    let overlays = frame.is_some_and(|f| f.overlays)
-        && made.as_ref().is_some_and(|(_, _, window)| *window);
-    // SAFETY: contract: GL has finished with the eyes, and these rows are
-    // the only views of them meanwhile.
-    unsafe {
-        match made {
-            Some((rule, (vx, vy, vw, vh), _)) => {
-                let columns = (
-                    vx.clamp(0, w as i32) as usize,
-                    (vx + vw).clamp(0, w as i32) as usize,
-                );
-                let rows = vy.clamp(0, h as i32) as u32..(vy + vh).clamp(0, h as i32) as u32;
-                let simd = Simd::detected();
-                for y in 0..h {
-                    let (Some(l), Some(r)) = (left.row_words_mut(y), right.row_words_mut(y))
-                    else {
-                        return Err(crate::Error::Gl("eye rows not aligned to words".into()));
-                    };
-                    if rows.contains(&y) && columns.0 < columns.1 {
-                        let at = y as usize * w as usize;
-                        let depth = &mut scratch.depth[at..at + w as usize];
-                        if overlays {
-                            reproject::mark_overlays(l, r, depth);
-                        }
-                        reproject::row_in_place(
-                            simd,
-                            &rule,
-                            columns,
-                            l,
-                            depth,
-                            r,
-                            &mut scratch.row,
-                        );
-                    } else {
-                        r.copy_from_slice(l);
-                    }
+    // SAFETY: contract: GL has finished with the eyes, and these are the
+    // only views of their rows meanwhile.
+    let eyes = unsafe { [EyeRows::of_memory(&left), EyeRows::of_memory(&right)] };
+    let [Some(l), Some(r)] = eyes else {
+        return Err(crate::Error::Gl("eye rows not aligned to words".into()));
+    };
+    let bands = (&mut scratch.depth[..], &mut scratch.rows);
+    Ok(made_into(made, frame, [l, r], bands))
+}
+
+/// Makes the eyes in `eyes` (the left holding the frame's colour, the
+/// right, with overlays, the scene's before them) by `made` (the rule,
+/// viewport and whether the scene is the window's: [`rule_of`]; None:
+/// both eyes the frame), in two bands at once (the composite's helper
+/// thread takes the upper).
+fn made_into(
+    made: Option<(Rule, (i32, i32, i32, i32), bool)>,
+    frame: Option<&Frame>,
+    eyes: [EyeRows; 2],
+    (depth, rows): (&mut [f32], &mut [RowScratch; 2]),
+) -> Made {
+    let (w, h) = (eyes[0].width, eyes[0].height);
+    let Some((rule, (vx, vy, vw, vh), window)) = made else {
+        for y in 0..h {
+            // SAFETY: one view of each row at a time (EyeRows).
+            let (l, r) = unsafe { (eyes[0].row(y), eyes[1].row(y)) };
+            r.copy_from_slice(l);
+        }
+        return Made::Flat;
+    };
+    let job = Job {
+        rule,
+        columns: (
+            vx.clamp(0, w as i32) as usize,
+            (vx + vw).clamp(0, w as i32) as usize,
+        ),
+        rows: vy.clamp(0, h as i32) as usize..(vy + vh).clamp(0, h as i32) as usize,
+        // Overlays drawn over the window's scene: the pixels that differ
+        // from the scene's colour kept in the right eye's layer.
+        overlays: window && frame.is_some_and(|f| f.overlays),
+        simd: Simd::detected(),
+        eyes,
+    };
+    let mid = h / 2;
+    let (low, high) = depth.split_at_mut(mid * w);
+    let [here, there] = rows;
+    let mut upper = || job.band(mid..h, high, there);
+    if !crate::output::helper::both(|| job.band(0..mid, low, here), &mut upper) {
+        job.band(mid..h, high, here);
+    }
+    Made::FromDepth
+}
+
+/// Rows of an eye, bottom first, as words: the eye's memory in place, or
+/// a buffer read back.
+#[derive(Clone, Copy)]
+struct EyeRows {
+    first: *mut u32,
+    /// Words from one row to the next.
+    stride: usize,
+    width: usize,
+    height: usize,
+}
+
+// SAFETY: a view of memory that [`EyeRows::row`]'s contract keeps to one
+// thread per row.
+unsafe impl Send for EyeRows {}
+// SAFETY: as above.
+unsafe impl Sync for EyeRows {}
+
+impl EyeRows {
+    /// The rows of an eye in memory; None where they are not aligned to
+    /// words.
+    ///
+    /// # Safety
+    /// As [`EyePixels::row_words_mut`], for as long as the rows are used.
+    unsafe fn of_memory(eye: &EyePixels) -> Option<EyeRows> {
+        let (w, h) = eye.size();
+        // SAFETY: contract.
+        let first = unsafe { eye.row_words_mut(0)? }.as_mut_ptr();
+        let stride = if h > 1 {
+            // SAFETY: as above.
+            let second = unsafe { eye.row_words_mut(1)? }.as_mut_ptr();
+            (second as usize - first as usize) / 4
+        } else {
+            w as usize
+        };
+        Some(EyeRows {
+            first,
+            stride,
+            width: w as usize,
+            height: h as usize,
+        })
+    }
+
+    /// The rows of a buffer of `width` × `height` words.
+    fn of_buffer(buffer: &mut [u32], width: usize, height: usize) -> EyeRows {
+        assert!(buffer.len() >= width * height, "rows of the buffer");
+        EyeRows {
+            first: buffer.as_mut_ptr(),
+            stride: width,
+            width,
+            height,
+        }
+    }
+
+    /// Row `y`.
+    ///
+    /// # Safety
+    /// `y` < height; no other view of the row is alive while it is used.
+    #[allow(clippy::mut_from_ref)] // rows handed to one thread each
+    unsafe fn row(&self, y: usize) -> &mut [u32] {
+        debug_assert!(y < self.height);
+        // SAFETY: contract; inside the rows (y < height).
+        unsafe { std::slice::from_raw_parts_mut(self.first.add(y * self.stride), self.width) }
+    }
+}
+
+/// One frame's eyes to make ([`made_into`]).
+struct Job {
+    rule: Rule,
+    columns: (usize, usize),
+    rows: std::ops::Range<usize>,
+    overlays: bool,
+    simd: Simd,
+    eyes: [EyeRows; 2],
+}
+
+impl Job {
+    /// Makes rows `ys` of the eyes, `depth` holding those rows' depths.
+    fn band(&self, ys: std::ops::Range<usize>, depth: &mut [f32], scratch: &mut RowScratch) {
+        let w = self.eyes[0].width;
+        let y0 = ys.start;
+        for y in ys {
+            // SAFETY: each band's rows are its own (made_into splits them).
+            let (l, r) = unsafe { (self.eyes[0].row(y), self.eyes[1].row(y)) };
+            if self.rows.contains(&y) && self.columns.0 < self.columns.1 {
+                let depth = &mut depth[(y - y0) * w..(y - y0 + 1) * w];
+                if self.overlays {
+                    reproject::mark_overlays(l, r, depth);
                 }
-                Ok(Made::FromDepth)
-            }
-            None => {
-                copy_left_to_right(&left, &right, h)?;
-                Ok(Made::Flat)
+                reproject::row_in_place(self.simd, &self.rule, self.columns, l, depth, r, scratch);
+            } else {
+                r.copy_from_slice(l);
             }
         }
     }
@@ -150,15 +251,7 @@ unsafe fn make_through_gl(
         Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth) },
         None => None,
     };
-    let Some((rule, (vx, vy, vw, vh), window)) = made else {
-        // Both eyes the frame: one copy on the GPU's side.
-        // SAFETY: contract.
-        unsafe { read_texture(gl, fb, textures[0], (w, h), &mut scratch.eyes[0])? };
-        // SAFETY: as above; the buffer holds w × h words.
-        unsafe { write_texture(gl, textures[1], (w, h), &scratch.eyes[0]) };
-        return Ok(Made::Flat);
-    };
-    let overlays = window && frame.is_some_and(|f| f.overlays);
+    let overlays = made.as_ref().is_some_and(|m| m.2) && frame.is_some_and(|f| f.overlays);
     let [left, right] = &mut scratch.eyes;
     // SAFETY: contract.
     unsafe {
@@ -170,34 +263,19 @@ unsafe fn make_through_gl(
             right.resize(n, 0);
         }
     }
-    let columns = (
-        vx.clamp(0, w as i32) as usize,
-        (vx + vw).clamp(0, w as i32) as usize,
-    );
-    let rows = vy.clamp(0, h as i32) as usize..(vy + vh).clamp(0, h as i32) as usize;
-    let simd = Simd::detected();
-    let w = w as usize;
-    for (y, ((l, r), depth)) in left
-        .chunks_exact_mut(w)
-        .zip(right.chunks_exact_mut(w))
-        .zip(scratch.depth.chunks_exact_mut(w))
-        .enumerate()
-    {
-        if rows.contains(&y) && columns.0 < columns.1 {
-            if overlays {
-                reproject::mark_overlays(l, r, depth);
-            }
-            reproject::row_in_place(simd, &rule, columns, l, depth, r, &mut scratch.row);
-        } else {
-            r.copy_from_slice(l);
-        }
-    }
+    let (uw, uh) = (w as usize, h as usize);
+    let eyes = [
+        EyeRows::of_buffer(left, uw, uh),
+        EyeRows::of_buffer(right, uw, uh),
+    ];
+    let done = made_into(made, frame, eyes, (&mut scratch.depth, &mut scratch.rows));
     // SAFETY: contract; each buffer holds w × h words.
     unsafe {
-        write_texture(gl, textures[0], fb.size(), left);
-        write_texture(gl, textures[1], fb.size(), right);
+        for (texture, eye) in textures.into_iter().zip(&scratch.eyes) {
+            write_texture(gl, texture, (w, h), eye);
+        }
     }
-    Ok(Made::FromDepth)
+    Ok(done)
 }
 
 /// Reads the RGBA8 texture `texture` (`size`) into `out`, rows bottom
@@ -265,23 +343,6 @@ unsafe fn write_texture(gl: &Gl, texture: u32, (w, h): (u32, u32), pixels: &[u32
         );
         gl.BindTexture(GL_TEXTURE_2D, 0);
     }
-}
-
-/// Both eyes the left one.
-///
-/// # Safety
-/// As [`make`].
-unsafe fn copy_left_to_right(left: &EyePixels, right: &EyePixels, h: u32) -> crate::Result<()> {
-    for y in 0..h {
-        // SAFETY: contract of the caller.
-        let (Some(l), Some(r)) = (unsafe { left.row_words_mut(y) }, unsafe {
-            right.row_words_mut(y)
-        }) else {
-            return Err(crate::Error::Gl("eye rows not aligned to words".into()));
-        };
-        r.copy_from_slice(l);
-    }
-    Ok(())
 }
 
 /// The rule of `frame`'s scene, its viewport and whether it is the

@@ -993,6 +993,9 @@ impl StereoContext {
             // the context is next made current).
             let mut st = self.lock();
             if let Some(drawn) = st.fbs.get_mut(&drawable) {
+                // A live switch of automatic stereo's kind attaches the
+                // eyes' layers anew (Ctrl+F2).
+                drawn.fb.follow_auto_mode();
                 // SAFETY: the program's context is current again, on `drawable`.
                 let reattached = unsafe { drawn.fb.reattach_app(&r.gl) };
                 if result.is_ok() {

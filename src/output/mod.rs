@@ -24,7 +24,7 @@ mod dubois_lut;
 #[cfg(test)]
 mod fits;
 pub mod gl;
-mod helper;
+pub(crate) mod helper;
 pub(crate) mod kernels;
 pub mod layout;
 pub mod mode;

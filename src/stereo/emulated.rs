@@ -40,6 +40,15 @@ use crate::stereo::buffers::{
 };
 use crate::stereo::eye_memory::{self, EyePixels, MemoryObjectApi, TextureMemory};
 
+/// The layers of the layered eyes the program draws into: every one
+/// (None), or the left eye's only where automatic stereo makes the eyes
+/// from the frame's depth ([`crate::auto::from_depth`]): nothing is drawn
+/// into the right eye's layer then, and a glClear clears one layer, not
+/// two.
+fn drawn_layers() -> Option<crate::math::Eye> {
+    crate::auto::live::from_depth().then_some(crate::math::Eye::Left)
+}
+
 /// Largest number of fragment outputs the draw state tracks (GL 3.0's
 /// minimum GL_MAX_DRAW_BUFFERS, which every host of the emulation has).
 pub const MAX_DRAW_BUFFERS: usize = 8;
@@ -290,6 +299,9 @@ pub struct EmulatedFramebuffer {
     retired: Vec<TextureMemory>,
     /// The program's framebuffer object holds replaced textures.
     attachments_stale: bool,
+    /// The layers of the layered eyes attached for the program
+    /// ([`drawn_layers`] when they were attached).
+    attached_layers: Option<crate::math::Eye>,
     draw: DrawState,
     read_name: u32,
     read: Option<ColorBuffer>,
@@ -347,6 +359,7 @@ impl EmulatedFramebuffer {
             memory: Default::default(),
             retired: Vec::new(),
             attachments_stale: false,
+            attached_layers: None,
             draw: DrawState::Single {
                 name: initial,
                 set: resolve_draw_buffer(shape, initial).expect("the initial buffer exists"),
@@ -708,6 +721,15 @@ impl EmulatedFramebuffer {
         }
     }
 
+    /// Marks the attachments stale ([`Self::reattach_app`]) where the
+    /// layered eyes were attached for another kind of automatic stereo
+    /// than the one on now ([`drawn_layers`]: a live switch).
+    pub fn follow_auto_mode(&mut self) {
+        if self.layered.is_some() && self.app_fbo != 0 && self.attached_layers != drawn_layers() {
+            self.attachments_stale = true;
+        }
+    }
+
     /// Whether any colour texture's storage (or a replaced one's, not yet
     /// freed) is memory from [`crate::stereo::eye_memory`].
     pub fn holds_memory(&self) -> bool {
@@ -875,11 +897,12 @@ impl EmulatedFramebuffer {
         }
     }
 
-    unsafe fn attach_storage(&self, gl: &Gl) -> Result<()> {
+    unsafe fn attach_storage(&mut self, gl: &Gl) -> Result<()> {
         // SAFETY: the application context is current with app_fbo bound.
         unsafe {
             if let Some(attachments) = self.layered_attachments() {
-                attachments.attach(GL_FRAMEBUFFER, None);
+                self.attached_layers = drawn_layers();
+                attachments.attach(GL_FRAMEBUFFER, self.attached_layers);
                 let status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
                 if status != GL_FRAMEBUFFER_COMPLETE {
                     return Err(Error::Gl(format!(
@@ -1234,7 +1257,7 @@ impl EmulatedFramebuffer {
                 // buffers below then name it where ES allows).
                 self.with_bound(gl, GL_DRAW_FRAMEBUFFER, GL_DRAW_FRAMEBUFFER_BINDING, || {
                     if let Some(a) = self.layered_attachments() {
-                        a.attach(GL_DRAW_FRAMEBUFFER, None);
+                        a.attach(GL_DRAW_FRAMEBUFFER, self.attached_layers);
                     }
                 });
             }
