@@ -130,22 +130,27 @@ INSTALL_LIBDIR  ?= $(PREFIX)/lib
 INSTALL_INCDIR  ?= $(PREFIX)/include
 INSTALL_BINDIR  ?= $(PREFIX)/bin
 INSTALL_MANDIR  ?= $(PREFIX)/share/man
+# The preload library and its stubs (one directory: the layer opens the
+# stubs beside itself); the Debian packages give them a private one.
+INSTALL_PRELOADDIR ?= $(INSTALL_LIBDIR)
+# A Rust target to build for instead of this machine's (make deb DEB_HOST_ARCH=i386).
+INSTALL_TARGET  ?=
 VERSION         := $(shell sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -n 1)
-INSTALL_BUILT   := $(CURDIR)/target/$(if $(filter dev debug,$(INSTALL_PROFILE)),debug,$(INSTALL_PROFILE))
-INSTALL_CARGO   := --profile $(if $(filter debug,$(INSTALL_PROFILE)),dev,$(INSTALL_PROFILE))
+INSTALL_BUILT   := $(CURDIR)/target/$(if $(INSTALL_TARGET),$(INSTALL_TARGET)/)$(if $(filter dev debug,$(INSTALL_PROFILE)),debug,$(INSTALL_PROFILE))
+INSTALL_CARGO   := --profile $(if $(filter debug,$(INSTALL_PROFILE)),dev,$(INSTALL_PROFILE)) $(if $(INSTALL_TARGET),--target $(INSTALL_TARGET))
 
 install:
 	$(CARGO) build $(INSTALL_CARGO) -p glstereo -p glstereo-preload
 	install -d $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig $(DESTDIR)$(INSTALL_INCDIR)/glstereo \
-	  $(DESTDIR)$(INSTALL_BINDIR) $(DESTDIR)$(INSTALL_MANDIR)/man1
+	  $(DESTDIR)$(INSTALL_BINDIR) $(DESTDIR)$(INSTALL_MANDIR)/man1 $(DESTDIR)$(INSTALL_PRELOADDIR)
 	install -m 755 $(INSTALL_BUILT)/libglstereo.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.$(VERSION)
 	ln -sf libglstereo.so.$(VERSION) $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.0
 	ln -sf libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so
 	install -m 644 $(INSTALL_BUILT)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a
-	install -m 755 $(INSTALL_BUILT)/libglstereo_preload.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so
+	install -m 755 $(INSTALL_BUILT)/libglstereo_preload.so $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_preload.so
 	install -m 755 $(INSTALL_BUILT)/libglstereo_stub_GL.so $(INSTALL_BUILT)/libglstereo_stub_GLX.so \
 	  $(INSTALL_BUILT)/libglstereo_stub_OpenGL.so $(INSTALL_BUILT)/libglstereo_stub_EGL.so \
-	  $(INSTALL_BUILT)/libglstereo_stub_GLESv2.so $(DESTDIR)$(INSTALL_LIBDIR)/
+	  $(INSTALL_BUILT)/libglstereo_stub_GLESv2.so $(DESTDIR)$(INSTALL_PRELOADDIR)/
 	install -m 644 include/glstereo.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h
 	install -m 644 include/glstereo/*.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(INSTALL_LIBDIR)|' \
@@ -157,10 +162,10 @@ install:
 uninstall:
 	rm -f $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.$(VERSION) \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GL.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GLX.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_OpenGL.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_EGL.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GLESv2.so \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_preload.so \
+	  $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_GL.so $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_GLX.so \
+	  $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_OpenGL.so \
+	  $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_EGL.so $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_GLESv2.so \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig/glstereo.pc $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h \
 	  $(DESTDIR)$(INSTALL_BINDIR)/glstereo-run $(DESTDIR)$(INSTALL_MANDIR)/man1/glstereo-run.1
 	rm -rf $(DESTDIR)$(INSTALL_INCDIR)/glstereo
