@@ -57,7 +57,7 @@ fn tree(root: &Path, bin: &str, lib: Option<&str>) -> (PathBuf, Option<PathBuf>)
 }
 
 /// `glstereo-run -- PROGRAM`, with no preload path set by hand.
-fn run(glstereo_run: &Path, program: &Path) -> Output {
+fn run_under(glstereo_run: &Path, program: &Path) -> Output {
     Command::new(glstereo_run)
         .arg("--")
         .arg(program)
@@ -69,7 +69,7 @@ fn run(glstereo_run: &Path, program: &Path) -> Output {
 
 /// The LD_PRELOAD `env` printed under glstereo-run.
 fn preloaded(glstereo_run: &Path) -> String {
-    let out = run(glstereo_run, Path::new("/usr/bin/env"));
+    let out = run_under(glstereo_run, Path::new("/usr/bin/env"));
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),
@@ -114,7 +114,7 @@ fn glstereo_run_finds_the_layer_where_the_debian_package_puts_it() {
 fn glstereo_run_without_a_layer_says_where_it_looked() {
     let dir = common::scratch("preload_location_none");
     let (run, _) = tree(&dir, "usr/bin", None);
-    let out = run_env(&run);
+    let out = run_under(&run, Path::new("/usr/bin/env"));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(
@@ -122,10 +122,6 @@ fn glstereo_run_without_a_layer_says_where_it_looked() {
             && stderr.contains(&format!("lib/{}/glstereo", triplet())),
         "wanted where it looked, saw: {stderr}"
     );
-}
-
-fn run_env(glstereo_run: &Path) -> Output {
-    run(glstereo_run, Path::new("/usr/bin/env"))
 }
 
 /// The 52-byte header of a little-endian ELF32 executable for `machine`:
@@ -152,7 +148,10 @@ fn executable(path: &Path, bytes: &[u8]) {
 #[test]
 fn a_program_of_the_other_word_size_is_told_what_to_install() {
     let Some((debian, _, machine)) = other() else {
-        eprintln!("skipped: no other word size known on {}", std::env::consts::ARCH);
+        eprintln!(
+            "skipped: no other word size known on {}",
+            std::env::consts::ARCH
+        );
         return;
     };
     let dir = common::scratch("preload_location_32");
@@ -160,7 +159,7 @@ fn a_program_of_the_other_word_size_is_told_what_to_install() {
     let (run, _) = tree(&dir, "usr/bin", Some(&private));
     let prog = dir.join("prog32");
     executable(&prog, &elf32_header(machine));
-    let out = run(&run, &prog);
+    let out = run_under(&run, &prog);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "one line, saw: {stderr}");
@@ -185,7 +184,10 @@ fn a_program_of_the_other_word_size_is_told_what_to_install() {
 #[test]
 fn a_program_of_the_other_word_size_gets_that_word_sizes_layer() {
     let Some((_, other_triplet, _)) = other() else {
-        eprintln!("skipped: no other word size known on {}", std::env::consts::ARCH);
+        eprintln!(
+            "skipped: no other word size known on {}",
+            std::env::consts::ARCH
+        );
         return;
     };
     let dir = common::scratch("preload_location_32_found");
@@ -216,7 +218,7 @@ fn a_program_of_the_other_word_size_gets_that_word_sizes_layer() {
         .join("glstereo/libglstereo_preload.so");
     std::fs::create_dir_all(layer32.parent().unwrap()).unwrap();
     std::fs::write(&layer32, b"stand-in").unwrap();
-    let out = run(&run, &prog);
+    let out = run_under(&run, &prog);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         stdout.contains(&format!("LD_PRELOAD={}", canonical(&layer32))),

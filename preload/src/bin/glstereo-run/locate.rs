@@ -158,9 +158,9 @@ fn candidates(dir: &Path, arch: Arch, native: bool) -> Vec<PathBuf> {
     if native {
         // The build tree: target/<profile>/, beside glstereo-run.
         c.push(dir.join(PRELOAD));
-    } else if let Some(profile) = dir.file_name() {
-        // A cross build of the layer in the same build tree:
-        // target/<rust target>/<profile>/.
+    } else if let Some(profile) = dir.file_name().filter(|_| dir.join(PRELOAD).is_file()) {
+        // In a build tree (the native layer beside glstereo-run), a cross
+        // build of the layer: target/<rust target>/<profile>/.
         c.push(dir.join("..").join(arch.rust).join(profile).join(PRELOAD));
     }
     // The Debian packages: /usr/lib/<multiarch>/glstereo/.
@@ -221,21 +221,17 @@ pub fn find_preload(program: &OsStr) -> Result<PathBuf, String> {
             let found = candidates(dir, arch, false);
             return first_file(&found).ok_or_else(|| {
                 format!(
-                    "{} is a {} program ({}) and the stereo layer installed here is for \
-                         {} ({}) programs: install the {} layer too (Debian: dpkg \
-                         --add-architecture {}; apt-get update; apt-get install \
-                         libglstereo-preload:{}; from source: make deb DEB_HOST_ARCH={}, \
-                         see the README's \"Install\") (looked in {})",
-                    program.to_string_lossy(),
-                    arch.bits(),
-                    arch.debian,
-                    own.bits(),
-                    own.debian,
-                    arch.debian,
-                    arch.debian,
-                    arch.debian,
-                    arch.debian,
-                    list(&found)
+                    "{prog} is a {bits} program ({d}) and the stereo layer installed here \
+                     is for {own_bits} ({own_d}) programs: install the {d} layer too (Debian: \
+                     dpkg --add-architecture {d}; apt-get update; apt-get install \
+                     libglstereo-preload:{d}; from source: the README's \"Install\") \
+                     (looked in {looked})",
+                    prog = program.to_string_lossy(),
+                    bits = arch.bits(),
+                    d = arch.debian,
+                    own_bits = own.bits(),
+                    own_d = own.debian,
+                    looked = list(&found)
                 )
             });
         }
