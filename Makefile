@@ -130,22 +130,27 @@ INSTALL_LIBDIR  ?= $(PREFIX)/lib
 INSTALL_INCDIR  ?= $(PREFIX)/include
 INSTALL_BINDIR  ?= $(PREFIX)/bin
 INSTALL_MANDIR  ?= $(PREFIX)/share/man
+# The preload library and its stubs (one directory: the layer opens the
+# stubs beside itself); the Debian packages give them a private one.
+INSTALL_PRELOADDIR ?= $(INSTALL_LIBDIR)
+# A Rust target to build for instead of this machine's (make deb DEB_HOST_ARCH=i386).
+INSTALL_TARGET  ?=
 VERSION         := $(shell sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -n 1)
-INSTALL_BUILT   := $(CURDIR)/target/$(if $(filter dev debug,$(INSTALL_PROFILE)),debug,$(INSTALL_PROFILE))
-INSTALL_CARGO   := --profile $(if $(filter debug,$(INSTALL_PROFILE)),dev,$(INSTALL_PROFILE))
+INSTALL_BUILT   := $(CURDIR)/target/$(if $(INSTALL_TARGET),$(INSTALL_TARGET)/)$(if $(filter dev debug,$(INSTALL_PROFILE)),debug,$(INSTALL_PROFILE))
+INSTALL_CARGO   := --profile $(if $(filter debug,$(INSTALL_PROFILE)),dev,$(INSTALL_PROFILE)) $(if $(INSTALL_TARGET),--target $(INSTALL_TARGET))
 
 install:
 	$(CARGO) build $(INSTALL_CARGO) -p glstereo -p glstereo-preload
 	install -d $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig $(DESTDIR)$(INSTALL_INCDIR)/glstereo \
-	  $(DESTDIR)$(INSTALL_BINDIR) $(DESTDIR)$(INSTALL_MANDIR)/man1
+	  $(DESTDIR)$(INSTALL_BINDIR) $(DESTDIR)$(INSTALL_MANDIR)/man1 $(DESTDIR)$(INSTALL_PRELOADDIR)
 	install -m 755 $(INSTALL_BUILT)/libglstereo.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.$(VERSION)
 	ln -sf libglstereo.so.$(VERSION) $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.0
 	ln -sf libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so
 	install -m 644 $(INSTALL_BUILT)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a
-	install -m 755 $(INSTALL_BUILT)/libglstereo_preload.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so
+	install -m 755 $(INSTALL_BUILT)/libglstereo_preload.so $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_preload.so
 	install -m 755 $(INSTALL_BUILT)/libglstereo_stub_GL.so $(INSTALL_BUILT)/libglstereo_stub_GLX.so \
 	  $(INSTALL_BUILT)/libglstereo_stub_OpenGL.so $(INSTALL_BUILT)/libglstereo_stub_EGL.so \
-	  $(INSTALL_BUILT)/libglstereo_stub_GLESv2.so $(DESTDIR)$(INSTALL_LIBDIR)/
+	  $(INSTALL_BUILT)/libglstereo_stub_GLESv2.so $(DESTDIR)$(INSTALL_PRELOADDIR)/
 	install -m 644 include/glstereo.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h
 	install -m 644 include/glstereo/*.h $(DESTDIR)$(INSTALL_INCDIR)/glstereo/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(INSTALL_LIBDIR)|' \
@@ -157,14 +162,58 @@ install:
 uninstall:
 	rm -f $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.$(VERSION) \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so.0 $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_preload.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GL.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GLX.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_OpenGL.so \
-	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_EGL.so $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo_stub_GLESv2.so \
+	  $(DESTDIR)$(INSTALL_LIBDIR)/libglstereo.a $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_preload.so \
+	  $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_GL.so $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_GLX.so \
+	  $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_OpenGL.so \
+	  $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_EGL.so $(DESTDIR)$(INSTALL_PRELOADDIR)/libglstereo_stub_GLESv2.so \
 	  $(DESTDIR)$(INSTALL_LIBDIR)/pkgconfig/glstereo.pc $(DESTDIR)$(INSTALL_INCDIR)/glstereo.h \
 	  $(DESTDIR)$(INSTALL_BINDIR)/glstereo-run $(DESTDIR)$(INSTALL_MANDIR)/man1/glstereo-run.1
 	rm -rf $(DESTDIR)$(INSTALL_INCDIR)/glstereo
 # ----------------------------------------------------------------------------
+
+# --- deb: Debian packages in target/debian/ (README, "Install") ------------
+# debhelper through `dpkg-buildpackage -b` (debian/; -tc: its staging
+# directories are removed afterwards), then lintian. The
+# release build in target/ is made, or reused, by make install inside
+# debian/rules. DEB_HOST_ARCH=i386 cross-builds the i386 packages (after
+# `dpkg --add-architecture i386`; needs Rust's i686 target, added here).
+# Installs what it needs as root, as `deps` does.
+DEB_BUILD_ARCH := $(shell dpkg --print-architecture 2>/dev/null)
+DEB_HOST_ARCH  ?= $(DEB_BUILD_ARCH)
+DEB_OUT        := target/debian
+DEB_CHANGES    := $(DEB_OUT)/glstereo_$(VERSION)_$(DEB_HOST_ARCH)
+DEB_RUST_i386  := i686-unknown-linux-gnu
+DEB_RUST_arm64 := aarch64-unknown-linux-gnu
+DEB_CROSS      := $(filter-out $(DEB_BUILD_ARCH),$(DEB_HOST_ARCH))
+# debian/control's Build-Depends: dpkg-shlibdeps reads the libraries the
+# stubs link (libGL.so.1, libGLX.so.0, libOpenGL.so.0, libEGL.so.1,
+# libGLESv2.so.2) from their installed packages.
+DEB_LIBS       := libc6-dev libgl1 libglx0 libopengl0 libegl1 libgles2
+DEB_TOOLS      := debhelper dpkg-dev lintian gcc \
+                  $(if $(DEB_CROSS),crossbuild-essential-$(DEB_CROSS) $(DEB_LIBS:=:$(DEB_CROSS)),$(DEB_LIBS))
+
+.PHONY: deb
+deb:
+	@if [ -n "$(DEB_CROSS)" ] && ! dpkg --print-foreign-architectures | grep -qx "$(DEB_CROSS)"; then \
+	  echo "make deb: add the $(DEB_CROSS) architecture first: dpkg --add-architecture $(DEB_CROSS) && apt-get update"; exit 1; \
+	fi
+	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(DEB_TOOLS)"
+	@command -v $(CARGO) >/dev/null || { \
+	  echo "make deb: no cargo: install Rust 1.85 or newer with rustup (Debian 12's rustc is 1.63)"; exit 1; }
+	@if [ -n "$(DEB_CROSS)" ]; then \
+	  t="$(DEB_RUST_$(DEB_CROSS))"; \
+	  [ -n "$$t" ] || { echo "make deb: no Rust target known for $(DEB_CROSS)"; exit 1; }; \
+	  rustup target list --installed 2>/dev/null | grep -qx "$$t" || rustup target add "$$t" || { \
+	    echo "make deb: Rust's $$t target is missing and rustup could not add it"; exit 1; }; \
+	fi
+	mkdir -p $(DEB_OUT)
+	sh debian/make-meta.sh
+	$(if $(DEB_CROSS),CC=$$(dpkg-architecture -a$(DEB_CROSS) -qDEB_HOST_GNU_TYPE)-gcc) \
+	dpkg-buildpackage -b -tc --no-sign -a$(DEB_HOST_ARCH) \
+	  --buildinfo-file=$(DEB_CHANGES).buildinfo --buildinfo-option=-u$(DEB_OUT) \
+	  --changes-file=$(DEB_CHANGES).changes --changes-option=-u$(DEB_OUT)
+	lintian --fail-on error $(DEB_CHANGES).changes
+	@ls -l $(DEB_OUT)/*_$(VERSION)_$(DEB_HOST_ARCH).deb
 
 # Benchmarks (release build; see BENCHMARKS.md): the frame loop, mono vs
 # stereo on EGL, OSMesa and GLX (a private Xvfb), light and heavy scenes;

@@ -218,6 +218,9 @@ fn link(cc: &std::ffi::OsStr, out: &Path, soname: &str, needed: &[&Path]) {
         .arg(out)
         .args(["-x", "c", "/dev/null", "-x", "none"])
         .args(needed)
+        // libc last: no code of its own needs it, but a shared library
+        // that names no libc is taken for a mis-built one (lintian).
+        .arg("-lc")
         .status()
         .unwrap_or_else(|e| panic!("running the C compiler ({cc:?}) for {soname} failed: {e}"));
     assert!(status.success(), "linking {} failed", out.display());

@@ -20,10 +20,10 @@ use glstereo::output::mode::{ALIASES, AliasSource};
 use glstereo::output::options::{ENV_MODE, ENV_SWAP_EYES, OutputSettings};
 use glstereo::output::{AnaglyphColors, AnaglyphMethod, OutputMode};
 
-/// The preload library's file name.
-const PRELOAD: &str = "libglstereo_preload.so";
-/// Overrides where the preload library is looked for.
-const ENV_PRELOAD_LIB: &str = "GLSTEREO_PRELOAD_LIB";
+/// Where the preload library is (`locate.rs`: by where glstereo-run is
+/// installed, for the program's word size).
+#[path = "glstereo-run/locate.rs"]
+mod locate;
 /// Exit status for a usage or set-up error (the program never ran).
 const USAGE_ERROR: u8 = 2;
 
@@ -296,45 +296,6 @@ fn parse(args: &[OsString]) -> Result<Parsed, String> {
     Ok(Parsed::Run(req))
 }
 
-/// The preload library: $GLSTEREO_PRELOAD_LIB, else beside this program
-/// (the build tree, `target/<profile>/`), else in ../lib, ../lib64 or
-/// `../lib/<arch>-linux-gnu` (an installed prefix).
-fn find_preload() -> Result<PathBuf, String> {
-    if let Some(p) = std::env::var_os(ENV_PRELOAD_LIB).filter(|p| !p.is_empty()) {
-        let p = PathBuf::from(p);
-        return if p.is_file() {
-            Ok(std::path::absolute(&p).unwrap_or(p))
-        } else {
-            Err(format!("{ENV_PRELOAD_LIB}={} is not a file", p.display()))
-        };
-    }
-    let exe = std::env::current_exe()
-        .and_then(|e| e.canonicalize())
-        .map_err(|e| format!("cannot locate glstereo-run itself: {e}"))?;
-    let dir = exe.parent().unwrap_or(Path::new("/"));
-    let multiarch = format!("../lib/{}-linux-gnu", std::env::consts::ARCH);
-    let candidates = [
-        dir.join(PRELOAD),
-        dir.join("../lib").join(PRELOAD),
-        dir.join("../lib64").join(PRELOAD),
-        dir.join(multiarch).join(PRELOAD),
-    ];
-    candidates
-        .iter()
-        .find(|c| c.is_file())
-        .map(|c| c.canonicalize().unwrap_or_else(|_| c.clone()))
-        .ok_or_else(|| {
-            format!(
-                "cannot find {PRELOAD} (looked in {}): reinstall glstereo, or set {ENV_PRELOAD_LIB}",
-                candidates
-                    .iter()
-                    .map(|c| c.display().to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        })
-}
-
 fn prepend_preload(lib: &Path) -> OsString {
     let mut v = OsString::from(lib.as_os_str());
     if let Some(old) = std::env::var_os("LD_PRELOAD").filter(|o| !o.is_empty()) {
@@ -345,7 +306,7 @@ fn prepend_preload(lib: &Path) -> OsString {
 }
 
 fn run(req: Request) -> Result<std::io::Error, String> {
-    let lib = find_preload()?;
+    let lib = locate::find_preload(&req.program[0])?;
     let mut cmd = Command::new(&req.program[0]);
     cmd.args(&req.program[1..]);
     cmd.env("LD_PRELOAD", prepend_preload(&lib));
