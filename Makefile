@@ -21,7 +21,8 @@ CARGO_PROFILE_FLAG := $(if $(filter release,$(PROFILE)),--release,)
 # EGL and Wayland (tests/egl.rs): GLES and wayland-egl headers for the
 # oracle, weston (its headless backend is the Wayland server) and glmark2's
 # GLX, EGL and Wayland builds, the real programs of tests/egl.rs and
-# tests/auto_glmark2.rs.
+# tests/auto_glmark2.rs. gcc-multilib: the 32-bit program of
+# tests/preload_location.rs (glstereo-run picks the layer by word size).
 DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosmesa6 \
                 libgl-dev libegl-dev libosmesa6-dev freeglut3-dev libx11-dev \
                 xvfb x11-apps x11-utils xauth pkg-config gcc make valgrind \
@@ -31,7 +32,7 @@ DEB_PACKAGES := libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libosme
                 python3-pil libimage-exiftool-perl mesa-vulkan-drivers \
                 libxtst6 libxi-dev \
                 libgles-dev libwayland-dev weston glmark2-x11 glmark2-es2-x11 \
-                glmark2-wayland glmark2-es2-wayland
+                glmark2-wayland glmark2-es2-wayland gcc-multilib
 
 .PHONY: all deps disk build header examples demo test check-sanitize check-fits lint bench clean install uninstall
 
