@@ -909,7 +909,11 @@ fn from_depth_against_the_oracle(
             .args([profile, "mono"])
             .env("DISPLAY", &x.display),
     );
-    let read = |out: &str| out.lines().find(|l| l.starts_with("read ")).map(str::to_owned);
+    let read = |out: &str| {
+        out.lines()
+            .find(|l| l.starts_with("read "))
+            .map(str::to_owned)
+    };
     let want = read(&String::from_utf8_lossy(&plain.stdout));
     assert!(want.is_some(), "{profile}: the program read nothing");
     assert_eq!(

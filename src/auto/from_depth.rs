@@ -20,7 +20,7 @@ use crate::auto::eyes::Attachments;
 use crate::auto::live;
 use crate::gl::Gl;
 use crate::output::kernels::Simd;
-use crate::reproject::{self, Rule, RowScratch};
+use crate::reproject::{self, RowScratch, Rule};
 use crate::stereo::buffers::ColorBuffer;
 use crate::stereo::emulated::EmulatedFramebuffer;
 use crate::stereo::eye_memory::EyePixels;
@@ -244,7 +244,9 @@ unsafe fn make_through_gl(
     let n = w as usize * h as usize;
     let textures = [ColorBuffer::FrontLeft, ColorBuffer::FrontRight].map(|b| fb.texture(b));
     if n == 0 || textures.contains(&0) {
-        return Err(crate::Error::invalid_operation("no front buffers to make eyes in"));
+        return Err(crate::Error::invalid_operation(
+            "no front buffers to make eyes in",
+        ));
     }
     let made = match frame.filter(|_| live::auto_on()) {
         // SAFETY: contract.
@@ -383,7 +385,8 @@ unsafe fn rule_of(
     }
     let rule = rule_for(frame, &scene)?;
     // SAFETY: contract; the rectangle is the whole of the eyes.
-    let read = unsafe { source.read_left_depth(gl, fb.read_fbo(), (0, 0, w as i32, h as i32), depth) };
+    let read =
+        unsafe { source.read_left_depth(gl, fb.read_fbo(), (0, 0, w as i32, h as i32), depth) };
     (read && depth.len() >= w as usize * h as usize).then_some((rule, scene.viewport, in_window))
 }
 

@@ -24,9 +24,9 @@ use super::settings;
 
 pub use crate::auto::live::{
     AutoMode, DEFAULT_SEPARATION, ENV_AUTO, ENV_CONVERGENCE, ENV_SEPARATION, auto_mode, auto_on,
-    auto_requested, automatic_convergence, convergence, from_depth, parse_auto,
-    parse_convergence, parse_separation, separation, set_auto_mode, set_auto_on,
-    set_automatic_convergence, set_convergence, set_separation,
+    auto_requested, automatic_convergence, convergence, from_depth, parse_auto, parse_convergence,
+    parse_separation, separation, set_auto_mode, set_auto_on, set_automatic_convergence,
+    set_convergence, set_separation,
 };
 
 /// The live settings.

@@ -52,12 +52,19 @@
 //!
 //! # Kernels
 //!
-//! [`row_reference`] is the definition, pixel by pixel. [`row`] is the
-//! same operations in the same order: the shifts and the depth-test keys
-//! of a row computed [`N`] pixels at a time in loops over fixed-size
-//! arrays (compiled for AVX2 and AVX-512 by [`with_simd`]), then the
-//! scatter and the holes. `fits` proves the two equal, word for word, at
-//! every vector level and every size.
+//! [`row_reference`] is the definition, pixel by pixel, with a depth test
+//! at every landing. [`row`] gets the same words with spans: the shifts
+//! and depth-test keys of a row are computed [`N`] pixels at a time in
+//! loops over fixed-size arrays (compiled for AVX2 and AVX-512 by
+//! [`with_simd`]); the row is cut into runs of one kind and one shift
+//! (a surface rounds to the same shift over many pixels), and each run
+//! lands as one copy. No depth test is needed between runs: nothing drawn
+//! lands first, then the geometry in the order in which a later run is
+//! the nearer wherever two land on one column (left to right for the
+//! right eye, right to left for the left: where two pixels land together
+//! the one whose shift is smaller toward the eye is nearer, McMillan's
+//! occlusion-compatible order), then the overlays. `fits` proves the two
+//! equal, word for word, at every vector level and every size.
 
 use crate::output::kernels::{Simd, with_simd};
 
@@ -79,6 +86,13 @@ const HOLE: f32 = f32::INFINITY;
 const BACKGROUND: f32 = f32::MAX;
 /// Key of a pixel at the screen (an overlay): in front of everything.
 const OVERLAY: f32 = f32::NEG_INFINITY;
+
+/// A pixel's kind for [`row`]'s runs: geometry's shift (within
+/// ±[`LIMIT`]), or one of these.
+const CODE_BACKGROUND: i32 = i32::MIN;
+const CODE_OVERLAY: i32 = i32::MIN + 1;
+/// A column no run has landed on.
+const NO_RUN: u32 = u32::MAX;
 
 /// How a frame's depths become shifts: D(d) = `offset` + `slope`·d
 /// pixels (module docs), the left eye's pixel moved by −D and the right
@@ -157,6 +171,37 @@ impl Rule {
         })
     }
 
+    /// [`Rule::pixel`] as [`row`]'s run code (the shift, or the kind of a
+    /// pixel that does not move) and key, in selects the compiler keeps in
+    /// vector registers.
+    #[inline(always)]
+    fn code(&self, d: f32) -> (i32, f32) {
+        let v = self.offset + self.slope * d;
+        let v = if v > LIMIT { LIMIT } else { v };
+        let v = if v < -LIMIT { -LIMIT } else { v };
+        let nothing = (d - self.clear).abs() <= self.clear_step;
+        let overlay = d.is_nan();
+        let geometry = !(nothing || overlay || v.is_nan());
+        let moved = if geometry { v } else { 0.0 };
+        // SAFETY: |moved| ≤ LIMIT + ½, finite: in range of i32.
+        let shift = unsafe { (moved + 0.5).floor().to_int_unchecked::<i32>() };
+        let code = if overlay {
+            CODE_OVERLAY
+        } else if geometry {
+            shift
+        } else {
+            CODE_BACKGROUND
+        };
+        let key = if overlay {
+            OVERLAY
+        } else if geometry {
+            v
+        } else {
+            BACKGROUND
+        };
+        (code, key)
+    }
+
     /// The shift and the depth-test key of one pixel of window depth `d`:
     /// (round(D) for geometry, else 0; D, [`BACKGROUND`] or [`OVERLAY`]).
     #[inline(always)]
@@ -195,17 +240,21 @@ fn ndc_of_window(n: f64, f: f64, zero_to_one: bool) -> Option<(f64, f64)> {
 /// frame allocates nothing once they have grown).
 #[derive(Debug, Default)]
 pub struct RowScratch {
-    shift: Vec<i32>,
+    /// Each pixel's run code ([`Rule::code`]).
+    code: Vec<i32>,
     key: Vec<f32>,
-    landed: Vec<f32>,
+    /// The runs of the row's columns: start, end, code.
+    runs: Vec<(u32, u32, i32)>,
+    /// The run whose pixel landed last on each column ([`NO_RUN`]: none).
+    owner: Vec<u32>,
     source: Vec<u32>,
 }
 
 impl RowScratch {
     fn fit(&mut self, n: usize) {
-        self.shift.resize(n, 0);
+        self.code.resize(n, 0);
         self.key.resize(n, 0.0);
-        self.landed.resize(n, 0.0);
+        self.owner.resize(n, NO_RUN);
     }
 }
 
@@ -247,15 +296,63 @@ pub(crate) fn row(
 ) {
     let n = check(columns, colour, depth, &out);
     scratch.fit(n);
-    with_simd(simd, |_| {
-        row_keys(rule, depth, &mut scratch.shift, &mut scratch.key);
-        let RowScratch {
-            shift, key, landed, ..
-        } = scratch;
-        for (eye, out) in out.into_iter().enumerate() {
-            land(eye, columns, colour, shift, key, landed, out);
+    with_simd(
+        simd,
+        #[inline(always)]
+        |_| {
+            row_codes(rule, depth, &mut scratch.code, &mut scratch.key);
+            runs_of(columns, &scratch.code, &mut scratch.runs);
+            let RowScratch {
+                key, runs, owner, ..
+            } = scratch;
+            for (eye, out) in out.into_iter().enumerate() {
+                land_runs(eye, columns, colour, key, runs, owner, out);
+            }
+        },
+    );
+}
+
+/// Both eyes of a whole frame on this thread, at the best vector level
+/// the processor has: `colour` and `depth` are `width`-wide rows (bottom
+/// first or top first, as long as both agree), the rows `rows` and
+/// columns `columns` of it (the scene's viewport) made by `rule` and the
+/// others copied, into `out` (left, right), each as long as `colour`.
+///
+/// Panics unless the buffers are whole rows of one length and the
+/// viewport is inside them.
+pub fn frame(
+    rule: &Rule,
+    (columns, rows): ((usize, usize), std::ops::Range<usize>),
+    width: usize,
+    colour: &[u32],
+    depth: &[f32],
+    out: [&mut [u32]; 2],
+    scratch: &mut RowScratch,
+) {
+    assert!(width > 0 && colour.len() % width == 0, "whole rows");
+    let simd = Simd::detected();
+    let [left, right] = out;
+    let rows_of = |b: &[u32]| b.len() / width;
+    assert!(
+        depth.len() == colour.len()
+            && rows_of(left) == rows_of(colour)
+            && left.len() == right.len(),
+        "buffers of one size"
+    );
+    for (y, (((c, d), l), r)) in colour
+        .chunks_exact(width)
+        .zip(depth.chunks_exact(width))
+        .zip(left.chunks_exact_mut(width))
+        .zip(right.chunks_exact_mut(width))
+        .enumerate()
+    {
+        if rows.contains(&y) {
+            row(simd, rule, columns, c, d, [l, r], scratch);
+        } else {
+            l.copy_from_slice(c);
+            r.copy_from_slice(c);
         }
-    });
+    }
 }
 
 /// [`row`] of a frame whose left eye is written where its colour is read
@@ -301,23 +398,156 @@ fn check(columns: (usize, usize), colour: &[u32], depth: &[f32], out: &[&mut [u3
     n
 }
 
-/// Every pixel's shift and key, [`N`] at a time.
+/// Every pixel's run code and key, [`N`] at a time.
 #[inline(always)]
-fn row_keys(rule: &Rule, depth: &[f32], shift: &mut [i32], key: &mut [f32]) {
+fn row_codes(rule: &Rule, depth: &[f32], code: &mut [i32], key: &mut [f32]) {
     let mut d = depth.chunks_exact(N);
-    let mut s = shift.chunks_exact_mut(N);
+    let mut c = code.chunks_exact_mut(N);
     let mut k = key.chunks_exact_mut(N);
-    for ((d, s), k) in (&mut d).zip(&mut s).zip(&mut k) {
+    for ((d, c), k) in (&mut d).zip(&mut c).zip(&mut k) {
         let d: &[f32; N] = d.try_into().expect("N");
-        let s: &mut [i32; N] = s.try_into().expect("N");
+        let c: &mut [i32; N] = c.try_into().expect("N");
         let k: &mut [f32; N] = k.try_into().expect("N");
         for i in 0..N {
-            (s[i], k[i]) = rule.pixel(d[i]);
+            (c[i], k[i]) = rule.code(d[i]);
         }
     }
     let tail = d.remainder();
-    for ((d, s), k) in tail.iter().zip(s.into_remainder()).zip(k.into_remainder()) {
-        (*s, *k) = rule.pixel(*d);
+    for ((d, c), k) in tail.iter().zip(c.into_remainder()).zip(k.into_remainder()) {
+        (*c, *k) = rule.code(*d);
+    }
+}
+
+/// The index of the first element of `s` for which `hit` holds, looked
+/// for [`N`] at a time (a comparison the compiler makes in vector
+/// registers), then one at a time in the chunk that has it.
+#[inline(always)]
+fn first<T: Copy>(s: &[T], hit: impl Fn(T) -> bool) -> Option<usize> {
+    let mut chunks = s.chunks_exact(N);
+    let mut base = 0;
+    for c in &mut chunks {
+        let c: &[T; N] = c.try_into().expect("N");
+        let mut any = false;
+        for &v in c {
+            any |= hit(v);
+        }
+        if any {
+            return c.iter().position(|&v| hit(v)).map(|p| base + p);
+        }
+        base += N;
+    }
+    chunks
+        .remainder()
+        .iter()
+        .position(|&v| hit(v))
+        .map(|p| base + p)
+}
+
+/// The runs of equal code among the columns [`x0`, `x1`).
+#[inline(always)]
+fn runs_of((x0, x1): (usize, usize), code: &[i32], runs: &mut Vec<(u32, u32, i32)>) {
+    runs.clear();
+    let code = &code[x0..x1];
+    let mut a = 0;
+    while a < code.len() {
+        let c = code[a];
+        let len = first(&code[a..], |k| k != c).unwrap_or(code.len() - a);
+        runs.push(((x0 + a) as u32, (x0 + a + len) as u32, c));
+        a += len;
+    }
+}
+
+/// One eye's row (`eye` 0 left: moved by −shift; 1 right: +shift) from
+/// the runs (module docs): what was not drawn, then the geometry in
+/// occlusion-compatible order, then the overlays, each run one copy;
+/// then the holes, as [`land`] fills them.
+#[inline(always)]
+fn land_runs(
+    eye: usize,
+    (x0, x1): (usize, usize),
+    colour: &[u32],
+    key: &[f32],
+    runs: &[(u32, u32, i32)],
+    owner: &mut [u32],
+    out: &mut [u32],
+) {
+    out[..x0].copy_from_slice(&colour[..x0]);
+    out[x1..].copy_from_slice(&colour[x1..]);
+    if x0 == x1 {
+        return;
+    }
+    let sign: i64 = if eye == 0 { -1 } else { 1 };
+    let shift_of = |code: i32| match code {
+        CODE_BACKGROUND | CODE_OVERLAY => 0,
+        s => i64::from(s),
+    };
+    owner[x0..x1].fill(NO_RUN);
+    let mut put = |i: usize, out: &mut [u32], owner: &mut [u32]| {
+        let (a, b, code) = runs[i];
+        let d = sign * shift_of(code);
+        let lo = (i64::from(a) + d).max(x0 as i64);
+        let hi = (i64::from(b) + d).min(x1 as i64);
+        if lo < hi {
+            let (lo, hi) = (lo as usize, hi as usize);
+            let from = (lo as i64 - d) as usize;
+            out[lo..hi].copy_from_slice(&colour[from..from + (hi - lo)]);
+            owner[lo..hi].fill(i as u32);
+        }
+    };
+    for (i, r) in runs.iter().enumerate() {
+        if r.2 == CODE_BACKGROUND {
+            put(i, out, owner);
+        }
+    }
+    let geometry = |r: &(u32, u32, i32)| r.2 != CODE_BACKGROUND && r.2 != CODE_OVERLAY;
+    if eye == 1 {
+        for (i, r) in runs.iter().enumerate() {
+            if geometry(r) {
+                put(i, out, owner);
+            }
+        }
+    } else {
+        for (i, r) in runs.iter().enumerate().rev() {
+            if geometry(r) {
+                put(i, out, owner);
+            }
+        }
+    }
+    for (i, r) in runs.iter().enumerate() {
+        if r.2 == CODE_OVERLAY {
+            put(i, out, owner);
+        }
+    }
+    // The key of what landed on column t.
+    let landed = |t: usize, owner: &[u32]| {
+        let code = runs[owner[t] as usize].2;
+        key[(t as i64 - sign * shift_of(code)) as usize]
+    };
+    let mut t = x0;
+    while t < x1 {
+        let Some(p) = first(&owner[t..x1], |o| o == NO_RUN) else {
+            break;
+        };
+        let start = t + p;
+        let end = first(&owner[start..x1], |o| o != NO_RUN).map_or(x1, |q| start + q);
+        let left = (start > x0).then(|| start - 1);
+        let right = (end < x1).then_some(end);
+        let from = match (left, right) {
+            (Some(l), Some(r)) => Some(if landed(l, owner) >= landed(r, owner) {
+                l
+            } else {
+                r
+            }),
+            (l, r) => l.or(r),
+        };
+        match from {
+            Some(f) => {
+                let c = out[f];
+                out[start..end].fill(c);
+            }
+            None => out[start..end].copy_from_slice(&colour[start..end]),
+        }
+        t = end;
     }
 }
 

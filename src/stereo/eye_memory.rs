@@ -516,7 +516,10 @@ impl EyePixels {
         // words, the mapping writable (PROT_WRITE); exclusive by contract.
         Some(unsafe {
             std::slice::from_raw_parts_mut(
-                self.rows.add(y as usize * self.stride).cast::<u32>().cast_mut(),
+                self.rows
+                    .add(y as usize * self.stride)
+                    .cast::<u32>()
+                    .cast_mut(),
                 self.width as usize,
             )
         })
