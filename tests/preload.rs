@@ -715,6 +715,17 @@ fn glstereo_run_checks_its_options_before_the_program_starts_and_sets_the_enviro
             "1 (smallest file) to 100",
         ),
         (&["--capture-format", "mpo"][..], "give --capture DIR too"),
+        // Options that take no value refuse one given with `=`, and
+        // --auto takes only its two kinds.
+        (
+            &["--auto=bogus"][..],
+            "--auto=bogus is not a kind of automatic stereo",
+        ),
+        (&["--auto=0"][..], "--auto=geometry or --auto=depth"),
+        (&["--swap-eyes=1"][..], "--swap-eyes takes no value"),
+        (&["--verbose=yes"][..], "--verbose takes no value"),
+        (&["--help=me"][..], "--help takes no value"),
+        (&["--version=2"][..], "--version takes no value"),
     ] {
         let out = Command::new(&built().run)
             .args(args)
@@ -839,5 +850,27 @@ fn the_eyes_are_composed_where_llvmpipe_drew_them() {
             &shots[1],
             &format!("{name}: in place vs read back"),
         );
+    }
+}
+
+/// `--auto`, `--auto=geometry` and `--auto=depth` reach the program as
+/// `GLSTEREO_AUTO` (the layer reads its kind from there).
+#[test]
+fn glstereo_run_passes_the_kind_of_automatic_stereo_on() {
+    for (flag, want) in [
+        ("--auto", "geometry"),
+        ("-a", "geometry"),
+        ("--auto=geometry", "geometry"),
+        ("--auto=depth", "depth"),
+        ("--auto=DEPTH", "depth"),
+    ] {
+        let out = common::run_ok(Command::new(&built().run).args([
+            flag,
+            "sh",
+            "-c",
+            "echo \"$GLSTEREO_AUTO\"",
+        ]));
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(stdout.trim(), want, "{flag}");
     }
 }

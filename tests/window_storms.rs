@@ -27,6 +27,9 @@ const FITTED: [&str; 5] = [
 /// Frames per run (`make test`; the reproduction used 200).
 const FRAMES: &str = "100";
 
+/// Frames per run of a mono program under `--auto=depth` (10 runs).
+const AUTO_FRAMES: &str = "40";
+
 fn storm(
     x: &Xvfb,
     mode: &str,
@@ -135,4 +138,52 @@ fn a_fault_in_a_composition_costs_its_own_frame_and_says_so_in_one_line() {
             && stderr.contains("GLSTEREO_TEST_FAULT asked composition 3"),
         "GLSTEREO_VERBOSE prints the panic and its backtrace:\n{stderr}"
     );
+}
+
+/// `--auto=depth`: a mono program resized at random (1x1 to 1600x1200,
+/// thin ones too) drawing a scene with depth and a HUD: both eyes made
+/// from its depth at every size in every fitted format, with no panic and
+/// nothing said, and its own read of its last frame is what it reads
+/// without the layer (its mono frame).
+#[test]
+fn a_mono_window_resized_at_random_under_auto_depth_gets_its_eyes_at_every_size() {
+    let x = Xvfb::start(1700, 1300);
+    let exe = c_program("auto_resize_storm", &["-lGL", "-lX11"]);
+    for (k, mode) in FITTED.iter().enumerate() {
+        for viewport in ["viewport", "noviewport"] {
+            let seed = (31 + k).to_string();
+            let args = [AUTO_FRAMES, seed.as_str(), viewport];
+            let out = Command::new(&built().run)
+                .args(["--auto=depth", "-m", mode])
+                .arg(&exe)
+                .args(args)
+                .env("DISPLAY", &x.display)
+                .env_remove("GLSTEREO_VERBOSE")
+                .output()
+                .expect("glstereo-run starts");
+            let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+            let what = format!("--auto=depth {mode}, seed {seed}, {viewport}");
+            assert!(
+                !stderr.contains("panicked") && !stderr.contains("glstereo:"),
+                "{what}: the layer said\n{stderr}"
+            );
+            assert!(
+                out.status.success() && stdout.contains(&format!("frames {AUTO_FRAMES}")),
+                "{what}: {}\n{stdout}\n{stderr}",
+                out.status
+            );
+            let plain = Command::new(&exe)
+                .args(args)
+                .env("DISPLAY", &x.display)
+                .output()
+                .expect("the program starts");
+            let centre = |s: &str| s.lines().find(|l| l.starts_with("centre ")).map(str::to_owned);
+            assert_eq!(
+                centre(&stdout),
+                centre(&text(&plain.stdout)),
+                "{what}: the program's read of its frame is not its mono frame's"
+            );
+            assert!(stdout.contains("error 0x0"), "{what}: {stdout}");
+        }
+    }
 }
