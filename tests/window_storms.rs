@@ -177,7 +177,11 @@ fn a_mono_window_resized_at_random_under_auto_depth_gets_its_eyes_at_every_size(
                 .env("DISPLAY", &x.display)
                 .output()
                 .expect("the program starts");
-            let centre = |s: &str| s.lines().find(|l| l.starts_with("centre ")).map(str::to_owned);
+            let centre = |s: &str| {
+                s.lines()
+                    .find(|l| l.starts_with("centre "))
+                    .map(str::to_owned)
+            };
             assert_eq!(
                 centre(&stdout),
                 centre(&text(&plain.stdout)),

@@ -54,6 +54,66 @@ gl_fns! {
     }
 }
 
+/// The largest 24-bit depth.
+const DEPTH_MAX: u32 = 0xFF_FFFF;
+
+/// Where a depth word of memory holds its 24-bit depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthBits {
+    /// In its low 24 bits (Z24_UNORM_S8_UINT, Z24X8).
+    Low,
+    /// In its high 24 bits (S8_UINT_Z24_UNORM, X8Z24).
+    High,
+}
+
+/// Rows of depth words in memory ([`LayeredEyes::left_depth`]).
+#[derive(Clone, Copy, Debug)]
+pub struct DepthRows {
+    first: *const u32,
+    /// Words from one row to the next.
+    stride: usize,
+    width: usize,
+    height: usize,
+    bits: DepthBits,
+}
+
+// SAFETY: a read-only view of shared memory, read after GL finished.
+unsafe impl Send for DepthRows {}
+// SAFETY: as above.
+unsafe impl Sync for DepthRows {}
+
+impl DepthRows {
+    /// Width and height in pixels.
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    /// Row `y`'s window depths (0 … 1) into `out` (`width` long).
+    ///
+    /// # Safety
+    /// The memory lives and GL has finished writing it (the contract of
+    /// [`LayeredEyes::left_depth`]); `y` < height.
+    pub unsafe fn read_row(&self, y: usize, out: &mut [f32]) {
+        debug_assert!(y < self.height);
+        // SAFETY: contract; inside the mapping.
+        let row =
+            unsafe { std::slice::from_raw_parts(self.first.add(y * self.stride), self.width) };
+        let scale = 1.0 / DEPTH_MAX as f32;
+        match self.bits {
+            DepthBits::Low => {
+                for (o, &w) in out.iter_mut().zip(row) {
+                    *o = (w & DEPTH_MAX) as f32 * scale;
+                }
+            }
+            DepthBits::High => {
+                for (o, &w) in out.iter_mut().zip(row) {
+                    *o = (w >> 8) as f32 * scale;
+                }
+            }
+        }
+    }
+}
+
 /// The layer of `eye`.
 pub fn layer(eye: Eye) -> i32 {
     match eye {
@@ -199,6 +259,105 @@ impl PairMemory {
         }
     }
 
+    /// Gives the depth array `array` (2 layers) `width` × `height`
+    /// storage of `format` (GL_DEPTH24_STENCIL8 or GL_DEPTH_COMPONENT24,
+    /// one 32-bit word a pixel) in one new file, imported once: the CPU
+    /// reads the left eye's depth in place (`--auto=depth`). None where
+    /// the driver refuses.
+    unsafe fn create_depth(
+        gl: &Gl,
+        api: &MemoryObjectApi,
+        uuid: &[u8; 16],
+        array: u32,
+        format: u32,
+        (width, height): (u32, u32),
+    ) -> Option<PairMemory> {
+        let storage_3d = api.tex_storage_mem_3d?;
+        let stride = eye_memory::cache_lines(eye_memory::predicted_stride(width));
+        let rows = (height as usize).div_ceil(4) * 4;
+        let layer_stride = stride.checked_mul(rows)?;
+        let page = 4096;
+        let data_offset = page;
+        let map_len = data_offset + 2 * layer_stride + page;
+        // SAFETY: as in `create`.
+        unsafe {
+            let fd = libc::memfd_create(c"glstereo depth".as_ptr(), libc::MFD_CLOEXEC);
+            if fd < 0 {
+                return None;
+            }
+            let ok = libc::ftruncate(fd, map_len as libc::off_t) == 0;
+            let map = if ok {
+                libc::mmap(
+                    std::ptr::null_mut(),
+                    map_len,
+                    libc::PROT_READ | libc::PROT_WRITE,
+                    libc::MAP_SHARED,
+                    fd,
+                    0,
+                )
+            } else {
+                libc::MAP_FAILED
+            };
+            if map == libc::MAP_FAILED {
+                libc::close(fd);
+                return None;
+            }
+            let mut memory = PairMemory {
+                objects: [0; 2],
+                map: map.cast(),
+                map_len,
+                data_offset,
+                layer_stride,
+                stride,
+            };
+            let head = eye_memory::header(map_len, data_offset, uuid);
+            let written =
+                libc::pwrite(fd, head.as_ptr().cast(), head.len(), 0) == head.len() as isize;
+            let given = if written { libc::dup(fd) } else { -1 };
+            if given >= 0 {
+                (api.create)(1, &mut memory.objects[0]);
+                (api.import_fd)(
+                    memory.objects[0],
+                    map_len as u64,
+                    eye_memory::GL_HANDLE_TYPE_OPAQUE_FD_EXT,
+                    given,
+                );
+            }
+            libc::close(fd);
+            if memory.objects[0] == 0 {
+                memory.release(api);
+                return None;
+            }
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, array);
+            storage_3d(
+                GL_TEXTURE_2D_ARRAY,
+                1,
+                format,
+                width as i32,
+                height as i32,
+                2,
+                memory.objects[0],
+                0,
+            );
+            gl.TexParameteri(
+                GL_TEXTURE_2D_ARRAY,
+                GL_TEXTURE_MIN_FILTER,
+                GL_NEAREST as i32,
+            );
+            gl.TexParameteri(
+                GL_TEXTURE_2D_ARRAY,
+                GL_TEXTURE_MAG_FILTER,
+                GL_NEAREST as i32,
+            );
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
+            if gl.take_error() != GL_NO_ERROR {
+                memory.release(api);
+                return None;
+            }
+            Some(memory)
+        }
+    }
+
     /// Where the CPU reads layer `l` of this memory: `texture`'s pixels.
     fn pixels(&self, l: usize, texture: u32, (width, height): (u32, u32)) -> EyePixels {
         // SAFETY: the layer starts inside the mapping, which lives as long
@@ -270,6 +429,9 @@ pub struct LayeredEyes {
     /// Each pair's memory, where its textures share it (else they are
     /// copied into at each present).
     memory: [Option<PairMemory>; 2],
+    /// The depth array's memory, where the CPU reads it in place, and
+    /// where its depth is in each word (its low 24 bits, else its high).
+    depth_memory: Option<(PairMemory, DepthBits)>,
     memory_api: Option<MemoryObjectApi>,
 }
 
@@ -325,6 +487,7 @@ impl LayeredEyes {
                 width,
                 height,
                 memory: [None, None],
+                depth_memory: None,
                 memory_api: None,
             };
             // A side of one pixel (Qt's 1x1 surface for making contexts):
@@ -383,12 +546,33 @@ impl LayeredEyes {
             gl.BindTexture(GL_TEXTURE_2D, 0);
             if depth_format != 0 {
                 eyes.depth = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
-                let (format, ty) = if depth_format == GL_DEPTH_COMPONENT24 {
-                    (GL_DEPTH_COMPONENT, GL_UNSIGNED_INT)
-                } else {
-                    (GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8)
-                };
-                eyes.array_storage(gl, eyes.depth, depth_format, format, ty);
+                let shared = uuid.as_ref().filter(|_| eyes.memory[0].is_some());
+                let memory = shared.and_then(|(m, u)| {
+                    PairMemory::create_depth(gl, m, u, eyes.depth, depth_format, (width, height))
+                });
+                let found = memory.and_then(|m| match eyes.verify_depth(gl, &m, fbo) {
+                    Some(bits) => Some((m, bits)),
+                    None => {
+                        m.release(uuid.as_ref().map(|(a, _)| a).expect("made with it"));
+                        None
+                    }
+                });
+                match found {
+                    Some(d) => eyes.depth_memory = Some(d),
+                    None => {
+                        if shared.is_some() {
+                            gl.take_error();
+                            gl.delete_textures(&[eyes.depth]);
+                            eyes.depth = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
+                        }
+                        let (format, ty) = if depth_format == GL_DEPTH_COMPONENT24 {
+                            (GL_DEPTH_COMPONENT, GL_UNSIGNED_INT)
+                        } else {
+                            (GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8)
+                        };
+                        eyes.array_storage(gl, eyes.depth, depth_format, format, ty);
+                    }
+                }
             }
             if let Err(e) = gl.check("allocating the layered eyes") {
                 eyes.release(gl);
@@ -433,6 +617,91 @@ impl LayeredEyes {
             }
             Ok(eyes)
         }
+    }
+
+    /// Where depth memory holds its values: markers of depth cleared into
+    /// a corner of each layer are found at the addresses predicted, in the
+    /// low 24 bits of their words or in the high ones. None where they
+    /// are not (the memory is then of no use).
+    unsafe fn verify_depth(&self, gl: &Gl, m: &PairMemory, fbo: u32) -> Option<DepthBits> {
+        const GL_NONE: u32 = 0;
+        let (w, h) = (self.width, self.height);
+        let corners = [(0, 0), (w - 1, 0), (0, h - 1), (w - 1, h - 1)];
+        let value = |i: usize| 0x10_2030 + 0x01_1111 * i as u32;
+        let mut low = true;
+        let mut high = true;
+        // SAFETY: contract of the callers (the layer's own context);
+        // reads stay inside the mapping.
+        unsafe {
+            gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+            gl.DrawBuffer(GL_NONE);
+            gl.ReadBuffer(GL_NONE);
+            gl.Enable(GL_SCISSOR_TEST);
+            gl.DepthMask(1);
+            for l in 0..2 {
+                (self.api.framebuffer_texture_layer)(
+                    GL_FRAMEBUFFER,
+                    self.depth_attachment,
+                    self.depth,
+                    0,
+                    l as i32,
+                );
+                if gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE {
+                    low = false;
+                    high = false;
+                    break;
+                }
+                for (i, &(x, y)) in corners.iter().enumerate() {
+                    let v = value(i + 4 * l);
+                    gl.Scissor(x as i32, y as i32, 1, 1);
+                    gl.ClearDepth(f64::from(v) / f64::from(DEPTH_MAX));
+                    gl.Clear(GL_DEPTH_BUFFER_BIT);
+                }
+                gl.Finish();
+                for (i, &(x, y)) in corners.iter().enumerate() {
+                    let v = value(i + 4 * l);
+                    let at =
+                        m.data_offset + l * m.layer_stride + y as usize * m.stride + x as usize * 4;
+                    let mut word = [0u8; 4];
+                    std::ptr::copy_nonoverlapping(m.map.add(at), word.as_mut_ptr(), 4);
+                    let word = u32::from_ne_bytes(word);
+                    low &= word & DEPTH_MAX == v;
+                    high &= word >> 8 == v;
+                }
+            }
+            (self.api.framebuffer_texture_layer)(GL_FRAMEBUFFER, self.depth_attachment, 0, 0, 0);
+            gl.Disable(GL_SCISSOR_TEST);
+            gl.ClearDepth(1.0);
+            gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+            gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+            if gl.take_error() != GL_NO_ERROR {
+                return None;
+            }
+        }
+        match (low, high) {
+            (true, _) => Some(DepthBits::Low),
+            (false, true) => Some(DepthBits::High),
+            _ => None,
+        }
+    }
+
+    /// The left eye's depth (layer 0 of the depth array) where the CPU
+    /// reads it in place: rows bottom first, one word a pixel. Valid as
+    /// [`EyePixels`] are, and read as they are: after the present's
+    /// glFinish.
+    pub fn left_depth(&self) -> Option<DepthRows> {
+        let (m, bits) = self.depth_memory.as_ref()?;
+        Some(DepthRows {
+            // SAFETY: layer 0 starts inside the mapping.
+            first: unsafe { m.map.add(m.data_offset) }
+                .cast::<u32>()
+                .cast_const(),
+            stride: m.stride / 4,
+            width: self.width as usize,
+            height: self.height as usize,
+            bits: *bits,
+        })
     }
 
     /// Ordinary storage for pair `p`: its array and its 2D textures.
@@ -705,6 +974,9 @@ impl LayeredEyes {
         for m in self.memory.iter_mut().filter_map(Option::take) {
             m.unmap();
         }
+        if let Some((m, _)) = self.depth_memory.take() {
+            m.unmap();
+        }
     }
 
     /// Deletes the arrays and textures, and frees shared memory (nothing
@@ -729,6 +1001,9 @@ impl LayeredEyes {
                 gl.Finish();
             }
             for m in self.memory.iter_mut().filter_map(Option::take) {
+                m.release(&self.memory_api.expect("memory came from this API"));
+            }
+            if let Some((m, _)) = self.depth_memory.take() {
                 m.release(&self.memory_api.expect("memory came from this API"));
             }
         }

@@ -16,7 +16,7 @@
 //! automatic convergence's.
 
 use crate::auto::converge::{Frame, Scene};
-use crate::auto::eyes::Attachments;
+use crate::auto::eyes::DepthRows;
 use crate::auto::live;
 use crate::gl::Gl;
 use crate::output::kernels::Simd;
@@ -30,8 +30,9 @@ use crate::stereo::eye_memory::EyePixels;
 #[derive(Debug, Default)]
 pub struct Scratch {
     depth: Vec<f32>,
-    /// Each band's ([`made_into`]).
-    rows: [RowScratch; 2],
+    /// Each band's ([`made_into`]): the kernel's, and a row of depths
+    /// read from memory.
+    rows: [(RowScratch, Vec<f32>); 2],
     /// The eyes read back and made, where they are not in memory: left
     /// (and the overlays' scene), right.
     eyes: [Vec<u32>; 2],
@@ -54,19 +55,25 @@ pub enum Made {
 /// with GL (a hardware renderer, an OpenGL ES context,
 /// `GLSTEREO_EYE_MEMORY=0`).
 ///
+/// `switch_in` makes the layer's context (sharing the program's objects)
+/// current: called before the first GL call, where one is needed (the
+/// eyes or the depth not in memory). Errors from it come back.
+///
 /// # Safety
-/// The layer's context, sharing the program's objects, is current; the
-/// program's rendering into `fb` has finished (glFinish).
+/// The program's rendering into `fb` has finished (glFinish), and its
+/// context or the layer's is current.
 pub unsafe fn make(
     gl: &Gl,
     fb: &EmulatedFramebuffer,
     frame: Option<&Frame>,
     scratch: &mut Scratch,
+    switch_in: &mut dyn FnMut() -> crate::Result<()>,
 ) -> crate::Result<Made> {
     let (Some(left), Some(right)) = (
         fb.pixels(ColorBuffer::FrontLeft),
         fb.pixels(ColorBuffer::FrontRight),
     ) else {
+        switch_in()?;
         // SAFETY: contract.
         return unsafe { make_through_gl(gl, fb, frame, scratch) };
     };
@@ -76,7 +83,7 @@ pub unsafe fn make(
     }
     let made = match frame.filter(|_| live::auto_on()) {
         // SAFETY: contract.
-        Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth) },
+        Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth, switch_in)? },
         None => None,
     };
     // SAFETY: contract: GL has finished with the eyes, and these are the
@@ -95,13 +102,19 @@ pub unsafe fn make(
 /// both eyes the frame), in two bands at once (the composite's helper
 /// thread takes the upper).
 fn made_into(
-    made: Option<(Rule, (i32, i32, i32, i32), bool)>,
+    made: Option<Plan>,
     frame: Option<&Frame>,
     eyes: [EyeRows; 2],
-    (depth, rows): (&mut [f32], &mut [RowScratch; 2]),
+    (depth, rows): (&mut [f32], &mut [(RowScratch, Vec<f32>); 2]),
 ) -> Made {
     let (w, h) = (eyes[0].width, eyes[0].height);
-    let Some((rule, (vx, vy, vw, vh), window)) = made else {
+    let Some(Plan {
+        rule,
+        viewport: (vx, vy, vw, vh),
+        window,
+        depth: depths,
+    }) = made
+    else {
         for y in 0..h {
             // SAFETY: one view of each row at a time (EyeRows).
             let (l, r) = unsafe { (eyes[0].row(y), eyes[1].row(y)) };
@@ -121,9 +134,16 @@ fn made_into(
         overlays: window && frame.is_some_and(|f| f.overlays),
         simd: Simd::detected(),
         eyes,
+        memory: match depths {
+            Depths::Memory(rows) => Some(rows),
+            Depths::Read => None,
+        },
     };
     let mid = h / 2;
-    let (low, high) = depth.split_at_mut(mid * w);
+    let (low, high) = match job.memory {
+        Some(_) => (&mut [][..], &mut [][..]),
+        None => depth.split_at_mut(mid * w),
+    };
     let [here, there] = rows;
     let mut upper = || job.band(mid..h, high, there);
     if !crate::output::helper::both(|| job.band(0..mid, low, here), &mut upper) {
@@ -205,18 +225,34 @@ struct Job {
     overlays: bool,
     simd: Simd,
     eyes: [EyeRows; 2],
+    /// The depths in place (else in each band's slice of the read-back).
+    memory: Option<DepthRows>,
 }
 
 impl Job {
     /// Makes rows `ys` of the eyes, `depth` holding those rows' depths.
-    fn band(&self, ys: std::ops::Range<usize>, depth: &mut [f32], scratch: &mut RowScratch) {
+    fn band(
+        &self,
+        ys: std::ops::Range<usize>,
+        depth: &mut [f32],
+        (scratch, row): &mut (RowScratch, Vec<f32>),
+    ) {
         let w = self.eyes[0].width;
         let y0 = ys.start;
         for y in ys {
             // SAFETY: each band's rows are its own (made_into splits them).
             let (l, r) = unsafe { (self.eyes[0].row(y), self.eyes[1].row(y)) };
             if self.rows.contains(&y) && self.columns.0 < self.columns.1 {
-                let depth = &mut depth[(y - y0) * w..(y - y0 + 1) * w];
+                let depth = match &self.memory {
+                    Some(rows) => {
+                        row.resize(w, 0.0);
+                        // SAFETY: GL finished the frame (make's contract);
+                        // y < the eyes' height, the depth's (rule_of).
+                        unsafe { rows.read_row(y, row) };
+                        &mut row[..]
+                    }
+                    None => &mut depth[(y - y0) * w..(y - y0 + 1) * w],
+                };
                 if self.overlays {
                     reproject::mark_overlays(l, r, depth);
                 }
@@ -250,10 +286,10 @@ unsafe fn make_through_gl(
     }
     let made = match frame.filter(|_| live::auto_on()) {
         // SAFETY: contract.
-        Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth) },
+        Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth, &mut || Ok(()))? },
         None => None,
     };
-    let overlays = made.as_ref().is_some_and(|m| m.2) && frame.is_some_and(|f| f.overlays);
+    let overlays = made.as_ref().is_some_and(|m| m.window) && frame.is_some_and(|f| f.overlays);
     let [left, right] = &mut scratch.eyes;
     // SAFETY: contract.
     unsafe {
@@ -360,34 +396,78 @@ unsafe fn rule_of(
     frame: &Frame,
     (w, h): (u32, u32),
     depth: &mut Vec<f32>,
-) -> Option<(Rule, (i32, i32, i32, i32), bool)> {
-    let eyes = fb.layered()?;
+    switch_in: &mut dyn FnMut() -> crate::Result<()>,
+) -> crate::Result<Option<Plan>> {
+    let Some(eyes) = fb.layered() else {
+        return Ok(None);
+    };
     let window = frame.window.map(|(scene, copy)| {
         let source = match copy {
             Some(c) => eyes.attachments().with_depth_copy(c),
             None => eyes.attachments(),
         };
-        (source, (w, h), scene, true)
+        // The window's own depth, not overwritten since the scene: in
+        // place where it is memory.
+        let memory = copy.is_none().then(|| eyes.left_depth()).flatten();
+        (source, (w, h), scene, Some(memory))
     });
     // A scene of known projection first, the window's before a target's
     // (as automatic convergence chooses: [`crate::auto::converge`]).
-    let target = frame.target.map(|(t, size, scene)| (t, size, scene, false));
-    let mut places: Vec<(Attachments, (u32, u32), Scene, bool)> =
-        window.into_iter().chain(target).collect();
+    let target = frame.target.map(|(t, size, scene)| (t, size, scene, None));
+    let mut places: Vec<_> = window.into_iter().chain(target).collect();
     places.sort_by_key(|(_, _, scene, _)| scene.perspective.is_none());
-    let (source, size, scene, in_window) = places.into_iter().next()?;
+    let Some((source, size, scene, in_window)) = places.into_iter().next() else {
+        return Ok(None);
+    };
     if size != (w, h) {
         crate::report::tell(&format!(
             "--auto=depth: the scene's depth is {}x{}, the window {w}x{h}: this frame is flat",
             size.0, size.1
         ));
-        return None;
+        return Ok(None);
     }
-    let rule = rule_for(frame, &scene)?;
+    let Some(rule) = rule_for(frame, &scene) else {
+        return Ok(None);
+    };
+    let plan = |depth| Plan {
+        rule,
+        viewport: scene.viewport,
+        window: in_window.is_some(),
+        depth,
+    };
+    if let Some(Some(rows)) = in_window {
+        if rows.size() == (w as usize, h as usize) {
+            crate::report::tell(
+                "--auto=depth: the window's depth is read in place (memory shared with the \
+                 renderer)",
+            );
+            return Ok(Some(plan(Depths::Memory(rows))));
+        }
+    }
+    switch_in()?;
     // SAFETY: contract; the rectangle is the whole of the eyes.
     let read =
         unsafe { source.read_left_depth(gl, fb.read_fbo(), (0, 0, w as i32, h as i32), depth) };
-    (read && depth.len() >= w as usize * h as usize).then_some((rule, scene.viewport, in_window))
+    Ok((read && depth.len() >= w as usize * h as usize).then(|| plan(Depths::Read)))
+}
+
+/// How a frame's eyes are made ([`rule_of`]).
+struct Plan {
+    rule: Rule,
+    /// The scene's viewport: what moves.
+    viewport: (i32, i32, i32, i32),
+    /// The scene is the window's (overlays over it are told apart).
+    window: bool,
+    depth: Depths,
+}
+
+/// Where a frame's depths are.
+#[derive(Clone, Copy)]
+enum Depths {
+    /// Read back into the scratch buffer, rows bottom first.
+    Read,
+    /// The window's depth in place.
+    Memory(DepthRows),
 }
 
 /// The rule `--auto` draws `scene` of `frame` with, as a shift of window

@@ -103,6 +103,7 @@ gl_table! {
     Clear = "glClear"(mask: GLbitfield);
     ClearBufferfv = "glClearBufferfv"(buffer: GLenum, drawbuffer: GLint, value: *const GLfloat);
     ClearDepth = "glClearDepth"(depth: GLdouble);
+    DepthMask = "glDepthMask"(flag: GLboolean);
     ColorMask = "glColorMask"(r: GLboolean, g: GLboolean, b: GLboolean, a: GLboolean);
     PixelStorei = "glPixelStorei"(pname: GLenum, param: GLint);
     ReadPixels = "glReadPixels"(x: GLint, y: GLint, w: GLsizei, h: GLsizei, format: GLenum, ty: GLenum, data: *mut c_void);

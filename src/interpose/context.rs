@@ -1087,12 +1087,20 @@ impl StereoContext {
         // Eyes made from the frame's depth (--auto=depth): the program
         // drew its frame once, into the left eye.
         if self.auto && crate::auto::live::from_depth() {
-            self.switch_in(r, drawable, &mut ours)?;
             let scratch = &mut st.auto.from_depth;
-            // SAFETY: the layer's context, sharing the program's objects,
-            // is current; the program's frame is finished (above).
+            // The layer's context only where the depth or the eyes are
+            // read through GL.
+            let mut switch_in = || self.switch_in(r, drawable, &mut ours);
+            // SAFETY: the program's frame is finished (above); the layer's
+            // context is made current before any GL call of make's.
             let made = profile::span(Stage::FromDepth, || unsafe {
-                crate::auto::from_depth::make(gl, &drawn.fb, measured.as_ref(), scratch)
+                crate::auto::from_depth::make(
+                    gl,
+                    &drawn.fb,
+                    measured.as_ref(),
+                    scratch,
+                    &mut switch_in,
+                )
             });
             match made {
                 Ok(m) => settings::tell(&format!(

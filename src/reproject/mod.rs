@@ -482,7 +482,7 @@ fn land_runs(
         s => i64::from(s),
     };
     owner[x0..x1].fill(NO_RUN);
-    let mut put = |i: usize, out: &mut [u32], owner: &mut [u32]| {
+    let put = |i: usize, out: &mut [u32], owner: &mut [u32]| {
         let (a, b, code) = runs[i];
         let d = sign * shift_of(code);
         let lo = (i64::from(a) + d).max(x0 as i64);
