@@ -215,7 +215,7 @@ fn keys_in_an_event_driven_xlib_program(loop_kind: &str, input: &str) {
             "glstereo: format side-by-side (Ctrl+F7; Ctrl+Shift+F7 back)",
             "glstereo: eyes exchanged (Ctrl+F8)",
             "glstereo: format anaglyph-red-cyan (Ctrl+F7; Ctrl+Shift+F7 back)",
-            "glstereo: Ctrl+F3 to Ctrl+F6 and Ctrl+T change automatic stereo, which this \
+            "glstereo: Ctrl+F2 to Ctrl+F6 and Ctrl+T change automatic stereo, which this \
              program does not have (glstereo-run --auto): those keys go to the program",
         ],
         "{stderr}"
@@ -282,6 +282,8 @@ fn under_auto_the_keys_of_automatic_stereo_are_taken_and_said() {
             (CTRL, XK_F5),
             (CTRL, XK_t),
             (CTRL, XK_t),
+            (CTRL, XK_F2),
+            (CTRL, XK_F2),
             (NONE, XK_b),
             (NONE, XK_Escape),
         ],
@@ -312,6 +314,9 @@ fn under_auto_the_keys_of_automatic_stereo_are_taken_and_said() {
             "glstereo: convergence 1.1 (Ctrl+F5/F6)",
             "glstereo: automatic stereo off (Ctrl+T)",
             "glstereo: automatic stereo on (Ctrl+T)",
+            "glstereo: automatic stereo makes both eyes from one render's depth (depth) \
+             (Ctrl+F2)",
+            "glstereo: automatic stereo renders both eyes (geometry) (Ctrl+F2)",
         ],
         "{stderr}"
     );
@@ -464,7 +469,7 @@ fn keys_change_the_format_and_eye_order_of_a_glfw_program() {
         [
             "glstereo: format anaglyph-red-cyan (Ctrl+F7; Ctrl+Shift+F7 back)",
             "glstereo: eyes exchanged (Ctrl+F8)",
-            "glstereo: Ctrl+F3 to Ctrl+F6 and Ctrl+T change automatic stereo, which this \
+            "glstereo: Ctrl+F2 to Ctrl+F6 and Ctrl+T change automatic stereo, which this \
              program does not have (glstereo-run --auto): those keys go to the program",
         ],
         "{stderr}"

@@ -677,7 +677,7 @@ fn take(ev: &[u8]) -> bool {
         Decision::Pass => false,
         Decision::PassNotAutomatic => {
             super::warn(
-                "Ctrl+F3 to Ctrl+F6 and Ctrl+T change automatic stereo, which this program \
+                "Ctrl+F2 to Ctrl+F6 and Ctrl+T change automatic stereo, which this program \
                  does not have (glstereo-run --auto): those keys go to the program",
             );
             false
