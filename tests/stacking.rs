@@ -758,11 +758,21 @@ fn mangohuds_hud_shows_over_both_eyes_of_an_egl_program_under_auto_in_either_ord
     // eglSwapBuffers. Without glstereo MangoHud shows no HUD here (its hook
     // is not reached through glmark2's handle); the layer's libEGL stub
     // passes the swap down to it.
+    // Both kinds of automatic stereo: two rendered eyes, and eyes made
+    // from one render's depth.
     let _one = one_renderer_at_a_time();
-    for (what, mangohud_first) in [
-        ("glstereo-run --auto mangohud glmark2-es2", false),
-        ("mangohud glstereo-run --auto glmark2-es2", true),
+    for (auto, mangohud_first) in [
+        ("--auto", false),
+        ("--auto", true),
+        ("--auto=depth", false),
+        ("--auto=depth", true),
     ] {
+        let what = if mangohud_first {
+            format!("mangohud glstereo-run {auto} glmark2-es2")
+        } else {
+            format!("glstereo-run {auto} mangohud glmark2-es2")
+        };
+        let what = what.as_str();
         let x = Xvfb::start(800, 600);
         let mut cmd = if mangohud_first {
             let mut c = Command::new("mangohud");
@@ -771,7 +781,7 @@ fn mangohuds_hud_shows_over_both_eyes_of_an_egl_program_under_auto_in_either_ord
         } else {
             Command::new(&built().run)
         };
-        cmd.args(["--auto", "-m", "side-by-side-half"]);
+        cmd.args([auto, "-m", "side-by-side-half"]);
         if !mangohud_first {
             cmd.arg("mangohud");
         }
@@ -794,7 +804,7 @@ fn mangohuds_hud_shows_over_both_eyes_of_an_egl_program_under_auto_in_either_ord
         let stderr = run.quit(&screen, window);
         let _ = glstereo::capture::write_png(
             &shot,
-            &common::scratch(&format!("mangohud-egl-{mangohud_first}")).join("window.png"),
+            &common::scratch(&format!("mangohud-egl-{auto}-{mangohud_first}")).join("window.png"),
         );
         let (left, right) = squeezed_halves(&shot);
         assert!(
