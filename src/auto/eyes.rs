@@ -99,15 +99,17 @@ impl DepthRows {
         let row =
             unsafe { std::slice::from_raw_parts(self.first.add(y * self.stride), self.width) };
         let scale = 1.0 / DEPTH_MAX as f32;
+        // Through i32 (exact below 2^24): a conversion every vector level
+        // has.
         match self.bits {
             DepthBits::Low => {
                 for (o, &w) in out.iter_mut().zip(row) {
-                    *o = (w & DEPTH_MAX) as f32 * scale;
+                    *o = (w & DEPTH_MAX) as i32 as f32 * scale;
                 }
             }
             DepthBits::High => {
                 for (o, &w) in out.iter_mut().zip(row) {
-                    *o = (w >> 8) as f32 * scale;
+                    *o = (w >> 8) as i32 as f32 * scale;
                 }
             }
         }

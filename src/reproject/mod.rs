@@ -302,6 +302,14 @@ pub(crate) fn row(
         |_| {
             row_codes(rule, depth, &mut scratch.code, &mut scratch.key);
             runs_of(columns, &scratch.code, &mut scratch.runs);
+            // Nothing moves (a row of nothing drawn, overlays and geometry
+            // at the screen): every pixel lands where it is, on its own.
+            if scratch.runs.iter().all(|r| r.2 == 0 || r.2 <= CODE_OVERLAY) {
+                for out in out {
+                    out.copy_from_slice(colour);
+                }
+                return;
+            }
             let RowScratch {
                 key, runs, owner, ..
             } = scratch;
