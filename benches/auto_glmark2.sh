@@ -25,11 +25,14 @@ command -v glmark2 >/dev/null || { echo "install glmark2-x11" >&2; exit 1; }
 command -v glxgears >/dev/null || { echo "install mesa-utils" >&2; exit 1; }
 
 SW=$(( ${SIZE%x*} + 64 )); SH=$(( ${SIZE#*x} + 64 ))
-Xvfb :91 -screen 0 ${SW}x${SH}x24 -nolisten tcp >/dev/null 2>&1 &
+# A display no other server holds (a run just ended may still hold :91).
+N=91
+while [ -e "/tmp/.X$N-lock" ]; do N=$((N + 1)); done
+Xvfb :$N -screen 0 ${SW}x${SH}x24 -nolisten tcp >/dev/null 2>&1 &
 XVFB=$!
 trap 'kill $XVFB 2>/dev/null' EXIT INT TERM
 sleep 2
-export DISPLAY=:91
+export DISPLAY=:$N
 
 SCENES="build:use-vbo=true texture:texture-filter=linear shading:shading=phong
 bump:bump-render=high-poly effect2d:kernel=0,1,0;1,-4,1;0,1,0;

@@ -42,6 +42,12 @@
 //!   GL_3DVISION_STEREO_NV turn automatic stereo on and off (both eyes
 //!   then drawn alike).
 //!
+//! Under `--auto=depth` ([`crate::auto::live::AutoMode::Depth`]) every
+//! draw, blit and pixel rectangle is made once, into the left eye's layer
+//! (a rewritten program's uniform unshifted), and each frame records
+//! where its scene is: the eyes are made from its depth at the present
+//! ([`crate::auto::from_depth`]).
+//!
 //! Draws into the program's own framebuffer objects are made once, mono,
 //! with the neutral uniform, except into render targets of the window's
 //! size, which are drawn in stereo as the window is
@@ -1680,8 +1686,10 @@ unsafe fn keep_scene_depth(
     *copied = unsafe { render_targets::copy_left_depth(api, array, copy) };
 }
 
-/// What automatic convergence reads of a frame at its present, in the
-/// program's context; None when this frame is not measured (the user set
+/// What automatic convergence reads of a frame at its present, and what
+/// eyes made from depth need of every frame ([`converge::Frame::converges`]
+/// says whether it is measured), in the program's context; None when
+/// neither applies: this frame is not measured (the user set
 /// the convergence, automatic stereo is off, it is not a
 /// [`converge::PERIOD`]th frame, nothing was drawn into the window's eyes
 /// or a stereoized render target this frame — the window's depth is not
