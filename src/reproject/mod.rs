@@ -53,10 +53,10 @@
 //! # Kernels
 //!
 //! [`row_reference`] is the definition, pixel by pixel, with a depth test
-//! at every landing. [`row`] gets the same words with spans: the shifts
-//! and depth-test keys of a row are computed [`N`] pixels at a time in
+//! at every landing. `row` gets the same words with spans: the shifts
+//! and depth-test keys of a row are computed 16 pixels at a time in
 //! loops over fixed-size arrays (compiled for AVX2 and AVX-512 by
-//! [`with_simd`]); the row is cut into runs of one kind and one shift
+//! `with_simd`); the row is cut into runs of one kind and one shift
 //! (a surface rounds to the same shift over many pixels), and each run
 //! lands as one copy. No depth test is needed between runs: nothing drawn
 //! lands first, then the geometry in the order in which a later run is
@@ -236,7 +236,7 @@ fn ndc_of_window(n: f64, f: f64, zero_to_one: bool) -> Option<(f64, f64)> {
     })
 }
 
-/// The buffers of [`row`], kept from row to row and frame to frame (a
+/// The buffers of the kernels ([`frame`]), kept from row to row and frame to frame (a
 /// frame allocates nothing once they have grown).
 #[derive(Debug, Default)]
 pub struct RowScratch {

@@ -723,7 +723,7 @@ impl EmulatedFramebuffer {
 
     /// Marks the attachments stale ([`Self::reattach_app`]) where the
     /// layered eyes were attached for another kind of automatic stereo
-    /// than the one on now ([`drawn_layers`]: a live switch).
+    /// than the one on now (a live switch: Ctrl+F2).
     pub fn follow_auto_mode(&mut self) {
         if self.layered.is_some() && self.app_fbo != 0 && self.attached_layers != drawn_layers() {
             self.attachments_stale = true;
