@@ -79,6 +79,14 @@ pub fn as_words_mut(bytes: &mut [u8]) -> Option<&mut [u32]> {
     (head.is_empty() && tail.is_empty()).then_some(words)
 }
 
+/// Pixel words as their bytes (RGBA8 on a little-endian machine): the
+/// buffer a read-back of pixels fills.
+pub fn as_bytes_mut(words: &mut [u32]) -> &mut [u8] {
+    // SAFETY: u8 has no alignment and any byte values are a valid u32;
+    // the length is the words' size in bytes.
+    unsafe { std::slice::from_raw_parts_mut(words.as_mut_ptr().cast::<u8>(), words.len() * 4) }
+}
+
 impl Image {
     /// A black, fully transparent image. Panics on a size outside
     /// 1…MAX_DIMENSION (check with [`check_size`] first for user input), and

@@ -146,19 +146,20 @@ struct PairMemory {
 unsafe impl Send for PairMemory {}
 
 impl PairMemory {
-    /// Gives `array` (2 layers) and the 2D textures `eyes` (left, right)
-    /// `width` × `height` RGBA8 storage in one new file. None when the
-    /// driver lacks glTexStorageMem3DEXT or refuses (the textures may then
-    /// have storage of no use: the caller replaces them).
-    unsafe fn create(
-        gl: &Gl,
+    /// A new file for two layers of `width` × `height` 4-byte pixels,
+    /// mapped here and imported `imports` times (1 or 2): import i's data
+    /// starts at layer i (module docs). None where the file, the mapping or
+    /// an import cannot be had.
+    ///
+    /// # Safety
+    /// A context with the memory-object API `api` is current.
+    unsafe fn imported(
         api: &MemoryObjectApi,
         uuid: &[u8; 16],
-        array: u32,
-        eyes: [u32; 2],
+        name: &std::ffi::CStr,
         (width, height): (u32, u32),
+        imports: usize,
     ) -> Option<PairMemory> {
-        let storage_3d = api.tex_storage_mem_3d?;
         let stride = eye_memory::cache_lines(eye_memory::predicted_stride(width));
         let rows = (height as usize).div_ceil(4) * 4;
         let layer_stride = stride.checked_mul(rows)?;
@@ -168,7 +169,7 @@ impl PairMemory {
         // SAFETY: plain libc calls on a file this function owns; GL calls
         // in the current context (contract).
         unsafe {
-            let fd = libc::memfd_create(c"glstereo eyes".as_ptr(), libc::MFD_CLOEXEC);
+            let fd = libc::memfd_create(name.as_ptr(), libc::MFD_CLOEXEC);
             if fd < 0 {
                 return None;
             }
@@ -199,10 +200,8 @@ impl PairMemory {
             };
             // Each import reads the header as the file has it then: where
             // its data starts.
-            for (i, start) in [data_offset, data_offset + layer_stride]
-                .into_iter()
-                .enumerate()
-            {
+            for i in 0..imports.min(2) {
+                let start = data_offset + i * layer_stride;
                 let head = eye_memory::header(map_len, start, uuid);
                 if libc::pwrite(fd, head.as_ptr().cast(), head.len(), 0) != head.len() as isize {
                     break;
@@ -224,10 +223,30 @@ impl PairMemory {
             // The header the first import's data needs before it again.
             let head = eye_memory::header(map_len, data_offset, uuid);
             std::ptr::copy_nonoverlapping(head.as_ptr(), memory.map, head.len());
-            if memory.objects.contains(&0) {
+            if memory.objects[..imports.min(2)].contains(&0) {
                 memory.release(api);
                 return None;
             }
+            Some(memory)
+        }
+    }
+
+    /// Gives `array` (2 layers) and the 2D textures `eyes` (left, right)
+    /// `width` × `height` RGBA8 storage in one new file. None when the
+    /// driver lacks glTexStorageMem3DEXT or refuses (the textures may then
+    /// have storage of no use: the caller replaces them).
+    unsafe fn create(
+        gl: &Gl,
+        api: &MemoryObjectApi,
+        uuid: &[u8; 16],
+        array: u32,
+        eyes: [u32; 2],
+        (width, height): (u32, u32),
+    ) -> Option<PairMemory> {
+        let storage_3d = api.tex_storage_mem_3d?;
+        // SAFETY: contract.
+        unsafe {
+            let memory = PairMemory::imported(api, uuid, c"glstereo eyes", (width, height), 2)?;
             gl.BindTexture(GL_TEXTURE_2D_ARRAY, array);
             storage_3d(
                 GL_TEXTURE_2D_ARRAY,
@@ -275,61 +294,9 @@ impl PairMemory {
         (width, height): (u32, u32),
     ) -> Option<PairMemory> {
         let storage_3d = api.tex_storage_mem_3d?;
-        let stride = eye_memory::cache_lines(eye_memory::predicted_stride(width));
-        let rows = (height as usize).div_ceil(4) * 4;
-        let layer_stride = stride.checked_mul(rows)?;
-        let page = 4096;
-        let data_offset = page;
-        let map_len = data_offset + 2 * layer_stride + page;
         // SAFETY: as in `create`.
         unsafe {
-            let fd = libc::memfd_create(c"glstereo depth".as_ptr(), libc::MFD_CLOEXEC);
-            if fd < 0 {
-                return None;
-            }
-            let ok = libc::ftruncate(fd, map_len as libc::off_t) == 0;
-            let map = if ok {
-                libc::mmap(
-                    std::ptr::null_mut(),
-                    map_len,
-                    libc::PROT_READ | libc::PROT_WRITE,
-                    libc::MAP_SHARED,
-                    fd,
-                    0,
-                )
-            } else {
-                libc::MAP_FAILED
-            };
-            if map == libc::MAP_FAILED {
-                libc::close(fd);
-                return None;
-            }
-            let mut memory = PairMemory {
-                objects: [0; 2],
-                map: map.cast(),
-                map_len,
-                data_offset,
-                layer_stride,
-                stride,
-            };
-            let head = eye_memory::header(map_len, data_offset, uuid);
-            let written =
-                libc::pwrite(fd, head.as_ptr().cast(), head.len(), 0) == head.len() as isize;
-            let given = if written { libc::dup(fd) } else { -1 };
-            if given >= 0 {
-                (api.create)(1, &mut memory.objects[0]);
-                (api.import_fd)(
-                    memory.objects[0],
-                    map_len as u64,
-                    eye_memory::GL_HANDLE_TYPE_OPAQUE_FD_EXT,
-                    given,
-                );
-            }
-            libc::close(fd);
-            if memory.objects[0] == 0 {
-                memory.release(api);
-                return None;
-            }
+            let memory = PairMemory::imported(api, uuid, c"glstereo depth", (width, height), 1)?;
             gl.BindTexture(GL_TEXTURE_2D_ARRAY, array);
             storage_3d(
                 GL_TEXTURE_2D_ARRAY,

@@ -278,7 +278,8 @@ unsafe fn make_through_gl(
 ) -> crate::Result<Made> {
     let (w, h) = fb.size();
     let n = w as usize * h as usize;
-    let textures = [ColorBuffer::FrontLeft, ColorBuffer::FrontRight].map(|b| fb.texture(b));
+    let buffers = [ColorBuffer::FrontLeft, ColorBuffer::FrontRight];
+    let textures = buffers.map(|b| fb.texture(b));
     if n == 0 || textures.contains(&0) {
         return Err(crate::Error::invalid_operation(
             "no front buffers to make eyes in",
@@ -293,9 +294,9 @@ unsafe fn make_through_gl(
     let [left, right] = &mut scratch.eyes;
     // SAFETY: contract.
     unsafe {
-        read_texture(gl, fb, textures[0], (w, h), left)?;
+        read_eye(gl, fb, buffers[0], left)?;
         if overlays {
-            read_texture(gl, fb, textures[1], (w, h), right)?;
+            read_eye(gl, fb, buffers[1], right)?;
         } else {
             right.clear();
             right.resize(n, 0);
@@ -316,46 +317,22 @@ unsafe fn make_through_gl(
     Ok(done)
 }
 
-/// Reads the RGBA8 texture `texture` (`size`) into `out`, rows bottom
-/// first, through `fb`'s read framebuffer.
+/// Reads the front buffer `buffer` of `fb` into `out` as words, rows
+/// bottom first.
 ///
 /// # Safety
-/// As [`make`].
-unsafe fn read_texture(
+/// As [`make`], the layer's context current.
+unsafe fn read_eye(
     gl: &Gl,
     fb: &EmulatedFramebuffer,
-    texture: u32,
-    (w, h): (u32, u32),
+    buffer: ColorBuffer,
     out: &mut Vec<u32>,
 ) -> crate::Result<()> {
-    use crate::gl::enums::*;
+    let (w, h) = fb.size();
     out.clear();
     out.resize(w as usize * h as usize, 0);
-    // SAFETY: contract; `out` holds w × h words.
-    unsafe {
-        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fb.read_fbo());
-        gl.FramebufferTexture2D(
-            GL_READ_FRAMEBUFFER,
-            GL_COLOR_ATTACHMENT0,
-            GL_TEXTURE_2D,
-            texture,
-            0,
-        );
-        gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-        gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-        gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-        gl.ReadPixels(
-            0,
-            0,
-            w as i32,
-            h as i32,
-            GL_RGBA,
-            GL_UNSIGNED_BYTE,
-            out.as_mut_ptr().cast(),
-        );
-        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-        gl.check("reading the frame for --auto=depth")
-    }
+    // SAFETY: contract; the words are w × h × 4 bytes.
+    unsafe { fb.read_pixels_as_gl(gl, buffer, crate::image::as_bytes_mut(out)) }
 }
 
 /// Writes `pixels` (rows bottom first) into the RGBA8 texture `texture`.

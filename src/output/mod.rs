@@ -22,7 +22,7 @@ mod avx512;
 pub mod cpu;
 mod dubois_lut;
 #[cfg(test)]
-mod fits;
+pub(crate) mod fits;
 pub mod gl;
 pub(crate) mod helper;
 pub(crate) mod kernels;

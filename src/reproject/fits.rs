@@ -10,24 +10,22 @@
 use super::*;
 use crate::output::kernels::Simd;
 
-/// SplitMix64: the same sequence everywhere.
-struct Rng(u64);
+/// The output kernels' generator (SplitMix64), with what these cases
+/// draw from it.
+use crate::output::fits::Rng;
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
+trait Draw {
     /// 0 … n − 1.
+    fn below(&mut self, n: usize) -> usize;
+    /// 0 … 1.
+    fn unit(&mut self) -> f32;
+}
+
+impl Draw for Rng {
     fn below(&mut self, n: usize) -> usize {
         (self.next() % n as u64) as usize
     }
 
-    /// 0 … 1.
     fn unit(&mut self) -> f32 {
         (self.next() >> 40) as f32 / (1u64 << 24) as f32
     }

@@ -1293,6 +1293,22 @@ impl EmulatedFramebuffer {
     /// The surface's compositor context must be current on this thread and
     /// `out` must hold width × height × 4 bytes.
     pub unsafe fn read_pixels(&self, gl: &Gl, buffer: ColorBuffer, out: &mut [u8]) -> Result<()> {
+        // SAFETY: contract.
+        unsafe { self.read_pixels_as_gl(gl, buffer, out)? };
+        flip_rows(out, self.width as usize * 4);
+        Ok(())
+    }
+
+    /// [`Self::read_pixels`] with the rows in GL's order, bottom first.
+    ///
+    /// # Safety
+    /// As [`Self::read_pixels`].
+    pub unsafe fn read_pixels_as_gl(
+        &self,
+        gl: &Gl,
+        buffer: ColorBuffer,
+        out: &mut [u8],
+    ) -> Result<()> {
         let tex = self.texture(buffer);
         if tex == 0 {
             return Err(Error::invalid_operation(format!(
@@ -1329,10 +1345,8 @@ impl EmulatedFramebuffer {
                 out.as_mut_ptr().cast(),
             );
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-            gl.check("reading the stereo buffers")?;
+            gl.check("reading the stereo buffers")
         }
-        flip_rows(out, stride);
-        Ok(())
     }
 
     /// Reads the depth/stencil renderbuffer's depth as window depths in
