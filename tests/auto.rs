@@ -94,14 +94,26 @@ fn client(name: &str) -> PathBuf {
 /// convergence, its frame captured into `dir`: the eyes of frame 1 and
 /// its stdout.
 fn auto_capture(x: &Xvfb, exe: &Path, args: &[&str], dir: &Path) -> ([Image; 2], String) {
+    auto_capture_in(x, ("--auto", CONVERGENCE), exe, args, dir)
+}
+
+/// [`auto_capture`] under `auto` (`--auto`, or `--auto=depth`) at
+/// `convergence` (a distance, or `auto`).
+fn auto_capture_in(
+    x: &Xvfb,
+    (auto, convergence): (&str, &str),
+    exe: &Path,
+    args: &[&str],
+    dir: &Path,
+) -> ([Image; 2], String) {
     let o = common::run_ok(
         Command::new(&built().run)
             .args([
-                "--auto",
+                auto,
                 "--separation",
                 SEPARATION,
                 "--convergence",
-                CONVERGENCE,
+                convergence,
             ])
             .arg("--capture")
             .arg(dir)
@@ -418,6 +430,7 @@ fn transform_feedback_captures_the_mono_draws_once() {
     let plain = common::run_ok(Command::new(&exe).env("DISPLAY", &x.display));
     let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
     assert!(plain.contains("written 2\n"), "without the layer: {plain}");
+    // Both kinds: two rendered eyes, and eyes made from one render.
     let dir = common::scratch("auto-feedback");
     let (eyes, auto) = auto_capture(&x, &exe, &[], &dir);
     assert_eq!(
@@ -428,6 +441,20 @@ fn transform_feedback_captures_the_mono_draws_once() {
         differing(&eyes[0], &eyes[1]).len() > 100,
         "the triangle is not in stereo while captured"
     );
+    // The program writes clip coordinates itself: eyes made from depth
+    // cannot turn its depth into a distance, so they take automatic
+    // convergence's, which puts its one triangle at the screen. The
+    // capture is the mono program's, and both eyes show the triangle.
+    let dir = common::scratch("auto-feedback-depth");
+    let (eyes, depth) = auto_capture_in(&x, ("--auto=depth", "auto"), &exe, &[], &dir);
+    assert_eq!(
+        depth, plain,
+        "the capture under --auto=depth is not the mono program's"
+    );
+    for (eye, img) in ["left", "right"].iter().zip(&eyes) {
+        let yellow = common::clients::count(img, |p| p[0] > 200 && p[1] > 200 && p[2] < 60);
+        assert!(yellow > 100, "--auto=depth: no triangle in the {eye} eye");
+    }
 }
 
 /// A program that knows 3D Vision tunes itself (NV_3dvision_settings,
@@ -571,17 +598,19 @@ fn queries_count_the_mono_draws_once() {
         plain.contains("primitives 5\n") && plain.contains("any-hidden 0\n"),
         "without the layer: {plain}"
     );
-    let dir = common::scratch("auto-queries");
-    let (eyes, auto) = auto_capture(&x, &exe, &[], &dir);
-    assert_eq!(
-        auto, plain,
-        "the counts under --auto are not the mono program's"
-    );
-    // Both eyes were drawn: the background (w = 8) is shifted between them.
-    assert!(
-        differing(&eyes[0], &eyes[1]).len() > 100,
-        "the eyes are alike"
-    );
+    for kind in ["--auto", "--auto=depth"] {
+        let dir = common::scratch(&format!("auto-queries{kind}"));
+        let (eyes, auto) = auto_capture_in(&x, (kind, CONVERGENCE), &exe, &[], &dir);
+        assert_eq!(
+            auto, plain,
+            "the counts under {kind} are not the mono program's"
+        );
+        // Both eyes were drawn: the background (w = 8) is shifted between them.
+        assert!(
+            differing(&eyes[0], &eyes[1]).len() > 100,
+            "{kind}: the eyes are alike"
+        );
+    }
 }
 
 /// A square render target of another size than the window is seen from

@@ -470,10 +470,11 @@ pub fn rule_for(frame: &Frame, scene: &Scene) -> Option<Rule> {
             // point e·s·w over in clip space, e·s in NDC, behind the screen.
             (None, None, None) => Some(Rule::constant(k, clear)),
             _ => {
-                crate::report::tell(
-                    "--auto=depth: a frame whose projection glstereo cannot see, at a \
-                     convergence set as a distance: flat until automatic convergence finds \
-                     its depth",
+                crate::report::warn(
+                    "--auto=depth: this program's projection cannot be seen (matrices in \
+                     buffers or built in its shaders), so a convergence given as a distance \
+                     cannot be placed in its depth: its frames are flat; use --convergence \
+                     auto (the default), or --auto",
                 );
                 None
             }
