@@ -79,6 +79,13 @@ pub fn as_words_mut(bytes: &mut [u8]) -> Option<&mut [u32]> {
     (head.is_empty() && tail.is_empty()).then_some(words)
 }
 
+/// Pixel words as their bytes (RGBA8 on a little-endian machine).
+pub fn as_bytes(words: &[u32]) -> &[u8] {
+    // SAFETY: u8 has no alignment and every u32 is valid bytes; the
+    // length is the words' size in bytes.
+    unsafe { std::slice::from_raw_parts(words.as_ptr().cast::<u8>(), words.len() * 4) }
+}
+
 /// Pixel words as their bytes (RGBA8 on a little-endian machine): the
 /// buffer a read-back of pixels fills.
 pub fn as_bytes_mut(words: &mut [u32]) -> &mut [u8] {

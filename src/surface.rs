@@ -636,7 +636,7 @@ impl Surface {
                             // SAFETY: the compositor context is current; the
                             // job's textures are this surface's; the plan is
                             // for this job and the window's size.
-                            unsafe { compositor.fill_pixels(gl, &job, plan, t) }
+                            unsafe { compositor.fill_pixels(gl, &job, plan, t, None) }
                         })?;
                         if shown {
                             return Ok(());
@@ -715,7 +715,7 @@ impl Surface {
         self.platform.present_pixels(size, &mut |t| {
             // SAFETY: finished above; the eyes stay allocated while the
             // state is locked.
-            unsafe { compositor.fill_in_place(&job, plan, t) }
+            unsafe { compositor.fill_in_place(&job, plan, t, None) }
         })
     }
 

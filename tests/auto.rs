@@ -953,6 +953,70 @@ fn from_depth_against_the_oracle(
     assert!(stdout.contains("error 0x0"), "{profile}: {stdout}");
 }
 
+/// `--auto=depth` makes the eyes as the window's composite reads them
+/// where each composite row needs only its own eye rows (they are never
+/// written to memory and read again), and in place first where it does
+/// not (top-bottom, scaled into the window): either way the window shows
+/// exactly the composite of the eyes captured from the same frame.
+#[test]
+fn under_auto_depth_the_window_shows_the_composite_of_the_eyes_made_from_depth() {
+    use glstereo::output::{OutputMode, OutputOptions, compose_fitted};
+    let _one = common::clients::one_renderer_at_a_time();
+    let x = Xvfb::start(W + 40, H + 40);
+    let dir = common::scratch("auto-depth-window");
+    let flags = [
+        "--auto=depth",
+        "--separation",
+        SEPARATION,
+        "--convergence",
+        CONVERGENCE,
+    ];
+    let (eyes, _) = run_auto(&x, &flags, &["legacy", "mono"], &dir, true);
+    assert!(
+        differing(&eyes[0], &eyes[1]).len() > 1000,
+        "the captured eyes are at depth"
+    );
+    for mode in [
+        "anaglyph-red-cyan-dubois",
+        "side-by-side-half",
+        "rows",
+        "checkerboard",
+        "right",
+        "top-bottom",
+    ] {
+        let mut cmd = Command::new(&built().run);
+        cmd.args(flags)
+            .args(["-m", mode])
+            .arg(oracle())
+            .args(["legacy", "mono", "wait"])
+            .env("DISPLAY", &x.display);
+        let (shot, _, stderr) = grab_ready(cmd, &x.display);
+        assert!(!stderr.contains("glstereo:"), "{mode}: {stderr}");
+        let m = OutputMode::from_name(mode).expect("a mode");
+        let mut want = Image::new(1, 1);
+        compose_fitted(
+            m,
+            &OutputOptions::default(),
+            &eyes[0],
+            &eyes[1],
+            0,
+            (W, H),
+            &mut want,
+        )
+        .expect("composed");
+        let off: Vec<_> = (0..H)
+            .flat_map(|y| (0..W).map(move |x| (x, y)))
+            .filter(|&(x, y)| shot.get(x, y)[..3] != want.get(x, y)[..3])
+            .collect();
+        assert!(
+            off.is_empty(),
+            "{mode}: {} window pixels are not the captured eyes' composite, the first at {:?}",
+            off.len(),
+            off.first()
+        );
+    }
+}
+
 #[test]
 fn a_fixed_function_program_under_auto_depth_has_each_eye_within_a_pixel_of_the_truth() {
     // Measured 98.93 % (left: the uncovered cylinder) and 99.97 %.

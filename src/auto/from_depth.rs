@@ -19,6 +19,10 @@ use crate::auto::converge::{Frame, Scene};
 use crate::auto::eyes::DepthRows;
 use crate::auto::live;
 use crate::gl::Gl;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use crate::output::MakeEyes;
 use crate::output::kernels::Simd;
 use crate::reproject::{self, RowScratch, Rule};
 use crate::stereo::buffers::ColorBuffer;
@@ -30,8 +34,7 @@ use crate::stereo::eye_memory::EyePixels;
 #[derive(Debug, Default)]
 pub struct Scratch {
     depth: Vec<f32>,
-    /// Each band's ([`made_into`]): the kernel's, and a row of depths
-    /// read from memory.
+    /// Each band's ([`Pending`]): the kernel's, and a row of depths.
     rows: [(RowScratch, Vec<f32>); 2],
     /// The eyes read back and made, where they are not in memory: left
     /// (and the overlays' scene), right.
@@ -50,10 +53,12 @@ pub enum Made {
 
 /// Makes both eyes of `fb`'s front buffers from its front-left colour
 /// (the program's mono frame) and the depth `frame` says holds the scene
-/// (None: none drawn this frame): in place where the eyes are memory the
-/// CPU reads and writes (llvmpipe), else read back and written again
-/// with GL (a hardware renderer, an OpenGL ES context,
-/// `GLSTEREO_EYE_MEMORY=0`).
+/// (None: none drawn this frame). Where the eyes are memory the CPU reads
+/// and writes (llvmpipe) they are not made here: the [`Pending`] given
+/// back makes them as the composite reads them ([`MakeEyes`]), or in
+/// place; else (a hardware renderer, an OpenGL ES context,
+/// `GLSTEREO_EYE_MEMORY=0`) they are read back, made and written again
+/// with GL here.
 ///
 /// `switch_in` makes the layer's context (sharing the program's objects)
 /// current: called before the first GL call, where one is needed (the
@@ -61,27 +66,29 @@ pub enum Made {
 ///
 /// # Safety
 /// The program's rendering into `fb` has finished (glFinish), and its
-/// context or the layer's is current.
+/// context or the layer's is current. A [`Pending`] reads and writes the
+/// eyes' memory: it is used before `fb` draws, resizes or goes, and
+/// nothing else reads or writes the eyes meanwhile.
 pub unsafe fn make(
     gl: &Gl,
     fb: &EmulatedFramebuffer,
     frame: Option<&Frame>,
     scratch: &mut Scratch,
     switch_in: &mut dyn FnMut() -> crate::Result<()>,
-) -> crate::Result<Made> {
+) -> crate::Result<(Made, Option<Pending>)> {
     let (Some(left), Some(right)) = (
         fb.pixels(ColorBuffer::FrontLeft),
         fb.pixels(ColorBuffer::FrontRight),
     ) else {
         switch_in()?;
         // SAFETY: contract.
-        return unsafe { make_through_gl(gl, fb, frame, scratch) };
+        return unsafe { make_through_gl(gl, fb, frame, scratch) }.map(|m| (m, None));
     };
     let (w, h) = left.size();
     if right.size() != (w, h) {
         return Err(crate::Error::Gl("eyes of two sizes".into()));
     }
-    let made = match frame.filter(|_| live::auto_on()) {
+    let plan = match frame.filter(|_| live::auto_on()) {
         // SAFETY: contract.
         Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth, switch_in)? },
         None => None,
@@ -92,64 +99,194 @@ pub unsafe fn make(
     let [Some(l), Some(r)] = eyes else {
         return Err(crate::Error::Gl("eye rows not aligned to words".into()));
     };
-    let bands = (&mut scratch.depth[..], &mut scratch.rows);
-    Ok(made_into(made, frame, [l, r], bands))
+    let overlays = frame.is_some_and(|f| f.overlays);
+    let pending = Pending::new(plan, overlays, [l, r], scratch);
+    Ok((pending.made(), Some(pending)))
 }
 
-/// Makes the eyes in `eyes` (the left holding the frame's colour, the
-/// right, with overlays, the scene's before them) by `made` (the rule,
-/// viewport and whether the scene is the window's: [`rule_of`]; None:
-/// both eyes the frame), in two bands at once (the composite's helper
-/// thread takes the upper).
-fn made_into(
-    made: Option<Plan>,
-    frame: Option<&Frame>,
+/// A frame's eyes to make from its colour and depth ([`make`]): row by
+/// row as a composite reads them (its [`MakeEyes`]), or all at once where
+/// they are ([`MakeEyes::in_place`]). Give its buffers back with
+/// [`Pending::finish`].
+pub struct Pending {
+    /// None: both eyes the frame.
+    job: Option<Job>,
     eyes: [EyeRows; 2],
-    (depth, rows): (&mut [f32], &mut [(RowScratch, Vec<f32>); 2]),
-) -> Made {
-    let (w, h) = (eyes[0].width, eyes[0].height);
-    let Some(Plan {
-        rule,
-        viewport: (vx, vy, vw, vh),
-        window,
-        depth: depths,
-    }) = made
-    else {
-        for y in 0..h {
-            // SAFETY: one view of each row at a time (EyeRows).
-            let (l, r) = unsafe { (eyes[0].row(y), eyes[1].row(y)) };
-            r.copy_from_slice(l);
+    /// The depths read back, rows bottom first (with [`Depths::Read`]).
+    depth: Vec<f32>,
+    /// Each band's kernel buffers and row of depths: one thread each.
+    bands: [Mutex<(RowScratch, Vec<f32>)>; 2],
+    /// Made in place already.
+    done: AtomicBool,
+}
+
+impl Pending {
+    /// The eyes `eyes` (the left holding the frame's colour, the right,
+    /// where the frame has `overlays`, the scene's before them) to make by
+    /// `plan` (the rule, viewport and whether the scene is the window's:
+    /// [`rule_of`]; None: both eyes the frame), with `scratch`'s buffers.
+    fn new(
+        plan: Option<Plan>,
+        overlays: bool,
+        eyes: [EyeRows; 2],
+        scratch: &mut Scratch,
+    ) -> Pending {
+        let (w, h) = (eyes[0].width, eyes[0].height);
+        let job = plan.and_then(
+            |Plan {
+                 rule,
+                 viewport: (vx, vy, vw, vh),
+                 window,
+                 depth,
+             }| {
+                let columns = (
+                    vx.clamp(0, w as i32) as usize,
+                    (vx + vw).clamp(0, w as i32) as usize,
+                );
+                let rows = vy.clamp(0, h as i32) as usize..(vy + vh).clamp(0, h as i32) as usize;
+                (columns.0 < columns.1 && !rows.is_empty()).then(|| Job {
+                    rule,
+                    columns,
+                    rows,
+                    // Overlays drawn over the window's scene: the pixels
+                    // that differ from the scene's colour kept in the
+                    // right eye's layer.
+                    overlays: window && overlays,
+                    simd: Simd::detected(),
+                    memory: match depth {
+                        Depths::Memory(rows) => Some(rows),
+                        Depths::Read => None,
+                    },
+                })
+            },
+        );
+        let [a, b] = std::mem::take(&mut scratch.rows);
+        Pending {
+            job,
+            eyes,
+            depth: std::mem::take(&mut scratch.depth),
+            bands: [Mutex::new(a), Mutex::new(b)],
+            done: AtomicBool::new(false),
         }
-        return Made::Flat;
-    };
-    let job = Job {
-        rule,
-        columns: (
-            vx.clamp(0, w as i32) as usize,
-            (vx + vw).clamp(0, w as i32) as usize,
-        ),
-        rows: vy.clamp(0, h as i32) as usize..(vy + vh).clamp(0, h as i32) as usize,
-        // Overlays drawn over the window's scene: the pixels that differ
-        // from the scene's colour kept in the right eye's layer.
-        overlays: window && frame.is_some_and(|f| f.overlays),
-        simd: Simd::detected(),
-        eyes,
-        memory: match depths {
-            Depths::Memory(rows) => Some(rows),
-            Depths::Read => None,
-        },
-    };
-    let mid = h / 2;
-    let (low, high) = match job.memory {
-        Some(_) => (&mut [][..], &mut [][..]),
-        None => depth.split_at_mut(mid * w),
-    };
-    let [here, there] = rows;
-    let mut upper = || job.band(mid..h, high, there);
-    if !crate::output::helper::both(|| job.band(0..mid, low, here), &mut upper) {
-        job.band(mid..h, high, here);
     }
-    Made::FromDepth
+
+    /// How the eyes are made.
+    pub fn made(&self) -> Made {
+        match self.job {
+            Some(_) => Made::FromDepth,
+            None => Made::Flat,
+        }
+    }
+
+    /// Gives the buffers back to `scratch` (for the next frame).
+    pub fn finish(self, scratch: &mut Scratch) {
+        scratch.depth = self.depth;
+        scratch.rows = self
+            .bands
+            .map(|b| b.into_inner().unwrap_or_else(|e| e.into_inner()));
+    }
+
+    /// The depths of row `y` (GL's order) of a frame made by `job`, in
+    /// `row` or in the read-back, marked where overlays are.
+    ///
+    /// # Safety
+    /// GL finished the frame (make's contract); y < the eyes' height.
+    unsafe fn depths<'a>(
+        &'a self,
+        job: &Job,
+        y: usize,
+        row: &'a mut Vec<f32>,
+        (colour, scene): (&[u32], &[u32]),
+    ) -> &'a [f32] {
+        let w = self.eyes[0].width;
+        let read = || &self.depth[y * w..(y + 1) * w];
+        match (&job.memory, job.overlays) {
+            (None, false) => read(),
+            (memory, overlays) => {
+                row.resize(w, 0.0);
+                match memory {
+                    // SAFETY: contract; y < the depth's height (rule_of).
+                    Some(rows) => unsafe { rows.read_row(y, row) },
+                    None => row.copy_from_slice(read()),
+                }
+                if overlays {
+                    reproject::mark_overlays(colour, scene, row);
+                }
+                row
+            }
+        }
+    }
+
+    /// Makes rows `ys` of the eyes where they are, with band `band`'s
+    /// buffers.
+    fn band_in_place(&self, band: usize, ys: std::ops::Range<usize>) {
+        let mut guard = self.bands[band].lock().unwrap_or_else(|e| e.into_inner());
+        let (scratch, row) = &mut *guard;
+        for y in ys {
+            // SAFETY: each band's rows are its own (in_place splits them);
+            // no other view of the eyes is alive while they are made
+            // (make's contract).
+            let (l, r) = unsafe { (self.eyes[0].row(y), self.eyes[1].row(y)) };
+            match &self.job {
+                Some(job) if job.rows.contains(&y) => {
+                    // SAFETY: make's contract; y < height.
+                    let depth = unsafe { self.depths(job, y, row, (l, r)) };
+                    let rule = &job.rule;
+                    reproject::row_in_place(job.simd, rule, job.columns, l, depth, r, scratch);
+                }
+                _ => r.copy_from_slice(l),
+            }
+        }
+    }
+}
+
+impl MakeEyes for Pending {
+    fn size(&self) -> (u32, u32) {
+        (self.eyes[0].width as u32, self.eyes[0].height as u32)
+    }
+
+    fn row(&self, band: usize, y: u32, [left, right]: [&mut [u32]; 2]) {
+        let y = y as usize;
+        // SAFETY: make's contract: the eyes are only read while rows are
+        // made from them (in_place writes them, never at the same time).
+        let (colour, scene) = unsafe { (&*self.eyes[0].row(y), &*self.eyes[1].row(y)) };
+        match &self.job {
+            Some(job) if job.rows.contains(&y) => {
+                let mut guard = self.bands[band & 1]
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner());
+                let (scratch, row) = &mut *guard;
+                // SAFETY: make's contract; y < height (the compositor's
+                // rows are the eyes').
+                let depth = unsafe { self.depths(job, y, row, (colour, scene)) };
+                reproject::row(
+                    job.simd,
+                    &job.rule,
+                    job.columns,
+                    colour,
+                    depth,
+                    [left, right],
+                    scratch,
+                );
+            }
+            _ => {
+                left.copy_from_slice(colour);
+                right.copy_from_slice(colour);
+            }
+        }
+    }
+
+    fn in_place(&self) {
+        if self.done.swap(true, Ordering::AcqRel) {
+            return;
+        }
+        let h = self.eyes[0].height;
+        let mid = h / 2;
+        let mut upper = || self.band_in_place(1, mid..h);
+        if !crate::output::helper::both(|| self.band_in_place(0, 0..mid), &mut upper) {
+            self.band_in_place(0, mid..h);
+        }
+    }
 }
 
 /// Rows of an eye, bottom first, as words: the eye's memory in place, or
@@ -211,57 +348,21 @@ impl EyeRows {
     /// `y` < height; no other view of the row is alive while it is used.
     #[allow(clippy::mut_from_ref)] // rows handed to one thread each
     unsafe fn row(&self, y: usize) -> &mut [u32] {
-        debug_assert!(y < self.height);
+        assert!(y < self.height, "row {y} of {}", self.height);
         // SAFETY: contract; inside the rows (y < height).
         unsafe { std::slice::from_raw_parts_mut(self.first.add(y * self.stride), self.width) }
     }
 }
 
-/// One frame's eyes to make ([`made_into`]).
+/// How one frame's eyes are made ([`Pending`]).
 struct Job {
     rule: Rule,
     columns: (usize, usize),
     rows: std::ops::Range<usize>,
     overlays: bool,
     simd: Simd,
-    eyes: [EyeRows; 2],
-    /// The depths in place (else in each band's slice of the read-back).
+    /// The depths in place (else in the read-back).
     memory: Option<DepthRows>,
-}
-
-impl Job {
-    /// Makes rows `ys` of the eyes, `depth` holding those rows' depths.
-    fn band(
-        &self,
-        ys: std::ops::Range<usize>,
-        depth: &mut [f32],
-        (scratch, row): &mut (RowScratch, Vec<f32>),
-    ) {
-        let w = self.eyes[0].width;
-        let y0 = ys.start;
-        for y in ys {
-            // SAFETY: each band's rows are its own (made_into splits them).
-            let (l, r) = unsafe { (self.eyes[0].row(y), self.eyes[1].row(y)) };
-            if self.rows.contains(&y) && self.columns.0 < self.columns.1 {
-                let depth = match &self.memory {
-                    Some(rows) => {
-                        row.resize(w, 0.0);
-                        // SAFETY: GL finished the frame (make's contract);
-                        // y < the eyes' height, the depth's (rule_of).
-                        unsafe { rows.read_row(y, row) };
-                        &mut row[..]
-                    }
-                    None => &mut depth[(y - y0) * w..(y - y0 + 1) * w],
-                };
-                if self.overlays {
-                    reproject::mark_overlays(l, r, depth);
-                }
-                reproject::row_in_place(self.simd, &self.rule, self.columns, l, depth, r, scratch);
-            } else {
-                r.copy_from_slice(l);
-            }
-        }
-    }
 }
 
 /// [`make`] where the eyes are GL's own: the front-left (and, with
@@ -285,12 +386,12 @@ unsafe fn make_through_gl(
             "no front buffers to make eyes in",
         ));
     }
-    let made = match frame.filter(|_| live::auto_on()) {
+    let plan = match frame.filter(|_| live::auto_on()) {
         // SAFETY: contract.
         Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth, &mut || Ok(()))? },
         None => None,
     };
-    let overlays = made.as_ref().is_some_and(|m| m.window) && frame.is_some_and(|f| f.overlays);
+    let overlays = plan.as_ref().is_some_and(|m| m.window) && frame.is_some_and(|f| f.overlays);
     let [left, right] = &mut scratch.eyes;
     // SAFETY: contract.
     unsafe {
@@ -307,7 +408,10 @@ unsafe fn make_through_gl(
         EyeRows::of_buffer(left, uw, uh),
         EyeRows::of_buffer(right, uw, uh),
     ];
-    let done = made_into(made, frame, eyes, (&mut scratch.depth, &mut scratch.rows));
+    let pending = Pending::new(plan, overlays, eyes, scratch);
+    pending.in_place();
+    let done = pending.made();
+    pending.finish(scratch);
     // SAFETY: contract; each buffer holds w × h words.
     unsafe {
         for (texture, eye) in textures.into_iter().zip(&scratch.eyes) {
@@ -479,5 +583,133 @@ pub fn rule_for(frame: &Frame, scene: &Scene) -> Option<Rule> {
                 None
             }
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::fits::Rng;
+
+    /// A frame of `w` × `h`: colour noise; the scene's colour, equal but
+    /// where overlays were drawn over it; depths of a ground, near boxes
+    /// and nothing drawn.
+    fn frame(w: usize, h: usize, rng: &mut Rng) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
+        let colour: Vec<u32> = (0..w * h).map(|_| rng.next() as u32).collect();
+        let scene = colour
+            .iter()
+            .map(|&c| if rng.next() % 13 == 0 { c ^ 0xFF } else { c })
+            .collect();
+        let depth = (0..w * h)
+            .map(|i| match rng.next() % 10 {
+                0 => 1.0,
+                1..=3 => 0.2,
+                _ => 0.5 + 0.4 * ((i / w) as f32 / h as f32),
+            })
+            .collect();
+        (colour, scene, depth)
+    }
+
+    #[test]
+    fn eyes_made_as_the_composite_reads_them_are_the_eyes_made_in_place() {
+        let _turn = crate::output::helper::turn();
+        let mut rng = Rng(0xF0_5ED);
+        let mut scratch = Scratch::default();
+        for (w, h) in [
+            (1, 1),
+            (1, 7),
+            (9, 1),
+            (3, 2),
+            (64, 48),
+            (257, 33),
+            (800, 61),
+        ] {
+            for (overlays, viewport) in [
+                (true, (0, 0, w as i32, h as i32)),
+                (false, (2, 1, w as i32 - 3, h as i32 - 1)),
+                (true, (-5, -5, 4 * w as i32, 3)),
+            ] {
+                let (colour, scene, depth) = frame(w, h, &mut rng);
+                let rule = Rule {
+                    offset: -6.0,
+                    slope: 14.0,
+                    clear: 1.0,
+                    clear_step: 1e-7,
+                };
+                let plan = || Plan {
+                    rule,
+                    viewport,
+                    window: true,
+                    depth: Depths::Read,
+                };
+                // Made as read: row by row, the eyes left as they were.
+                let (mut l, mut r) = (colour.clone(), scene.clone());
+                scratch.depth.clone_from(&depth);
+                let eyes = [
+                    EyeRows::of_buffer(&mut l, w, h),
+                    EyeRows::of_buffer(&mut r, w, h),
+                ];
+                let pending = Pending::new(Some(plan()), overlays, eyes, &mut scratch);
+                // (A viewport of no pixels here: flat.)
+                let inside = |a: i32, n: i32, size| a.clamp(0, size) < (a + n).clamp(0, size);
+                let some = inside(viewport.0, viewport.2, w as i32)
+                    && inside(viewport.1, viewport.3, h as i32);
+                let want = if some { Made::FromDepth } else { Made::Flat };
+                assert_eq!(pending.made(), want, "{w}x{h} {viewport:?}");
+                let (mut rows_l, mut rows_r) = (vec![0; w * h], vec![0; w * h]);
+                for y in 0..h {
+                    let band = y % 2;
+                    let out = [
+                        &mut rows_l[y * w..(y + 1) * w],
+                        &mut rows_r[y * w..(y + 1) * w],
+                    ];
+                    pending.row(band, y as u32, out);
+                }
+                pending.finish(&mut scratch);
+                assert!(
+                    l == colour && r == scene,
+                    "rows made leave the eyes as they are"
+                );
+                // Made in place.
+                scratch.depth.clone_from(&depth);
+                let eyes = [
+                    EyeRows::of_buffer(&mut l, w, h),
+                    EyeRows::of_buffer(&mut r, w, h),
+                ];
+                let pending = Pending::new(Some(plan()), overlays, eyes, &mut scratch);
+                pending.in_place();
+                pending.in_place();
+                pending.finish(&mut scratch);
+                assert!(
+                    l == rows_l && r == rows_r,
+                    "{w}x{h}, overlays {overlays}, viewport {viewport:?}"
+                );
+                // Some pixel moved: the eyes differ from the frame.
+                if w >= 64 && some {
+                    assert!(l != colour && r != colour, "{w}x{h}: at depth");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_flat_frame_gives_the_frame_in_both_eyes_made_either_way() {
+        let mut rng = Rng(7);
+        let (w, h) = (33, 5);
+        let (colour, scene, _) = frame(w, h, &mut rng);
+        let mut scratch = Scratch::default();
+        let (mut l, mut r) = (colour.clone(), scene);
+        let eyes = [
+            EyeRows::of_buffer(&mut l, w, h),
+            EyeRows::of_buffer(&mut r, w, h),
+        ];
+        let pending = Pending::new(None, true, eyes, &mut scratch);
+        assert_eq!(pending.made(), Made::Flat);
+        let (mut a, mut b) = (vec![0; w], vec![0; w]);
+        pending.row(1, 3, [&mut a, &mut b]);
+        assert!(a == colour[3 * w..4 * w] && b == a);
+        pending.in_place();
+        pending.finish(&mut scratch);
+        assert!(l == colour && r == colour);
     }
 }

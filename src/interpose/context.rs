@@ -42,6 +42,7 @@ use crate::framing::InputFraming;
 use crate::gl::Gl;
 use crate::gl::enums::*;
 use crate::image::Image;
+use crate::output::MakeEyes;
 use crate::output::gl::{GlCompositor, Job};
 use crate::profile::{self, Stage};
 use crate::stereo::buffers::{ColorBuffer, FramebufferShape};
@@ -1085,14 +1086,18 @@ impl StereoContext {
             }
         }
         // Eyes made from the frame's depth (--auto=depth): the program
-        // drew its frame once, into the left eye.
+        // drew its frame once, into the left eye. Where the eyes are in
+        // memory they are made as the composite reads them (`pending`).
+        let mut pending = None;
         if self.auto && crate::auto::live::from_depth() {
             let scratch = &mut st.auto.from_depth;
             // The layer's context only where the depth or the eyes are
             // read through GL.
             let mut switch_in = || self.switch_in(r, drawable, &mut ours);
             // SAFETY: the program's frame is finished (above); the layer's
-            // context is made current before any GL call of make's.
+            // context is made current before any GL call of make's; the
+            // pending eyes are made (below) before the program draws again
+            // or the framebuffer is resized.
             let made = profile::span(Stage::FromDepth, || unsafe {
                 crate::auto::from_depth::make(
                     gl,
@@ -1103,18 +1108,34 @@ impl StereoContext {
                 )
             });
             match made {
-                Ok(m) => settings::tell(&format!(
-                    "automatic stereo from depth: each frame rendered once, both eyes made from \
-                     its colour and depth ({})",
-                    match m {
-                        crate::auto::from_depth::Made::FromDepth => "this frame at depth",
-                        crate::auto::from_depth::Made::Flat => "this frame flat",
-                    }
-                )),
+                Ok((m, p)) => {
+                    settings::tell(&format!(
+                        "automatic stereo from depth: each frame rendered once, both eyes made \
+                         from its colour and depth ({})",
+                        match m {
+                            crate::auto::from_depth::Made::FromDepth => "this frame at depth",
+                            crate::auto::from_depth::Made::Flat => "this frame flat",
+                        }
+                    ));
+                    pending = p;
+                }
                 Err(e) => crate::report::warn(&format!("{e}")),
             }
         }
-        self.compose_and_swap(r, st, (drawable, x_window), window, frame_index, &mut ours)
+        let made = pending.as_ref().map(|p| p as &dyn MakeEyes);
+        let shown = self.compose_and_swap(
+            r,
+            st,
+            (drawable, x_window),
+            window,
+            frame_index,
+            &mut ours,
+            made,
+        );
+        if let Some(p) = pending {
+            p.finish(&mut st.auto.from_depth);
+        }
+        shown
     }
 
     /// Makes the layer's context current on `drawable` unless `ours` says
@@ -1133,6 +1154,7 @@ impl StereoContext {
     /// window. With the program's context current on the drawable, or the
     /// layer's when `ours` says so; the layer's is made current where its
     /// GL is needed.
+    #[allow(clippy::too_many_arguments)]
     fn compose_and_swap(
         &self,
         r: &Real,
@@ -1141,6 +1163,7 @@ impl StereoContext {
         (width, height): (u32, u32),
         frame_index: u64,
         ours: &mut bool,
+        made: Option<&dyn MakeEyes>,
     ) -> Result<()> {
         let gl = &r.gl;
         let mode = super::live::mode();
@@ -1182,6 +1205,10 @@ impl StereoContext {
         // GLX windows only: an EGL surface's frame goes through the real
         // eglSwapBuffers (Wayland has no X server to put it to).
         let capturing = capture::sink();
+        // A capture reads the eyes where they are: made there first.
+        if let (Some(m), Some(_)) = (made, &capturing) {
+            m.in_place();
+        }
         let shown = match x_window {
             Some(x) if self.shape.double_buffered && !r.swap_layered && self.wsi == Wsi::Glx => {
                 // SAFETY: the program finished the eyes (flip_and_show).
@@ -1205,6 +1232,7 @@ impl StereoContext {
                         &job,
                         in_place,
                         &mut seen,
+                        made,
                     )
                 }
             }
@@ -1221,6 +1249,9 @@ impl StereoContext {
             // SAFETY: as above.
             Ok(false) => (
                 profile::span(Stage::GlCompose, || unsafe {
+                    if let Some(m) = made {
+                        m.in_place();
+                    }
                     compositor.compose_window(gl, &job, 0, width, height)
                 }),
                 true,
@@ -1310,6 +1341,7 @@ unsafe fn put_pixels(
     job: &Job,
     in_place: Option<crate::output::gl::PixelPlan>,
     seen: &mut Option<Option<(u32, u32)>>,
+    made: Option<&dyn MakeEyes>,
 ) -> Result<bool> {
     if drawn.image.unsupported() {
         return Ok(false);
@@ -1333,8 +1365,8 @@ unsafe fn put_pixels(
             size,
             || shm_image(r, dpy, x_window, size),
             &mut |t| match in_place {
-                Some(_) => compositor.fill_in_place(job, plan, t),
-                None => compositor.fill_pixels(gl, job, plan, t),
+                Some(_) => compositor.fill_in_place(job, plan, t, made),
+                None => compositor.fill_pixels(gl, job, plan, t, made),
             },
             &mut |put| {
                 let (size, err) = trap_replied_x_errors(&r.xlib, dpy, || {

@@ -328,3 +328,161 @@ fn a_window_composed_in_two_bands_at_once_equals_it_composed_whole() {
         }
     }
 }
+
+/// Eyes made from a colour and depth frame as the composite reads them
+/// (as `--auto=depth` makes them), with the reprojection kernel and a
+/// buffer per band.
+struct Made {
+    width: usize,
+    height: usize,
+    /// Rows bottom first.
+    colour: Vec<u32>,
+    depth: Vec<f32>,
+    rule: crate::reproject::Rule,
+    bands: [std::sync::Mutex<crate::reproject::RowScratch>; 2],
+}
+
+impl super::rows::MakeEyes for Made {
+    fn size(&self) -> (u32, u32) {
+        (self.width as u32, self.height as u32)
+    }
+
+    fn row(&self, band: usize, y: u32, out: [&mut [u32]; 2]) {
+        let (w, y) = (self.width, y as usize);
+        let mut scratch = self.bands[band].lock().expect("one thread a band");
+        crate::reproject::row(
+            Simd::detected(),
+            &self.rule,
+            (w / 5, w - w / 7),
+            &self.colour[y * w..(y + 1) * w],
+            &self.depth[y * w..(y + 1) * w],
+            out,
+            &mut scratch,
+        );
+    }
+
+    fn in_place(&self) {
+        panic!("a row-local composite never asks for the eyes in place");
+    }
+}
+
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "many sizes: make test runs it with --release"
+)]
+fn a_window_composed_from_eyes_made_as_it_reads_them_equals_it_from_eyes_made_whole() {
+    // The helper is the process's: this test counts on having it.
+    let _turn = super::helper::turn();
+    let mut rng = Rng(0x00ED_E915);
+    let mut sizes = vec![
+        (1, 1),
+        (1, 2),
+        (2, 1),
+        (3, 3),
+        (256, 256),
+        (257, 255),
+        (1, 16384),
+        (16384, 1),
+        (16384, 2),
+        (800, 600),
+        (4096, 17),
+        (5, 1311),
+    ];
+    sizes.extend((0..12).map(|_| (rng.upto(1500), rng.upto(1500))));
+    let modes: Vec<OutputMode> = composites().collect();
+    let mut made_scratch: [[Scratch; 2]; 3] = Default::default();
+    let mut whole_scratch: [Scratch; 3] = Default::default();
+    let mut case = 0usize;
+    for &size in &sizes {
+        for k in 0..4 {
+            let mode = modes[case % modes.len()];
+            case += 1;
+            // Eyes of the window's size (or another: not row-local).
+            let eye = if k < 3 {
+                size
+            } else {
+                (rng.upto(300), rng.upto(300))
+            };
+            let (w, h) = (eye.0 as usize, eye.1 as usize);
+            let seed = rng.next();
+            let colour = noise(eye.0, eye.1, seed);
+            let colour: Vec<u32> = colour
+                .pixels()
+                .chunks_exact(4)
+                .map(|p| u32::from_le_bytes([p[0], p[1], p[2], p[3]]))
+                .collect();
+            // Ground sloping up the rows, boxes nearer, nothing drawn
+            // along some rows, a few overlay pixels.
+            let depth: Vec<f32> = (0..w * h)
+                .map(|i| {
+                    let (x, y) = (i % w, i / w);
+                    match (x * 7 + y * 3) % 41 {
+                        0 => f32::NAN,
+                        _ if y % 9 == 4 => 1.0,
+                        _ if (x / 11 + y / 5) % 3 == 0 => 0.3,
+                        _ => 0.5 + 0.4 * (y as f32 / h as f32),
+                    }
+                })
+                .collect();
+            let made = Made {
+                width: w,
+                height: h,
+                colour,
+                depth,
+                rule: crate::reproject::Rule {
+                    offset: -9.0,
+                    slope: 20.0,
+                    clear: 1.0,
+                    clear_step: 1e-7,
+                },
+                bands: Default::default(),
+            };
+            // The eyes made whole first, rows bottom first.
+            let mut eyes = [vec![0u32; w * h], vec![0u32; w * h]];
+            {
+                let [l, r] = &mut eyes;
+                for (y, (l, r)) in l.chunks_exact_mut(w).zip(r.chunks_exact_mut(w)).enumerate() {
+                    super::rows::MakeEyes::row(&made, 0, y as u32, [l, r]);
+                }
+            }
+            let views =
+                [&eyes[0], &eyes[1]].map(|b| EyeRows::gl(Rows::of_words(b, w, eye.1), 0, eye.1));
+            let o = options(seed % 3 == 0);
+            let frame = Frame::new(mode, &o, case as u64, eye, size);
+            for simd in levels() {
+                let mut whole = Image::new(size.0, size.1);
+                let mut fused = Image::new(size.0, size.1);
+                fn target(out: &mut Image) -> Target<'_> {
+                    let size = (out.width(), out.height());
+                    Target {
+                        words: as_words_mut(out.pixels_mut()).expect("aligned words"),
+                        stride: size.0 as usize,
+                        size,
+                        first: 0,
+                    }
+                }
+                let s = &mut whole_scratch[simd as usize];
+                frame.write_with(simd, views, 0..size.1, &mut target(&mut whole), s, |v| v);
+                let s = &mut made_scratch[simd as usize];
+                let wrote = frame.write_split_made(simd, &made, &mut target(&mut fused), s, |v| v);
+                assert_eq!(
+                    wrote,
+                    frame.row_local(),
+                    "{mode}: eyes {w}x{h} into a {}x{} window made as read",
+                    size.0,
+                    size.1
+                );
+                if wrote {
+                    assert!(
+                        fused.pixels() == whole.pixels(),
+                        "{mode}: eyes {w}x{h} into a {}x{} window ({simd:?}, {o:?}): {:?}",
+                        size.0,
+                        size.1,
+                        fused.max_difference(&whole)
+                    );
+                }
+            }
+        }
+    }
+}

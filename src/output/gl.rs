@@ -58,6 +58,7 @@ use super::cpu::check_composite;
 use super::layout::{leaves_gaps, placements, window_fit};
 use super::mode::{AnaglyphMethod, OutputMode};
 use super::options::OutputOptions;
+use super::rows::MakeEyes;
 use super::window::{Plan, WindowPaths, pixel_plan, window_path};
 
 /// A rectangle of a texture holding one eye, in GL texel coordinates (rows
@@ -864,6 +865,8 @@ impl GlCompositor {
 
     /// Writes the composite of `job` into `target` as [`GlCompositor::fill_pixels`]
     /// does, for a plan of [`GlCompositor::in_place_plan`], without a GL call.
+    /// `made`: the job's eyes are made as they are read (the composite
+    /// makes them, [`MakeEyes`]).
     ///
     /// # Errors
     /// A bad job; an eye no longer in place (nothing is written then).
@@ -876,12 +879,16 @@ impl GlCompositor {
         job: &Job,
         plan: PixelPlan,
         mut target: crate::backend::PixelTarget<'_>,
+        made: Option<&dyn MakeEyes>,
     ) -> Result<()> {
         crate::fault::inject(crate::fault::Site::Compose);
         debug_assert_eq!(plan.0, Plan::Rows);
         let options = job.options.validated()?;
         // SAFETY: contract.
-        if unsafe { self.window.fill_in_place(job, &options, &mut target)? } {
+        if unsafe {
+            self.window
+                .fill_in_place(job, &options, &mut target, made)?
+        } {
             Ok(())
         } else {
             Err(Error::Gl(
@@ -891,7 +898,8 @@ impl GlCompositor {
     }
 
     /// Writes the composite of `job` into `target` (fitted to its size) as
-    /// `plan` says, with buffers reused from frame to frame.
+    /// `plan` says, with buffers reused from frame to frame; `made` as for
+    /// [`GlCompositor::fill_in_place`].
     ///
     /// # Errors
     /// As [`GlCompositor::compose_capture`].
@@ -905,6 +913,7 @@ impl GlCompositor {
         job: &Job,
         plan: PixelPlan,
         mut target: crate::backend::PixelTarget<'_>,
+        made: Option<&dyn MakeEyes>,
     ) -> Result<()> {
         crate::fault::inject(crate::fault::Site::Compose);
         let options = job.options.validated()?;
@@ -913,13 +922,18 @@ impl GlCompositor {
             gl.take_error();
             match plan.0 {
                 Plan::Gl => {
+                    if let Some(m) = made {
+                        m.in_place();
+                    }
                     profile::span(Stage::GlCompose, || self.compose_capture(gl, job))?;
                     let canvas = self.capture;
                     let img =
                         profile::span(Stage::ReadBack, || self.window.read_canvas(gl, &canvas))?;
                     profile::span(Stage::Compose, || target.write_image(img, true));
                 }
-                Plan::Rows => self.window.fill(gl, plan.0, job, &options, &mut target)?,
+                Plan::Rows => self
+                    .window
+                    .fill(gl, plan.0, job, &options, &mut target, made)?,
             }
             gl.check("composing the eyes for the window")
         }

@@ -38,3 +38,4 @@ pub use gl::{ComposePath, GlCompositor};
 pub use layout::{Placement, composite_size, placements};
 pub use mode::{ALIASES, Alias, AliasSource, AnaglyphColors, AnaglyphMethod, OutputMode};
 pub use options::{OutputOptions, OutputSettings};
+pub use rows::MakeEyes;

@@ -108,6 +108,31 @@ impl<'a> EyeRows<'a> {
     }
 }
 
+/// Eyes that are made as the composite reads them, row by row, instead
+/// of being read from where they are (`--auto=depth`: both eyes made from
+/// one frame and its depth, [`crate::auto::from_depth`]): a composite
+/// that needs only eye row y for its row y ([`Frame::row_local`]) gets
+/// them a few rows at a time into buffers that stay in cache, so the
+/// eyes are never written out to memory and read in again.
+pub trait MakeEyes: Sync {
+    /// The eyes' size.
+    fn size(&self) -> (u32, u32);
+
+    /// Makes row `y` (GL's order: 0 is the bottom row) of the left and
+    /// right eye into `out` (each the eyes' width), with the buffers of
+    /// `band` (0 or 1: each used by one thread at a time).
+    fn row(&self, band: usize, y: u32, out: [&mut [u32]; 2]);
+
+    /// Makes every row of both eyes where the eyes are, for a composite
+    /// (or a capture) that reads them there. Once: later calls do
+    /// nothing.
+    fn in_place(&self);
+}
+
+/// Bytes of each eye made at a time by [`Frame::write_made`]: both eyes'
+/// rows stay in the first-level cache until they are composed.
+const MADE_BYTES: usize = 16 * 1024;
+
 /// The target pixels from which [`Frame::write_split`] composes in two
 /// threads.
 pub(crate) const SPLIT_PIXELS: u64 = 1 << 16;
@@ -147,6 +172,8 @@ pub(crate) struct Scratch {
     black: Vec<u32>,
     /// The last pixels `-dubois` composed (cleared by every [`Frame::write`]).
     memo: Memo,
+    /// Eye rows made by [`Frame::write_made`], top first.
+    made: [Vec<u32>; 2],
 }
 
 /// A composite row that need not be composed (see [`Frame::verbatim`]).
@@ -409,6 +436,105 @@ impl Frame {
             self.write_with(max, eyes, mid..end, &mut lower, lower_scratch, px);
         }
         done
+    }
+
+    /// [`Frame::write_split`] of the whole target of a
+    /// [`Frame::row_local`] frame from eyes made as they are read
+    /// ([`MakeEyes`]): each band's eye rows made a few at a time into
+    /// buffers of its scratch, then composed. The bytes are those of
+    /// [`Frame::write`] from eyes made whole first. False (nothing
+    /// written) where the frame is not row-local or `made` is not of the
+    /// frame's eye size.
+    pub(crate) fn write_split_made(
+        &self,
+        max: Simd,
+        made: &dyn MakeEyes,
+        target: &mut Target<'_>,
+        scratch: &mut [Scratch; 2],
+        px: impl Fn(u32) -> u32 + Copy + Send + Sync,
+    ) -> bool {
+        let size = target.size;
+        if !self.row_local() || made.size() != self.eye || target.first != 0 || size != self.target
+        {
+            return false;
+        }
+        let n = size.1;
+        let stride = target.stride;
+        let [upper_scratch, lower_scratch] = scratch;
+        if n < 2 || u64::from(n) * u64::from(size.0) < SPLIT_PIXELS {
+            self.write_made(max, made, 0, 0..n, target, upper_scratch, px);
+            return true;
+        }
+        let mid = n / 2;
+        let (upper, lower) = target.words.split_at_mut(mid as usize * stride);
+        let mut upper = Target {
+            words: upper,
+            stride,
+            size,
+            first: 0,
+        };
+        let mut lower = Target {
+            words: lower,
+            stride,
+            size,
+            first: mid,
+        };
+        let done = super::helper::both(
+            || self.write_made(max, made, 0, 0..mid, &mut upper, upper_scratch, px),
+            &mut || self.write_made(max, made, 1, mid..n, &mut lower, lower_scratch, px),
+        );
+        if !done {
+            self.write_made(max, made, 0, mid..n, &mut lower, lower_scratch, px);
+        }
+        true
+    }
+
+    /// Target rows `rows` of a row-local frame from eyes made by `made`
+    /// with its buffers of `band`, [`MADE_BYTES`] of each eye at a time.
+    #[allow(clippy::too_many_arguments)]
+    fn write_made(
+        &self,
+        max: Simd,
+        made: &dyn MakeEyes,
+        band: usize,
+        rows: Range<u32>,
+        target: &mut Target<'_>,
+        scratch: &mut Scratch,
+        px: impl Fn(u32) -> u32 + Copy,
+    ) {
+        let (w, h) = self.eye;
+        let wide = w as usize;
+        let chunk = (MADE_BYTES / (wide * 4)).clamp(1, h as usize) as u32;
+        let mut bufs = std::mem::take(&mut scratch.made);
+        for b in &mut bufs {
+            b.resize(chunk as usize * wide, 0);
+        }
+        let mut t0 = rows.start;
+        while t0 < rows.end {
+            let n = chunk.min(rows.end - t0);
+            let [l, r] = &mut bufs;
+            for (k, (l, r)) in l
+                .chunks_exact_mut(wide)
+                .zip(r.chunks_exact_mut(wide))
+                .take(n as usize)
+                .enumerate()
+            {
+                // Target row t0 + k is eye row t0 + k (row-local), GL row
+                // h − 1 − (t0 + k); stored top first.
+                made.row(band, h - 1 - (t0 + k as u32), [l, r]);
+            }
+            let eyes = [&bufs[0], &bufs[1]].map(|b| {
+                EyeRows::new(
+                    Rows::of_words(&b[..n as usize * wide], wide, n),
+                    false,
+                    t0,
+                    h,
+                )
+            });
+            self.write_with(max, eyes, t0..t0 + n, target, scratch, px);
+            t0 += n;
+        }
+        scratch.made = bufs;
     }
 
     /// [`Frame::write`] with vector code of level `max` at most (tests

@@ -45,10 +45,11 @@ use crate::stereo::eye_memory::Rows;
 
 use super::cpu;
 use super::gl::{Canvas, ComposePath, Job, TexRect, preferred_path};
+use super::kernels::Simd;
 use super::layout::{Placement, composite_size, leaves_gaps, placements};
 use super::mode::OutputMode;
 use super::options::OutputOptions;
-use super::rows::{EyeRows, Frame, Scratch, Target};
+use super::rows::{EyeRows, Frame, MakeEyes, Scratch, Target};
 
 /// Bytes of each eye read back at a time by the window paths that write
 /// straight into the window's buffer: a band of both eyes stays in cache
@@ -376,7 +377,8 @@ impl WindowPaths {
 
     /// Writes the composite of `job` into a window's buffer, fitted to the
     /// window's size, by `plan` (not [`Plan::Gl`], which the compositor
-    /// does itself).
+    /// does itself). `made`: the job's eyes are made as they are read
+    /// ([`MakeEyes`]).
     ///
     /// # Safety
     /// As [`WindowPaths::compose`]; the job's eyes are of the eye size.
@@ -387,6 +389,7 @@ impl WindowPaths {
         job: &Job,
         options: &OutputOptions,
         target: &mut PixelTarget<'_>,
+        made: Option<&dyn MakeEyes>,
     ) -> Result<()> {
         debug_assert_eq!(plan, Plan::Rows, "the compositor composes GL plans");
         let layout = target.layout;
@@ -397,12 +400,18 @@ impl WindowPaths {
             // One copy of the kernels per layout, each converting with
             // constants (a layout read per pixel keeps them scalar).
             match layout {
-                PixelLayout::Bgrx => self.rows.write(gl, fbo, job, options, &mut target, |v| {
-                    PixelLayout::Bgrx.convert(v)
-                }),
-                PixelLayout::Rgbx => self.rows.write(gl, fbo, job, options, &mut target, |v| {
-                    PixelLayout::Rgbx.convert(v)
-                }),
+                PixelLayout::Bgrx => {
+                    self.rows
+                        .write(gl, fbo, job, options, &mut target, made, |v| {
+                            PixelLayout::Bgrx.convert(v)
+                        })
+                }
+                PixelLayout::Rgbx => {
+                    self.rows
+                        .write(gl, fbo, job, options, &mut target, made, |v| {
+                            PixelLayout::Rgbx.convert(v)
+                        })
+                }
             }
         }
     }
@@ -420,18 +429,20 @@ impl WindowPaths {
         job: &Job,
         options: &OutputOptions,
         target: &mut PixelTarget<'_>,
+        made: Option<&dyn MakeEyes>,
     ) -> Result<bool> {
         let layout = target.layout;
         let mut target = words_of(target)?;
+        let rows = &mut self.rows;
         // SAFETY: contract.
         Ok(unsafe {
             match layout {
-                PixelLayout::Bgrx => self
-                    .rows
-                    .write_in_place(job, options, &mut target, |v| PixelLayout::Bgrx.convert(v)),
-                PixelLayout::Rgbx => self
-                    .rows
-                    .write_in_place(job, options, &mut target, |v| PixelLayout::Rgbx.convert(v)),
+                PixelLayout::Bgrx => rows.write_in_place(job, options, &mut target, made, |v| {
+                    PixelLayout::Bgrx.convert(v)
+                }),
+                PixelLayout::Rgbx => rows.write_in_place(job, options, &mut target, made, |v| {
+                    PixelLayout::Rgbx.convert(v)
+                }),
             }
         })
     }
@@ -502,6 +513,7 @@ impl RowPaths {
     /// # Safety
     /// As [`WindowPaths::compose`]; the job's eyes are of the eye size;
     /// `fbo` is a framebuffer of the compositor context.
+    #[allow(clippy::too_many_arguments)]
     unsafe fn write(
         &mut self,
         gl: &Gl,
@@ -509,11 +521,16 @@ impl RowPaths {
         job: &Job,
         options: &OutputOptions,
         target: &mut Target<'_>,
+        made: Option<&dyn MakeEyes>,
         px: impl Fn(u32) -> u32 + Copy + Send + Sync,
     ) -> Result<()> {
         // SAFETY: contract.
-        if unsafe { self.write_in_place(job, options, target, px) } {
+        if unsafe { self.write_in_place(job, options, target, made, px) } {
             return Ok(());
+        }
+        // Read back from where they are: made there first.
+        if let Some(m) = made {
+            m.in_place();
         }
         let (w, h) = job.eye_size;
         let (frame, rects) = frame_of(job, options, target.size);
@@ -557,7 +574,9 @@ impl RowPaths {
     /// [`RowPaths::write`] when every eye the frame reads is in place
     /// ([`Job::in_place`]): no GL call, so any context (or none) may be
     /// current. False, with nothing written, when an eye would have to be
-    /// read back.
+    /// read back. Eyes `made` as they are read go straight into a
+    /// row-local composite ([`Frame::write_split_made`]); for any other
+    /// they are made in place first.
     ///
     /// # Safety
     /// The rendering into the eyes has finished, and the job's eyes are of
@@ -567,6 +586,7 @@ impl RowPaths {
         job: &Job,
         options: &OutputOptions,
         target: &mut Target<'_>,
+        made: Option<&dyn MakeEyes>,
         px: impl Fn(u32) -> u32 + Copy + Send + Sync,
     ) -> bool {
         let (w, h) = job.eye_size;
@@ -580,6 +600,15 @@ impl RowPaths {
             .all(|(r, e)| r.is_none() || e.is_some())
         {
             return false;
+        }
+        if let Some(m) = made {
+            let scratch = &mut self.scratch;
+            if profile::span(Stage::Compose, || {
+                frame.write_split_made(Simd::Avx512, m, target, scratch, px)
+            }) {
+                return true;
+            }
+            m.in_place();
         }
         let all = 0..target.size.1;
         profile::span(Stage::Compose, || {
@@ -613,7 +642,7 @@ impl RowPaths {
                     first: 0,
                 };
                 // SAFETY: contract.
-                unsafe { self.write(gl, fbo, job, options, &mut target, |v| v) }
+                unsafe { self.write(gl, fbo, job, options, &mut target, None, |v| v) }
             }
             None => {
                 // Not aligned words (a big-endian machine): the eyes read

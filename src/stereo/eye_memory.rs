@@ -577,6 +577,18 @@ impl<'a> Rows<'a> {
         }
     }
 
+    /// `height` rows of `width` pixel words packed in `words` (panics
+    /// unless it holds them).
+    pub fn of_words(words: &'a [u32], width: usize, height: u32) -> Rows<'a> {
+        assert!(words.len() >= width * height as usize, "rows of the words");
+        Rows {
+            data: crate::image::as_bytes(&words[..width * height as usize]),
+            stride: width * 4,
+            row_bytes: width * 4,
+            height,
+        }
+    }
+
     /// Row `k` (panics past the last).
     pub fn row(&self, k: u32) -> &'a [u8] {
         assert!(k < self.height, "row {k} of {}", self.height);
