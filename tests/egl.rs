@@ -538,6 +538,46 @@ fn an_opengl_es_programs_render_targets_of_every_kind_get_mesas_every_answer_und
     answers_as_mesa(&x, &exe, "96");
 }
 
+/// tests/c/egl_share_groups.c: the program's framebuffer objects in a
+/// share group beside the one where the layer made its own, and in one
+/// made after that group ended, with the same small names as the
+/// layer's: the program's glDeleteFramebuffers deletes them as without
+/// the layer (the layer's names are its own only in their group; it
+/// used to drop the program's delete of a name it held in any group).
+#[test]
+fn a_programs_framebuffers_in_another_share_group_are_its_own_to_delete_under_auto() {
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(400, 300);
+    let exe = build_once("egl_share_groups", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_share_groups.c"),
+            out,
+            &["-lEGL", "-lGLESv2", "-lX11"],
+        )
+    });
+    let run = |layer: bool| {
+        let mut cmd = if layer {
+            let mut c = Command::new(&built().run);
+            c.arg("--auto").arg(&exe);
+            c
+        } else {
+            Command::new(&exe)
+        };
+        let out = cmd.env("DISPLAY", &x.display).output().expect("runs");
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(
+            out.status.success(),
+            "layer {layer}: {}\n{stderr}",
+            out.status
+        );
+        (String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
+    };
+    let (mesa, _) = run(false);
+    let (ours, stderr) = run(true);
+    assert!(mesa.contains("done\n") && mesa.contains("is 0"), "{mesa}");
+    assert_eq!(ours, mesa, "under --auto (stderr: {stderr})");
+}
+
 #[test]
 fn two_threads_drawing_through_egl_under_auto_each_read_their_own_picture() {
     // tests/c/egl_threads.c: two threads, one EGLDisplay, a window,
