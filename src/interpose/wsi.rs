@@ -296,14 +296,3 @@ fn glx_drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(u32, u3
         )))
     }
 }
-
-/// The context current on this thread, whichever system made it (GLX's
-/// first; EGL's where the process loaded EGL).
-pub(super) fn current_context(r: &Real) -> usize {
-    // SAFETY: a plain getter of the calling thread's GLX state.
-    let glx = unsafe { (r.glx.glXGetCurrentContext)() } as usize;
-    if glx != 0 {
-        return glx;
-    }
-    egl::egl_if_loaded().map_or(0, |e| egl::current_binding(e).3)
-}
