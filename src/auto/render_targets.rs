@@ -253,12 +253,29 @@ pub struct Targets {
     es_targets: std::collections::HashMap<u32, u32>,
 }
 
+/// The render targets of every share group, by group.
+type Groups = std::collections::HashMap<u64, Targets>;
+
+fn groups() -> std::sync::MutexGuard<'static, Option<Groups>> {
+    static GROUPS: std::sync::Mutex<Option<Groups>> = std::sync::Mutex::new(None);
+    GROUPS.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// Runs `f` with the render targets of the share group `group`.
 pub fn with_group<T>(group: u64, f: impl FnOnce(&mut Targets) -> T) -> T {
-    use std::collections::HashMap;
-    static GROUPS: std::sync::Mutex<Option<HashMap<u64, Targets>>> = std::sync::Mutex::new(None);
-    let mut g = GROUPS.lock().unwrap_or_else(|e| e.into_inner());
-    f(g.get_or_insert_with(HashMap::new).entry(group).or_default())
+    f(groups()
+        .get_or_insert_with(Groups::new)
+        .entry(group)
+        .or_default())
+}
+
+/// Share group `group` ended (its last context was destroyed): its
+/// targets, twins and the textures' targets went with it, and what the
+/// layer knew of them goes too.
+pub fn forget_group(group: u64) {
+    if let Some(g) = groups().as_mut() {
+        g.remove(&group);
+    }
 }
 
 /// What decides a draw's target ([`eyes_of`]).

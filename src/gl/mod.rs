@@ -211,8 +211,34 @@ impl Gl {
     /// LD_PRELOAD interposer) and remember them until
     /// [`Gl::delete_textures`] (and the like) deletes them. Needs a
     /// compatibility-profile context (binding an unused name creates it).
-    pub fn own_names(&mut self) {
-        self.names = Some(names::LayerNames::default());
+    /// Names are kept by share group ([`names::LayerNames`]): `current`
+    /// says which context is current on the calling thread, and
+    /// [`Gl::context_joined`] which group a context is in.
+    pub fn own_names(&mut self, current: fn() -> usize) {
+        self.names = Some(names::LayerNames::new(current));
+    }
+
+    /// Context `ctx` (the program's or the library's) is in share group
+    /// `group` (with [`Gl::own_names`] on).
+    pub fn context_joined(&self, ctx: usize, group: u64) {
+        if let Some(n) = &self.names {
+            n.join(ctx, group);
+        }
+    }
+
+    /// Context `ctx` is destroyed (with [`Gl::own_names`] on).
+    pub fn context_left(&self, ctx: usize) {
+        if let Some(n) = &self.names {
+            n.leave(ctx);
+        }
+    }
+
+    /// Share group `group` ended, and the library's objects in it with it:
+    /// their names are forgotten (with [`Gl::own_names`] on).
+    pub fn group_ended(&self, group: u64) {
+        if let Some(n) = &self.names {
+            n.group_ended(group);
+        }
     }
 
     /// Whether `name` names an object of `kind` the library made (with

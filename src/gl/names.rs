@@ -35,7 +35,7 @@
 //! which shares them across the share group, the program's next ones
 //! start a few names later).
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::sync::Mutex;
 
 /// The first name textures and renderbuffers of the library take; later
@@ -69,38 +69,124 @@ impl Kind {
     }
 }
 
-/// The names the library holds, by kind.
-#[derive(Debug, Default)]
+/// The names the library holds, by share group and kind.
+///
+/// Names are per share group in GL: framebuffer 3 of one group is not
+/// framebuffer 3 of another. So a name is the library's only in the group
+/// it was made in — the group of the context current when it is made,
+/// asked of it, or released — and a group's names are forgotten when the
+/// group ends (its objects went with its last context). Contexts the
+/// library was not told of ([`LayerNames::join`]) are in no group: nothing
+/// made there is remembered, no name there is the library's.
+#[derive(Debug)]
 pub struct LayerNames {
-    owned: Mutex<[HashSet<u32>; 3]>,
+    /// The context current on the calling thread (0: none).
+    current: fn() -> usize,
+    state: Mutex<State>,
+}
+
+#[derive(Debug, Default)]
+struct State {
+    /// Each known context's share group.
+    contexts: HashMap<usize, u64>,
+    /// Each group's names, by kind.
+    owned: HashMap<u64, [HashSet<u32>; 3]>,
 }
 
 impl LayerNames {
-    /// Whether `name` is one the library holds (in some share group).
-    pub fn owns(&self, kind: Kind, name: u32) -> bool {
-        name != 0 && self.lock()[kind.index()].contains(&name)
-    }
-
-    /// Whether the library holds any name of `kind`.
-    pub fn any(&self, kind: Kind) -> bool {
-        !self.lock()[kind.index()].is_empty()
-    }
-
-    /// Records `name` as the library's.
-    pub fn keep(&self, kind: Kind, name: u32) {
-        self.lock()[kind.index()].insert(name);
-    }
-
-    /// Forgets `names` (the library deletes them).
-    pub fn release(&self, kind: Kind, names: &[u32]) {
-        let mut owned = self.lock();
-        for n in names {
-            owned[kind.index()].remove(n);
+    /// Names kept by the share group of the context `current` says is
+    /// current on the calling thread.
+    pub fn new(current: fn() -> usize) -> Self {
+        LayerNames {
+            current,
+            state: Mutex::default(),
         }
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, [HashSet<u32>; 3]> {
-        self.owned.lock().unwrap_or_else(|e| e.into_inner())
+    /// Context `ctx` (the program's or the library's own) is in share
+    /// group `group`.
+    pub fn join(&self, ctx: usize, group: u64) {
+        if ctx != 0 && group != 0 {
+            self.lock().contexts.insert(ctx, group);
+        }
+    }
+
+    /// Context `ctx` is destroyed (its group may live on in others).
+    pub fn leave(&self, ctx: usize) {
+        self.lock().contexts.remove(&ctx);
+    }
+
+    /// Share group `group` ended: its objects are gone, and with them its
+    /// names.
+    pub fn group_ended(&self, group: u64) {
+        let mut st = self.lock();
+        st.owned.remove(&group);
+        st.contexts.retain(|_, g| *g != group);
+    }
+
+    /// Whether `name` is one the library holds in the current context's
+    /// share group.
+    pub fn owns(&self, kind: Kind, name: u32) -> bool {
+        name != 0 && self.with_current(|set| set.is_some_and(|s| s[kind.index()].contains(&name)))
+    }
+
+    /// Whether the library holds any name of `kind` in the current
+    /// context's share group.
+    pub fn any(&self, kind: Kind) -> bool {
+        self.with_current(|set| set.is_some_and(|s| !s[kind.index()].is_empty()))
+    }
+
+    /// Records `name` as the library's in the current context's share
+    /// group.
+    pub fn keep(&self, kind: Kind, name: u32) {
+        let ctx = (self.current)();
+        let mut st = self.lock();
+        if let Some(&g) = st.contexts.get(&ctx) {
+            st.owned.entry(g).or_default()[kind.index()].insert(name);
+        }
+    }
+
+    /// Forgets `names` (the library deletes them in the current context's
+    /// share group).
+    pub fn release(&self, kind: Kind, names: &[u32]) {
+        let ctx = (self.current)();
+        let mut st = self.lock();
+        let Some(&g) = st.contexts.get(&ctx) else {
+            return;
+        };
+        if let Some(set) = st.owned.get_mut(&g) {
+            for n in names {
+                set[kind.index()].remove(n);
+            }
+            if set.iter().all(HashSet::is_empty) {
+                st.owned.remove(&g);
+            }
+        }
+    }
+
+    /// How many contexts, groups and names are recorded (tests: nothing
+    /// grows).
+    pub fn len(&self) -> usize {
+        let st = self.lock();
+        st.contexts.len()
+            + st.owned.len()
+            + st.owned.values().flatten().map(HashSet::len).sum::<usize>()
+    }
+
+    /// Whether nothing is recorded.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    fn with_current<T>(&self, f: impl FnOnce(Option<&[HashSet<u32>; 3]>) -> T) -> T {
+        let ctx = (self.current)();
+        let st = self.lock();
+        let set = st.contexts.get(&ctx).and_then(|g| st.owned.get(g));
+        f(set)
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, State> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 }
 
@@ -123,14 +209,79 @@ mod tests {
         assert!((a as i32) > 0 && (b as i32) > 0);
     }
 
+    use std::cell::Cell;
+
+    thread_local! {
+        static CURRENT: Cell<usize> = const { Cell::new(0) };
+    }
+
+    fn current() -> usize {
+        CURRENT.with(Cell::get)
+    }
+
+    fn make_current(ctx: usize) {
+        CURRENT.with(|c| c.set(ctx));
+    }
+
     #[test]
     fn ownership_is_by_kind_and_forgotten_on_release() {
-        let names = LayerNames::default();
+        let names = LayerNames::new(current);
+        names.join(0x10, 1);
+        make_current(0x10);
         names.keep(Kind::Texture, 5000);
         assert!(names.owns(Kind::Texture, 5000));
         assert!(!names.owns(Kind::Renderbuffer, 5000));
         assert!(names.any(Kind::Texture) && !names.any(Kind::Framebuffer));
         names.release(Kind::Texture, &[5000, 7]);
         assert!(!names.owns(Kind::Texture, 5000));
+        names.leave(0x10);
+        assert!(names.is_empty());
+    }
+
+    #[test]
+    fn a_name_is_the_librarys_only_in_its_own_share_group() {
+        // Framebuffer 1 of the library's in group 1 is not the program's
+        // framebuffer 1 of group 2: a glDeleteFramebuffers there is the
+        // program's to make.
+        let names = LayerNames::new(current);
+        names.join(0x10, 1);
+        names.join(0x18, 1);
+        names.join(0x20, 2);
+        make_current(0x10);
+        names.keep(Kind::Framebuffer, 1);
+        make_current(0x18);
+        assert!(
+            names.owns(Kind::Framebuffer, 1),
+            "a context of the same group"
+        );
+        make_current(0x20);
+        assert!(!names.owns(Kind::Framebuffer, 1));
+        assert!(!names.any(Kind::Framebuffer));
+        make_current(0x30);
+        names.keep(Kind::Framebuffer, 2);
+        assert!(
+            !names.owns(Kind::Framebuffer, 2),
+            "an unknown context keeps nothing"
+        );
+        make_current(0);
+        assert!(!names.owns(Kind::Framebuffer, 1));
+    }
+
+    #[test]
+    fn a_share_groups_names_go_when_it_ends() {
+        let names = LayerNames::new(current);
+        for group in 1..=100u64 {
+            let ctx = group as usize * 0x10;
+            names.join(ctx, group);
+            names.join(ctx + 8, group);
+            make_current(ctx);
+            for n in 1..=5 {
+                names.keep(Kind::Framebuffer, n);
+                names.keep(Kind::Texture, RESERVED_TOP - n);
+            }
+            names.leave(ctx);
+            names.group_ended(group);
+        }
+        assert!(names.is_empty(), "{names:?}");
     }
 }

@@ -309,6 +309,38 @@ pub fn made_current<B>(
     }
 }
 
+/// The program made context `ctx` (GLX's or EGL's), sharing objects
+/// with `share` (0: none): whatever was known of an earlier context at
+/// its address is forgotten, and it joins `share`'s share group or a new
+/// one.
+pub fn context_created(ctx: usize, share: usize) {
+    let group = registry::with(|reg| {
+        reg.born(ctx);
+        reg.join_group(ctx, share);
+        reg.group(ctx)
+    });
+    if let Ok(r) = real() {
+        r.gl.context_joined(ctx, group);
+    }
+}
+
+/// The program's context `ctx` is destroyed for real (not current
+/// anywhere): it leaves its share group, and when it was the group's
+/// last context, what the layer knew of the group's objects goes (they
+/// went with the group).
+pub fn context_destroyed(ctx: usize) {
+    let ended = registry::with(|reg| reg.left_group(ctx));
+    if let Ok(r) = real() {
+        r.gl.context_left(ctx);
+        if let Some(group) = ended {
+            r.gl.group_ended(group);
+        }
+    }
+    if let Some(group) = ended {
+        crate::auto::render_targets::forget_group(group);
+    }
+}
+
 /// Records what is current on this thread now.
 pub fn set_current(new: Option<Current>) {
     let me = std::thread::current().id();
@@ -332,6 +364,7 @@ pub fn set_current(new: Option<Current>) {
                 // Deferred from glXDestroyContext: no longer current anywhere.
                 old.sc.destroy();
                 registry::with(|reg| reg.remove_doomed(old.sc.context()));
+                context_destroyed(old.sc.context());
             }
         }
     }
@@ -428,6 +461,11 @@ impl StereoContext {
     /// The program's `GLXContext` (`EGLContext`).
     pub fn context(&self) -> usize {
         self.ctx
+    }
+
+    /// The layer's own context, in the program's share group.
+    pub fn ours(&self) -> usize {
+        self.ours
     }
 
     /// The storage formats of its emulated framebuffers.
@@ -596,6 +634,7 @@ impl StereoContext {
             // Our own context, current nowhere (it is only made current
             // inside the layer's calls).
             self.wsi.destroy_context(r, self.display, self.ours);
+            r.gl.context_left(self.ours);
         }
         // Neither context reads the layered eyes' memory any more.
         for drawn in self.lock().fbs.values_mut() {

@@ -505,10 +505,7 @@ pub unsafe fn create_context(
     if ctx.is_null() {
         return Ok(ctx);
     }
-    registry::with(|reg| {
-        reg.born(ctx as usize);
-        reg.join_group(ctx as usize, share as usize);
-    });
+    super::context::context_created(ctx as usize, share as usize);
     if !super::live::auto_requested() {
         return Ok(ctx);
     }
@@ -604,6 +601,9 @@ unsafe fn adopt(e: &Egl, dpy: Handle, config: Handle, ctx: Handle, api: EglEnum)
         )
     };
     let group = registry::with(|reg| reg.group(ctx as usize));
+    // The layer's own context shares the program's objects: what it
+    // names is the group's.
+    r.gl.context_joined(ours as usize, group);
     let sc = StereoContext::new_on(
         Wsi::Egl,
         dpy as usize,
@@ -642,6 +642,7 @@ pub unsafe fn destroy_context(dpy: Handle, ctx: Handle) -> Result<EglBoolean> {
         let ok = unsafe { (e.eglDestroyContext)(dpy, ctx) };
         if ok != EGL_FALSE {
             registry::with(|reg| reg.mark_dead(key));
+            super::context::context_destroyed(key);
         }
         return Ok(ok);
     };
@@ -665,6 +666,7 @@ pub unsafe fn destroy_context(dpy: Handle, ctx: Handle) -> Result<EglBoolean> {
     // SAFETY: forwarded call.
     let ok = unsafe { (e.eglDestroyContext)(dpy, ctx) };
     sc.destroy_ours();
+    super::context::context_destroyed(key);
     Ok(ok)
 }
 
@@ -701,6 +703,7 @@ pub unsafe fn make_current(
     if ok == EGL_FALSE {
         return Ok(ok);
     }
+    super::wsi::made_current(ctx as usize);
     let (draw, read) = (draw as u64, read as u64);
     let read = if read == 0 { draw } else { read };
     super::context::made_current(before, sc, dpy as usize, (draw, read), binding);
@@ -717,6 +720,7 @@ pub unsafe fn release_thread() -> Result<EglBoolean> {
     let before = current();
     // SAFETY: forwarded call.
     let ok = unsafe { e.eglReleaseThread.map_or(EGL_TRUE, |f| f()) };
+    super::wsi::made_current(0);
     if before.is_some() {
         set_current(None);
         if let Some(old) = before {

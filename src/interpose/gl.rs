@@ -705,9 +705,7 @@ pub unsafe fn delete_objects(n: i32, names: *const u32, what: Deleted) -> Result
     }
     // SAFETY: GL's contract: `names` holds n values.
     let list = unsafe { std::slice::from_raw_parts(names, n as usize) };
-    if !r.gl.owns_any(kind)
-        || !list.iter().any(|&name| r.gl.owns(kind, name))
-        || !in_stereo_group(r)
+    if !r.gl.owns_any(kind) || !list.iter().any(|&name| r.gl.owns(kind, name)) || !in_stereo_group()
     {
         forward(n, names);
         auto_deleted(list, what);
@@ -744,9 +742,9 @@ fn auto_deleted(names: &[u32], what: Deleted) {
 /// Whether the context current on this thread shares objects with a
 /// stereo context (where the layer's objects live): a stereo context, or
 /// one the program made sharing with one.
-fn in_stereo_group(r: &Real) -> bool {
+fn in_stereo_group() -> bool {
     stereo_current() || {
-        let ctx = super::wsi::current_context(r);
+        let ctx = super::wsi::made_current_context();
         ctx != 0 && super::registry::with(|reg| reg.in_stereo_group(ctx))
     }
 }

@@ -105,6 +105,11 @@ unsafe extern "C" fn display_closed(dpy: *mut Display, _codes: *mut XExtCodes) -
         let gone = registry::with(|reg| reg.forget_display(dpy as usize));
         for sc in &gone.contexts {
             sc.mark_closed();
+            // Destroyed with the connection, and the layer's with it.
+            if let Ok(r) = super::real::real() {
+                r.gl.context_left(sc.ours());
+            }
+            super::context::context_destroyed(sc.context());
         }
         // A context of the display current on this thread (the program
         // closes the display without releasing it) is forgotten too: the
@@ -576,6 +581,9 @@ fn adopt(
         )
     };
     let group = registry::with(|reg| reg.group(ctx as usize));
+    // The layer's own context shares the program's objects: what it
+    // names is the group's.
+    r.gl.context_joined(ours as usize, group);
     let sc = StereoContext::new(
         dpy as usize,
         ctx as usize,
@@ -611,10 +619,7 @@ fn arm_automatic(r: &Real, dpy: *mut Display, ctx: GLXContext) {
 /// group it joins.
 fn forget(ctx: GLXContext, share: GLXContext) {
     if !ctx.is_null() {
-        registry::with(|reg| {
-            reg.born(ctx as usize);
-            reg.join_group(ctx as usize, share as usize);
-        });
+        super::context::context_created(ctx as usize, share as usize);
     }
 }
 
@@ -807,6 +812,7 @@ pub unsafe fn destroy_context(dpy: *mut Display, ctx: GLXContext) -> Result<()> 
     if let Some(sc) = sc {
         sc.destroy_ours();
     }
+    super::context::context_destroyed(key);
     Ok(())
 }
 
@@ -855,6 +861,7 @@ pub unsafe fn make_current(
     if ok == 0 {
         return Ok(ok);
     }
+    super::wsi::made_current(ctx as usize);
     let read = read.unwrap_or(draw);
     made_current(before, sc, dpy as usize, (draw, read), binding);
     Ok(ok)

@@ -272,7 +272,9 @@ fn load() -> Result<Real, String> {
     // SAFETY: the next glXGetProcAddressARB returns each named GL function
     // (libglvnd returns a dispatch stub for every gl* name) or NULL.
     let mut gl = unsafe { Gl::load(get) }.map_err(|e| e.to_string())?;
-    gl.own_names();
+    // Names by the share group of the context current on the thread, as
+    // the layer saw it made current (asking GLX or EGL is not harmless).
+    gl.own_names(super::wsi::made_current_context);
     macro_rules! lookup {
         ($name:literal) => {{
             let p = get($name);

@@ -180,6 +180,18 @@ impl Registry {
         self.groups.insert(ctx, group);
     }
 
+    /// Context `ctx` is gone (destroyed for real, or its display closed):
+    /// it leaves its share group, and the group is returned when `ctx`
+    /// was its last context (the group's objects went with it).
+    pub fn left_group(&mut self, ctx: usize) -> Option<u64> {
+        let group = self.groups.remove(&ctx)?;
+        if self.groups.values().any(|&g| g == group) {
+            return None;
+        }
+        self.stereo_groups.remove(&group);
+        Some(group)
+    }
+
     /// The share group of context `ctx` (0: unknown).
     pub fn group(&self, ctx: usize) -> u64 {
         self.groups.get(&ctx).copied().unwrap_or(0)
@@ -294,6 +306,8 @@ impl Registry {
             + self.glx_windows.len()
             + self.watched.len()
             + self.direct.len()
+            + self.groups.len()
+            + self.stereo_groups.len()
     }
 
     /// Whether the registry holds nothing.
@@ -380,6 +394,41 @@ mod tests {
         );
         let _ = r.forget_display(1);
         let _ = r.forget_display(2);
+        assert!(r.is_empty());
+    }
+
+    #[test]
+    fn a_share_group_is_forgotten_with_its_last_context() {
+        // A program that makes a new share group every few frames (and
+        // destroys the old one) leaves nothing behind.
+        let mut r = Registry::default();
+        for round in 0..100usize {
+            let (a, b) = (0x1000 + round * 0x20, 0x1010 + round * 0x20);
+            r.born(a);
+            r.join_group(a, 0);
+            r.born(b);
+            r.join_group(b, a);
+            let group = r.group(a);
+            assert_eq!(r.group(b), group, "b shares a's objects");
+            let sc = crate::interpose::context::StereoContext::new_on(
+                crate::interpose::wsi::Wsi::Egl,
+                1,
+                a,
+                0,
+                crate::stereo::buffers::FramebufferShape {
+                    stereo: true,
+                    double_buffered: true,
+                },
+                crate::stereo::emulated::BufferFormats::surface(0, 0),
+                group,
+            );
+            r.add_context(a, sc);
+            assert!(r.in_stereo_group(b));
+            r.remove_context(a);
+            assert_eq!(r.left_group(a), None, "b is still in the group");
+            assert_eq!(r.left_group(b), Some(group));
+            assert_eq!(r.left_group(b), None, "left once");
+        }
         assert!(r.is_empty());
     }
 }

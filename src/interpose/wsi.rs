@@ -27,6 +27,28 @@ pub enum Wsi {
     Egl,
 }
 
+thread_local! {
+    /// The context made current on this thread last, by the program or
+    /// the layer, through the layer (0: none).
+    static MADE_CURRENT: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// Records that `ctx` (0: none) was made current on this thread: each
+/// make-current that goes through the layer, the program's and its own.
+pub(super) fn made_current(ctx: usize) {
+    MADE_CURRENT.with(|c| c.set(ctx));
+}
+
+/// The context current on this thread as the layer saw it made current,
+/// without asking GLX or EGL. Asking the window system the program does
+/// not use is not harmless: in a child made with fork(), libglvnd's first
+/// call into a library resets its dispatch, and a glXGetCurrentContext
+/// there took the EGL program's current context away (its eyes could not
+/// be made: tests/egl.rs, the hostile program's fork).
+pub(super) fn made_current_context() -> usize {
+    MADE_CURRENT.with(std::cell::Cell::get)
+}
+
 /// What was current on this thread, as the window system says, to put back.
 pub(super) struct Saved {
     wsi: Wsi,
@@ -40,6 +62,7 @@ impl Saved {
     /// Makes what was saved current again (nothing current: a release on
     /// `fallback_display`, for GLX, which wants a display for it).
     pub(super) fn restore(&self, r: &Real, fallback_display: usize) {
+        made_current(self.ctx);
         match self.wsi {
             Wsi::Glx => {
                 // SAFETY: the state that was current a moment ago (or none).
@@ -118,7 +141,7 @@ impl Wsi {
         read: u64,
         ctx: usize,
     ) -> bool {
-        match self {
+        let ok = match self {
             Wsi::Glx => {
                 let dpy = display as *mut xlib::Display;
                 let (ok, err) = trap_x_errors(&r.xlib, dpy, || {
@@ -139,7 +162,11 @@ impl Wsi {
                     ) != egl::EGL_FALSE
                 }
             }),
+        };
+        if ok {
+            made_current(ctx);
         }
+        ok
     }
 
     /// Destroys context `ctx` of `display` (current nowhere).
@@ -268,15 +295,4 @@ fn glx_drawable_size(r: &Real, display: usize, drawable: u64) -> Result<(u32, u3
             "drawable {drawable:#x} has no size (X error {err}): it was destroyed?"
         )))
     }
-}
-
-/// The context current on this thread, whichever system made it (GLX's
-/// first; EGL's where the process loaded EGL).
-pub(super) fn current_context(r: &Real) -> usize {
-    // SAFETY: a plain getter of the calling thread's GLX state.
-    let glx = unsafe { (r.glx.glXGetCurrentContext)() } as usize;
-    if glx != 0 {
-        return glx;
-    }
-    egl::egl_if_loaded().map_or(0, |e| egl::current_binding(e).3)
 }

@@ -8,12 +8,16 @@
 #define _POSIX_C_SOURCE 200809L
 #include <GL/gl.h>
 #include <dirent.h>
+#include <malloc.h>
 #include <string.h>
 
 #include "x_window.h"
 
+/* Resident memory in use: glibc's free pages given back first (a moment's
+ * peak grows an arena that is otherwise kept; see proc_usage.h). */
 static long rss_kb(void)
 {
+    malloc_trim(0);
     FILE *f = fopen("/proc/self/statm", "r");
     long size = 0, resident = 0;
     if (f != NULL) {

@@ -11,7 +11,8 @@
  *
  *   egl_churn ROUNDS
  *
- * At the end "rss KB fds N" of rounds ROUNDS/4 and ROUNDS (memory and
+ * At the end "usage rss EARLY LATE fds EARLY LATE heap EARLY LATE" of
+ * the second and the last quarter of the rounds (proc_usage.h: memory and
  * descriptors must stay flat); stderr carries nothing of ours.
  */
 #include <EGL/egl.h>
@@ -121,8 +122,7 @@ int main(int argc, char **argv)
         return 2;
     }
     init();
-    long rss_mid = 0;
-    int fds_mid = 0;
+    struct usage_window early = {0}, late = {0};
     static const int sizes[][2] = {{64, 48}, {1, 1}, {3, 500}, {640, 2}, {333, 211}};
     for (int i = 0; i < rounds; i++) {
         printf("round %d kind %d\n", i, i % 6);
@@ -236,17 +236,12 @@ int main(int argc, char **argv)
         if (win)
             XDestroyWindow(x, win);
         XSync(x, False);
-        if (i + 1 == rounds / 4) {
-            usage(&rss_mid, &fds_mid);
-        }
+        usage_round(i, rounds, &early, &late);
     }
-    long rss = 0;
-    int fds = 0;
-    usage(&rss, &fds);
     eglTerminate(dpy);
     eglReleaseThread();
     printf("done\n");
-    fprintf(stdout, "usage rss %ld %ld fds %d %d\n", rss_mid, rss, fds_mid, fds);
+    usage_print(&early, &late);
     XCloseDisplay(x);
     return 0;
 }

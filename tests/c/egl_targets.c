@@ -18,8 +18,9 @@
  *
  *   egl_targets ROUNDS
  *
- * At the end "usage rss MID END fds MID END" of rounds ROUNDS/4 and
- * ROUNDS (memory and descriptors must stay flat).
+ * At the end "usage rss EARLY LATE fds EARLY LATE heap EARLY LATE" of
+ * the second and the last quarter of the rounds (proc_usage.h: memory and
+ * descriptors must stay flat).
  */
 #include <EGL/egl.h>
 #include <GLES3/gl32.h>
@@ -306,8 +307,7 @@ int main(int argc, char **argv)
     EGLSurface s = eglCreateWindowSurface(dpy, config, (EGLNativeWindowType)win, NULL);
     EGLContext ctx = EGL_NO_CONTEXT;
     static const int sizes[][2] = {{1, 1}, {3, 500}, {640, 2}, {257, 33}, {200, 150}, {2, 2}, {64, 64}};
-    long rss_mid = 0, rss = 0;
-    int fds_mid = 0, fds = 0;
+    struct usage_window early = {0}, late = {0};
     for (int i = 0; i < rounds; i++) {
         if (i % 8 == 0) {
             /* A new context: a new share group. */
@@ -325,10 +325,8 @@ int main(int argc, char **argv)
         printf("round %d kind %d\n", i, i % 6);
         round_of(i % 6, size[0], size[1], WW, WH);
         eglSwapBuffers(dpy, s);
-        if (i + 1 == rounds / 4)
-            usage(&rss_mid, &fds_mid);
+        usage_round(i, rounds, &early, &late);
     }
-    usage(&rss, &fds);
     eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(dpy, ctx);
     eglDestroySurface(dpy, s);
@@ -336,6 +334,6 @@ int main(int argc, char **argv)
     XDestroyWindow(x, win);
     XCloseDisplay(x);
     printf("done\n");
-    printf("usage rss %ld %ld fds %d %d\n", rss_mid, rss, fds_mid, fds);
+    usage_print(&early, &late);
     return 0;
 }

@@ -42,6 +42,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
+#include <malloc.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -84,8 +85,11 @@ static int maps_with(const char *what)
     return n;
 }
 
+/* Resident memory in use: glibc's free pages given back first (a moment's
+ * peak grows an arena that is otherwise kept; see proc_usage.h). */
 static long rss_kb(void)
 {
+    malloc_trim(0);
     FILE *f = fopen("/proc/self/statm", "r");
     long size = 0, resident = 0;
     if (f == NULL) return -1;
