@@ -98,7 +98,17 @@ fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> ([Image; 2], String
         std::thread::sleep(std::time::Duration::from_millis(500));
         shot = screen.grab(window);
     }
+    // Three pictures half a second apart: the scene turns, and its
+    // depth is judged on the deepest ([`parallax::deepest`]).
+    let mut shots = vec![shot];
+    for _ in 0..2 {
+        std::thread::sleep(std::time::Duration::from_millis(500));
+        shots.push(screen.grab(window));
+    }
     let stderr = run.quit(&screen, window);
+    let pairs = shots.iter().map(halves).collect();
+    let [l, r] = parallax::deepest(pairs);
+    let shot = shots.swap_remove(0);
     let dir = common::scratch("auto-glmark2");
     let name = bench.split(':').next().unwrap_or(bench);
     let _ = glstereo::capture::write_png(&shot, &dir.join(format!("{exe}-{name}{auto}.png")));
@@ -107,7 +117,7 @@ fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> ([Image; 2], String
         SIZE,
         "{what}: the window's size"
     );
-    (halves(&shot), stderr)
+    ([l, r], stderr)
 }
 
 /// A 3D scene: both eyes drawn, rows-only shifts spreading at least

@@ -44,6 +44,25 @@ fn luma(img: &Image) -> Vec<f32> {
         .collect()
 }
 
+/// Of several pictures of one moving scene (left and right eye each),
+/// the one whose shifts spread the most (p10 to p90): a turning object
+/// seen edge-on has little depth in one frame and its full depth a moment
+/// later, and a check of depth looks at the scene, not at one instant.
+#[allow(dead_code)] // not every test binary checks moving scenes
+pub fn deepest(pairs: Vec<[Image; 2]>) -> [Image; 2] {
+    let spread = |[l, r]: &[Image; 2]| {
+        let p = measure(l, r, 48, 3);
+        match (p.quantile(0.1), p.quantile(0.9)) {
+            (Some(lo), Some(hi)) => hi - lo,
+            _ => -1,
+        }
+    };
+    pairs
+        .into_iter()
+        .max_by_key(spread)
+        .expect("at least one picture")
+}
+
 /// Block matching of `left` against `right` (the same size): shifts up to
 /// `range` columns either way, `rows` rows either way.
 pub fn measure(left: &Image, right: &Image, range: i32, rows: i32) -> Parallax {
