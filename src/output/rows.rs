@@ -111,7 +111,7 @@ impl<'a> EyeRows<'a> {
 /// Eyes that are made as the composite reads them, row by row, instead
 /// of being read from where they are (`--auto=depth`: both eyes made from
 /// one frame and its depth, [`crate::auto::from_depth`]): a composite
-/// that needs only eye row y for its row y ([`Frame::row_local`]) gets
+/// that needs only eye row y for its row y (a row-local composite) gets
 /// them a few rows at a time into buffers that stay in cache, so the
 /// eyes are never written out to memory and read in again.
 pub trait MakeEyes: Sync {
