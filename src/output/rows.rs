@@ -149,6 +149,21 @@ pub(crate) struct Target<'a> {
 }
 
 impl Target<'_> {
+    /// The rows above `mid` and those from it on, as two targets (of a
+    /// target whose first row is 0).
+    fn split(&mut self, mid: u32) -> (Target<'_>, Target<'_>) {
+        debug_assert_eq!(self.first, 0);
+        let (stride, size) = (self.stride, self.size);
+        let (upper, lower) = self.words.split_at_mut(mid as usize * stride);
+        let part = |words, first| Target {
+            words,
+            stride,
+            size,
+            first,
+        };
+        (part(upper, 0), part(lower, mid))
+    }
+
     fn row(&mut self, y: u32) -> &mut [u32] {
         let at = (y - self.first) as usize * self.stride;
         &mut self.words[at..at + self.size.0 as usize]
@@ -403,7 +418,7 @@ impl Frame {
         px: impl Fn(u32) -> u32 + Copy + Send + Sync,
     ) -> bool {
         let n = rows.end.saturating_sub(rows.start);
-        let (stride, size) = (target.stride, target.size);
+        let size = target.size;
         if n < 2
             || u64::from(n) * u64::from(size.0) < SPLIT_PIXELS
             || target.first != 0
@@ -414,19 +429,7 @@ impl Frame {
         }
         let mid = rows.start + n / 2;
         let [upper_scratch, lower_scratch] = scratch;
-        let (upper, lower) = target.words.split_at_mut(mid as usize * stride);
-        let mut upper = Target {
-            words: upper,
-            stride,
-            size,
-            first: 0,
-        };
-        let mut lower = Target {
-            words: lower,
-            stride,
-            size,
-            first: mid,
-        };
+        let (mut upper, mut lower) = target.split(mid);
         let end = rows.end;
         let done = super::helper::both(
             || self.write_with(max, eyes, rows.start..mid, &mut upper, upper_scratch, px),
@@ -459,26 +462,13 @@ impl Frame {
             return false;
         }
         let n = size.1;
-        let stride = target.stride;
         let [upper_scratch, lower_scratch] = scratch;
         if n < 2 || u64::from(n) * u64::from(size.0) < SPLIT_PIXELS {
             self.write_made(max, made, 0, 0..n, target, upper_scratch, px);
             return true;
         }
         let mid = n / 2;
-        let (upper, lower) = target.words.split_at_mut(mid as usize * stride);
-        let mut upper = Target {
-            words: upper,
-            stride,
-            size,
-            first: 0,
-        };
-        let mut lower = Target {
-            words: lower,
-            stride,
-            size,
-            first: mid,
-        };
+        let (mut upper, mut lower) = target.split(mid);
         let done = super::helper::both(
             || self.write_made(max, made, 0, 0..mid, &mut upper, upper_scratch, px),
             &mut || self.write_made(max, made, 1, mid..n, &mut lower, lower_scratch, px),
