@@ -52,13 +52,13 @@ fn drawn(img: &Image) -> bool {
 /// --auto (separation 100 %, automatic convergence, side-by-side-half)
 /// and returns its window's halves once both are drawn, and what it said
 /// on stderr.
-fn scene(x: &Xvfb, exe: &str, bench: &str) -> ([Image; 2], String) {
+fn scene(x: &Xvfb, exe: &str, bench: &str) -> (Vec<[Image; 2]>, String) {
     scene_in(x, "--auto", exe, bench)
 }
 
 /// [`scene`] under `auto` (`--auto`, or `--auto=depth`: one render, the
 /// eyes made from its depth).
-fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> ([Image; 2], String) {
+fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> (Vec<[Image; 2]>, String) {
     let what = format!("{exe} {bench} ({auto})");
     let mut cmd = Command::new(&built().run);
     cmd.env("DISPLAY", &x.display)
@@ -99,7 +99,7 @@ fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> ([Image; 2], String
         shot = screen.grab(window);
     }
     // Three pictures half a second apart: the scene turns, and its
-    // depth is judged on the deepest ([`parallax::deepest`]).
+    // depth is judged on all of them ([`parallax::check_depth_of_any`]).
     let mut shots = vec![shot];
     for _ in 0..2 {
         std::thread::sleep(std::time::Duration::from_millis(500));
@@ -107,7 +107,6 @@ fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> ([Image; 2], String
     }
     let stderr = run.quit(&screen, window);
     let pairs = shots.iter().map(halves).collect();
-    let [l, r] = parallax::deepest(pairs);
     let shot = shots.swap_remove(0);
     let dir = common::scratch("auto-glmark2");
     let name = bench.split(':').next().unwrap_or(bench);
@@ -117,7 +116,7 @@ fn scene_in(x: &Xvfb, auto: &str, exe: &str, bench: &str) -> ([Image; 2], String
         SIZE,
         "{what}: the window's size"
     );
-    ([l, r], stderr)
+    (pairs, stderr)
 }
 
 /// A 3D scene: both eyes drawn, rows-only shifts spreading at least
@@ -130,14 +129,14 @@ fn at_depth(x: &Xvfb, exe: &str, bench: &str, spread: i32, centre: i32) {
 /// [`at_depth`] under `auto` ([`scene_in`]).
 fn at_depth_in(x: &Xvfb, auto: &str, exe: &str, bench: &str, spread: i32, centre: i32) {
     let what = format!("{exe} {bench} ({auto})");
-    let ([l, r], stderr) = scene_in(x, auto, exe, bench);
+    let (pictures, stderr) = scene_in(x, auto, exe, bench);
     assert!(
         !stderr.contains("does not compile") && !stderr.contains("does not link"),
         "{what}: a rewrite failed:\n{stderr}"
     );
     // glmark2's objects are small in a half-width eye and smoothly shaded:
     // 12 blocks or more (build's horse gives 20 to 30).
-    let p = parallax::check_depth_of(&l, &r, 12, spread, &what);
+    let p = parallax::check_depth_of_any(&pictures, 12, spread, &what);
     let median = p.quantile(0.5).unwrap();
     assert!(
         median.abs() <= centre,
@@ -175,8 +174,11 @@ fn glmark2_es2_scenes_drawn_through_render_targets_have_both_eyes_at_depth() {
     at_depth(&x, "glmark2-es2", "terrain", 6, 10);
     at_depth(&x, "glmark2-es2", "refract", 3, 6);
     let bench = "desktop:windows=4:effect=blur:blur-radius=5:passes=1:separable=true";
-    let ([l, r], _) = scene(&x, "glmark2-es2", bench);
-    let n = parallax::differing_pixels(&l, &r);
+    let (pictures, _) = scene(&x, "glmark2-es2", bench);
+    let n: usize = pictures
+        .iter()
+        .map(|[l, r]| parallax::differing_pixels(l, r))
+        .sum();
     assert!(
         n == 0,
         "glmark2-es2 {bench}: {n} pixels differ between the eyes of a 2D scene"
@@ -193,8 +195,11 @@ fn glmarks_2d_scenes_are_the_same_in_both_eyes() {
         "desktop:windows=4:effect=shadow",
     ] {
         // scene() waited for both halves drawn: neither eye is blank.
-        let ([l, r], _) = scene(&x, "glmark2", bench);
-        let n = parallax::differing_pixels(&l, &r);
+        let (pictures, _) = scene(&x, "glmark2", bench);
+        let n: usize = pictures
+            .iter()
+            .map(|[l, r]| parallax::differing_pixels(l, r))
+            .sum();
         assert!(
             n == 0,
             "glmark2 {bench}: {n} pixels differ between the eyes of a 2D scene"
@@ -221,8 +226,11 @@ fn glmarks_scenes_from_depth_are_at_depth_and_its_2d_scenes_flat() {
         "effect2d:kernel=0,1,0;1,-4,1;0,1,0;",
         "desktop:windows=4:effect=blur:blur-radius=5:passes=1:separable=true",
     ] {
-        let ([l, r], _) = scene_in(&x, depth, "glmark2", bench);
-        let n = parallax::differing_pixels(&l, &r);
+        let (pictures, _) = scene_in(&x, depth, "glmark2", bench);
+        let n: usize = pictures
+            .iter()
+            .map(|[l, r]| parallax::differing_pixels(l, r))
+            .sum();
         assert!(
             n == 0,
             "glmark2 {bench} (--auto=depth): {n} pixels differ between the eyes of a 2D scene"
