@@ -54,11 +54,17 @@
 //!
 //! [`row_reference`] is the definition, pixel by pixel, with a depth test
 //! at every landing. `row` gets the same words with spans: the shifts
-//! and depth-test keys of a row are computed 16 pixels at a time in
-//! loops over fixed-size arrays (compiled for AVX2 and AVX-512 by
-//! `with_simd`); the row is cut into runs of one kind and one shift
-//! (a surface rounds to the same shift over many pixels), and each run
-//! lands as one copy. No depth test is needed between runs: nothing drawn
+//! of a row are computed 16 pixels at a time in loops over fixed-size
+//! arrays (compiled for AVX2 and AVX-512 by `with_simd`), and the row is
+//! cut into runs of one kind and one shift as they are (a surface rounds
+//! to the same shift over many pixels: a chunk of 16 that continues the
+//! run costs one vector compare); each run lands as one copy, the
+//! columns it covers kept as bits. The holes are the clear bits; the
+//! depth-test keys of their two neighbours, all the fill needs, are found
+//! among the runs within the row's largest shift of them, never computed
+//! for the other pixels. A row of more than 64 runs (noise, a surface
+//! edge-on to the eye) keeps the run that landed last on each column
+//! instead, whose cost does not grow with the runs. No depth test is needed between runs: nothing drawn
 //! lands first, then the geometry in the order in which a later run is
 //! the nearer wherever two land on one column (left to right for the
 //! right eye, right to left for the left: where two pixels land together
@@ -240,22 +246,68 @@ fn ndc_of_window(n: f64, f: f64, zero_to_one: bool) -> Option<(f64, f64)> {
 /// frame allocates nothing once they have grown).
 #[derive(Debug, Default)]
 pub struct RowScratch {
-    /// Each pixel's run code ([`Rule::code`]).
-    code: Vec<i32>,
-    key: Vec<f32>,
     /// The runs of the row's columns: start, end, code.
     runs: Vec<(u32, u32, i32)>,
-    /// The run whose pixel landed last on each column ([`NO_RUN`]: none).
+    /// The columns something has landed on, a bit each ([`land_runs`]).
+    cover: Vec<u64>,
+    /// The run whose pixel landed last on each column ([`NO_RUN`]: none),
+    /// for rows of many runs ([`land_owned`]).
     owner: Vec<u32>,
     source: Vec<u32>,
 }
 
-impl RowScratch {
-    fn fit(&mut self, n: usize) {
-        self.code.resize(n, 0);
-        self.key.resize(n, 0.0);
-        self.owner.resize(n, NO_RUN);
-    }
+/// Rows of at most this many runs find a hole's neighbours among the
+/// runs near it ([`land_runs`]); rows of more keep an owner per column
+/// ([`land_owned`]), whose cost does not grow with the runs.
+const RUNS_SEARCHED: usize = 64;
+
+/// [`row_reference`]'s eyes, with `depth` and `colour` rows of one
+/// length and `columns` in them: `rule`'s run codes for the columns, and
+/// what lands where, by the runs.
+pub(crate) fn row(
+    simd: Simd,
+    rule: &Rule,
+    columns: (usize, usize),
+    colour: &[u32],
+    depth: &[f32],
+    out: [&mut [u32]; 2],
+    scratch: &mut RowScratch,
+) {
+    check(columns, colour, depth, &out);
+    with_simd(
+        simd,
+        #[inline(always)]
+        |_| {
+            let reach = runs_of(rule, columns, depth, &mut scratch.runs);
+            // Nothing moves (a row of nothing drawn, overlays and geometry
+            // at the screen): every pixel lands where it is, on its own.
+            if reach == 0 {
+                for out in out {
+                    out.copy_from_slice(colour);
+                }
+                return;
+            }
+            let RowScratch {
+                runs, cover, owner, ..
+            } = scratch;
+            let row = Row {
+                rule,
+                columns,
+                colour,
+                depth,
+                runs,
+                reach,
+            };
+            for (eye, out) in out.into_iter().enumerate() {
+                if runs.len() <= RUNS_SEARCHED {
+                    land_runs(&row, eye, cover, out);
+                } else {
+                    owner.resize(colour.len(), NO_RUN);
+                    land_owned(&row, eye, owner, out);
+                }
+            }
+        },
+    );
 }
 
 /// The two eyes' rows (`out[0]` left, `out[1]` right) of one row of the
@@ -281,43 +333,6 @@ pub fn row_reference(
     for (eye, out) in out.into_iter().enumerate() {
         land(eye, columns, colour, &shift, &key, &mut landed, out);
     }
-}
-
-/// [`row_reference`] at vector level `simd` (capped by what the processor
-/// has), with `scratch` kept by the caller: the same words.
-pub(crate) fn row(
-    simd: Simd,
-    rule: &Rule,
-    columns: (usize, usize),
-    colour: &[u32],
-    depth: &[f32],
-    out: [&mut [u32]; 2],
-    scratch: &mut RowScratch,
-) {
-    let n = check(columns, colour, depth, &out);
-    scratch.fit(n);
-    with_simd(
-        simd,
-        #[inline(always)]
-        |_| {
-            row_codes(rule, depth, &mut scratch.code, &mut scratch.key);
-            runs_of(columns, &scratch.code, &mut scratch.runs);
-            // Nothing moves (a row of nothing drawn, overlays and geometry
-            // at the screen): every pixel lands where it is, on its own.
-            if scratch.runs.iter().all(|r| r.2 == 0 || r.2 <= CODE_OVERLAY) {
-                for out in out {
-                    out.copy_from_slice(colour);
-                }
-                return;
-            }
-            let RowScratch {
-                key, runs, owner, ..
-            } = scratch;
-            for (eye, out) in out.into_iter().enumerate() {
-                land_runs(eye, columns, colour, key, runs, owner, out);
-            }
-        },
-    );
 }
 
 /// Both eyes of a whole frame on this thread, at the best vector level
@@ -406,26 +421,6 @@ fn check(columns: (usize, usize), colour: &[u32], depth: &[f32], out: &[&mut [u3
     n
 }
 
-/// Every pixel's run code and key, [`N`] at a time.
-#[inline(always)]
-fn row_codes(rule: &Rule, depth: &[f32], code: &mut [i32], key: &mut [f32]) {
-    let mut d = depth.chunks_exact(N);
-    let mut c = code.chunks_exact_mut(N);
-    let mut k = key.chunks_exact_mut(N);
-    for ((d, c), k) in (&mut d).zip(&mut c).zip(&mut k) {
-        let d: &[f32; N] = d.try_into().expect("N");
-        let c: &mut [i32; N] = c.try_into().expect("N");
-        let k: &mut [f32; N] = k.try_into().expect("N");
-        for i in 0..N {
-            (c[i], k[i]) = rule.code(d[i]);
-        }
-    }
-    let tail = d.remainder();
-    for ((d, c), k) in tail.iter().zip(c.into_remainder()).zip(k.into_remainder()) {
-        (*c, *k) = rule.code(*d);
-    }
-}
-
 /// The index of the first element of `s` for which `hit` holds, looked
 /// for [`N`] at a time (a comparison the compiler makes in vector
 /// registers), then one at a time in the chunk that has it.
@@ -451,101 +446,200 @@ fn first<T: Copy>(s: &[T], hit: impl Fn(T) -> bool) -> Option<usize> {
         .map(|p| base + p)
 }
 
-/// The runs of equal code among the columns [`x0`, `x1`).
+/// The runs of equal code ([`Rule::code`]) among the columns [`x0`,
+/// `x1`) into `runs`; gives back the reach: the largest shift of a run of
+/// geometry, either way (0: nothing moves). The codes are made [`N`] at
+/// a time in vector registers, and a chunk that continues the current
+/// run is passed over whole.
 #[inline(always)]
-fn runs_of((x0, x1): (usize, usize), code: &[i32], runs: &mut Vec<(u32, u32, i32)>) {
+fn runs_of(
+    rule: &Rule,
+    (x0, x1): (usize, usize),
+    depth: &[f32],
+    runs: &mut Vec<(u32, u32, i32)>,
+) -> i64 {
     runs.clear();
-    let code = &code[x0..x1];
-    let mut a = 0;
-    while a < code.len() {
-        let c = code[a];
-        let len = first(&code[a..], |k| k != c).unwrap_or(code.len() - a);
-        runs.push(((x0 + a) as u32, (x0 + a + len) as u32, c));
-        a += len;
+    let d = &depth[x0..x1];
+    let Some(&d0) = d.first() else {
+        return 0;
+    };
+    let mut start = 0;
+    let mut current = rule.code(d0).0;
+    let mut reach = 0i64;
+    let mut end = |start: usize, stop: usize, code: i32, runs: &mut Vec<(u32, u32, i32)>| {
+        if code > CODE_OVERLAY {
+            reach = reach.max(i64::from(code).abs());
+        }
+        runs.push(((x0 + start) as u32, (x0 + stop) as u32, code));
+    };
+    let mut chunks = d.chunks_exact(N);
+    let mut base = 0;
+    for c in &mut chunks {
+        let c: &[f32; N] = c.try_into().expect("N");
+        let mut code = [0i32; N];
+        // A bit for each pixel not of the current run: compared in vector
+        // registers, as the codes are made.
+        let mut differ = 0u32;
+        for i in 0..N {
+            code[i] = rule.code(c[i]).0;
+            differ |= u32::from(code[i] != current) << i;
+        }
+        if differ != 0 {
+            let first = differ.trailing_zeros() as usize;
+            for (i, &k) in code.iter().enumerate().skip(first) {
+                if k != current {
+                    end(start, base + i, current, runs);
+                    (start, current) = (base + i, k);
+                }
+            }
+        }
+        base += N;
     }
+    for (i, &v) in chunks.remainder().iter().enumerate() {
+        let k = rule.code(v).0;
+        if k != current {
+            end(start, base + i, current, runs);
+            (start, current) = (base + i, k);
+        }
+    }
+    end(start, d.len(), current, runs);
+    reach
 }
 
-/// One eye's row (`eye` 0 left: moved by −shift; 1 right: +shift) from
-/// the runs (module docs): what was not drawn, then the geometry in
-/// occlusion-compatible order, then the overlays, each run one copy;
-/// then the holes, as [`land`] fills them.
-#[inline(always)]
-fn land_runs(
-    eye: usize,
-    (x0, x1): (usize, usize),
-    colour: &[u32],
-    key: &[f32],
-    runs: &[(u32, u32, i32)],
-    owner: &mut [u32],
-    out: &mut [u32],
-) {
-    out[..x0].copy_from_slice(&colour[..x0]);
-    out[x1..].copy_from_slice(&colour[x1..]);
-    if x0 == x1 {
-        return;
+/// A row to land ([`row`]): the rule, the scene's columns, the frame's
+/// colour and depths, the runs of the columns and their reach.
+struct Row<'a> {
+    rule: &'a Rule,
+    columns: (usize, usize),
+    colour: &'a [u32],
+    depth: &'a [f32],
+    runs: &'a [(u32, u32, i32)],
+    reach: i64,
+}
+
+impl Row<'_> {
+    /// How far a run of `code` moves in eye `sign` (−1 left, +1 right).
+    #[inline(always)]
+    fn shift(sign: i64, code: i32) -> i64 {
+        match code {
+            CODE_BACKGROUND | CODE_OVERLAY => 0,
+            s => sign * i64::from(s),
+        }
     }
-    let sign: i64 = if eye == 0 { -1 } else { 1 };
-    let shift_of = |code: i32| match code {
-        CODE_BACKGROUND | CODE_OVERLAY => 0,
-        s => i64::from(s),
-    };
-    owner[x0..x1].fill(NO_RUN);
-    let put = |i: usize, out: &mut [u32], owner: &mut [u32]| {
-        let (a, b, code) = runs[i];
-        let d = sign * shift_of(code);
+
+    /// Lands run `i` in eye `sign` (a copy of its colour), clipped to the
+    /// columns: the columns [lo, hi) it covered, if any.
+    #[inline(always)]
+    fn put(&self, sign: i64, i: usize, out: &mut [u32]) -> Option<(usize, usize)> {
+        let (x0, x1) = self.columns;
+        let (a, b, code) = self.runs[i];
+        let d = Row::shift(sign, code);
         let lo = (i64::from(a) + d).max(x0 as i64);
         let hi = (i64::from(b) + d).min(x1 as i64);
-        if lo < hi {
+        (lo < hi).then(|| {
             let (lo, hi) = (lo as usize, hi as usize);
             let from = (lo as i64 - d) as usize;
-            out[lo..hi].copy_from_slice(&colour[from..from + (hi - lo)]);
-            owner[lo..hi].fill(i as u32);
-        }
-    };
-    for (i, r) in runs.iter().enumerate() {
-        if r.2 == CODE_BACKGROUND {
-            put(i, out, owner);
-        }
+            out[lo..hi].copy_from_slice(&self.colour[from..from + (hi - lo)]);
+            (lo, hi)
+        })
     }
-    let geometry = |r: &(u32, u32, i32)| r.2 != CODE_BACKGROUND && r.2 != CODE_OVERLAY;
-    if eye == 1 {
+
+    /// The runs in the order they land in eye `sign` (module docs): what
+    /// was not drawn, the geometry (left to right in the right eye, right
+    /// to left in the left), the overlays; `put` gets each.
+    #[inline(always)]
+    fn in_order(&self, sign: i64, mut put: impl FnMut(usize)) {
+        let runs = self.runs;
+        let geometry = |c: i32| c != CODE_BACKGROUND && c != CODE_OVERLAY;
         for (i, r) in runs.iter().enumerate() {
-            if geometry(r) {
-                put(i, out, owner);
+            if r.2 == CODE_BACKGROUND {
+                put(i);
             }
         }
-    } else {
-        for (i, r) in runs.iter().enumerate().rev() {
-            if geometry(r) {
-                put(i, out, owner);
+        if sign > 0 {
+            for (i, r) in runs.iter().enumerate() {
+                if geometry(r.2) {
+                    put(i);
+                }
+            }
+        } else {
+            for (i, r) in runs.iter().enumerate().rev() {
+                if geometry(r.2) {
+                    put(i);
+                }
+            }
+        }
+        for (i, r) in runs.iter().enumerate() {
+            if r.2 == CODE_OVERLAY {
+                put(i);
             }
         }
     }
-    for (i, r) in runs.iter().enumerate() {
-        if r.2 == CODE_OVERLAY {
-            put(i, out, owner);
-        }
+
+    /// The depth-test key of the pixel of run `i` that landed on column
+    /// `t` in eye `sign`.
+    #[inline(always)]
+    fn key(&self, sign: i64, i: usize, t: usize) -> f32 {
+        let from = t as i64 - Row::shift(sign, self.runs[i].2);
+        self.rule.code(self.depth[from as usize]).1
     }
-    // The key of what landed on column t.
-    let landed = |t: usize, owner: &[u32]| {
-        let code = runs[owner[t] as usize].2;
-        key[(t as i64 - sign * shift_of(code)) as usize]
-    };
-    let mut t = x0;
-    while t < x1 {
-        let Some(p) = first(&owner[t..x1], |o| o == NO_RUN) else {
-            break;
+
+    /// The key of what landed last on column `t` (something did) in eye
+    /// `sign`, found among the runs that can reach it: an overlay at `t`,
+    /// else the geometry run landing there last, else what was not drawn
+    /// at `t`. `near` holds the runs near the column asked before, which
+    /// is never to the right of `t` (a row's holes are filled left to
+    /// right): it moves along the runs, never back.
+    #[inline(always)]
+    fn landed(&self, sign: i64, t: usize, near: &mut Near) -> f32 {
+        let runs = self.runs;
+        let t64 = t as i64;
+        // The run at t, and the runs whose source is within reach of t.
+        while runs[near.at].1 as usize <= t {
+            near.at += 1;
+        }
+        while i64::from(runs[near.lo].1) <= t64 - self.reach {
+            near.lo += 1;
+        }
+        while near.hi < runs.len() && i64::from(runs[near.hi].0) <= t64 + self.reach {
+            near.hi += 1;
+        }
+        let here = runs[near.at].2;
+        if here == CODE_OVERLAY {
+            return OVERLAY;
+        }
+        let covers = |i: usize| {
+            let (a, b, code) = runs[i];
+            let d = Row::shift(sign, code);
+            code > CODE_OVERLAY && i64::from(a) + d <= t64 && t64 < i64::from(b) + d
         };
-        let start = t + p;
-        let end = first(&owner[start..x1], |o| o != NO_RUN).map_or(x1, |q| start + q);
+        let last = if sign > 0 {
+            (near.lo..near.hi).rev().find(|&i| covers(i))
+        } else {
+            (near.lo..near.hi).find(|&i| covers(i))
+        };
+        match last {
+            Some(i) => self.key(sign, i, t),
+            None if here == CODE_BACKGROUND => BACKGROUND,
+            None => HOLE,
+        }
+    }
+
+    /// Fills the holes [start, end) of eye `sign` (`out`) as [`land`]
+    /// does: from the farther of the two neighbours whose keys `landed`
+    /// gives.
+    #[inline(always)]
+    fn fill(
+        &self,
+        (start, end): (usize, usize),
+        out: &mut [u32],
+        mut landed: impl FnMut(usize) -> f32,
+    ) {
+        let (x0, x1) = self.columns;
         let left = (start > x0).then(|| start - 1);
         let right = (end < x1).then_some(end);
         let from = match (left, right) {
-            (Some(l), Some(r)) => Some(if landed(l, owner) >= landed(r, owner) {
-                l
-            } else {
-                r
-            }),
+            (Some(l), Some(r)) => Some(if landed(l) >= landed(r) { l } else { r }),
             (l, r) => l.or(r),
         };
         match from {
@@ -553,8 +647,109 @@ fn land_runs(
                 let c = out[f];
                 out[start..end].fill(c);
             }
-            None => out[start..end].copy_from_slice(&colour[start..end]),
+            None => out[start..end].copy_from_slice(&self.colour[start..end]),
         }
+    }
+}
+
+/// Where [`Row::landed`] is along the runs: the run at the column asked,
+/// the first whose source ends within reach of it, the first whose source
+/// starts beyond reach of it.
+#[derive(Default)]
+struct Near {
+    at: usize,
+    lo: usize,
+    hi: usize,
+}
+
+/// One eye's row (`eye` 0 left: moved by −shift; 1 right: +shift) from
+/// the runs (module docs), each run one copy, the columns covered kept
+/// as bits; then the holes, as [`land`] fills them, the keys of their
+/// neighbours found among the runs near them ([`Row::landed`]).
+#[inline(always)]
+fn land_runs(row: &Row, eye: usize, cover: &mut Vec<u64>, out: &mut [u32]) {
+    let (x0, x1) = row.columns;
+    out[..x0].copy_from_slice(&row.colour[..x0]);
+    out[x1..].copy_from_slice(&row.colour[x1..]);
+    let n = x1 - x0;
+    cover.clear();
+    cover.resize(n.div_ceil(64), 0);
+    let sign: i64 = if eye == 0 { -1 } else { 1 };
+    row.in_order(sign, |i| {
+        if let Some((lo, hi)) = row.put(sign, i, out) {
+            set_bits(cover, lo - x0, hi - x0);
+        }
+    });
+    let mut near = Near::default();
+    let mut t = 0;
+    while t < n {
+        let start = next_bit(cover, t, n, false);
+        if start == n {
+            break;
+        }
+        let end = next_bit(cover, start, n, true);
+        row.fill((x0 + start, x0 + end), out, |c| {
+            row.landed(sign, c, &mut near)
+        });
+        t = end;
+    }
+}
+
+/// Sets bits [lo, hi) of `bits` (lo < hi).
+#[inline(always)]
+fn set_bits(bits: &mut [u64], lo: usize, hi: usize) {
+    let (a, b) = (lo / 64, (hi - 1) / 64);
+    let first = !0u64 << (lo % 64);
+    let last = !0u64 >> (63 - (hi - 1) % 64);
+    if a == b {
+        bits[a] |= first & last;
+    } else {
+        bits[a] |= first;
+        bits[a + 1..b].fill(!0);
+        bits[b] |= last;
+    }
+}
+
+/// The first bit at or after `from` (below `n`) that is `set`, or `n`.
+#[inline(always)]
+fn next_bit(bits: &[u64], from: usize, n: usize, set: bool) -> usize {
+    let flip = if set { 0 } else { !0u64 };
+    let mut i = from / 64;
+    let mut w = (bits[i] ^ flip) & (!0u64 << (from % 64));
+    loop {
+        if w != 0 {
+            return (i * 64 + w.trailing_zeros() as usize).min(n);
+        }
+        i += 1;
+        if i * 64 >= n {
+            return n;
+        }
+        w = bits[i] ^ flip;
+    }
+}
+
+/// [`land_runs`] for rows of many runs: the run that landed last is kept
+/// for each column (`owner`), and the holes are the columns without one.
+#[inline(always)]
+fn land_owned(row: &Row, eye: usize, owner: &mut [u32], out: &mut [u32]) {
+    let (x0, x1) = row.columns;
+    out[..x0].copy_from_slice(&row.colour[..x0]);
+    out[x1..].copy_from_slice(&row.colour[x1..]);
+    let sign: i64 = if eye == 0 { -1 } else { 1 };
+    owner[x0..x1].fill(NO_RUN);
+    row.in_order(sign, |i| {
+        if let Some((lo, hi)) = row.put(sign, i, out) {
+            owner[lo..hi].fill(i as u32);
+        }
+    });
+    let mut t = x0;
+    while t < x1 {
+        let Some(p) = first(&owner[t..x1], |o| o == NO_RUN) else {
+            break;
+        };
+        let start = t + p;
+        let end = first(&owner[start..x1], |o| o != NO_RUN).map_or(x1, |q| start + q);
+        row.fill((start, end), out, |c| row.key(sign, owner[c] as usize, c));
         t = end;
     }
 }
