@@ -247,15 +247,22 @@ fn last_captured(dir: &Path, what: &str) -> [Image; 2] {
 /// glmark2's window size.
 const SIZE: (u32, u32) = (800, 600);
 
-/// `glmark2` binary `exe` under --auto (separation 100 %, automatic
-/// convergence), side by side, capturing into `dir`, running scene `bench`
-/// for `seconds`.
-fn glmark2(server: &Server, exe: &str, bench: &str, seconds: u32, dir: &Path) -> Command {
+/// `glmark2` binary `exe` under `auto` (`--auto`: two rendered eyes, or
+/// `--auto=depth`: eyes made from one render's depth; separation 100 %,
+/// automatic convergence), side by side, capturing into `dir`, running
+/// scene `bench` for `seconds`.
+fn glmark2(
+    server: &Server,
+    auto: &str,
+    (exe, bench): (&str, &str),
+    seconds: u32,
+    dir: &Path,
+) -> Command {
     let mut cmd = Command::new(&built().run);
     server
         .on(&mut cmd)
         .args([
-            "--auto",
+            auto,
             "--separation",
             "100",
             "-m",
@@ -297,12 +304,29 @@ fn halves_of(img: &Image, (x0, y0, w, h): (u32, u32, u32, u32)) -> [Image; 2] {
 
 #[test]
 fn glmark2_es2_on_x11_under_auto_shows_its_scene_at_depth_in_both_halves() {
+    glmark2_es2_on_x11("--auto");
+}
+
+/// One render, both eyes made from its depth: the ES context's eyes are
+/// memory the layer makes them in (as a GLX window's), then GL composes
+/// them and the real eglSwapBuffers shows them.
+#[test]
+fn glmark2_es2_on_x11_under_auto_depth_shows_its_scene_at_depth_in_both_halves() {
+    glmark2_es2_on_x11("--auto=depth");
+}
+
+/// glmark2-es2 (EGL on X11) under `auto`: its window's halves, grabbed,
+/// and its captured eyes at depth.
+fn glmark2_es2_on_x11(auto: &str) {
     let _one = one_renderer_at_a_time();
     let x = Xvfb::start(1024, 768);
     let server = Server::X(x);
-    let dir = common::scratch("egl-glmark2-es2-x11");
-    let what = "glmark2-es2 (X11) build";
-    let mut run = Renderer::start(glmark2(&server, "glmark2-es2", "build", 60, &dir), what);
+    let dir = common::scratch(&format!("egl-glmark2-es2-x11{auto}"));
+    let what = &format!("glmark2-es2 (X11) build {auto}");
+    let mut run = Renderer::start(
+        glmark2(&server, auto, ("glmark2-es2", "build"), 60, &dir),
+        what,
+    );
     let Server::X(x) = &server else {
         unreachable!()
     };
@@ -342,17 +366,18 @@ fn glmark2_es2_on_x11_under_auto_shows_its_scene_at_depth_in_both_halves() {
     parallax::check_depth(&l, &r, 4, &format!("{what}, the captured eyes"));
 }
 
-/// glmark2 on weston: its eyes captured, and weston's screen (its
-/// composition of the program's surface) with the two halves at depth.
-fn glmark2_on_wayland(exe: &str, bench: &str) {
+/// glmark2 on weston under `auto`: its eyes captured, and weston's
+/// screen (its composition of the program's surface) with the two halves
+/// at depth.
+fn glmark2_on_wayland(auto: &str, exe: &str, bench: &str) {
     let _one = one_renderer_at_a_time();
     let server = Server::Wayland(Weston::start(1024, 768));
     let Server::Wayland(weston) = &server else {
         unreachable!()
     };
-    let what = format!("{exe} {bench}");
-    let dir = common::scratch(&format!("egl-{exe}-{bench}"));
-    let shots = common::scratch(&format!("egl-{exe}-{bench}-screen"));
+    let what = format!("{exe} {bench} {auto}");
+    let dir = common::scratch(&format!("egl-{exe}-{bench}{auto}"));
+    let shots = common::scratch(&format!("egl-{exe}-{bench}{auto}-screen"));
     // The empty desktop, once the shell has drawn it: the same twice.
     let mut empty: Option<Image> = None;
     for _ in 0..40 {
@@ -367,7 +392,7 @@ fn glmark2_on_wayland(exe: &str, bench: &str) {
         }
     }
     let empty = empty.unwrap_or_else(|| panic!("{what}: weston showed no desktop"));
-    let run = Renderer::start(glmark2(&server, exe, bench, 60, &dir), &what);
+    let run = Renderer::start(glmark2(&server, auto, (exe, bench), 60, &dir), &what);
     // The screen once the program has presented a few frames.
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
     let mut seen = None;
@@ -421,12 +446,19 @@ fn glmark2_on_wayland(exe: &str, bench: &str) {
 
 #[test]
 fn glmark2_es2_wayland_under_auto_shows_its_scene_at_depth_on_weston() {
-    glmark2_on_wayland("glmark2-es2-wayland", "build");
+    glmark2_on_wayland("--auto", "glmark2-es2-wayland", "build");
 }
 
 #[test]
 fn glmark2_wayland_desktop_gl_under_auto_shows_its_scene_at_depth_on_weston() {
-    glmark2_on_wayland("glmark2-wayland", "shadow");
+    glmark2_on_wayland("--auto", "glmark2-wayland", "shadow");
+}
+
+/// One render on Wayland, both eyes made from its depth in the ES
+/// context's eye memory.
+#[test]
+fn glmark2_es2_wayland_under_auto_depth_shows_its_scene_at_depth_on_weston() {
+    glmark2_on_wayland("--auto=depth", "glmark2-es2-wayland", "build");
 }
 
 fn churn() -> PathBuf {
