@@ -94,7 +94,9 @@ fn main() {
                 })
             });
         }
-        let colour = vec![0u32; w * h];
+        // Pages written, not a fresh zeroed allocation (whose pages would
+        // all be the one zero page, always in cache).
+        let colour = ground(w, h).0;
         g.bench_function("memcpy-both-eyes", |b| {
             b.iter(|| {
                 left.copy_from_slice(&colour);
