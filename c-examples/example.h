@@ -139,7 +139,11 @@ static inline int example_save_modes(gls_surface *surface, const example_options
         name += n + (name[n] == ',');
         if ((r = gls_output_from_name(one, &mode)) != GLS_OK) return example_fail("--modes", r);
         if ((r = gls_surface_set_output(surface, mode)) != GLS_OK) return example_fail("gls_surface_set_output", r);
-        snprintf(path, sizeof path, "%s/composite-%s.png", o->out_dir, gls_output_name(mode));
+        int len = snprintf(path, sizeof path, "%s/composite-%s.png", o->out_dir, gls_output_name(mode));
+        if (len < 0 || (size_t)len >= sizeof path) {
+            fprintf(stderr, "--out: the directory name is too long: %s\n", o->out_dir);
+            return 1;
+        }
         if ((r = gls_surface_save_png(surface, GLS_IMAGE_COMPOSITE, path)) != GLS_OK)
             return example_fail("gls_surface_save_png", r);
         printf("wrote %s\n", path);
@@ -160,7 +164,11 @@ static inline int example_save(gls_surface *surface, const example_options *o) {
     }
     for (size_t k = 0; k < sizeof files / sizeof files[0]; ++k) {
         char path[4096];
-        snprintf(path, sizeof path, "%s/%s", o->out_dir, files[k].name);
+        int len = snprintf(path, sizeof path, "%s/%s", o->out_dir, files[k].name);
+        if (len < 0 || (size_t)len >= sizeof path) {
+            fprintf(stderr, "--out: the directory name is too long: %s\n", o->out_dir);
+            return 1;
+        }
         gls_result r = gls_surface_save_png(surface, files[k].image, path);
         if (r != GLS_OK) return example_fail("gls_surface_save_png", r);
         printf("wrote %s\n", path);
