@@ -64,8 +64,9 @@
 //! among the runs within the row's largest shift of them, never computed
 //! for the other pixels. A row of more than 64 runs (noise, a surface
 //! edge-on to the eye) keeps the run that landed last on each column
-//! instead, whose cost does not grow with the runs. No depth test is needed between runs: nothing drawn
-//! lands first, then the geometry in the order in which a later run is
+//! instead, whose cost does not grow with the runs.
+//!
+//! No depth test is needed between runs: nothing drawn lands first, then the geometry in the order in which a later run is
 //! the nearer wherever two land on one column (left to right for the
 //! right eye, right to left for the left: where two pixels land together
 //! the one whose shift is smaller toward the eye is nearer, McMillan's
@@ -298,12 +299,17 @@ pub(crate) fn row(
                 runs,
                 reach,
             };
-            for (eye, out) in out.into_iter().enumerate() {
+            if runs.len() > RUNS_SEARCHED {
+                owner.resize(colour.len(), NO_RUN);
+            }
+            let (x0, x1) = columns;
+            for (sign, out) in [-1, 1].into_iter().zip(out) {
+                out[..x0].copy_from_slice(&colour[..x0]);
+                out[x1..].copy_from_slice(&colour[x1..]);
                 if runs.len() <= RUNS_SEARCHED {
-                    land_runs(&row, eye, cover, out);
+                    land_runs(&row, sign, cover, out);
                 } else {
-                    owner.resize(colour.len(), NO_RUN);
-                    land_owned(&row, eye, owner, out);
+                    land_owned(&row, sign, owner, out);
                 }
             }
         },
@@ -662,19 +668,17 @@ struct Near {
     hi: usize,
 }
 
-/// One eye's row (`eye` 0 left: moved by −shift; 1 right: +shift) from
-/// the runs (module docs), each run one copy, the columns covered kept
-/// as bits; then the holes, as [`land`] fills them, the keys of their
-/// neighbours found among the runs near them ([`Row::landed`]).
+/// The columns of one eye's row (`sign` −1 left: moved by −shift; +1
+/// right: +shift) from the runs (module docs), each run one copy, the
+/// columns covered kept as bits; then the holes, as [`land`] fills them,
+/// the keys of their neighbours found among the runs near them
+/// ([`Row::landed`]).
 #[inline(always)]
-fn land_runs(row: &Row, eye: usize, cover: &mut Vec<u64>, out: &mut [u32]) {
+fn land_runs(row: &Row, sign: i64, cover: &mut Vec<u64>, out: &mut [u32]) {
     let (x0, x1) = row.columns;
-    out[..x0].copy_from_slice(&row.colour[..x0]);
-    out[x1..].copy_from_slice(&row.colour[x1..]);
     let n = x1 - x0;
     cover.clear();
     cover.resize(n.div_ceil(64), 0);
-    let sign: i64 = if eye == 0 { -1 } else { 1 };
     row.in_order(sign, |i| {
         if let Some((lo, hi)) = row.put(sign, i, out) {
             set_bits(cover, lo - x0, hi - x0);
@@ -731,11 +735,8 @@ fn next_bit(bits: &[u64], from: usize, n: usize, set: bool) -> usize {
 /// [`land_runs`] for rows of many runs: the run that landed last is kept
 /// for each column (`owner`), and the holes are the columns without one.
 #[inline(always)]
-fn land_owned(row: &Row, eye: usize, owner: &mut [u32], out: &mut [u32]) {
+fn land_owned(row: &Row, sign: i64, owner: &mut [u32], out: &mut [u32]) {
     let (x0, x1) = row.columns;
-    out[..x0].copy_from_slice(&row.colour[..x0]);
-    out[x1..].copy_from_slice(&row.colour[x1..]);
-    let sign: i64 = if eye == 0 { -1 } else { 1 };
     owner[x0..x1].fill(NO_RUN);
     row.in_order(sign, |i| {
         if let Some((lo, hi)) = row.put(sign, i, out) {
