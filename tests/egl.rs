@@ -506,17 +506,18 @@ const RSS_SLACK_KB: i64 = 2048;
 const HEAP_SLACK_KB: i64 = 256;
 
 /// Runs `exe ROUNDS` (a program printing every answer it gets, then its
-/// [`usage`]) without the layer and under `glstereo-run --auto` on `x`:
+/// [`usage`]) without the layer and under `glstereo-run AUTO` on `x`
+/// (`--auto` or `--auto=depth`):
 /// every line but the usage the same, nothing of the layer's on stderr,
 /// resident memory and heap in use from the second quarter of the rounds
 /// to the last growing no more than Mesa's own (with [`RSS_SLACK_KB`],
 /// [`HEAP_SLACK_KB`]) and descriptors flat. Mesa's stdout.
-fn answers_as_mesa(x: &Xvfb, exe: &Path, rounds: &str) -> String {
+fn answers_as_mesa(x: &Xvfb, exe: &Path, auto: &str, rounds: &str) -> String {
     let name = exe.file_name().unwrap_or_default().to_string_lossy();
     let run = |layer: bool| {
         let mut cmd = if layer {
             let mut c = Command::new(&built().run);
-            c.arg("--auto").arg(exe);
+            c.arg(auto).arg(exe);
             c
         } else {
             Command::new(exe)
@@ -578,7 +579,19 @@ fn a_hostile_egl_program_gets_mesas_every_answer_under_auto_and_its_memory_stays
     // on stderr; memory and descriptors flat from rounds 15-29 to 45-59.
     let _one = one_renderer_at_a_time();
     let x = Xvfb::start(800, 600);
-    let mesa = answers_as_mesa(&x, &churn(), "60");
+    let mesa = answers_as_mesa(&x, &churn(), "--auto", "60");
+    assert!(mesa.contains("child exited 0"), "{mesa}");
+}
+
+#[test]
+fn a_hostile_egl_program_gets_mesas_every_answer_under_auto_depth() {
+    // The same under --auto=depth, whose ES eyes are memory the CPU reads
+    // and writes in place (their second eye's memory begins right after
+    // the first's; the display terminated while current at 64x48 once
+    // crashed the driver's free of it at the release: round 4).
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(800, 600);
+    let mesa = answers_as_mesa(&x, &churn(), "--auto=depth", "24");
     assert!(mesa.contains("child exited 0"), "{mesa}");
 }
 
@@ -603,7 +616,7 @@ fn an_opengl_es_programs_render_targets_of_every_kind_get_mesas_every_answer_und
             &["-lEGL", "-lGLESv2", "-lX11"],
         )
     });
-    answers_as_mesa(&x, &exe, "96");
+    answers_as_mesa(&x, &exe, "--auto", "96");
 }
 
 /// tests/c/egl_share_groups.c: the program's framebuffer objects in a
@@ -677,5 +690,47 @@ fn two_threads_drawing_through_egl_under_auto_each_read_their_own_picture() {
             out.status
         );
         assert!(!stderr.contains("glstereo"), "round {round}: {stderr}");
+    }
+}
+
+#[test]
+fn egl_terminated_while_two_threads_draw_under_auto_lets_them_draw_until_they_release() {
+    // tests/c/egl_threads.c "terminate": eglTerminate halfway while both
+    // threads' contexts are current; EGL keeps them usable until
+    // released, so each goes on reading its own picture, its swaps fail
+    // with EGL_NOT_INITIALIZED as without the layer, and its release frees
+    // its share group in the driver. At 64x48 the first eye's last row
+    // ends where the second eye's memory begins: the layer readies that
+    // memory for the driver at the release (once a crash there).
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(400, 300);
+    let program = build_once("egl_threads", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_threads.c"),
+            out,
+            &["-lEGL", "-lGLESv2", "-lX11", "-lpthread"],
+        )
+    });
+    for auto in ["--auto", "--auto=depth"] {
+        for round in 0..3 {
+            let out = Command::new(&built().run)
+                .arg(auto)
+                .arg(&program)
+                .args(["40", "terminate"])
+                .env("DISPLAY", &x.display)
+                .output()
+                .expect("egl_threads runs");
+            let stdout = String::from_utf8_lossy(&out.stdout);
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert!(
+                out.status.success() && stdout.contains("thread 0 ok 40\nthread 1 ok 40\n"),
+                "{auto} round {round}: exited {}:\n{stdout}{stderr}",
+                out.status
+            );
+            assert!(
+                !stderr.contains("glstereo"),
+                "{auto} round {round}: {stderr}"
+            );
+        }
     }
 }

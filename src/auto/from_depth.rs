@@ -56,9 +56,9 @@ pub enum Made {
 /// (None: none drawn this frame). Where the eyes are memory the CPU reads
 /// and writes (llvmpipe) they are not made here: the [`Pending`] given
 /// back makes them as the composite reads them ([`MakeEyes`]), or in
-/// place; else (a hardware renderer, an EGL context, a GL layer below,
-/// `GLSTEREO_EYE_MEMORY=0`) they are read back, made and written again
-/// with GL here.
+/// place (an EGL context's too, whose window eglSwapBuffers shows); else
+/// (a hardware renderer, a GL layer below, `GLSTEREO_EYE_MEMORY=0`) they
+/// are read back, made and written again with GL here.
 ///
 /// `switch_in` makes the layer's context (sharing the program's objects)
 /// current: called before the first GL call, where one is needed (the

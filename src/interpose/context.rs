@@ -194,6 +194,12 @@ pub struct StereoContext {
     /// Its display was closed: nothing may be done with it any more (it
     /// may still sit in another thread's current slot).
     closed: AtomicBool,
+    /// Its display was terminated (eglTerminate) while it was current on
+    /// another thread, which may render into its eyes until it releases
+    /// it: the layered eyes' memory is readied for the driver, and the
+    /// layer's view of it unmapped, at that release
+    /// ([`StereoContext::before_release`]), not at the terminate.
+    ended_elsewhere: AtomicBool,
     /// Held while the layer makes the program's context current itself,
     /// and around glXMakeCurrent of it: the layer's own make-current of a
     /// context that is current nowhere (to free a destroyed drawable's
@@ -431,6 +437,7 @@ impl StereoContext {
             auto: formats.layered.is_some(),
             group,
             closed: AtomicBool::new(false),
+            ended_elsewhere: AtomicBool::new(false),
             binding: Mutex::new(()),
             state: Mutex::new(CtxState {
                 fbs: HashMap::new(),
@@ -636,9 +643,76 @@ impl StereoContext {
             self.wsi.destroy_context(r, self.display, self.ours);
             r.gl.context_left(self.ours);
         }
+        if self.ended_elsewhere.load(Ordering::SeqCst) {
+            // The program's thread may still render into the eyes: their
+            // memory is readied and unmapped at its release.
+            return;
+        }
         // Neither context reads the layered eyes' memory any more.
         for drawn in self.lock().fbs.values_mut() {
             drawn.fb.unmap_layers();
+        }
+    }
+
+    /// eglTerminate of its display, with the program's context current on
+    /// the calling thread (EGL keeps it usable until it is released): from
+    /// now on it renders into the real default framebuffer, in mono, where
+    /// it had the emulated one bound, and what it rendered into the eyes is
+    /// finished. The driver frees the eyes' memory with the share group at
+    /// the release, reading the word [`Self::end_of_share_group`] writes
+    /// inside the first eye's rows: nothing may render over it after that.
+    pub fn leave_eyes_here(&self) {
+        let Ok(r) = real() else {
+            return;
+        };
+        let gl = &r.gl;
+        let st = self.lock();
+        // SAFETY: the program's context is current on this thread (the
+        // caller's contract); binding 0 raises no error.
+        unsafe {
+            for (target, binding) in [
+                (GL_DRAW_FRAMEBUFFER, GL_DRAW_FRAMEBUFFER_BINDING),
+                (GL_READ_FRAMEBUFFER, GL_READ_FRAMEBUFFER_BINDING),
+            ] {
+                if st.is_ours(gl.integer(binding) as u32) {
+                    gl.BindFramebuffer(target, 0);
+                }
+            }
+            gl.Finish();
+        }
+    }
+
+    /// eglTerminate of its display while it is current on another thread
+    /// (see [`StereoContext::ended_elsewhere`]).
+    pub fn mark_ended_elsewhere(&self) {
+        self.ended_elsewhere.store(true, Ordering::SeqCst);
+    }
+
+    /// Before the real call that releases it on this thread (eglMakeCurrent,
+    /// eglReleaseThread), where the driver may free its share group: for a
+    /// context whose display was terminated while it was current here (see
+    /// [`StereoContext::ended_elsewhere`]), its rendering is finished and
+    /// the eyes' memory readied for the driver's free. Returns whether
+    /// [`StereoContext::after_release`] must follow a successful release.
+    pub fn before_release(&self) -> bool {
+        if !self.ended_elsewhere.load(Ordering::SeqCst) {
+            return false;
+        }
+        if let Ok(r) = real() {
+            // SAFETY: the program's context is current on this thread.
+            unsafe { r.gl.Finish() };
+        }
+        self.end_of_share_group();
+        true
+    }
+
+    /// After a successful release that [`StereoContext::before_release`]
+    /// readied: the layer's view of the eyes' memory goes.
+    pub fn after_release(&self) {
+        if self.ended_elsewhere.swap(false, Ordering::SeqCst) {
+            for drawn in self.lock().fbs.values_mut() {
+                drawn.fb.unmap_layers();
+            }
         }
     }
 

@@ -588,10 +588,12 @@ unsafe fn adopt(e: &Egl, dpy: Handle, config: Handle, ctx: Handle, api: EglEnum)
         double_buffered: true,
     };
     let formats = BufferFormats {
-        // Frames go through GL and the real eglSwapBuffers: no memory the
-        // CPU reads. (Eyes in memory here crashed tests/c/egl_churn at
-        // 120 rounds, 2026-12-02: not yet understood.)
-        in_place: None,
+        // Frames go through GL and the real eglSwapBuffers, but eyes made
+        // from depth (--auto=depth) are made by the CPU: where they are
+        // memory it reads and writes in place, nothing is read back or
+        // uploaded. Not under a GL layer (RenderDoc, apitrace), which
+        // must see plain GL it can record and replay.
+        in_place: r.extra.memory_objects.filter(|_| !swap_layered()),
         layered: r.extra.layered,
         // An OpenGL ES context's glDrawBuffers names attachment i at i only.
         positional: api == EGL_OPENGL_ES_API,
@@ -697,12 +699,18 @@ pub unsafe fn make_current(
         registry::with(|reg| reg.context(ctx as usize))
     };
     let before = current();
+    let readied = before
+        .as_ref()
+        .is_some_and(|b| b.sc.context() != ctx as usize && b.sc.before_release());
     let held = sc.clone();
     let binding = held.as_ref().map(|sc| sc.hold_binding());
     // SAFETY: forwarded call.
     let ok = unsafe { (e.eglMakeCurrent)(dpy, draw, read, ctx) };
     if ok == EGL_FALSE {
         return Ok(ok);
+    }
+    if readied && let Some(b) = &before {
+        b.sc.after_release();
     }
     super::wsi::made_current(ctx as usize);
     let (draw, read) = (draw as u64, read as u64);
@@ -719,8 +727,15 @@ pub unsafe fn make_current(
 pub unsafe fn release_thread() -> Result<EglBoolean> {
     let e = egl()?;
     let before = current();
+    let readied = before.as_ref().is_some_and(|b| b.sc.before_release());
     // SAFETY: forwarded call.
     let ok = unsafe { e.eglReleaseThread.map_or(EGL_TRUE, |f| f()) };
+    if readied
+        && ok != EGL_FALSE
+        && let Some(b) = &before
+    {
+        b.sc.after_release();
+    }
     super::wsi::made_current(0);
     if before.is_some() {
         set_current(None);
@@ -792,7 +807,8 @@ pub enum Damage {
 pub unsafe fn terminate(dpy: Handle) -> Result<EglBoolean> {
     let e = egl()?;
     let here = current().filter(|c| c.display == dpy as usize);
-    if here.is_some() {
+    if let Some(c) = &here {
+        c.sc.leave_eyes_here();
         super::context::forget_current();
     }
     let gone = registry::with(|reg| {
@@ -803,6 +819,9 @@ pub unsafe fn terminate(dpy: Handle) -> Result<EglBoolean> {
         contexts
     });
     for sc in gone {
+        if sc.current_elsewhere() {
+            sc.mark_ended_elsewhere();
+        }
         sc.destroy_ours();
         sc.mark_closed();
     }

@@ -198,7 +198,16 @@ int main(int argc, char **argv)
         }
         case 4:
             /* The display terminated while the context is current: the
-             * context and surface live until released. */
+             * context and surface live until released. First at 64x48,
+             * where llvmpipe's rows have no padding: a layer whose second
+             * eye's memory begins right after the first's must keep what
+             * the program draws after the terminate out of that memory
+             * (the driver reads the word before the second eye when it
+             * frees the memory at the release). */
+            XResizeWindow(x, win, 64, 48);
+            XSync(x, False);
+            draw(0.25f);
+            say("swap-64x48", eglSwapBuffers(dpy, s));
             say("terminate-current", eglTerminate(dpy));
             draw(0.5f);
             say("swap-terminated", eglSwapBuffers(dpy, s));

@@ -7,19 +7,31 @@
  * that sees an EGL or GL error, says so; at the end each prints
  * "thread N ok FRAMES" or what went wrong.
  *
- *   egl_threads FRAMES
+ * With "terminate", the windows are 64x48 (rows without padding in
+ * llvmpipe) and the main thread calls eglTerminate halfway, while both
+ * contexts are current on their threads: EGL keeps them usable until
+ * released, so the threads go on drawing and reading their pictures
+ * (their swaps now fail with EGL_NOT_INITIALIZED), then release them,
+ * which frees them in the driver.
+ *
+ *   egl_threads FRAMES [terminate]
  */
+#define _POSIX_C_SOURCE 200112L
 #include <EGL/egl.h>
 #include <GLES2/gl2.h>
 #include <X11/Xlib.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static EGLDisplay dpy;
 static EGLConfig config;
 static Display *x;
 static int frames;
+static int terminate;
+static int width = 100, height = 80;
+static pthread_barrier_t halfway;
 static pthread_mutex_t xlock = PTHREAD_MUTEX_INITIALIZER;
 
 struct job {
@@ -66,7 +78,7 @@ static void *run(void *arg)
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
         unsigned char corner[4], middle[4];
         glReadPixels(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, corner);
-        glReadPixels(50, 40, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, middle);
+        glReadPixels(width / 2, height / 2, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, middle);
         int want_r = j->n ? 255 : 0, want_b = (i % 2) ? 255 : 0;
         if (corner[0] != want_r || corner[1] != 0 || corner[2] != want_b || middle[0] != 0 ||
             middle[1] != 255 || middle[2] != want_r) {
@@ -77,11 +89,25 @@ static void *run(void *arg)
                      want_r);
         }
         GLenum e = glGetError();
-        if (!eglSwapBuffers(dpy, s) || e != GL_NO_ERROR) {
+        int terminated = terminate && i > frames / 2;
+        EGLBoolean swapped = eglSwapBuffers(dpy, s);
+        EGLint egl_error = eglGetError();
+        if (terminated ? swapped || egl_error != EGL_NOT_INITIALIZED
+                       : !swapped || e != GL_NO_ERROR) {
             j->bad = 1;
-            snprintf(j->why, sizeof j->why, "frame %d: GL 0x%x EGL 0x%x", i, e,
-                     (unsigned)eglGetError());
+            snprintf(j->why, sizeof j->why, "frame %d: GL 0x%x EGL %d 0x%x", i, e, swapped,
+                     (unsigned)egl_error);
         }
+        if (terminate && i == frames / 2) {
+            /* Both threads here: the main thread terminates; then on. */
+            pthread_barrier_wait(&halfway);
+            pthread_barrier_wait(&halfway);
+        }
+    }
+    if (terminate && j->bad) {
+        /* The main thread waits for this thread at halfway. */
+        pthread_barrier_wait(&halfway);
+        pthread_barrier_wait(&halfway);
     }
     eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroySurface(dpy, s);
@@ -93,6 +119,12 @@ static void *run(void *arg)
 int main(int argc, char **argv)
 {
     frames = argc > 1 ? atoi(argv[1]) : 100;
+    terminate = argc > 2 && !strcmp(argv[2], "terminate");
+    if (terminate) {
+        width = 64;
+        height = 48;
+    }
+    pthread_barrier_init(&halfway, NULL, 3);
     XInitThreads();
     x = XOpenDisplay(NULL);
     if (!x) {
@@ -114,12 +146,19 @@ int main(int argc, char **argv)
         jobs[i].n = i;
         jobs[i].bad = 0;
         jobs[i].why[0] = 0;
-        jobs[i].win = XCreateSimpleWindow(x, DefaultRootWindow(x), i * 120, 0, 100, 80, 0, 0, 0);
+        jobs[i].win = XCreateSimpleWindow(x, DefaultRootWindow(x), i * 120, 0, (unsigned)width,
+                                          (unsigned)height, 0, 0, 0);
         XMapWindow(x, jobs[i].win);
     }
     XSync(x, False);
     for (int i = 0; i < 2; i++)
         pthread_create(&t[i], NULL, run, &jobs[i]);
+    if (terminate) {
+        pthread_barrier_wait(&halfway);
+        if (!eglTerminate(dpy))
+            printf("eglTerminate failed: 0x%x\n", (unsigned)eglGetError());
+        pthread_barrier_wait(&halfway);
+    }
     int status = 0;
     for (int i = 0; i < 2; i++) {
         pthread_join(t[i], NULL);
