@@ -659,7 +659,7 @@ impl StereoContext {
     /// now on it renders into the real default framebuffer, in mono, where
     /// it had the emulated one bound, and what it rendered into the eyes is
     /// finished. The driver frees the eyes' memory with the share group at
-    /// the release, reading the word [`Self::end_of_share_group`] writes
+    /// the release, reading the word the layer writes at the end of the share group
     /// inside the first eye's rows: nothing may render over it after that.
     pub fn leave_eyes_here(&self) {
         let Ok(r) = real() else {
@@ -682,16 +682,18 @@ impl StereoContext {
         }
     }
 
-    /// eglTerminate of its display while it is current on another thread
-    /// (see [`StereoContext::ended_elsewhere`]).
+    /// eglTerminate of its display while it is current on another thread,
+    /// which may render into its eyes until it releases it: their memory
+    /// is readied for the driver, and the layer's view of it unmapped, at
+    /// that release ([`StereoContext::before_release`]), not now.
     pub fn mark_ended_elsewhere(&self) {
         self.ended_elsewhere.store(true, Ordering::SeqCst);
     }
 
     /// Before the real call that releases it on this thread (eglMakeCurrent,
     /// eglReleaseThread), where the driver may free its share group: for a
-    /// context whose display was terminated while it was current here (see
-    /// [`StereoContext::ended_elsewhere`]), its rendering is finished and
+    /// context whose display was terminated while it was current here
+    /// ([`StereoContext::mark_ended_elsewhere`]), its rendering is finished and
     /// the eyes' memory readied for the driver's free. Returns whether
     /// [`StereoContext::after_release`] must follow a successful release.
     pub fn before_release(&self) -> bool {
