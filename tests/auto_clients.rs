@@ -15,6 +15,8 @@
 //! say it): red at w 2, green at w 4, blue at w 8 and a white HUD bar.
 
 mod common;
+#[path = "common/parallax.rs"]
+mod parallax;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -31,10 +33,21 @@ const S: f64 = 0.07;
 /// `glstereo-run --auto -m side-by-side-half --convergence C PROGRAM ARGS`
 /// (`convergence` None: without --auto).
 fn command(x: &Xvfb, convergence: Option<f64>, program: &Path, args: &[&str]) -> Command {
+    command_in("--auto", x, convergence, program, args)
+}
+
+/// [`command`] in automatic mode `auto` (`--auto` or `--auto=depth`).
+fn command_in(
+    auto: &str,
+    x: &Xvfb,
+    convergence: Option<f64>,
+    program: &Path,
+    args: &[&str],
+) -> Command {
     let c = convergence.map(|c| c.to_string());
     let mut options = vec!["-m", "side-by-side-half"];
     if let Some(c) = &c {
-        options.extend(["--auto", "--separation", SEPARATION, "--convergence", c]);
+        options.extend([auto, "--separation", SEPARATION, "--convergence", c]);
     }
     under_layer_with(x, &options, program, args)
 }
@@ -309,6 +322,54 @@ fn a_mono_qt5_opengl_widget_on_egl_under_auto_shows_each_depth_with_its_parallax
         &[],
         "Qt 5 QOpenGLWidget on EGL",
     );
+}
+
+/// The same programs under `--auto=depth`. They draw their squares with
+/// the depth test off, so their depth holds no scene: each frame is
+/// shown flat, both eyes the program's picture (not moved by whatever
+/// the depth holds), and standard error says why and what to use.
+/// Desktop GL on GLX, and OpenGL ES on EGL.
+#[test]
+fn mono_programs_that_write_no_depth_are_flat_under_auto_depth_and_told_so() {
+    let glfw = c_client("glfw_depths", &["-lglfw"]);
+    let sdl = c_client("sdl_depths", &["-lSDL2"]);
+    for (exe, title) in [(&glfw, "glfw_depths"), (&sdl, "sdl_depths")] {
+        let _one = one_renderer_at_a_time();
+        let x = Xvfb::start(320, 240);
+        let said = "wrote no depth";
+        let run = run_client_saying(
+            &x,
+            command_in("--auto=depth", &x, Some(DEPTHS_C), exe, &[]),
+            title,
+            &[said],
+        );
+        keep(&run.shot, &format!("{title}-auto-depth"));
+        assert!(
+            run.stderr.contains(said) && run.stderr.contains("--auto renders each eye"),
+            "{title}: {}",
+            run.stderr
+        );
+        let [l, r] = eyes_of(&run.shot);
+        assert_eq!(
+            parallax::differing_pixels(&l, &r),
+            0,
+            "{title}: the eyes of a frame without depth differ"
+        );
+        // Both eyes the program's picture, squeezed: each square where
+        // the program put it, the HUD bar across the bottom.
+        for (name, is, x_ndc) in [
+            ("red", &red as &dyn Fn([u8; 4]) -> bool, -0.5),
+            ("green", &green, 0.0),
+            ("blue", &blue, 0.5),
+        ] {
+            let (_, bx, _) = blob(&l, is);
+            let want = (x_ndc + 1.0) / 2.0 * l.width() as f64;
+            assert!(
+                (bx - want).abs() <= 1.0,
+                "{title}: the {name} square is at x {bx:.1} in each eye, not {want:.1}"
+            );
+        }
+    }
 }
 
 /// glxgears' gears (camera 40 units away: w ≈ 35…45) in one run per

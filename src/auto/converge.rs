@@ -115,6 +115,11 @@ pub struct Frame {
     /// whose colour then is in the right eye's layer
     /// ([`crate::auto::from_depth`]).
     pub overlays: bool,
+    /// `--auto=depth`: a perspective draw of the frame wrote depth (the
+    /// depth test on, depth writes on). Where none did, the depth holds no
+    /// scene (what it holds is a clear, or undefined), and no eye can be
+    /// made from it.
+    pub depth_written: bool,
 }
 
 /// How a frame's scene was drawn where automatic convergence measures it.
@@ -795,6 +800,7 @@ mod tests {
             left_shift: -0.2,
             converges: true,
             overlays: false,
+            depth_written: true,
         };
         for zc in [0.2, 0.5, 0.8] {
             let seen = Seen {

@@ -507,6 +507,14 @@ unsafe fn rule_of(
         ));
         return Ok(None);
     }
+    if !frame.depth_written {
+        crate::report::warn(
+            "--auto=depth: this frame's scene wrote no depth (its draws have the depth test or \
+             depth writes off), so no eye can be made from it: it is flat; --auto renders \
+             each eye",
+        );
+        return Ok(None);
+    }
     let Some(rule) = rule_for(frame, &scene) else {
         return Ok(None);
     };

@@ -330,6 +330,10 @@ pub struct AutoState {
     /// window's eyes after this frame's scene, and the scene's colour was
     /// copied into the right eye's layer before it ([`keep_scene_colour`]).
     colour_kept: bool,
+    /// `--auto=depth`: a perspective draw of this frame wrote depth
+    /// ([`converge::Frame::depth_written`]); looked at by each draw until
+    /// one did.
+    depth_written: bool,
     /// The texture units holding textures with eyes, as last scanned, and
     /// the twins' generation then; None: to be scanned again (a binding
     /// changed: the texture commands, glPopAttrib, a display list).
@@ -1635,6 +1639,20 @@ fn records(st: &AutoState) -> bool {
     live::from_depth() || (!st.unmeasured && live::convergence().is_none())
 }
 
+/// Whether a draw now writes depth: the depth test on and depth writes
+/// on (a framebuffer without depth writes none, and its depth stays
+/// what the frame's clear made it).
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn writes_depth(f: &AutoFns) -> bool {
+    const GL_DEPTH_WRITEMASK: u32 = 0x0B72;
+    // SAFETY: contract; queries of state every context has.
+    unsafe {
+        (f.is_enabled)(crate::gl::enums::GL_DEPTH_TEST) != 0 && integer(f, GL_DEPTH_WRITEMASK) != 0
+    }
+}
+
 /// `--auto=depth`: a flat draw (w = 1: a HUD, text, a 2D pass) comes
 /// into the window's eyes after the frame's scene: the colour its draw
 /// buffer holds now (the scene) is copied into that array's right-eye
@@ -1714,6 +1732,7 @@ pub unsafe fn frame_geometry(
     st.clock_read = false;
     let copied = std::mem::take(&mut st.depth_copied);
     let overlays = std::mem::take(&mut st.colour_kept);
+    let depth_written = std::mem::take(&mut st.depth_written);
     let origin = {
         let o = &mut st.frame_origins;
         let median = (!o.is_empty()).then(|| {
@@ -1766,6 +1785,7 @@ pub unsafe fn frame_geometry(
             left_shift: crate::math::Eye::Left.sign() * st.settings().effective_separation(),
             converges,
             overlays,
+            depth_written,
         })
     }
 }
@@ -1846,6 +1866,9 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     // A known perspective draw is the scene; one whose
                     // projection is unknown only where none known came.
                     let known = |s: &Option<Scene>| s.is_some_and(|s| s.perspective.is_some());
+                    if !st.depth_written && perspective.is_some() && live::from_depth() {
+                        st.depth_written = writes_depth(f);
+                    }
                     if fbo == window_fbo && known(&perspective) {
                         st.window_drawn = perspective;
                         st.depth_copied = false;
