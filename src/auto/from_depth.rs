@@ -508,7 +508,15 @@ unsafe fn rule_of(
         return Ok(None);
     }
     if !frame.depth_written {
-        crate::report::warn(
+        // Said always where the scene is known to be in perspective (a 3D
+        // scene lost); with -v only where its projection cannot be seen
+        // (it may be a picture of w = 1 drawn by a shader of its own).
+        let say = if scene.perspective.is_some() {
+            crate::report::warn
+        } else {
+            crate::report::tell
+        };
+        say(
             "--auto=depth: this frame's scene wrote no depth (its draws have the depth test or \
              depth writes off), so no eye can be made from it: it is flat; --auto renders \
              each eye",
