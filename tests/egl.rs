@@ -659,14 +659,11 @@ fn a_programs_framebuffers_in_another_share_group_are_its_own_to_delete_under_au
     assert_eq!(ours, mesa, "under --auto (stderr: {stderr})");
 }
 
-#[test]
-fn two_threads_drawing_through_egl_under_auto_each_read_their_own_picture() {
-    // tests/c/egl_threads.c: two threads, one EGLDisplay, a window,
-    // surface and ES 2 context each, 300 frames each with read-backs.
-    // Run five times: a race shows as a wrong read-back, an error or a
-    // crash now and then, not every time.
-    let _one = one_renderer_at_a_time();
-    let x = Xvfb::start(400, 300);
+/// Runs tests/c/egl_threads.c (two threads, one EGLDisplay, a window,
+/// surface and ES 2 context each) under `glstereo-run OPTIONS` with
+/// `args`, `rounds` times on `x`: each time both threads report their
+/// `frames` frames as their own picture, and the layer says nothing.
+fn egl_threads(x: &Xvfb, options: &[&str], args: &[&str], frames: u32, rounds: u32) {
     let program = build_once("egl_threads", |out| {
         common::preload::compile_plain(
             &common::root().join("tests/c/egl_threads.c"),
@@ -674,23 +671,35 @@ fn two_threads_drawing_through_egl_under_auto_each_read_their_own_picture() {
             &["-lEGL", "-lGLESv2", "-lX11", "-lpthread"],
         )
     });
-    for round in 0..5 {
+    let want = format!("thread 0 ok {frames}\nthread 1 ok {frames}\n");
+    for round in 0..rounds {
         let out = Command::new(&built().run)
-            .args(["--auto", "-m", "side-by-side"])
+            .args(options)
             .arg(&program)
-            .arg("300")
+            .arg(frames.to_string())
+            .args(args)
             .env("DISPLAY", &x.display)
             .output()
             .expect("egl_threads runs");
         let stdout = String::from_utf8_lossy(&out.stdout);
         let stderr = String::from_utf8_lossy(&out.stderr);
+        let what = format!("{options:?} {args:?} round {round}");
         assert!(
-            out.status.success() && stdout.contains("thread 0 ok 300\nthread 1 ok 300\n"),
-            "round {round}: exited {}:\n{stdout}{stderr}",
+            out.status.success() && stdout.contains(&want),
+            "{what}: exited {}:\n{stdout}{stderr}",
             out.status
         );
-        assert!(!stderr.contains("glstereo"), "round {round}: {stderr}");
+        assert!(!stderr.contains("glstereo"), "{what}: {stderr}");
     }
+}
+
+#[test]
+fn two_threads_drawing_through_egl_under_auto_each_read_their_own_picture() {
+    // 300 frames each with read-backs, five times: a race shows as a
+    // wrong read-back, an error or a crash now and then, not every time.
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(400, 300);
+    egl_threads(&x, &["--auto", "-m", "side-by-side"], &[], 300, 5);
 }
 
 #[test]
@@ -704,33 +713,7 @@ fn egl_terminated_while_two_threads_draw_under_auto_lets_them_draw_until_they_re
     // memory for the driver at the release (once a crash there).
     let _one = one_renderer_at_a_time();
     let x = Xvfb::start(400, 300);
-    let program = build_once("egl_threads", |out| {
-        common::preload::compile_plain(
-            &common::root().join("tests/c/egl_threads.c"),
-            out,
-            &["-lEGL", "-lGLESv2", "-lX11", "-lpthread"],
-        )
-    });
     for auto in ["--auto", "--auto=depth"] {
-        for round in 0..3 {
-            let out = Command::new(&built().run)
-                .arg(auto)
-                .arg(&program)
-                .args(["40", "terminate"])
-                .env("DISPLAY", &x.display)
-                .output()
-                .expect("egl_threads runs");
-            let stdout = String::from_utf8_lossy(&out.stdout);
-            let stderr = String::from_utf8_lossy(&out.stderr);
-            assert!(
-                out.status.success() && stdout.contains("thread 0 ok 40\nthread 1 ok 40\n"),
-                "{auto} round {round}: exited {}:\n{stdout}{stderr}",
-                out.status
-            );
-            assert!(
-                !stderr.contains("glstereo"),
-                "{auto} round {round}: {stderr}"
-            );
-        }
+        egl_threads(&x, &[auto], &["terminate"], 40, 3);
     }
 }
