@@ -659,6 +659,68 @@ fn a_programs_framebuffers_in_another_share_group_are_its_own_to_delete_under_au
     assert_eq!(ours, mesa, "under --auto (stderr: {stderr})");
 }
 
+/// A program on an EGL display with no windows (Mesa's surfaceless
+/// platform, an EGL device: where `vglrun -d egl` renders a program's GLX
+/// frames) has nothing to show eyes in: under either automatic mode it
+/// gets Mesa's every answer, and stderr tells the user once where the
+/// layer goes instead of leaving them with a silent mono picture.
+#[test]
+fn a_program_on_a_windowless_egl_display_stays_mono_under_auto_and_is_told_why() {
+    let _one = one_renderer_at_a_time();
+    let exe = build_once("egl_windowless", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_windowless.c"),
+            out,
+            &["-lEGL", "-lGLESv2"],
+        )
+    });
+    let said = "--auto: a context on an EGL device or surfaceless display has no window \
+                to show two eyes in, so it stays mono; under VirtualGL, start the layer \
+                inside it: vglrun -d egl glstereo-run --auto PROGRAM";
+    for platform in ["surfaceless", "device"] {
+        let run = |layer: Option<&str>| {
+            let mut cmd = match layer {
+                Some(auto) => {
+                    let mut c = Command::new(&built().run);
+                    c.arg(auto).arg(&exe);
+                    c
+                }
+                None => Command::new(&exe),
+            };
+            let out = cmd
+                .arg(platform)
+                .env_remove("DISPLAY")
+                .output()
+                .expect("runs");
+            let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+            assert!(
+                out.status.success(),
+                "{platform} {layer:?}: {}\n{stderr}",
+                out.status
+            );
+            (String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
+        };
+        let (mesa, _) = run(None);
+        assert!(
+            mesa.contains("pixel 32,24: 0 255 0 255\n") && mesa.ends_with("error 0x0\ndone\n"),
+            "{mesa}"
+        );
+        for auto in ["--auto", "--auto=depth"] {
+            let (ours, stderr) = run(Some(auto));
+            assert_eq!(ours, mesa, "{platform} {auto} (stderr: {stderr})");
+            assert_eq!(
+                stderr.matches(said).count(),
+                1,
+                "{platform} {auto}: said once, and nothing else: {stderr}"
+            );
+            assert_eq!(stderr.lines().count(), 1, "{platform} {auto}: {stderr}");
+        }
+        let (ours, stderr) = run(Some("--"));
+        assert_eq!(ours, mesa, "{platform} without --auto");
+        assert!(stderr.is_empty(), "{platform} without --auto: {stderr}");
+    }
+}
+
 /// Runs tests/c/egl_threads.c (two threads, one EGLDisplay, a window,
 /// surface and ES 2 context each) under `glstereo-run OPTIONS` with
 /// `args`, `rounds` times on `x`: each time both threads report their

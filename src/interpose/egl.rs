@@ -89,6 +89,10 @@ pub const EGL_PLATFORM_X11_KHR: EglEnum = 0x31D5;
 pub const EGL_PLATFORM_WAYLAND_KHR: EglEnum = 0x31D8;
 /// EGL_PLATFORM_XCB_EXT.
 pub const EGL_PLATFORM_XCB_EXT: EglEnum = 0x31DC;
+/// EGL_EXT_platform_device.
+pub const EGL_PLATFORM_DEVICE_EXT: EglEnum = 0x313F;
+/// EGL_MESA_platform_surfaceless.
+pub const EGL_PLATFORM_SURFACELESS_MESA: EglEnum = 0x31DD;
 
 macro_rules! egl_table {
     (
@@ -221,7 +225,11 @@ pub enum Platform {
     Xcb,
     /// Wayland: the native display is a `wl_display*`.
     Wayland,
-    /// Anything else (surfaceless, GBM, devices): no window.
+    /// A device or Mesa's surfaceless platform: no window surfaces at
+    /// all, only pbuffers and framebuffer objects (VirtualGL's `-d egl`
+    /// renders there).
+    Windowless,
+    /// Anything else (GBM…).
     Other,
 }
 
@@ -283,6 +291,7 @@ fn platform_of_native(native: *mut c_void) -> Platform {
         return match p.as_str() {
             "x11" => Platform::X11,
             "wayland" => Platform::Wayland,
+            "surfaceless" | "device" => Platform::Windowless,
             _ => Platform::Other,
         };
     }
@@ -310,6 +319,7 @@ fn platform_of(platform: EglEnum) -> Platform {
         EGL_PLATFORM_X11_KHR => Platform::X11,
         EGL_PLATFORM_XCB_EXT => Platform::Xcb,
         EGL_PLATFORM_WAYLAND_KHR => Platform::Wayland,
+        EGL_PLATFORM_DEVICE_EXT | EGL_PLATFORM_SURFACELESS_MESA => Platform::Windowless,
         _ => Platform::Other,
     }
 }
@@ -507,6 +517,23 @@ pub unsafe fn create_context(
     }
     super::context::context_created(ctx as usize, share as usize);
     if !super::live::auto_requested() {
+        return Ok(ctx);
+    }
+    let windowless = with_state(|s| {
+        s.displays
+            .get(&(dpy as usize))
+            .is_some_and(|d| d.platform == Platform::Windowless)
+    });
+    if windowless {
+        // No window surface can be made there, so no frame of it is ever
+        // shown: eyes made in it would never be seen. It is where
+        // VirtualGL renders a program's GLX frames (`vglrun -d egl`), whose
+        // windows the layer only sees from above VirtualGL.
+        super::warn(
+            "--auto: a context on an EGL device or surfaceless display has no \
+             window to show two eyes in, so it stays mono; under VirtualGL, start \
+             the layer inside it: vglrun -d egl glstereo-run --auto PROGRAM",
+        );
         return Ok(ctx);
     }
     // SAFETY: plain EGL query of the calling thread's bound API.
@@ -911,6 +938,8 @@ mod tests {
         assert_eq!(platform_of(EGL_PLATFORM_X11_KHR), Platform::X11);
         assert_eq!(platform_of(EGL_PLATFORM_WAYLAND_KHR), Platform::Wayland);
         assert_eq!(platform_of(EGL_PLATFORM_XCB_EXT), Platform::Xcb);
-        assert_eq!(platform_of(0x31DD), Platform::Other);
+        assert_eq!(platform_of(0x31DD), Platform::Windowless);
+        assert_eq!(platform_of(0x313F), Platform::Windowless);
+        assert_eq!(platform_of(0x31D7), Platform::Other);
     }
 }
