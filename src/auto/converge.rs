@@ -120,6 +120,10 @@ pub struct Frame {
     /// scene (what it holds is a clear, or undefined), and no eye can be
     /// made from it.
     pub depth_written: bool,
+    /// `--auto=depth`: perspective draws with the depth test off wrote
+    /// their depth into the window's depth array's second layer
+    /// ([`crate::auto::from_depth`] takes the nearer of the two).
+    pub depth_beside: bool,
 }
 
 /// How a frame's scene was drawn where automatic convergence measures it.
@@ -801,6 +805,7 @@ mod tests {
             converges: true,
             overlays: false,
             depth_written: true,
+            depth_beside: false,
         };
         for zc in [0.2, 0.5, 0.8] {
             let seen = Seen {

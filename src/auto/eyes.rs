@@ -114,6 +114,26 @@ impl DepthRows {
             }
         }
     }
+
+    /// Row `y`'s window depths where they are nearer than `out`'s: each
+    /// of `out` the smaller of the two.
+    ///
+    /// # Safety
+    /// As [`DepthRows::read_row`].
+    pub unsafe fn nearer_row(&self, y: usize, out: &mut [f32]) {
+        debug_assert!(y < self.height);
+        // SAFETY: contract; inside the mapping.
+        let row =
+            unsafe { std::slice::from_raw_parts(self.first.add(y * self.stride), self.width) };
+        let scale = 1.0 / DEPTH_MAX as f32;
+        let shift = match self.bits {
+            DepthBits::Low => 0,
+            DepthBits::High => 8,
+        };
+        for (o, &w) in out.iter_mut().zip(row) {
+            *o = o.min(((w >> shift) & DEPTH_MAX) as i32 as f32 * scale);
+        }
+    }
 }
 
 /// The layer of `eye`.
@@ -660,10 +680,23 @@ impl LayeredEyes {
     /// [`EyePixels`] are, and read as they are: after the present's
     /// glFinish.
     pub fn left_depth(&self) -> Option<DepthRows> {
+        self.depth_rows(0)
+    }
+
+    /// Layer 1 of the depth array, as [`LayeredEyes::left_depth`]. Under
+    /// `--auto=depth` no eye is drawn there: it holds the depth of the
+    /// frame's perspective draws made with the depth test off
+    /// ([`Attachments::attach_depth`]).
+    pub fn right_depth(&self) -> Option<DepthRows> {
+        self.depth_rows(1)
+    }
+
+    fn depth_rows(&self, layer: usize) -> Option<DepthRows> {
         let (m, bits) = self.depth_memory.as_ref()?;
         Some(DepthRows {
-            // SAFETY: layer 0 starts inside the mapping.
-            first: unsafe { m.map.add(m.data_offset) }
+            // SAFETY: both layers are inside the mapping (verify_depth
+            // found each where predicted).
+            first: unsafe { m.map.add(m.data_offset + layer * m.layer_stride) }
                 .cast::<u32>()
                 .cast_const(),
             stride: m.stride / 4,
@@ -1091,6 +1124,36 @@ impl Attachments {
         self.depth != 0
     }
 
+    /// Where the depth array is attached: GL_DEPTH_ATTACHMENT or
+    /// GL_DEPTH_STENCIL_ATTACHMENT.
+    pub fn depth_point(&self) -> u32 {
+        self.depth_attachment
+    }
+
+    /// Attaches layer `layer` of the depth array alone to `target`'s
+    /// framebuffer at its depth attachment point (colour and stencil
+    /// stay as they are); false where there is no depth array.
+    ///
+    /// # Safety
+    /// A context sharing the arrays is current; `target`'s framebuffer
+    /// is the one these attachments were made for.
+    pub unsafe fn attach_depth(&self, target: u32, layer: i32) -> bool {
+        if self.depth == 0 || self.depth_2d {
+            return false;
+        }
+        // SAFETY: contract.
+        unsafe {
+            (self.api.framebuffer_texture_layer)(
+                target,
+                self.depth_attachment,
+                self.depth,
+                0,
+                layer,
+            )
+        };
+        true
+    }
+
     /// The first pair's colour array (the eyes' size is its size).
     pub fn colour(&self) -> u32 {
         self.colour[0]
@@ -1131,6 +1194,70 @@ impl Attachments {
         }
         if self.stencil != 0 {
             one(GL_STENCIL_ATTACHMENT, self.stencil);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows(words: &[u32], width: usize, bits: DepthBits) -> DepthRows {
+        DepthRows {
+            first: words.as_ptr(),
+            stride: width + 1,
+            width,
+            height: words.len() / (width + 1),
+            bits,
+        }
+    }
+
+    /// Both layouts of a depth word read as their 24-bit depth, and the
+    /// second layer merged in keeps the nearer of the two at each pixel,
+    /// the padding past a row's width never read.
+    #[test]
+    fn a_row_of_depth_words_reads_as_depths_and_merges_the_nearer() {
+        let d = |v: u32| v as f32 / DEPTH_MAX as f32;
+        let (near, mid, far) = (0x10_0000, 0x80_0000, DEPTH_MAX);
+        for bits in [DepthBits::Low, DepthBits::High] {
+            let word = |depth: u32, other: u32| match bits {
+                DepthBits::Low => depth | other << 24,
+                DepthBits::High => depth << 8 | other,
+            };
+            // Two rows of three, and one word of padding each.
+            let first = [
+                word(mid, 0xAB),
+                word(far, 1),
+                word(near, 0xFF),
+                0xDEAD,
+                word(0, 7),
+                word(mid, 0),
+                word(far, 0x55),
+                0xBEEF,
+            ];
+            let second = [
+                word(near, 3),
+                word(mid, 0),
+                word(far, 0x80),
+                0,
+                word(far, 0),
+                word(far, 0),
+                word(mid, 9),
+                0,
+            ];
+            let (a, b) = (rows(&first, 3, bits), rows(&second, 3, bits));
+            let mut out = [0.0f32; 3];
+            for (y, want, merged) in [
+                (0, [d(mid), d(far), d(near)], [d(near), d(mid), d(near)]),
+                (1, [0.0, d(mid), d(far)], [0.0, d(mid), d(mid)]),
+            ] {
+                // SAFETY: the words outlive the reads; y < height.
+                unsafe { a.read_row(y, &mut out) };
+                assert_eq!(out, want, "{bits:?} row {y}");
+                // SAFETY: as above.
+                unsafe { b.nearer_row(y, &mut out) };
+                assert_eq!(out, merged, "{bits:?} row {y} merged");
+            }
         }
     }
 }

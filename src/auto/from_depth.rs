@@ -154,8 +154,8 @@ impl Pending {
                     overlays: window && overlays,
                     simd: Simd::detected(),
                     memory: match depth {
-                        Depths::Memory(rows) => Some(rows),
-                        Depths::Read => None,
+                        Depths::Memory(rows, beside) => (Some(rows), beside),
+                        Depths::Read(beside) => (None, beside),
                     },
                 })
             },
@@ -201,13 +201,17 @@ impl Pending {
         let w = self.eyes[0].width;
         let read = || &self.depth[y * w..(y + 1) * w];
         match (&job.memory, job.overlays) {
-            (None, false) => read(),
-            (memory, overlays) => {
+            ((None, None), false) => read(),
+            ((memory, beside), overlays) => {
                 row.resize(w, 0.0);
                 match memory {
                     // SAFETY: contract; y < the depth's height (rule_of).
                     Some(rows) => unsafe { rows.read_row(y, row) },
                     None => row.copy_from_slice(read()),
+                }
+                if let Some(b) = beside {
+                    // SAFETY: as above (rule_of: the window's size).
+                    unsafe { b.nearer_row(y, row) };
                 }
                 if overlays {
                     reproject::mark_overlays(colour, scene, row);
@@ -362,7 +366,10 @@ struct Job {
     overlays: bool,
     simd: Simd,
     /// The depths in place (else in the read-back).
-    memory: Option<DepthRows>,
+    /// The window's depth in place (None: read back), and where
+    /// perspective draws with the depth test off wrote theirs
+    /// ([`Depths`]).
+    memory: (Option<DepthRows>, Option<DepthRows>),
 }
 
 /// [`make`] where the eyes are GL's own: the front-left (and, with
@@ -490,7 +497,13 @@ unsafe fn rule_of(
         // The window's own depth, not overwritten since the scene: in
         // place where it is memory.
         let memory = copy.is_none().then(|| eyes.left_depth()).flatten();
-        (source, (w, h), scene, Some(memory))
+        // The depth of the perspective draws made with the depth test off
+        // (no other draw writes there): nearer wins, with the far plane
+        // as the clear depth, where "nothing" is farthest.
+        let beside = eyes
+            .right_depth()
+            .filter(|_| frame.depth_beside && frame.clear_depth == 1.0);
+        (source, (w, h), scene, Some((memory, beside)))
     });
     // A scene of known projection first, the window's before a target's
     // (as automatic convergence chooses: [`crate::auto::converge`]).
@@ -507,7 +520,11 @@ unsafe fn rule_of(
         ));
         return Ok(None);
     }
-    if !frame.depth_written {
+    let (memory, beside) = in_window.unwrap_or((None, None));
+    if beside.is_some_and(|b| b.size() != (w as usize, h as usize)) {
+        return Ok(None);
+    }
+    if !frame.depth_written && beside.is_none() {
         // Said always where the scene is known to be in perspective (a 3D
         // scene lost); with -v only where its projection cannot be seen
         // (it may be a picture of w = 1 drawn by a shader of its own).
@@ -532,20 +549,23 @@ unsafe fn rule_of(
         window: in_window.is_some(),
         depth,
     };
-    if let Some(Some(rows)) = in_window {
-        if rows.size() == (w as usize, h as usize) {
-            crate::report::tell(
-                "--auto=depth: the window's depth is read in place (memory shared with the \
-                 renderer)",
-            );
-            return Ok(Some(plan(Depths::Memory(rows))));
-        }
+    if !frame.depth_written {
+        // No draw wrote the window's depth: it holds nothing of this frame
+        // (a program that never clears it). The depth beside alone.
+        return Ok(beside.map(|b| plan(Depths::Memory(b, None))));
+    }
+    if let Some(rows) = memory.filter(|m| m.size() == (w as usize, h as usize)) {
+        crate::report::tell(
+            "--auto=depth: the window's depth is read in place (memory shared with the \
+             renderer)",
+        );
+        return Ok(Some(plan(Depths::Memory(rows, beside))));
     }
     switch_in()?;
     // SAFETY: contract; the rectangle is the whole of the eyes.
     let read =
         unsafe { source.read_left_depth(gl, fb.read_fbo(), (0, 0, w as i32, h as i32), depth) };
-    Ok((read && depth.len() >= w as usize * h as usize).then(|| plan(Depths::Read)))
+    Ok((read && depth.len() >= w as usize * h as usize).then(|| plan(Depths::Read(beside))))
 }
 
 /// How a frame's eyes are made ([`rule_of`]).
@@ -561,10 +581,13 @@ struct Plan {
 /// Where a frame's depths are.
 #[derive(Clone, Copy)]
 enum Depths {
-    /// Read back into the scratch buffer, rows bottom first.
-    Read,
-    /// The window's depth in place.
-    Memory(DepthRows),
+    /// Read back into the scratch buffer, rows bottom first; with the
+    /// depth array's second layer where perspective draws with the depth
+    /// test off wrote theirs.
+    Read(Option<DepthRows>),
+    /// The window's depth in place, and the depth array's second layer
+    /// where perspective draws with the depth test off wrote theirs.
+    Memory(DepthRows, Option<DepthRows>),
 }
 
 /// The rule `--auto` draws `scene` of `frame` with, as a shift of window
@@ -656,7 +679,7 @@ mod tests {
                     rule,
                     viewport,
                     window: true,
-                    depth: Depths::Read,
+                    depth: Depths::Read(None),
                 };
                 // Made as read: row by row, the eyes left as they were.
                 let (mut l, mut r) = (colour.clone(), scene.clone());

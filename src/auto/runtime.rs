@@ -173,6 +173,12 @@ gl_fns! {
         get_query_objectui64v = c"glGetQueryObjectui64v": fn(u32, u32, *mut u64);
         begin_conditional_render = c"glBeginConditionalRender": fn(u32, u32);
         get_query_indexediv = c"glGetQueryIndexediv": fn(u32, u32, u32, *mut i32);
+        depth_func = c"glDepthFunc": fn(u32);
+        depth_mask = c"glDepthMask": fn(u8);
+        clear_bufferfv = c"glClearBufferfv": fn(u32, i32, *const f32);
+        bind_framebuffer = c"glBindFramebuffer": fn(u32, u32);
+        is_framebuffer = c"glIsFramebuffer": fn(u32) -> u8;
+        get_framebuffer_attachment_parameteriv = c"glGetFramebufferAttachmentParameteriv": fn(u32, u32, u32, *mut i32);
         pause_transform_feedback = c"glPauseTransformFeedback": fn();
         resume_transform_feedback = c"glResumeTransformFeedback": fn();
     }
@@ -334,6 +340,15 @@ pub struct AutoState {
     /// ([`converge::Frame::depth_written`]); looked at by each draw until
     /// one did.
     depth_written: bool,
+    /// `--auto=depth`: a perspective draw of this frame with the depth
+    /// test off came into the window's eyes, and wrote its depth into the
+    /// depth array's second layer ([`depth_beside`]).
+    depth_beside: bool,
+    /// The window's eyes' framebuffer object and its attachments while
+    /// the depth array's second layer is at its depth attachment point
+    /// (between draws with the depth test off, [`depth_beside`]); put
+    /// back by [`restore_depth`] before anything else may use its depth.
+    beside_attached: Option<(u32, Attachments)>,
     /// The texture units holding textures with eyes, as last scanned, and
     /// the twins' generation then; None: to be scanned again (a binding
     /// changed: the texture commands, glPopAttrib, a display list).
@@ -987,6 +1002,14 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
     let Some(t) = tables() else {
         return draw();
     };
+    if matches!(
+        call.family,
+        Family::Clear | Family::Read | Family::Framebuffer
+    ) {
+        // They may use the window's depth, or change what is attached.
+        // SAFETY: the program's context is current on this thread.
+        cur.with_auto(|st, _| unsafe { restore_depth(&t.gl, st) });
+    }
     match call.family {
         Family::Settings => {
             if matches!(
@@ -1529,6 +1552,13 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     // only uploads to those are its camera: a light's matrix (a shadow
     // map's lookup, glmark2's refract) is perspective too.
     let location = call.u32(at) as i32;
+    // Where the position is that one matrix times the vertex, what is
+    // uploaded to it is the draw's whole projection: an affine one (a
+    // HUD's identity or orthographic matrix) makes its draws flat.
+    let whole = count == 1
+        && rewritten(cur.group(), program).is_some_and(|r| {
+            r.projecting[0] == location && r.projecting[1..].iter().all(|&l| l < 0)
+        });
     if let Some(r) = rewritten(cur.group(), program) {
         let known = r.projecting.iter().filter(|&&l| l >= 0);
         if r.projecting[0] >= 0
@@ -1544,7 +1574,7 @@ fn learn_projection(cur: &impl Host, call: &Call) {
     // no perspective one came.
     cur.with_auto(|st, _| {
         match st.uploads.iter_mut().find(|(q, _)| *q == program) {
-            Some(u) if p.is_some() => u.1 = p,
+            Some(u) if p.is_some() || whole => u.1 = p,
             Some(_) => {}
             None => st.uploads.push((program, p)),
         }
@@ -1653,6 +1683,128 @@ unsafe fn writes_depth(f: &AutoFns) -> bool {
     }
 }
 
+/// `--auto=depth`: a draw of known perspective into the window's eyes
+/// with the depth test off (glmark2 ideas' table, a floor or sky drawn
+/// first as a backdrop) writes no depth, so nothing could be made of its
+/// pixels: it would stay at the screen however far it is. It is drawn
+/// as the program drew it, with the depth array's second layer (no eye's
+/// under this mode) at the depth attachment and the depth test on with
+/// GL_ALWAYS: every fragment passes, as with the test off, so the colour
+/// is the program's to the bit, and the second layer gets the depth of
+/// what it shows (the last such draw's, the painter's order). That layer
+/// is cleared to the far plane at the first such draw of a frame; the
+/// present takes the nearer of the two layers ([`crate::auto::from_depth`]).
+/// The program's depth state is as it was after the draw; the second
+/// layer stays attached until something else may use the depth
+/// ([`restore_depth`]: a renderer such as llvmpipe finishes its binned
+/// work at each change of attachments, so one a draw would cost more than
+/// the draws). Not with the stencil test on (the second layer's stencil
+/// is not the program's) or rasterizer discard (nothing drawn). Whether
+/// the draw wrote its depth there.
+///
+/// # Safety
+/// The program's context is current on this thread, the window's eyes'
+/// framebuffer object `fbo` bound for drawing with `layered` attached
+/// (or, after an earlier such draw, its second depth layer).
+unsafe fn depth_beside(
+    f: &AutoFns,
+    st: &mut AutoState,
+    (fbo, layered): (u32, &Attachments),
+    draw: &mut dyn FnMut(),
+) -> bool {
+    const GL_STENCIL_TEST: u32 = 0x0B90;
+    const GL_SCISSOR_TEST: u32 = 0x0C11;
+    const GL_DEPTH_FUNC: u32 = 0x0B74;
+    const GL_DEPTH_WRITEMASK: u32 = 0x0B72;
+    const GL_DEPTH: u32 = 0x1801;
+    const GL_ALWAYS: u32 = 0x0207;
+    use crate::gl::enums::GL_DEPTH_TEST;
+    // SAFETY: contract.
+    unsafe {
+        if (f.is_enabled)(GL_DEPTH_TEST) != 0
+            || (f.is_enabled)(GL_STENCIL_TEST) != 0
+            || (f.is_enabled)(GL_RASTERIZER_DISCARD) != 0
+        {
+            restore_depth(f, st);
+            draw();
+            return false;
+        }
+        if st.beside_attached.is_none() {
+            if !layered.attach_depth(GL_DRAW_FRAMEBUFFER, 1) {
+                draw();
+                return false;
+            }
+            st.beside_attached = Some((fbo, *layered));
+        }
+        let func = integer(f, GL_DEPTH_FUNC) as u32;
+        let mask = integer(f, GL_DEPTH_WRITEMASK) != 0;
+        (f.depth_mask)(1);
+        if !st.depth_beside {
+            let scissor = (f.is_enabled)(GL_SCISSOR_TEST) != 0;
+            if scissor {
+                (f.disable)(GL_SCISSOR_TEST);
+            }
+            let far = 1.0f32;
+            (f.clear_bufferfv)(GL_DEPTH, 0, &far);
+            if scissor {
+                (f.enable)(GL_SCISSOR_TEST);
+            }
+        }
+        (f.enable)(GL_DEPTH_TEST);
+        (f.depth_func)(GL_ALWAYS);
+        draw();
+        (f.disable)(GL_DEPTH_TEST);
+        (f.depth_func)(func);
+        (f.depth_mask)(mask as u8);
+        true
+    }
+}
+
+/// Puts the window's depth (the depth array's first layer) back at its
+/// eyes' depth attachment where [`depth_beside`] left the second there.
+///
+/// # Safety
+/// The program's context is current on this thread.
+unsafe fn restore_depth(f: &AutoFns, st: &mut AutoState) {
+    let Some((fbo, layered)) = st.beside_attached.take() else {
+        return;
+    };
+    const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME: u32 = 0x8CD1;
+    const GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER: u32 = 0x8CD4;
+    // SAFETY: contract; the framebuffer object is this context's.
+    unsafe {
+        let bound = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
+        if bound != fbo {
+            if (f.is_framebuffer)(fbo) == 0 {
+                // Gone with its drawable.
+                return;
+            }
+            (f.bind_framebuffer)(GL_DRAW_FRAMEBUFFER, fbo);
+        }
+        // Only where the second layer is still there: the layer may have
+        // attached new eyes since (a resize), or let the object go.
+        let query = |pname| {
+            let mut v = -1;
+            (f.get_framebuffer_attachment_parameteriv)(
+                GL_DRAW_FRAMEBUFFER,
+                layered.depth_point(),
+                pname,
+                &mut v,
+            );
+            v
+        };
+        if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 == fbo
+            && query(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME) as u32 == layered.depth()
+            && query(GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER) == 1
+        {
+            layered.attach_depth(GL_DRAW_FRAMEBUFFER, 0);
+        }
+        if bound != fbo {
+            (f.bind_framebuffer)(GL_DRAW_FRAMEBUFFER, bound);
+        }
+    }
+}
+
 /// `--auto=depth`: a flat draw (w = 1: a HUD, text, a 2D pass) comes
 /// into the window's eyes after the frame's scene: the colour its draw
 /// buffer holds now (the scene) is copied into that array's right-eye
@@ -1724,6 +1876,10 @@ pub unsafe fn frame_geometry(
     // This frame's draws read their projections if the last present
     // said so (or its first draw found it due); the next frame's do if
     // it is measured.
+    if let Some(t) = tables() {
+        // SAFETY: contract.
+        unsafe { restore_depth(&t.gl, st) };
+    }
     let measured = !st.unmeasured;
     if measured {
         st.measured_at = Some(std::time::Instant::now());
@@ -1733,6 +1889,7 @@ pub unsafe fn frame_geometry(
     let copied = std::mem::take(&mut st.depth_copied);
     let overlays = std::mem::take(&mut st.colour_kept);
     let depth_written = std::mem::take(&mut st.depth_written);
+    let depth_beside = std::mem::take(&mut st.depth_beside);
     let origin = {
         let o = &mut st.frame_origins;
         let median = (!o.is_empty()).then(|| {
@@ -1786,6 +1943,7 @@ pub unsafe fn frame_geometry(
             converges,
             overlays,
             depth_written,
+            depth_beside,
         })
     }
 }
@@ -1818,6 +1976,10 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
             }
             return draw();
         }
+        if call.family != Family::Draw {
+            // SAFETY: the program's context is current on this thread.
+            unsafe { restore_depth(f, st) };
+        }
         let Some((mut app_fbo, mut layered)) = eyes_of else {
             return draw();
         };
@@ -1835,6 +1997,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                 let context = cur.context();
                 let blit = call.family == Family::Blit;
                 let mut sampled = Sampled::default();
+                let mut known_window_draw = false;
                 if st.compiling.is_none() {
                     let api = render_targets::context_api(targets);
                     let fbo = integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32;
@@ -1869,6 +2032,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     if !st.depth_written && perspective.is_some() && live::from_depth() {
                         st.depth_written = writes_depth(f);
                     }
+                    known_window_draw = fbo == window_fbo && known(&perspective);
                     if fbo == window_fbo && known(&perspective) {
                         st.window_drawn = perspective;
                         st.depth_copied = false;
@@ -2089,6 +2253,32 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     lists && call.name == "glCallList" && st.lists.get(&call.u32(0)) == Some(&true);
                 let settings = st.draw_settings(f);
                 let path = choose(t, cur, st, app_fbo, lists && !plain);
+                if live::from_depth()
+                    && call.family == Family::Draw
+                    && app_fbo == window_fbo
+                    && known_window_draw
+                    && !st.feedback
+                {
+                    let mut queries = std::mem::take(&mut st.queries);
+                    let mut beside = false;
+                    let q = &mut queries;
+                    eyes(
+                        t,
+                        path,
+                        &settings,
+                        &layered,
+                        &sampled,
+                        false,
+                        q,
+                        &mut || {
+                            beside = depth_beside(f, st, (window_fbo, &layered), draw);
+                        },
+                    );
+                    st.queries = queries;
+                    st.depth_beside |= beside;
+                    return;
+                }
+                restore_depth(f, st);
                 if st.feedback && call.family == Family::Draw {
                     // Transform feedback captures what the mono program
                     // would: the draw once, unshifted and not rasterized,
