@@ -222,6 +222,10 @@ fn glmarks_scenes_from_depth_are_at_depth_and_its_2d_scenes_flat() {
     at_depth_in(&x, depth, "glmark2", "terrain", 6, 10);
     at_depth_in(&x, depth, "glmark2", "refract", 3, 6);
     at_depth_in(&x, depth, "glmark2-es2", "refract", 3, 6);
+    // Drawn with the depth test off: ideas' table and the text on its
+    // paper, jellyfish's translucent body (their depth written beside).
+    at_depth_in(&x, depth, "glmark2", "ideas:speed=duration", 3, 6);
+    at_depth_in(&x, depth, "glmark2", "jellyfish", 3, 6);
     for bench in [
         "effect2d:kernel=0,1,0;1,-4,1;0,1,0;",
         "desktop:windows=4:effect=blur:blur-radius=5:passes=1:separable=true",
