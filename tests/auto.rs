@@ -613,6 +613,85 @@ fn queries_count_the_mono_draws_once() {
     }
 }
 
+/// The first and last column of row `y` of `img` holding `colour`.
+fn run_of(img: &Image, y: u32, colour: [u8; 3]) -> Option<(u32, u32)> {
+    let xs: Vec<u32> = (0..img.width())
+        .filter(|&x| img.get(x, y)[..3] == colour)
+        .collect();
+    Some((*xs.first()?, *xs.last()?))
+}
+
+/// Draws with the depth test off under `--auto=depth` (tests/c/
+/// auto_depth_off.c): the layer draws them with a depth layer of its own
+/// attached, so each is at its depth in the eyes made from the frame —
+/// the red quad (w 2, drawn with the test off, half over the background
+/// and half over nothing) moves by its own parallax, not the
+/// background's nor the screen's — while the program sees the GL it
+/// would see without the layer: its depth state after the draw, its
+/// samples passed, the depth and colours it reads back (the blue quad
+/// drawn after with the test on is tested against the program's depth,
+/// not the red quad's), no error.
+#[test]
+fn draws_with_the_depth_test_off_are_at_their_depth_under_auto_depth_unseen_by_the_program() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = client("auto_depth_off");
+    let x = Xvfb::start(W + 40, H + 40);
+    let plain = common::run_ok(Command::new(&exe).env("DISPLAY", &x.display));
+    let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
+    assert!(
+        plain.contains("depth 140 90 16777215\n")
+            && plain.contains("pixel 90 95 0 0 255\n")
+            && plain.matches("error 0x0\n").count() == 2,
+        "without the layer: {plain}"
+    );
+    let dir = common::scratch("auto-depth-off");
+    let (eyes, ours) = auto_capture_in(&x, ("--auto=depth", CONVERGENCE), &exe, &[], &dir);
+    // Every line Mesa's; a depth read back may differ in its last bit
+    // (24 bits), as it does under --auto and without the test off.
+    let (a, b): (Vec<&str>, Vec<&str>) = (plain.lines().collect(), ours.lines().collect());
+    assert_eq!(
+        a.len(),
+        b.len(),
+        "under --auto=depth:\n{ours}\nwithout:\n{plain}"
+    );
+    for (m, o) in a.iter().zip(&b) {
+        let (m, o) = (m.rsplit_once(' '), o.rsplit_once(' '));
+        match (m, o) {
+            (Some((mk, mv)), Some((ok, ov))) if mk.starts_with("depth ") && mk == ok => {
+                let (mv, ov): (i64, i64) = (mv.parse().unwrap(), ov.parse().unwrap());
+                assert!((mv - ov).abs() <= 1, "{mk}: {ov}, Mesa {mv}");
+            }
+            _ => assert_eq!(m, o, "under --auto=depth:\n{ours}\nwithout:\n{plain}"),
+        }
+    }
+    // Parallax, right eye minus left: s·(1 − C/w)·W pixels.
+    let s = 0.07 * SEPARATION.parse::<f64>().unwrap() / 100.0;
+    let c: f64 = CONVERGENCE.parse().unwrap();
+    let want = |w: f64| s * (1.0 - c / w) * W as f64;
+    // Rows (from the top) where each quad is alone: the red quad's top
+    // rows (above the blue one), the background below both (its right
+    // edge: its left is the window's). Not the blue quad: drawn over the
+    // nearer red one (which wrote no depth of the program's), it takes
+    // the nearer depth there, as the README says.
+    for (name, colour, y, w, edges) in [
+        ("red (w 2, test off)", [255, 0, 0], 40, 2.0, [true, true]),
+        ("green (w 8)", [0, 255, 0], 130, 8.0, [false, true]),
+    ] {
+        let (l, r) = (run_of(&eyes[0], y, colour), run_of(&eyes[1], y, colour));
+        let (Some(l), Some(r)) = (l, r) else {
+            panic!("{name}: not in both eyes at row {y}");
+        };
+        let shifts = [r.0 as f64 - l.0 as f64, r.1 as f64 - l.1 as f64];
+        for (shift, measured) in shifts.iter().zip(edges) {
+            assert!(
+                !measured || (shift - want(w)).abs() <= 1.5,
+                "{name}: moved {shifts:?} from the left eye to the right, want {:.1}",
+                want(w)
+            );
+        }
+    }
+}
+
 /// A square render target of another size than the window is seen from
 /// a light (a shadow or reflection map): drawn in perspective, it stays
 /// one picture both eyes show; a target of the window's size drawn in
