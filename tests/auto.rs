@@ -630,22 +630,31 @@ fn run_of(img: &Image, y: u32, colour: [u8; 3]) -> Option<(u32, u32)> {
 /// would see without the layer: its depth state after the draw, its
 /// samples passed, the depth and colours it reads back (the blue quad
 /// drawn after with the test on is tested against the program's depth,
-/// not the red quad's), no error.
+/// not the red quad's), no error. The same whether the quads are drawn
+/// by a GLSL program, with glBegin/glEnd or from display lists.
 #[test]
 fn draws_with_the_depth_test_off_are_at_their_depth_under_auto_depth_unseen_by_the_program() {
     let _one = common::clients::one_renderer_at_a_time();
     let exe = client("auto_depth_off");
     let x = Xvfb::start(W + 40, H + 40);
-    let plain = common::run_ok(Command::new(&exe).env("DISPLAY", &x.display));
+    for mode in ["shader", "immediate", "list"] {
+        depth_off_in(&x, &exe, mode);
+    }
+}
+
+/// [`draws_with_the_depth_test_off_are_at_their_depth_under_auto_depth_unseen_by_the_program`]
+/// with the quads drawn in `mode` (a GLSL program; glBegin/glEnd; display lists).
+fn depth_off_in(x: &Xvfb, exe: &Path, mode: &str) {
+    let plain = common::run_ok(Command::new(exe).arg(mode).env("DISPLAY", &x.display));
     let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
     assert!(
         plain.contains("depth 140 90 16777215\n")
             && plain.contains("pixel 90 95 0 0 255\n")
             && plain.matches("error 0x0\n").count() == 2,
-        "without the layer: {plain}"
+        "{mode}, without the layer: {plain}"
     );
-    let dir = common::scratch("auto-depth-off");
-    let (eyes, ours) = auto_capture_in(&x, ("--auto=depth", CONVERGENCE), &exe, &[], &dir);
+    let dir = common::scratch(&format!("auto-depth-off-{mode}"));
+    let (eyes, ours) = auto_capture_in(x, ("--auto=depth", CONVERGENCE), exe, &[mode], &dir);
     // Every line Mesa's; a depth read back may differ in its last bit
     // (24 bits), as it does under --auto and without the test off.
     let (a, b): (Vec<&str>, Vec<&str>) = (plain.lines().collect(), ours.lines().collect());
@@ -659,9 +668,12 @@ fn draws_with_the_depth_test_off_are_at_their_depth_under_auto_depth_unseen_by_t
         match (m, o) {
             (Some((mk, mv)), Some((ok, ov))) if mk.starts_with("depth ") && mk == ok => {
                 let (mv, ov): (i64, i64) = (mv.parse().unwrap(), ov.parse().unwrap());
-                assert!((mv - ov).abs() <= 1, "{mk}: {ov}, Mesa {mv}");
+                assert!((mv - ov).abs() <= 1, "{mode} {mk}: {ov}, Mesa {mv}");
             }
-            _ => assert_eq!(m, o, "under --auto=depth:\n{ours}\nwithout:\n{plain}"),
+            _ => assert_eq!(
+                m, o,
+                "{mode} under --auto=depth:\n{ours}\nwithout:\n{plain}"
+            ),
         }
     }
     // Parallax, right eye minus left: s·(1 − C/w)·W pixels.
@@ -679,13 +691,13 @@ fn draws_with_the_depth_test_off_are_at_their_depth_under_auto_depth_unseen_by_t
     ] {
         let (l, r) = (run_of(&eyes[0], y, colour), run_of(&eyes[1], y, colour));
         let (Some(l), Some(r)) = (l, r) else {
-            panic!("{name}: not in both eyes at row {y}");
+            panic!("{mode} {name}: not in both eyes at row {y}");
         };
         let shifts = [r.0 as f64 - l.0 as f64, r.1 as f64 - l.1 as f64];
         for (shift, measured) in shifts.iter().zip(edges) {
             assert!(
                 !measured || (shift - want(w)).abs() <= 1.5,
-                "{name}: moved {shifts:?} from the left eye to the right, want {:.1}",
+                "{mode} {name}: moved {shifts:?} from the left eye to the right, want {:.1}",
                 want(w)
             );
         }

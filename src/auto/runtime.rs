@@ -1976,7 +1976,11 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
             }
             return draw();
         }
-        if call.family != Family::Draw {
+        // Only the draws [`depth_beside`] may make keep the depth layer it
+        // attached (each decides below); anything else may use the depth.
+        let may_keep =
+            call.family == Family::Draw || matches!(call.name, "glBegin" | "glEnd" | "glCallList");
+        if !may_keep {
             // SAFETY: the program's context is current on this thread.
             unsafe { restore_depth(f, st) };
         }
@@ -2171,7 +2175,11 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         return draw();
                     }
                     (Family::BeginEnd, "glBegin") => {
+                        // Drawn at glEnd (from the layer's list), where it
+                        // may keep the depth layer beside; drawn now where
+                        // it is made mono.
                         if integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32 != app_fbo {
+                            restore_depth(f, st);
                             st.in_mono_begin = true;
                             return draw();
                         }
@@ -2179,6 +2187,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             st.list = (f.gen_lists)(1);
                         }
                         if st.list == 0 {
+                            restore_depth(f, st);
                             st.in_mono_begin = true;
                             return draw();
                         }
@@ -2188,6 +2197,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     }
                     (Family::BeginEnd, "glEnd") => {
                         if !st.in_begin {
+                            restore_depth(f, st);
                             return draw();
                         }
                         draw();
@@ -2196,6 +2206,15 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         let settings = st.draw_settings(f);
                         let path = choose(t, cur, st, app_fbo, false);
                         let list = st.list;
+                        let mut queries = std::mem::take(&mut st.queries);
+                        let beside = live::from_depth()
+                            && app_fbo == window_fbo
+                            && known_window_draw
+                            && !st.feedback;
+                        if !beside {
+                            restore_depth(f, st);
+                        }
+                        let mut wrote = false;
                         eyes(
                             t,
                             path,
@@ -2203,9 +2222,18 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             &layered,
                             &sampled,
                             false,
-                            &mut st.queries,
-                            &mut || (f.call_list)(list),
+                            &mut queries,
+                            &mut || {
+                                let mut call = || (f.call_list)(list);
+                                if beside {
+                                    wrote = depth_beside(f, st, (window_fbo, &layered), &mut call);
+                                } else {
+                                    call();
+                                }
+                            },
                         );
+                        st.queries = queries;
+                        st.depth_beside |= wrote;
                         return;
                     }
                     _ if st.in_begin => return draw(),
@@ -2254,7 +2282,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                 let settings = st.draw_settings(f);
                 let path = choose(t, cur, st, app_fbo, lists && !plain);
                 if live::from_depth()
-                    && call.family == Family::Draw
+                    && (call.family == Family::Draw || plain)
                     && app_fbo == window_fbo
                     && known_window_draw
                     && !st.feedback

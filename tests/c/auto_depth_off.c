@@ -18,6 +18,11 @@
  * on after it, over both halves of the red one: it is tested against
  * the program's depth (the background's, or the clear), not against
  * the red quad's, so it covers it.
+ *
+ *   auto_depth_off [shader|immediate|list]
+ *     shader     the GLSL program, glDrawArrays (the default)
+ *     immediate  fixed function: glFrustum, glBegin/glEnd
+ *     list       fixed function, each quad a display list of its own
  */
 #define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
@@ -25,6 +30,7 @@
 #include <GL/glx.h>
 #include <X11/Xlib.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "x_window.h"
 
@@ -38,13 +44,34 @@ static const char *fragment = "#version 120\n"
                               "uniform vec3 u_colour;\n"
                               "void main() { gl_FragColor = vec4(u_colour, 1.0); }\n";
 
-/* A quad from (x0, y0) to (x1, y1) at eye z. */
+enum mode { SHADER, IMMEDIATE, LIST };
+static enum mode mode = SHADER;
+
+/* A quad from (x0, y0) to (x1, y1) at eye z, in `mode`'s way. */
 static void quad(GLint colour, const float rgb[3], float x0, float y0, float x1, float y1, float z)
 {
     const GLfloat v[] = {x0, y0, z, x1, y0, z, x1, y1, z, x0, y0, z, x1, y1, z, x0, y1, z};
-    glUniform3fv(colour, 1, rgb);
-    glVertexPointer(3, GL_FLOAT, 0, v);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
+    if (mode == SHADER) {
+        glUniform3fv(colour, 1, rgb);
+        glVertexPointer(3, GL_FLOAT, 0, v);
+        glDrawArrays(GL_TRIANGLES, 0, 6);
+        return;
+    }
+    glColor3fv(rgb);
+    GLuint list = 0;
+    if (mode == LIST) {
+        list = glGenLists(1);
+        glNewList(list, GL_COMPILE);
+    }
+    glBegin(GL_TRIANGLES);
+    for (int i = 0; i < 6; i++)
+        glVertex3fv(v + 3 * i);
+    glEnd();
+    if (mode == LIST) {
+        glEndList();
+        glCallList(list);
+        glDeleteLists(list, 1);
+    }
 }
 
 static GLuint shader(GLenum kind, const char *source)
@@ -55,23 +82,38 @@ static GLuint shader(GLenum kind, const char *source)
     return s;
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
+    if (argc > 1)
+        mode = strcmp(argv[1], "immediate") == 0 ? IMMEDIATE
+               : strcmp(argv[1], "list") == 0    ? LIST
+                                                 : SHADER;
     struct x_window x = open_x_window_config(NULL, W, H);
-    GLuint program = glCreateProgram();
-    glAttachShader(program, shader(GL_VERTEX_SHADER, vertex));
-    glAttachShader(program, shader(GL_FRAGMENT_SHADER, fragment));
-    glLinkProgram(program);
-    glUseProgram(program);
-    GLint matrix = glGetUniformLocation(program, "u_matrix");
-    GLint colour = glGetUniformLocation(program, "u_colour");
+    GLint matrix = -1, colour = -1;
+    if (mode == SHADER) {
+        GLuint program = glCreateProgram();
+        glAttachShader(program, shader(GL_VERTEX_SHADER, vertex));
+        glAttachShader(program, shader(GL_FRAGMENT_SHADER, fragment));
+        glLinkProgram(program);
+        glUseProgram(program);
+        matrix = glGetUniformLocation(program, "u_matrix");
+        colour = glGetUniformLocation(program, "u_colour");
+    } else {
+        glMatrixMode(GL_PROJECTION);
+        glLoadIdentity();
+        glFrustum(-1.0, 1.0, -0.75, 0.75, 1.0, 50.0);
+        glMatrixMode(GL_MODELVIEW);
+        glLoadIdentity();
+    }
     /* glFrustum(-1, 1, -0.75, 0.75, 1, 50), column-major. */
     const float n = 1.0f, f = 50.0f;
     const GLfloat frustum[16] = {1.0f, 0, 0, 0, 0, 1.0f / 0.75f, 0, 0,
                                  0,    0, -(f + n) / (f - n), -1.0f,
                                  0,    0, -2.0f * f * n / (f - n), 0};
-    glUniformMatrix4fv(matrix, 1, GL_FALSE, frustum);
-    glEnableClientState(GL_VERTEX_ARRAY);
+    if (mode == SHADER) {
+        glUniformMatrix4fv(matrix, 1, GL_FALSE, frustum);
+        glEnableClientState(GL_VERTEX_ARRAY);
+    }
     glViewport(0, 0, W, H);
     GLuint q;
     glGenQueries(1, &q);
