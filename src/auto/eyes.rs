@@ -438,6 +438,9 @@ pub struct Attachments {
     stencil: u32,
     /// `depth` is a 2D texture (a copy of an eye's depth), not an array.
     depth_2d: bool,
+    /// The depth array's layers are memory the CPU reads (the window's
+    /// eyes on llvmpipe): what [`Attachments::attach_depth`] is for.
+    depth_in_memory: bool,
 }
 
 impl LayeredEyes {
@@ -899,6 +902,7 @@ impl LayeredEyes {
             depth_attachment: self.depth_attachment,
             stencil: 0,
             depth_2d: false,
+            depth_in_memory: self.depth_memory.is_some(),
         }
     }
 
@@ -1034,6 +1038,7 @@ impl Attachments {
             depth_attachment,
             stencil,
             depth_2d: false,
+            depth_in_memory: false,
         }
     }
 
@@ -1132,13 +1137,16 @@ impl Attachments {
 
     /// Attaches layer `layer` of the depth array alone to `target`'s
     /// framebuffer at its depth attachment point (colour and stencil
-    /// stay as they are); false where there is no depth array.
+    /// stay as they are); false where there is no depth array, or where
+    /// its second layer would be of no use (`layer` 1 of an array the CPU
+    /// does not read in place: its frames are made from the depth read
+    /// back, which has only the first).
     ///
     /// # Safety
     /// A context sharing the arrays is current; `target`'s framebuffer
     /// is the one these attachments were made for.
     pub unsafe fn attach_depth(&self, target: u32, layer: i32) -> bool {
-        if self.depth == 0 || self.depth_2d {
+        if self.depth == 0 || self.depth_2d || (layer == 1 && !self.depth_in_memory) {
             return false;
         }
         // SAFETY: contract.
