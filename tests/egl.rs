@@ -619,6 +619,39 @@ fn an_opengl_es_programs_render_targets_of_every_kind_get_mesas_every_answer_und
     answers_as_mesa(&x, &exe, "--auto", "96");
 }
 
+/// `exe args` run to its end, without the layer (`option` None) or as
+/// `glstereo-run OPTION exe args`, with `display` as DISPLAY (None: no
+/// X display at all): its stdout and stderr. It must exit 0.
+fn run_to_end(
+    exe: &Path,
+    option: Option<&str>,
+    args: &[&str],
+    display: Option<&str>,
+) -> (String, String) {
+    let mut cmd = match option {
+        Some(o) => {
+            let mut c = Command::new(&built().run);
+            c.arg(o).arg(exe);
+            c
+        }
+        None => Command::new(exe),
+    };
+    cmd.args(args);
+    match display {
+        Some(d) => cmd.env("DISPLAY", d),
+        None => cmd.env_remove("DISPLAY"),
+    };
+    let out = cmd.output().expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(
+        out.status.success(),
+        "{} {option:?} {args:?}: {}\n{stderr}",
+        exe.display(),
+        out.status
+    );
+    (String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
+}
+
 /// tests/c/egl_share_groups.c: the program's framebuffer objects in a
 /// share group beside the one where the layer made its own, and in one
 /// made after that group ended, with the same small names as the
@@ -636,25 +669,9 @@ fn a_programs_framebuffers_in_another_share_group_are_its_own_to_delete_under_au
             &["-lEGL", "-lGLESv2", "-lX11"],
         )
     });
-    let run = |layer: bool| {
-        let mut cmd = if layer {
-            let mut c = Command::new(&built().run);
-            c.arg("--auto").arg(&exe);
-            c
-        } else {
-            Command::new(&exe)
-        };
-        let out = cmd.env("DISPLAY", &x.display).output().expect("runs");
-        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-        assert!(
-            out.status.success(),
-            "layer {layer}: {}\n{stderr}",
-            out.status
-        );
-        (String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
-    };
-    let (mesa, _) = run(false);
-    let (ours, stderr) = run(true);
+    let display = Some(x.display.as_str());
+    let (mesa, _) = run_to_end(&exe, None, &[], display);
+    let (ours, stderr) = run_to_end(&exe, Some("--auto"), &[], display);
     assert!(mesa.contains("done\n") && mesa.contains("is 0"), "{mesa}");
     assert_eq!(ours, mesa, "under --auto (stderr: {stderr})");
 }
@@ -678,28 +695,7 @@ fn a_program_on_a_windowless_egl_display_stays_mono_under_auto_and_is_told_why()
                 to show two eyes in, so it stays mono; under VirtualGL, start the layer \
                 inside it: vglrun -d egl glstereo-run --auto PROGRAM";
     for platform in ["surfaceless", "device"] {
-        let run = |layer: Option<&str>| {
-            let mut cmd = match layer {
-                Some(auto) => {
-                    let mut c = Command::new(&built().run);
-                    c.arg(auto).arg(&exe);
-                    c
-                }
-                None => Command::new(&exe),
-            };
-            let out = cmd
-                .arg(platform)
-                .env_remove("DISPLAY")
-                .output()
-                .expect("runs");
-            let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-            assert!(
-                out.status.success(),
-                "{platform} {layer:?}: {}\n{stderr}",
-                out.status
-            );
-            (String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
-        };
+        let run = |layer: Option<&str>| run_to_end(&exe, layer, &[platform], None);
         let (mesa, _) = run(None);
         assert!(
             mesa.contains("pixel 32,24: 0 255 0 255\n") && mesa.ends_with("error 0x0\ndone\n"),

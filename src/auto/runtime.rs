@@ -1805,6 +1805,42 @@ unsafe fn restore_depth(f: &AutoFns, st: &mut AutoState) {
     }
 }
 
+/// [`eyes`] for a draw [`depth_beside`] may make: the window's eyes'
+/// framebuffer object and attachments `window`; what the draw did is
+/// recorded in `st` for the present.
+///
+/// # Safety
+/// As [`depth_beside`].
+unsafe fn eyes_beside(
+    t: &Tables,
+    st: &mut AutoState,
+    path: Path,
+    settings: &DrawSettings,
+    window: (u32, &Attachments),
+    sampled: &Sampled,
+    draw: &mut dyn FnMut(),
+) {
+    let mut queries = std::mem::take(&mut st.queries);
+    let mut wrote = false;
+    // SAFETY: contract.
+    unsafe {
+        eyes(
+            t,
+            path,
+            settings,
+            window.1,
+            sampled,
+            false,
+            &mut queries,
+            &mut || {
+                wrote = depth_beside(&t.gl, st, window, draw);
+            },
+        );
+    }
+    st.queries = queries;
+    st.depth_beside |= wrote;
+}
+
 /// `--auto=depth`: a flat draw (w = 1: a HUD, text, a 2D pass) comes
 /// into the window's eyes after the frame's scene: the colour its draw
 /// buffer holds now (the scene) is copied into that array's right-eye
@@ -2120,6 +2156,10 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     }
                     render_targets::resolve(targets, context, fbo);
                 }
+                // A draw into the window's eyes of known perspective under
+                // --auto=depth: one [`depth_beside`] may give its depth.
+                let beside = live::from_depth() && app_fbo == window_fbo && known_window_draw;
+                let keeps_depth = |st: &AutoState| beside && !st.feedback;
                 match (call.family, call.name) {
                     (Family::DisplayList, "glNewList") => {
                         let (list, mode) = (call.u32(0), call.u32(1));
@@ -2206,35 +2246,24 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                         let settings = st.draw_settings(f);
                         let path = choose(t, cur, st, app_fbo, false);
                         let list = st.list;
-                        let mut queries = std::mem::take(&mut st.queries);
-                        let beside = live::from_depth()
-                            && app_fbo == window_fbo
-                            && known_window_draw
-                            && !st.feedback;
-                        if !beside {
-                            restore_depth(f, st);
+                        let mut draw_list = || (f.call_list)(list);
+                        if keeps_depth(st) {
+                            let window = (window_fbo, &layered);
+                            let d = &mut draw_list;
+                            return eyes_beside(t, st, path, &settings, window, &sampled, d);
                         }
-                        let mut wrote = false;
-                        eyes(
+                        restore_depth(f, st);
+                        let q = &mut st.queries;
+                        return eyes(
                             t,
                             path,
                             &settings,
                             &layered,
                             &sampled,
                             false,
-                            &mut queries,
-                            &mut || {
-                                let mut call = || (f.call_list)(list);
-                                if beside {
-                                    wrote = depth_beside(f, st, (window_fbo, &layered), &mut call);
-                                } else {
-                                    call();
-                                }
-                            },
+                            q,
+                            &mut draw_list,
                         );
-                        st.queries = queries;
-                        st.depth_beside |= wrote;
-                        return;
                     }
                     _ if st.in_begin => return draw(),
                     (Family::RasterPixels, _) if live::from_depth() => return draw(),
@@ -2281,30 +2310,9 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     lists && call.name == "glCallList" && st.lists.get(&call.u32(0)) == Some(&true);
                 let settings = st.draw_settings(f);
                 let path = choose(t, cur, st, app_fbo, lists && !plain);
-                if live::from_depth()
-                    && (call.family == Family::Draw || plain)
-                    && app_fbo == window_fbo
-                    && known_window_draw
-                    && !st.feedback
-                {
-                    let mut queries = std::mem::take(&mut st.queries);
-                    let mut beside = false;
-                    let q = &mut queries;
-                    eyes(
-                        t,
-                        path,
-                        &settings,
-                        &layered,
-                        &sampled,
-                        false,
-                        q,
-                        &mut || {
-                            beside = depth_beside(f, st, (window_fbo, &layered), draw);
-                        },
-                    );
-                    st.queries = queries;
-                    st.depth_beside |= beside;
-                    return;
+                if (call.family == Family::Draw || plain) && keeps_depth(st) {
+                    let window = (window_fbo, &layered);
+                    return eyes_beside(t, st, path, &settings, window, &sampled, draw);
                 }
                 restore_depth(f, st);
                 if st.feedback && call.family == Family::Draw {
