@@ -467,6 +467,73 @@ fn a_visual_without_alpha_reads_alpha_one_as_mesa_does() {
     assert_eq!(layered, plain);
 }
 
+/// A visual's depth bits are the depth buffer's: a stereo program on a
+/// GLX_STEREO configuration of 16, 24 or 32 depth bits (or 24 and 8 of
+/// stencil), and a mono one under `--auto=depth`, get GL_DEPTH_BITS,
+/// depths read back in every type, stencil and the depth test's verdict
+/// on surfaces a step of precision apart, bit for bit as Mesa's
+/// framebuffer object of the same formats gives them
+/// (tests/c/glx_depth_bits.c). Mesa's own window of that configuration
+/// answers the same but for interpolated depths of a slanted surface, in
+/// the last bit of the visual's precision (of a 32-bit one: of the float
+/// depth is interpolated in): it rasterizes windows top down and
+/// framebuffer objects bottom up.
+#[test]
+fn a_visuals_depth_bits_are_stored_tested_and_read_back_as_mesa_stores_them() {
+    let x = Xvfb::start(320, 240);
+    let exe = program("glx_depth_bits", &["-lGL", "-lX11"]);
+    let stdout = |out: std::process::Output| String::from_utf8_lossy(&out.stdout).into_owned();
+    for bits in ["16", "24", "32", "24s8"] {
+        let mesa = |how: &str| {
+            stdout(common::run_ok(
+                Command::new(&exe)
+                    .args([how, bits])
+                    .env("DISPLAY", &x.display),
+            ))
+        };
+        let (fbo, window) = (mesa("fbo"), mesa("mono"));
+        let (depth, stencil) = bits.split_once('s').unwrap_or((bits, "0"));
+        assert!(
+            fbo.starts_with(&format!("depth_bits {depth} stencil_bits {stencil}\n")),
+            "{bits}: {fbo}"
+        );
+        for (how, args) in [
+            ("a stereo configuration", vec!["stereo"]),
+            ("--auto=depth", vec!["--auto=depth", "mono"]),
+        ] {
+            let mut c = Command::new(&built().run);
+            c.args(&args[..args.len() - 1])
+                .arg(&exe)
+                .args([args[args.len() - 1], bits]);
+            let ours = stdout(common::run_ok(c.env("DISPLAY", &x.display)));
+            assert_eq!(
+                ours, fbo,
+                "{bits}, {how}: the layer, then Mesa's framebuffer object"
+            );
+        }
+        // Mesa's window: the same lines, a slanted depth within one step
+        // (of 32 bits: of the float llvmpipe interpolates depth in).
+        let step = match depth {
+            "16" => 1u64 << 16,
+            _ => 1 << 8,
+        };
+        assert_eq!(fbo.lines().count(), window.lines().count(), "{bits}");
+        for (f, w) in fbo.lines().zip(window.lines()) {
+            let uint = |l: &str| -> Option<u64> {
+                let words: Vec<&str> = l.split(' ').collect();
+                (words[0] == "depth").then(|| words[4].parse().unwrap())
+            };
+            match (uint(f), uint(w)) {
+                (Some(a), Some(b)) => assert!(
+                    a.abs_diff(b) <= step,
+                    "{bits}: {f} (framebuffer object), {w} (window)"
+                ),
+                _ => assert_eq!(f, w, "{bits}: framebuffer object, window"),
+            }
+        }
+    }
+}
+
 /// Runs `legacy_stereo` at 160x120 under the layer (rows, captured), sends
 /// it `commands` (each answered by a redrawn frame), and checks that the
 /// window then shows frame `frame` (counted from 0) of the capture, whose

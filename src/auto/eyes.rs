@@ -38,9 +38,8 @@ const GL_DEPTH_STENCIL: u32 = 0x84F9;
 const GL_UNSIGNED_INT_24_8: u32 = 0x84FA;
 const GL_DEPTH_COMPONENT: u32 = 0x1902;
 const GL_UNSIGNED_INT: u32 = 0x1405;
-const GL_DEPTH_COMPONENT24: u32 = 0x81A6;
-const GL_DEPTH_ATTACHMENT: u32 = 0x8D00;
-const GL_DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
+const GL_DEPTH_COMPONENT16: u32 = 0x81A5;
+const GL_DEPTH24_STENCIL8: u32 = 0x88F0;
 const GL_STENCIL_ATTACHMENT: u32 = 0x8D20;
 
 gl_fns! {
@@ -57,20 +56,24 @@ gl_fns! {
 /// The largest 24-bit depth.
 const DEPTH_MAX: u32 = 0xFF_FFFF;
 
-/// Where a depth word of memory holds its 24-bit depth.
+/// How a depth word of memory holds its depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DepthBits {
-    /// In its low 24 bits (Z24_UNORM_S8_UINT, Z24X8).
+    /// A 32-bit word, 24-bit depth in its low bits (Z24_UNORM_S8_UINT,
+    /// Z24X8).
     Low,
-    /// In its high 24 bits (S8_UINT_Z24_UNORM, X8Z24).
+    /// A 32-bit word, depth in its high 24 bits (S8_UINT_Z24_UNORM, X8Z24;
+    /// Z32_UNORM, whose low 8 bits are below what a shift can show).
     High,
+    /// A 16-bit word of depth (Z16_UNORM).
+    Short,
 }
 
 /// Rows of depth words in memory ([`LayeredEyes::left_depth`]).
 #[derive(Clone, Copy, Debug)]
 pub struct DepthRows {
-    first: *const u32,
-    /// Words from one row to the next.
+    first: *const u8,
+    /// Bytes from one row to the next (a multiple of 4).
     stride: usize,
     width: usize,
     height: usize,
@@ -94,22 +97,40 @@ impl DepthRows {
     /// The memory lives and GL has finished writing it (the contract of
     /// [`LayeredEyes::left_depth`]); `y` < height.
     pub unsafe fn read_row(&self, y: usize, out: &mut [f32]) {
+        // SAFETY: contract.
+        unsafe { self.each(y, out, |_, d| d) }
+    }
+
+    /// Calls `f` with each of `out` and the depth of its pixel in row
+    /// `y`, storing what it returns.
+    ///
+    /// # Safety
+    /// As [`DepthRows::read_row`].
+    #[inline(always)]
+    unsafe fn each(&self, y: usize, out: &mut [f32], f: impl Fn(f32, f32) -> f32) {
         debug_assert!(y < self.height);
-        // SAFETY: contract; inside the mapping.
-        let row =
-            unsafe { std::slice::from_raw_parts(self.first.add(y * self.stride), self.width) };
-        let scale = 1.0 / DEPTH_MAX as f32;
+        // SAFETY: contract; a row is inside the mapping, its start aligned
+        // to 4 bytes (the mapping is page-aligned, the stride a multiple
+        // of 4).
+        let start = unsafe { self.first.add(y * self.stride) };
         // Through i32 (exact below 2^24): a conversion every vector level
         // has.
         match self.bits {
-            DepthBits::Low => {
+            DepthBits::Low | DepthBits::High => {
+                // SAFETY: as above; `width` words of 4 bytes.
+                let row = unsafe { std::slice::from_raw_parts(start.cast::<u32>(), self.width) };
+                let shift = if self.bits == DepthBits::Low { 0 } else { 8 };
+                let scale = 1.0 / DEPTH_MAX as f32;
                 for (o, &w) in out.iter_mut().zip(row) {
-                    *o = (w & DEPTH_MAX) as i32 as f32 * scale;
+                    *o = f(*o, ((w >> shift) & DEPTH_MAX) as i32 as f32 * scale);
                 }
             }
-            DepthBits::High => {
+            DepthBits::Short => {
+                // SAFETY: as above; `width` words of 2 bytes.
+                let row = unsafe { std::slice::from_raw_parts(start.cast::<u16>(), self.width) };
+                let scale = 1.0 / f32::from(u16::MAX);
                 for (o, &w) in out.iter_mut().zip(row) {
-                    *o = (w >> 8) as i32 as f32 * scale;
+                    *o = f(*o, f32::from(w) * scale);
                 }
             }
         }
@@ -121,18 +142,8 @@ impl DepthRows {
     /// # Safety
     /// As [`DepthRows::read_row`].
     pub unsafe fn nearer_row(&self, y: usize, out: &mut [f32]) {
-        debug_assert!(y < self.height);
-        // SAFETY: contract; inside the mapping.
-        let row =
-            unsafe { std::slice::from_raw_parts(self.first.add(y * self.stride), self.width) };
-        let scale = 1.0 / DEPTH_MAX as f32;
-        let shift = match self.bits {
-            DepthBits::Low => 0,
-            DepthBits::High => 8,
-        };
-        for (o, &w) in out.iter_mut().zip(row) {
-            *o = o.min(((w >> shift) & DEPTH_MAX) as i32 as f32 * scale);
-        }
+        // SAFETY: contract.
+        unsafe { self.each(y, out, f32::min) }
     }
 }
 
@@ -166,10 +177,10 @@ struct PairMemory {
 unsafe impl Send for PairMemory {}
 
 impl PairMemory {
-    /// A new file for two layers of `width` × `height` 4-byte pixels,
-    /// mapped here and imported `imports` times (1 or 2): import i's data
-    /// starts at layer i (module docs). None where the file, the mapping or
-    /// an import cannot be had.
+    /// A new file for two layers of `width` × `height` pixels of `texel`
+    /// bytes (2 or 4), mapped here and imported `imports` times (1 or 2):
+    /// import i's data starts at layer i (module docs). None where the
+    /// file, the mapping or an import cannot be had.
     ///
     /// # Safety
     /// A context with the memory-object API `api` is current.
@@ -179,8 +190,10 @@ impl PairMemory {
         name: &std::ffi::CStr,
         (width, height): (u32, u32),
         imports: usize,
+        texel: usize,
     ) -> Option<PairMemory> {
-        let stride = eye_memory::cache_lines(eye_memory::predicted_stride(width));
+        // llvmpipe's rows: 4-texel blocks, cache lines, as for RGBA8.
+        let stride = eye_memory::cache_lines(eye_memory::predicted_stride(width) / 4 * texel);
         let rows = (height as usize).div_ceil(4) * 4;
         let layer_stride = stride.checked_mul(rows)?;
         let page = 4096;
@@ -266,7 +279,7 @@ impl PairMemory {
         let storage_3d = api.tex_storage_mem_3d?;
         // SAFETY: contract.
         unsafe {
-            let memory = PairMemory::imported(api, uuid, c"glstereo eyes", (width, height), 2)?;
+            let memory = PairMemory::imported(api, uuid, c"glstereo eyes", (width, height), 2, 4)?;
             gl.BindTexture(GL_TEXTURE_2D_ARRAY, array);
             storage_3d(
                 GL_TEXTURE_2D_ARRAY,
@@ -301,10 +314,10 @@ impl PairMemory {
     }
 
     /// Gives the depth array `array` (2 layers) `width` × `height`
-    /// storage of `format` (GL_DEPTH24_STENCIL8 or GL_DEPTH_COMPONENT24,
-    /// one 32-bit word a pixel) in one new file, imported once: the CPU
-    /// reads the left eye's depth in place (`--auto=depth`). None where
-    /// the driver refuses.
+    /// storage of `format` (GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT24 or
+    /// 32: one 32-bit word a pixel; GL_DEPTH_COMPONENT16: a 16-bit one) in
+    /// one new file, imported once: the CPU reads the left eye's depth in
+    /// place (`--auto=depth`). None where the driver refuses.
     unsafe fn create_depth(
         gl: &Gl,
         api: &MemoryObjectApi,
@@ -316,7 +329,9 @@ impl PairMemory {
         let storage_3d = api.tex_storage_mem_3d?;
         // SAFETY: as in `create`.
         unsafe {
-            let memory = PairMemory::imported(api, uuid, c"glstereo depth", (width, height), 1)?;
+            let texel = if format == GL_DEPTH_COMPONENT16 { 2 } else { 4 };
+            let memory =
+                PairMemory::imported(api, uuid, c"glstereo depth", (width, height), 1, texel)?;
             gl.BindTexture(GL_TEXTURE_2D_ARRAY, array);
             storage_3d(
                 GL_TEXTURE_2D_ARRAY,
@@ -471,11 +486,7 @@ impl LayeredEyes {
                 colour: [0; 2],
                 textures: [0; 4],
                 depth: 0,
-                depth_attachment: if depth_format == GL_DEPTH_COMPONENT24 {
-                    GL_DEPTH_ATTACHMENT
-                } else {
-                    GL_DEPTH_STENCIL_ATTACHMENT
-                },
+                depth_attachment: crate::stereo::emulated::depth_attachment_of(depth_format),
                 width,
                 height,
                 memory: [None, None],
@@ -542,13 +553,14 @@ impl LayeredEyes {
                 let memory = shared.and_then(|(m, u)| {
                     PairMemory::create_depth(gl, m, u, eyes.depth, depth_format, (width, height))
                 });
-                let found = memory.and_then(|m| match eyes.verify_depth(gl, &m, fbo) {
-                    Some(bits) => Some((m, bits)),
-                    None => {
-                        m.release(uuid.as_ref().map(|(a, _)| a).expect("made with it"));
-                        None
-                    }
-                });
+                let found =
+                    memory.and_then(|m| match eyes.verify_depth(gl, &m, fbo, depth_format) {
+                        Some(bits) => Some((m, bits)),
+                        None => {
+                            m.release(uuid.as_ref().map(|(a, _)| a).expect("made with it"));
+                            None
+                        }
+                    });
                 match found {
                     Some(d) => eyes.depth_memory = Some(d),
                     None => {
@@ -557,10 +569,10 @@ impl LayeredEyes {
                             gl.delete_textures(&[eyes.depth]);
                             eyes.depth = gl.gen_texture_of(GL_TEXTURE_2D_ARRAY);
                         }
-                        let (format, ty) = if depth_format == GL_DEPTH_COMPONENT24 {
-                            (GL_DEPTH_COMPONENT, GL_UNSIGNED_INT)
-                        } else {
+                        let (format, ty) = if depth_format == GL_DEPTH24_STENCIL8 {
                             (GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8)
+                        } else {
+                            (GL_DEPTH_COMPONENT, GL_UNSIGNED_INT)
                         };
                         eyes.array_storage(gl, eyes.depth, depth_format, format, ty);
                     }
@@ -611,17 +623,31 @@ impl LayeredEyes {
         }
     }
 
-    /// Where depth memory holds its values: markers of depth cleared into
-    /// a corner of each layer are found at the addresses predicted, in the
-    /// low 24 bits of their words or in the high ones. None where they
-    /// are not (the memory is then of no use).
-    unsafe fn verify_depth(&self, gl: &Gl, m: &PairMemory, fbo: u32) -> Option<DepthBits> {
+    /// Where depth memory of `format` holds its values: markers of depth
+    /// cleared into a corner of each layer are found at the addresses
+    /// predicted, in the low 24 bits of their words or in the high ones
+    /// (a 16-bit format: in its words). None where they are not (the
+    /// memory is then of no use).
+    unsafe fn verify_depth(
+        &self,
+        gl: &Gl,
+        m: &PairMemory,
+        fbo: u32,
+        format: u32,
+    ) -> Option<DepthBits> {
         const GL_NONE: u32 = 0;
         let (w, h) = (self.width, self.height);
         let corners = [(0, 0), (w - 1, 0), (0, h - 1), (w - 1, h - 1)];
         let value = |i: usize| 0x10_2030 + 0x01_1111 * i as u32;
-        let mut low = true;
-        let mut high = true;
+        let short = format == GL_DEPTH_COMPONENT16;
+        let texel = if short { 2 } else { 4 };
+        // A marker is found where it is within one step of the word's
+        // precision: a 32-bit depth holds a 24-bit marker as its high 24
+        // bits up to the rounding of the conversion.
+        let near = |found: u32, want: u32| found.abs_diff(want) <= 1;
+        let mut low = !short;
+        let mut high = !short;
+        let mut sixteen = short;
         // SAFETY: contract of the callers (the layer's own context);
         // reads stay inside the mapping.
         unsafe {
@@ -641,6 +667,7 @@ impl LayeredEyes {
                 if gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE {
                     low = false;
                     high = false;
+                    sixteen = false;
                     break;
                 }
                 for (i, &(x, y)) in corners.iter().enumerate() {
@@ -652,13 +679,20 @@ impl LayeredEyes {
                 gl.Finish();
                 for (i, &(x, y)) in corners.iter().enumerate() {
                     let v = value(i + 4 * l);
-                    let at =
-                        m.data_offset + l * m.layer_stride + y as usize * m.stride + x as usize * 4;
+                    let at = m.data_offset
+                        + l * m.layer_stride
+                        + y as usize * m.stride
+                        + x as usize * texel;
                     let mut word = [0u8; 4];
-                    std::ptr::copy_nonoverlapping(m.map.add(at), word.as_mut_ptr(), 4);
-                    let word = u32::from_ne_bytes(word);
-                    low &= word & DEPTH_MAX == v;
-                    high &= word >> 8 == v;
+                    std::ptr::copy_nonoverlapping(m.map.add(at), word.as_mut_ptr(), texel);
+                    if short {
+                        let word = u32::from(u16::from_ne_bytes([word[0], word[1]]));
+                        sixteen &= near(word, (v + 0x80) >> 8);
+                    } else {
+                        let word = u32::from_ne_bytes(word);
+                        low &= word & DEPTH_MAX == v;
+                        high &= near(word >> 8, v);
+                    }
                 }
             }
             (self.api.framebuffer_texture_layer)(GL_FRAMEBUFFER, self.depth_attachment, 0, 0, 0);
@@ -671,9 +705,10 @@ impl LayeredEyes {
                 return None;
             }
         }
-        match (low, high) {
-            (true, _) => Some(DepthBits::Low),
-            (false, true) => Some(DepthBits::High),
+        match (low, high, sixteen) {
+            (true, _, _) => Some(DepthBits::Low),
+            (false, true, _) => Some(DepthBits::High),
+            (_, _, true) => Some(DepthBits::Short),
             _ => None,
         }
     }
@@ -699,10 +734,8 @@ impl LayeredEyes {
         Some(DepthRows {
             // SAFETY: both layers are inside the mapping (verify_depth
             // found each where predicted).
-            first: unsafe { m.map.add(m.data_offset + layer * m.layer_stride) }
-                .cast::<u32>()
-                .cast_const(),
-            stride: m.stride / 4,
+            first: unsafe { m.map.add(m.data_offset + layer * m.layer_stride) }.cast_const(),
+            stride: m.stride,
             width: self.width as usize,
             height: self.height as usize,
             bits: *bits,
@@ -1212,8 +1245,8 @@ mod tests {
 
     fn rows(words: &[u32], width: usize, bits: DepthBits) -> DepthRows {
         DepthRows {
-            first: words.as_ptr(),
-            stride: width + 1,
+            first: words.as_ptr().cast(),
+            stride: (width + 1) * 4,
             width,
             height: words.len() / (width + 1),
             bits,
@@ -1230,7 +1263,7 @@ mod tests {
         for bits in [DepthBits::Low, DepthBits::High] {
             let word = |depth: u32, other: u32| match bits {
                 DepthBits::Low => depth | other << 24,
-                DepthBits::High => depth << 8 | other,
+                _ => depth << 8 | other,
             };
             // Two rows of three, and one word of padding each.
             let first = [
@@ -1266,6 +1299,47 @@ mod tests {
                 unsafe { b.nearer_row(y, &mut out) };
                 assert_eq!(out, merged, "{bits:?} row {y} merged");
             }
+        }
+    }
+    /// 16-bit depth words (a 16-bit visual's buffer) read as their
+    /// depth, rows a stride of bytes apart, and merge as 32-bit ones do.
+    #[test]
+    fn a_row_of_sixteen_bit_depths_reads_and_merges_the_nearer() {
+        let d = |v: u16| f32::from(v) / 65535.0;
+        // Two rows of three, one padding word each, in words of 4 bytes
+        // so that the rows start aligned as the mapping's do.
+        let words = |h: [u16; 8]| {
+            let mut w = [0u32; 4];
+            // SAFETY: 16 bytes either way, u16's alignment below u32's.
+            unsafe { std::slice::from_raw_parts_mut(w.as_mut_ptr().cast::<u16>(), 8) }
+                .copy_from_slice(&h);
+            w
+        };
+        let first = words([0x8000, 0xFFFF, 0x1000, 0xDEAD, 0, 0x8000, 0xFFFF, 0xBEEF]);
+        let second = words([0x1000, 0x8000, 0xFFFF, 0, 0xFFFF, 0xFFFF, 0x7FFF, 0]);
+        let rows = |words: &[u32]| DepthRows {
+            first: words.as_ptr().cast(),
+            stride: 8,
+            width: 3,
+            height: 2,
+            bits: DepthBits::Short,
+        };
+        let (a, b) = (rows(&first), rows(&second));
+        let mut out = [0.0f32; 3];
+        for (y, want, merged) in [
+            (
+                0,
+                [d(0x8000), 1.0, d(0x1000)],
+                [d(0x1000), d(0x8000), d(0x1000)],
+            ),
+            (1, [0.0, d(0x8000), 1.0], [0.0, d(0x8000), d(0x7FFF)]),
+        ] {
+            // SAFETY: the words outlive the reads; y < height.
+            unsafe { a.read_row(y, &mut out) };
+            assert_eq!(out, want, "row {y}");
+            // SAFETY: as above.
+            unsafe { b.nearer_row(y, &mut out) };
+            assert_eq!(out, merged, "row {y} merged");
         }
     }
 }

@@ -200,7 +200,7 @@ pub struct BufferFormats {
     /// without alpha bits does.
     pub opaque: bool,
     /// Internal format of the one depth/stencil renderbuffer:
-    /// GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT24, or 0 for none.
+    /// GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT16, 24 or 32, or 0 for none.
     pub depth: u32,
     /// Make RGBA8 colour textures from memory the CPU reads in place,
     /// where the driver allows ([`crate::stereo::eye_memory`]; llvmpipe),
@@ -224,17 +224,13 @@ pub struct BufferFormats {
 }
 
 impl BufferFormats {
-    /// What [`EmulatedFramebuffer::allocate`] uses: RGBA8 colour, and one
-    /// D24S8 buffer when depth or stencil is asked for.
+    /// What [`EmulatedFramebuffer::allocate`] uses: RGBA8 colour, and the
+    /// depth and stencil of [`BufferFormats::matching`].
     pub fn surface(depth_bits: u32, stencil_bits: u32) -> BufferFormats {
         BufferFormats {
             color: GL_RGBA8,
             opaque: false,
-            depth: if depth_bits > 0 || stencil_bits > 0 {
-                GL_DEPTH24_STENCIL8
-            } else {
-                0
-            },
+            depth: depth_format(depth_bits, stencil_bits),
             in_place: None,
             layered: None,
             positional: false,
@@ -243,17 +239,19 @@ impl BufferFormats {
 
     /// Formats that behave as a visual with these bits: RGBA8 colour,
     /// [`BufferFormats::opaque`] when it has no alpha, a depth-only buffer
-    /// when it has depth but no stencil (the stencil test then passes, as
-    /// GL says without a stencil buffer).
+    /// of the visual's depth bits when it has depth but no stencil (the
+    /// stencil test then passes, as GL says without a stencil buffer), so
+    /// that depths are stored, tested and read back as the driver's own
+    /// buffer of those bits does: a 16-bit buffer for 16 bits, a 32-bit
+    /// one for 32 (what glXChooseVisual gives a program that asks for any
+    /// depth on Mesa; 24 bits there differ from its depths in the low
+    /// bits). Depth with stencil is D24S8, the one such format drivers
+    /// render to as unsigned normalised depth.
     pub fn matching(alpha_bits: u32, depth_bits: u32, stencil_bits: u32) -> BufferFormats {
         BufferFormats {
             color: GL_RGBA8,
             opaque: alpha_bits == 0,
-            depth: match (depth_bits > 0, stencil_bits > 0) {
-                (true, false) => GL_DEPTH_COMPONENT24,
-                (false, false) => 0,
-                _ => GL_DEPTH24_STENCIL8,
-            },
+            depth: depth_format(depth_bits, stencil_bits),
             in_place: None,
             layered: None,
             positional: false,
@@ -261,11 +259,29 @@ impl BufferFormats {
     }
 
     fn depth_attachment(self) -> u32 {
-        if self.depth == GL_DEPTH_COMPONENT24 {
-            GL_DEPTH_ATTACHMENT
-        } else {
-            GL_DEPTH_STENCIL_ATTACHMENT
-        }
+        depth_attachment_of(self.depth)
+    }
+}
+
+/// The depth buffer's format for a visual of these bits
+/// ([`BufferFormats::matching`]).
+fn depth_format(depth_bits: u32, stencil_bits: u32) -> u32 {
+    match (depth_bits, stencil_bits > 0) {
+        (0, false) => 0,
+        (1..=16, false) => GL_DEPTH_COMPONENT16,
+        (17..=24, false) => GL_DEPTH_COMPONENT24,
+        (_, false) => GL_DEPTH_COMPONENT32,
+        _ => GL_DEPTH24_STENCIL8,
+    }
+}
+
+/// Where a depth buffer of `format` attaches: depth and stencil together
+/// for GL_DEPTH24_STENCIL8, depth alone for the depth-only formats.
+pub(crate) fn depth_attachment_of(format: u32) -> u32 {
+    if format == GL_DEPTH24_STENCIL8 {
+        GL_DEPTH_STENCIL_ATTACHMENT
+    } else {
+        GL_DEPTH_ATTACHMENT
     }
 }
 

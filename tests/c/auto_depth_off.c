@@ -8,7 +8,7 @@
  *   state T F M     after a draw with the test off: glIsEnabled(
  *                   GL_DEPTH_TEST), GL_DEPTH_FUNC, GL_DEPTH_WRITEMASK
  *   samples N       GL_SAMPLES_PASSED of a quad drawn with the test off
- *   depth X Y D     window depths read back (glReadPixels), as 24-bit ints
+ *   depth X Y D     window depths read back (glReadPixels), as GL_UNSIGNED_INT
  *   pixel X Y R G B colours read back
  *   error 0xE       glGetError at the end of each frame
  *
@@ -152,7 +152,7 @@ int main(int argc, char **argv)
             GLubyte p[4];
             glReadPixels(at[i][0], at[i][1], 1, 1, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, &d);
             glReadPixels(at[i][0], at[i][1], 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, p);
-            printf("depth %d %d %u\n", at[i][0], at[i][1], d >> 8);
+            printf("depth %d %d %u\n", at[i][0], at[i][1], d);
             printf("pixel %d %d %u %u %u\n", at[i][0], at[i][1], p[0], p[1], p[2]);
         }
         glXSwapBuffers(x.display, x.window);
