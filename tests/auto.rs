@@ -386,35 +386,40 @@ fn a_scene_drawn_off_screen_and_blitted_into_the_window_is_in_stereo() {
 
 /// Each automatic-stereo context's eyes go with it: forty contexts made,
 /// drawn and destroyed keep memfd mappings, file descriptors and resident
-/// memory flat (before: 2 memfd mappings and ~1.2 MB a 320x240 context).
+/// memory flat (before: 2 memfd mappings and ~1.2 MB a 320x240 context),
+/// under both kinds of automatic stereo; under --auto=depth each frame's
+/// backdrop, drawn with the depth test off, writes its depth beside the
+/// eyes (the depth array's second layer), which goes with them too.
 #[test]
 fn automatic_stereo_contexts_made_and_destroyed_leave_nothing_behind() {
     let _one = common::clients::one_renderer_at_a_time();
     let exe = client("auto_churn");
     let x = Xvfb::start(W + 40, H + 40);
-    let o = common::run_ok(
-        Command::new(&built().run)
-            .arg("--auto")
-            .arg(&exe)
-            .env("DISPLAY", &x.display),
-    );
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    let sample = |n: u32| -> [i64; 3] {
-        let l = stdout
-            .lines()
-            .find_map(|l| l.strip_prefix(&format!("sample {n} ")))
-            .unwrap_or_else(|| panic!("no sample {n}: {stdout}"));
-        let v: Vec<i64> = l.split_whitespace().map(|v| v.parse().unwrap()).collect();
-        [v[0], v[1], v[2]]
-    };
-    let (warm, end) = (sample(10), sample(40));
-    assert_eq!(warm[1], end[1], "memfd mappings grew: {stdout}");
-    assert_eq!(warm[2], end[2], "file descriptors grew: {stdout}");
-    assert!(
-        end[0] - warm[0] < 10_000,
-        "resident memory grew by {} kB over 30 contexts: {stdout}",
-        end[0] - warm[0]
-    );
+    for auto in ["--auto", "--auto=depth"] {
+        let o = common::run_ok(
+            Command::new(&built().run)
+                .arg(auto)
+                .arg(&exe)
+                .env("DISPLAY", &x.display),
+        );
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        let sample = |n: u32| -> [i64; 3] {
+            let l = stdout
+                .lines()
+                .find_map(|l| l.strip_prefix(&format!("sample {n} ")))
+                .unwrap_or_else(|| panic!("{auto}: no sample {n}: {stdout}"));
+            let v: Vec<i64> = l.split_whitespace().map(|v| v.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        };
+        let (warm, end) = (sample(10), sample(40));
+        assert_eq!(warm[1], end[1], "{auto}: memfd mappings grew: {stdout}");
+        assert_eq!(warm[2], end[2], "{auto}: file descriptors grew: {stdout}");
+        assert!(
+            end[0] - warm[0] < 10_000,
+            "{auto}: resident memory grew by {} kB over 30 contexts: {stdout}",
+            end[0] - warm[0]
+        );
+    }
 }
 
 /// Transform feedback captures what the mono program captures: each

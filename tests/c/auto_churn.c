@@ -1,9 +1,12 @@
 /*
- * Context churn under automatic stereo (glstereo-run --auto): a mono
- * program makes a window and a GL context, draws three frames (a triangle,
- * a swap), destroys both, forty times on one display connection, and
- * prints "sample N rss_kb memfd fds" after contexts 10 and 40. Each
- * automatic-stereo context's eyes must go with it: the samples stay flat.
+ * Context churn under automatic stereo (glstereo-run --auto or
+ * --auto=depth): a mono program makes a window and a GL context, draws
+ * three frames (a backdrop from a vertex array with the depth test off, a
+ * triangle in front of it with the test on, a swap), destroys both, forty
+ * times on one display connection, and prints "sample N rss_kb memfd fds"
+ * after contexts 10 and 40. Each automatic-stereo context's eyes, and
+ * under --auto=depth the depth its draws with the test off write beside
+ * them, must go with it: the samples stay flat.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <GL/gl.h>
@@ -73,6 +76,15 @@ int main(void)
             glMatrixMode(GL_PROJECTION);
             glLoadIdentity();
             glFrustum(-1, 1, -0.75, 0.75, 1, 50);
+            /* The backdrop at w 8, drawn first with the depth test off. */
+            static const GLfloat backdrop[] = {-4, -3, -8, 4, -3, -8, 4, 3, -8, -4, 3, -8};
+            glDisable(GL_DEPTH_TEST);
+            glColor3f(0.0f, 0.0f, 1.0f);
+            glEnableClientState(GL_VERTEX_ARRAY);
+            glVertexPointer(3, GL_FLOAT, 0, backdrop);
+            glDrawArrays(GL_TRIANGLE_FAN, 0, 4);
+            glDisableClientState(GL_VERTEX_ARRAY);
+            glEnable(GL_DEPTH_TEST);
             glColor3f(1.0f, 0.0f, 0.0f);
             glBegin(GL_TRIANGLES);
             glVertex3f(-1, -1, -4);
