@@ -186,6 +186,62 @@ fn an_opengl_es_wayland_client_under_auto_equals_each_eye_drawn_by_hand() {
     compare_with_the_oracle(&server, "es100");
 }
 
+/// A window composed on the CPU (an anaglyph on llvmpipe: no copy of the
+/// eyes serves it) is uploaded as composed, top row first, and blitted
+/// upside down into GL's bottom-first window: the X window shows the very
+/// composite the capture writes, upright, pixel for pixel.
+#[test]
+fn an_egl_window_composed_on_the_cpu_shows_the_composite_upright() {
+    let _one = one_renderer_at_a_time();
+    let server = Server::X(Xvfb::start(W + 40, H + 40));
+    let Server::X(x) = &server else {
+        unreachable!()
+    };
+    let what = "the oracle on X11, an anaglyph composed on the CPU";
+    let args = |cmd: &mut Command| {
+        cmd.args([
+            "--auto",
+            "--separation",
+            SEPARATION,
+            "--convergence",
+            CONVERGENCE,
+            "-m",
+            "anaglyph-red-cyan",
+        ]);
+    };
+    let dir = common::scratch("egl-cpu-window");
+    let mut once = Command::new(&built().run);
+    args(server.on(&mut once));
+    common::run_ok(
+        once.arg("--capture")
+            .arg(&dir)
+            .arg(oracle())
+            .args(["x11", "es3", "mono"]),
+    );
+    let want = common::png(&dir.join("composite-000001.png"));
+    assert_eq!((want.width(), want.height()), (W, H), "{what}");
+    let mut cmd = Command::new(&built().run);
+    args(server.on(&mut cmd));
+    cmd.arg(oracle())
+        .args(["x11", "es3", "mono", "frames", "1000000"]);
+    let mut run = Renderer::start(cmd, what);
+    let screen = Screen::open(&x.display);
+    let (_, shot) = run.picture(
+        &screen,
+        |s| s.find_window("egl_auto_oracle"),
+        |shot| (shot.width(), shot.height()) == (W, H) && differing(shot, &want).is_empty(),
+    );
+    drop(run);
+    assert_eq!((shot.width(), shot.height()), (W, H), "{what}: the window");
+    let off = differing(&shot, &want);
+    assert!(
+        off.is_empty(),
+        "{what}: {} pixels of the window are not the captured composite's, e.g. {:?}",
+        off.len(),
+        &off[..off.len().min(5)]
+    );
+}
+
 /// The program resizes its window after its first frame (XResizeWindow,
 /// or wl_egl_window_resize): the eyes follow, at the new size.
 fn follows_a_resize(server: &Server) {

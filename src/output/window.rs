@@ -460,8 +460,10 @@ impl WindowPaths {
             let fbo = self.read_fbo(gl);
             self.rows.image(gl, fbo, job, options, &mut self.out)?;
         }
+        // Rows top first, uploaded as they are and blitted upside down
+        // (GL's rows are bottom first): no pass over the composite to turn
+        // it over.
         let (cw, ch) = (self.out.width(), self.out.height());
-        flip_rows(self.out.pixels_mut(), cw as usize * 4);
         // SAFETY: as above; the image holds cw×ch×4 bytes.
         unsafe {
             self.upload.ensure(gl, cw, ch)?;
@@ -490,9 +492,9 @@ impl WindowPaths {
                 cw as i32,
                 ch as i32,
                 0,
-                0,
-                cw as i32,
                 ch as i32,
+                cw as i32,
+                0,
                 GL_COLOR_BUFFER_BIT,
                 GL_NEAREST,
             );
