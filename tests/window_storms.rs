@@ -144,50 +144,55 @@ fn a_fault_in_a_composition_costs_its_own_frame_and_says_so_in_one_line() {
 /// thin ones too) drawing a scene with depth and a HUD: both eyes made
 /// from its depth at every size in every fitted format, with no panic and
 /// nothing said, and its own read of its last frame is what it reads
-/// without the layer (its mono frame).
+/// without the layer (its mono frame). Its visual's 32-bit depth, and
+/// once a 16-bit one: both read in place (the HUD writes no depth).
 #[test]
 fn a_mono_window_resized_at_random_under_auto_depth_gets_its_eyes_at_every_size() {
     let x = Xvfb::start(1700, 1300);
     let exe = c_program("auto_resize_storm", &["-lGL", "-lX11"]);
-    for (k, mode) in FITTED.iter().enumerate() {
-        for viewport in ["viewport", "noviewport"] {
-            let seed = (31 + k).to_string();
-            let args = [AUTO_FRAMES, seed.as_str(), viewport];
-            let out = Command::new(&built().run)
-                .args(["--auto=depth", "-m", mode])
-                .arg(&exe)
-                .args(args)
-                .env("DISPLAY", &x.display)
-                .env_remove("GLSTEREO_VERBOSE")
-                .output()
-                .expect("glstereo-run starts");
-            let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
-            let what = format!("--auto=depth {mode}, seed {seed}, {viewport}");
-            assert!(
-                !stderr.contains("panicked") && !stderr.contains("glstereo:"),
-                "{what}: the layer said\n{stderr}"
-            );
-            assert!(
-                out.status.success() && stdout.contains(&format!("frames {AUTO_FRAMES}")),
-                "{what}: {}\n{stdout}\n{stderr}",
-                out.status
-            );
-            let plain = Command::new(&exe)
-                .args(args)
-                .env("DISPLAY", &x.display)
-                .output()
-                .expect("the program starts");
-            let centre = |s: &str| {
-                s.lines()
-                    .find(|l| l.starts_with("centre "))
-                    .map(str::to_owned)
-            };
-            assert_eq!(
-                centre(&stdout),
-                centre(&text(&plain.stdout)),
-                "{what}: the program's read of its frame is not its mono frame's"
-            );
-            assert!(stdout.contains("error 0x0"), "{what}: {stdout}");
-        }
+    let runs = FITTED
+        .iter()
+        .enumerate()
+        .flat_map(|(k, mode)| ["viewport", "noviewport"].map(|v| (k, *mode, v, None)))
+        .chain([(FITTED.len(), "side-by-side-half", "viewport", Some("16"))]);
+    for (k, mode, viewport, bits) in runs {
+        let seed = (31 + k).to_string();
+        let mut args = vec![AUTO_FRAMES, seed.as_str(), viewport];
+        args.extend(bits);
+        let out = Command::new(&built().run)
+            .args(["--auto=depth", "-m", mode])
+            .arg(&exe)
+            .args(&args)
+            .env("DISPLAY", &x.display)
+            .env_remove("GLSTEREO_VERBOSE")
+            .output()
+            .expect("glstereo-run starts");
+        let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+        let what = format!("--auto=depth {mode}, seed {seed}, {viewport}, depth {bits:?}");
+        assert!(
+            !stderr.contains("panicked") && !stderr.contains("glstereo:"),
+            "{what}: the layer said\n{stderr}"
+        );
+        assert!(
+            out.status.success() && stdout.contains(&format!("frames {AUTO_FRAMES}")),
+            "{what}: {}\n{stdout}\n{stderr}",
+            out.status
+        );
+        let plain = Command::new(&exe)
+            .args(&args)
+            .env("DISPLAY", &x.display)
+            .output()
+            .expect("the program starts");
+        let centre = |s: &str| {
+            s.lines()
+                .find(|l| l.starts_with("centre "))
+                .map(str::to_owned)
+        };
+        assert_eq!(
+            centre(&stdout),
+            centre(&text(&plain.stdout)),
+            "{what}: the program's read of its frame is not its mono frame's"
+        );
+        assert!(stdout.contains("error 0x0"), "{what}: {stdout}");
     }
 }

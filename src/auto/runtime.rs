@@ -1874,18 +1874,23 @@ unsafe fn keep_scene_colour(
 /// A draw that is not the scene's comes into depth `array` holding this
 /// measured frame's scene (drawn with a known perspective: `known`), not
 /// yet kept (`copied`): its left eye is copied into `copy` before the
-/// draw may overwrite it, once per scene drawn.
+/// draw may overwrite it, once per scene drawn. A draw that writes no
+/// depth (a HUD drawn with the depth test or depth writes off) leaves
+/// the scene's depth where it is, to be read there (in place, where it is
+/// memory): nothing is copied for it.
 ///
 /// # Safety
 /// The program's context is current on this thread.
 unsafe fn keep_scene_depth(
+    f: &AutoFns,
     api: render_targets::ContextApi,
     measured: bool,
     known: bool,
     array: u32,
     (copy, copied): (&mut render_targets::DepthCopy, &mut bool),
 ) {
-    if !measured || !known || *copied || array == 0 {
+    // SAFETY: contract.
+    if !measured || !known || *copied || array == 0 || !unsafe { writes_depth(f) } {
         return;
     }
     // SAFETY: contract.
@@ -2082,6 +2087,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             st.colour_kept = keep_scene_colour(f, api, &layered);
                         }
                         keep_scene_depth(
+                            f,
                             api,
                             records(st),
                             known(&st.window_drawn),
@@ -2132,6 +2138,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                     if let Some((t, _, s)) = scene.drawn {
                                         if t.depth() == a.depth() {
                                             keep_scene_depth(
+                                                f,
                                                 api,
                                                 records(st),
                                                 s.perspective.is_some(),

@@ -3,7 +3,11 @@
  * frame after frame, drawing a perspective scene with depth: what
  * `glstereo-run --auto=depth` makes both eyes of at every size.
  *
- *   auto_resize_storm FRAMES SEED viewport|noviewport
+ *   auto_resize_storm FRAMES SEED viewport|noviewport [DEPTH_BITS]
+ *
+ * DEPTH_BITS: the visual's depth, exactly (a configuration of that many
+ * depth bits and no stencil); without it, glXChooseVisual's choice for 24
+ * or more (on Mesa: 32).
  *
  * After a first frame at 64x64, each frame resizes the window to a
  * random size between 1x1 and 1600x1200 (a quarter of them thin: 1 to 3
@@ -92,8 +96,8 @@ static void draw_and_swap(Display *d, Window win)
 
 int main(int argc, char **argv)
 {
-    if (argc != 4) {
-        fprintf(stderr, "usage: auto_resize_storm FRAMES SEED viewport|noviewport\n");
+    if (argc != 4 && argc != 5) {
+        fprintf(stderr, "usage: auto_resize_storm FRAMES SEED viewport|noviewport [DEPTH_BITS]\n");
         return 2;
     }
     unsigned frames = (unsigned)strtoul(argv[1], NULL, 10), frame;
@@ -107,7 +111,24 @@ int main(int argc, char **argv)
     }
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8,
                         GLX_BLUE_SIZE, 8, GLX_DEPTH_SIZE, 24, None};
-    XVisualInfo *vi = glXChooseVisual(d, DefaultScreen(d), attributes);
+    XVisualInfo *vi = NULL;
+    if (argc == 5) {
+        int bits = atoi(argv[4]), n = 0;
+        int exact[] = {GLX_RENDER_TYPE, GLX_RGBA_BIT, GLX_DOUBLEBUFFER, True, GLX_RED_SIZE, 8,
+                       GLX_DEPTH_SIZE, bits, None};
+        GLXFBConfig *configs = glXChooseFBConfig(d, DefaultScreen(d), exact, &n);
+        for (int i = 0; i < n && vi == NULL; i++) {
+            int depth = -1, stencil = -1;
+            glXGetFBConfigAttrib(d, configs[i], GLX_DEPTH_SIZE, &depth);
+            glXGetFBConfigAttrib(d, configs[i], GLX_STENCIL_SIZE, &stencil);
+            if (depth == bits && stencil == 0)
+                vi = glXGetVisualFromFBConfig(d, configs[i]);
+        }
+        if (configs != NULL)
+            XFree(configs);
+    } else {
+        vi = glXChooseVisual(d, DefaultScreen(d), attributes);
+    }
     if (vi == NULL) {
         fprintf(stderr, "no visual with depth\n");
         return 2;
