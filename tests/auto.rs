@@ -691,6 +691,74 @@ fn depth_off_in(x: &Xvfb, exe: &Path, mode: &str) {
     }
 }
 
+/// A program that clears its depth in the middle of a frame
+/// (tests/c/auto_depth_cleared.c), by glClear, glClearBufferfv and
+/// glClearNamedFramebufferfv. After a draw with the depth test off (which
+/// `--auto=depth` makes with a depth layer of its own attached), the
+/// clear clears the program's depth: its later draws and reads are
+/// Mesa's under both kinds of automatic stereo (before: the clear went to
+/// the other layer and the program saw its older depth hide the green
+/// quad). After the scene, then a gizmo in perspective in a corner
+/// viewport (VTK's orientation axes): under `--auto=depth` the scene
+/// keeps its depth (copied before the clear) and its parallax, as
+/// `--auto` draws it, in the window and in a render target blitted into
+/// it (as VTK 9 draws), and in the window the gizmo stays at the screen
+/// (before: the gizmo was taken for the scene and the frame was flat).
+#[test]
+fn a_depth_clear_in_the_frame_clears_the_programs_depth_and_keeps_the_scenes_eyes() {
+    let _one = common::clients::one_renderer_at_a_time();
+    let exe = client("auto_depth_cleared");
+    let x = Xvfb::start(W + 40, H + 40);
+    for how in ["clear", "clearbuffer", "named"] {
+        let plain = common::run_ok(
+            Command::new(&exe)
+                .args([how, "beside"])
+                .env("DISPLAY", &x.display),
+        );
+        let plain = String::from_utf8_lossy(&plain.stdout).into_owned();
+        assert!(
+            plain.starts_with("centre 0 255 0\n") && plain.ends_with("error 0x0\n"),
+            "{how}, without the layer: {plain}"
+        );
+        for auto in ["--auto", "--auto=depth"] {
+            let dir = common::scratch(&format!("auto-depth-cleared-{how}{auto}"));
+            let (_, ours) = auto_capture_in(&x, (auto, CONVERGENCE), &exe, &[how, "beside"], &dir);
+            assert_eq!(ours, plain, "{how} under {auto}, then without the layer");
+        }
+        for what in ["gizmo", "scissored", "target"] {
+            let eyes = ["--auto", "--auto=depth"].map(|auto| {
+                let dir = common::scratch(&format!("auto-depth-cleared-{how}-{what}{auto}"));
+                auto_capture_in(&x, (auto, CONVERGENCE), &exe, &[how, what], &dir).0
+            });
+            // The red quad (w 2) in the middle row: its edges move by
+            // s·(1 − C/w)·W = −14 pixels under --auto.
+            let shift = |[l, r]: &[Image; 2]| {
+                let (a, b) = (run_of(l, H / 2, [255, 0, 0]), run_of(r, H / 2, [255, 0, 0]));
+                let (Some(a), Some(b)) = (a, b) else {
+                    panic!("{how} {what}: the red quad is not in both eyes");
+                };
+                [b.0 as i64 - a.0 as i64, b.1 as i64 - a.1 as i64]
+            };
+            let (truth, made) = (shift(&eyes[0]), shift(&eyes[1]));
+            assert!(
+                truth.iter().all(|&s| (s + 14).abs() <= 1)
+                    && truth.iter().zip(made).all(|(t, m)| (t - m).abs() <= 1),
+                "{how} {what}: the red quad moved {made:?} under --auto=depth, {truth:?} under --auto"
+            );
+            // The gizmo (white, bottom right) at the screen in both eyes;
+            // drawn into a render target, it is in both eyes and moves
+            // with the scene behind it (README).
+            let y = H - 25;
+            let [l, r] = &eyes[1];
+            let (a, b) = (run_of(l, y, [255, 255, 255]), run_of(r, y, [255, 255, 255]));
+            assert!(
+                a.is_some() && b.is_some() && (what == "target" || a == b),
+                "{how} {what}: the gizmo at {a:?} in the left eye, {b:?} in the right"
+            );
+        }
+    }
+}
+
 /// A square render target of another size than the window is seen from
 /// a light (a shadow or reflection map): drawn in perspective, it stays
 /// one picture both eyes show; a target of the window's size drawn in

@@ -1492,6 +1492,10 @@ pub struct SceneTarget {
     pub copy: DepthCopy,
     /// `copy` holds the scene's depth (a later draw came after it).
     pub copied: bool,
+    /// The program cleared the target's depth after the scene (drawn in
+    /// this viewport), copied first: a perspective draw into it in
+    /// another viewport is an overlay, not the scene.
+    pub cleared: Option<(i32, i32, i32, i32)>,
 }
 
 /// A copy of an eye's depth, kept by automatic convergence: a later

@@ -332,6 +332,12 @@ pub struct AutoState {
     /// share group's, [`render_targets::SceneTarget`]).
     depth_copy: render_targets::DepthCopy,
     depth_copied: bool,
+    /// `--auto=depth`: the program cleared the window's depth after this
+    /// frame's scene (drawn in this viewport), whose depth was copied
+    /// first ([`before_clear`]): a perspective draw in another viewport
+    /// after it (an orientation gizmo in a corner) is an overlay, not the
+    /// scene.
+    depth_cleared: Option<(i32, i32, i32, i32)>,
     /// `--auto=depth`: a flat draw (an overlay: a HUD, text) came into the
     /// window's eyes after this frame's scene, and the scene's colour was
     /// copied into the right eye's layer before it ([`keep_scene_colour`]).
@@ -1041,6 +1047,10 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
         Family::TextureWrite => unsafe { texture_write(t, cur, call, draw) },
         // SAFETY: as above.
         Family::Read => unsafe { read_call(t, cur, call, draw) },
+        Family::Clear => {
+            before_clear(cur, &call);
+            draw()
+        }
         Family::SideEffect => {
             if call.name.starts_with("glBeginTransformFeedback") {
                 cur.with_auto(|st, _| st.feedback = true);
@@ -1871,6 +1881,121 @@ unsafe fn keep_scene_colour(
     }
 }
 
+/// Whether `call` (of [`Family::Clear`]) clears depth, and of which
+/// framebuffer: Some(None) the draw framebuffer, Some(Some(n)) framebuffer
+/// object n (glClearNamedFramebuffer*; 0 the default).
+fn clears_depth(call: &Call) -> Option<Option<u32>> {
+    const GL_DEPTH_BUFFER_BIT: u32 = 0x100;
+    const GL_DEPTH: u32 = 0x1801;
+    const GL_DEPTH_STENCIL: u32 = 0x84F9;
+    let depth = |buffer: u32| buffer == GL_DEPTH || buffer == GL_DEPTH_STENCIL;
+    match call.name {
+        "glClear" => (call.u32(0) & GL_DEPTH_BUFFER_BIT != 0).then_some(None),
+        n if n.starts_with("glClearNamedFramebuffer") => {
+            depth(call.u32(1)).then_some(Some(call.u32(0)))
+        }
+        n if n.starts_with("glClearBuffer") => depth(call.u32(0)).then_some(None),
+        _ => None,
+    }
+}
+
+/// Before a clear (glClear, glClearBuffer*, glClearNamedFramebuffer*; by
+/// the hand-written replacements of the preload layer or through
+/// [`around`]): the window's depth is put back where a draw with the
+/// depth test off left the depth array's second layer attached
+/// ([`restore_depth`]: the clear is the program's depth's); and under
+/// `--auto=depth`, a clear of the depth of the window's eyes or of the
+/// scene's render target after the frame's scene, with depth writes on
+/// (a clear honours the mask), first copies the scene's depth aside, as a
+/// draw that would overwrite it does ([`keep_scene_depth`]), so that the
+/// eyes are made from the scene and not from what is drawn after the
+/// clear (VTK's and ParaView's orientation axes in a corner renderer, a
+/// gizmo drawn over fresh depth). Not while a display list is compiled
+/// (its clears run when it is called).
+pub fn before_clear(cur: &impl Host, call: &Call) {
+    let Some(t) = tables() else {
+        return;
+    };
+    // SAFETY: the program's context is current on this thread.
+    cur.with_auto(|st, _| unsafe { restore_depth(&t.gl, st) });
+    not_geometry_only(cur, call.family);
+    let Some(named) = clears_depth(call) else {
+        return;
+    };
+    if COMPILING.with(std::cell::Cell::get) || !live::from_depth() {
+        return;
+    }
+    let f = &t.gl;
+    let group = cur.group();
+    cur.with_auto(|st, eyes_of| {
+        let Some((window_fbo, layered)) = eyes_of else {
+            return;
+        };
+        const GL_DEPTH_WRITEMASK: u32 = 0x0B72;
+        // SAFETY: the program's context is current on this thread.
+        let (mask, bound) = unsafe {
+            (
+                integer(f, GL_DEPTH_WRITEMASK) != 0,
+                integer(f, GL_DRAW_FRAMEBUFFER_BINDING) as u32,
+            )
+        };
+        let fbo = match named {
+            // The default framebuffer is the window's eyes.
+            Some(0) => window_fbo,
+            Some(n) => n,
+            None => bound,
+        };
+        if !mask || !records(st) {
+            return;
+        }
+        render_targets::with_group(group, |targets| {
+            // SAFETY: as above.
+            unsafe {
+                let api = render_targets::context_api(targets);
+                if fbo == window_fbo {
+                    let Some(scene) = st.window_drawn else {
+                        return;
+                    };
+                    if !st.depth_copied {
+                        st.depth_copied = render_targets::copy_left_depth(
+                            api,
+                            layered.depth(),
+                            &mut st.depth_copy,
+                        );
+                    }
+                    if st.depth_copied {
+                        st.depth_cleared = Some(scene.viewport);
+                    }
+                    return;
+                }
+                // The scene's render target, where the cleared framebuffer
+                // (the one bound) has its depth array attached.
+                let scene = &mut targets.scene;
+                let Some((a, _, drawn)) = scene.drawn else {
+                    return;
+                };
+                const GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME: u32 = 0x8CD1;
+                let mut attached = -1;
+                (f.get_framebuffer_attachment_parameteriv)(
+                    GL_DRAW_FRAMEBUFFER,
+                    a.depth_point(),
+                    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
+                    &mut attached,
+                );
+                if fbo != bound || attached as u32 != a.depth() || a.depth() == 0 {
+                    return;
+                }
+                if !scene.copied {
+                    scene.copied = render_targets::copy_left_depth(api, a.depth(), &mut scene.copy);
+                }
+                if scene.copied {
+                    scene.cleared = Some(drawn.viewport);
+                }
+            }
+        });
+    });
+}
+
 /// A draw that is not the scene's comes into depth `array` holding this
 /// measured frame's scene (drawn with a known perspective: `known`), not
 /// yet kept (`copied`): its left eye is copied into `copy` before the
@@ -1928,6 +2053,7 @@ pub unsafe fn frame_geometry(
     st.unmeasured = !converge::measures(frame + 1);
     st.clock_read = false;
     let copied = std::mem::take(&mut st.depth_copied);
+    st.depth_cleared = None;
     let overlays = std::mem::take(&mut st.colour_kept);
     let depth_written = std::mem::take(&mut st.depth_written);
     let depth_beside = std::mem::take(&mut st.depth_beside);
@@ -1947,6 +2073,7 @@ pub unsafe fn frame_geometry(
     let target = render_targets::with_group(group, |targets| {
         let s = &mut targets.scene;
         let copied = std::mem::take(&mut s.copied);
+        s.cleared = None;
         s.drawn.take().map(|(a, size, scene)| {
             let a = if copied {
                 a.with_depth_copy(s.copy.texture)
@@ -2077,13 +2204,22 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                     if !st.depth_written && perspective.is_some() && live::from_depth() {
                         st.depth_written = writes_depth(f);
                     }
-                    known_window_draw = fbo == window_fbo && known(&perspective);
-                    if fbo == window_fbo && known(&perspective) {
+                    // After the scene's depth was cleared, a perspective
+                    // draw in another viewport is an overlay (before_clear).
+                    let overlay = st
+                        .depth_cleared
+                        .is_some_and(|vp| perspective.is_some_and(|p| p.viewport != vp));
+                    known_window_draw = fbo == window_fbo && known(&perspective) && !overlay;
+                    if fbo == window_fbo && known(&perspective) && !overlay {
+                        st.depth_cleared = None;
                         st.window_drawn = perspective;
                         st.depth_copied = false;
                         st.colour_kept = false;
                     } else if fbo == window_fbo && !blit {
-                        if perspective.is_none() && known(&st.window_drawn) && !st.colour_kept {
+                        if (perspective.is_none() || overlay)
+                            && known(&st.window_drawn)
+                            && !st.colour_kept
+                        {
                             st.colour_kept = keep_scene_colour(f, api, &layered);
                         }
                         keep_scene_depth(
@@ -2094,7 +2230,12 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             layered.depth(),
                             (&mut st.depth_copy, &mut st.depth_copied),
                         );
-                        if perspective.is_some() && !known(&st.window_drawn) {
+                        if perspective.is_some() && !known(&st.window_drawn) && !overlay {
+                            if st.depth_cleared.take().is_some() {
+                                // The scene again after its depth was
+                                // cleared: its own depth now.
+                                st.depth_copied = false;
+                            }
                             st.window_drawn = perspective;
                         }
                     }
@@ -2127,10 +2268,23 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             // Measured: the last one with depth (a scene;
                             // the post-processing passes after it have none).
                             let size = render_targets::size(targets, context, fbo);
+                            // After the scene's depth was cleared, a
+                            // perspective draw in another viewport into it
+                            // is an overlay (before_clear).
+                            let overlay = targets.scene.cleared.is_some_and(|vp| {
+                                targets
+                                    .scene
+                                    .drawn
+                                    .is_some_and(|d| d.0.depth() == a.depth())
+                                    && perspective.is_some_and(|p| p.viewport != vp)
+                            });
                             match (perspective, size, a.has_depth()) {
-                                (Some(scene), Some(s), true) if scene.perspective.is_some() => {
+                                (Some(scene), Some(s), true)
+                                    if scene.perspective.is_some() && !overlay =>
+                                {
                                     targets.scene.drawn = Some((a, s, scene));
                                     targets.scene.copied = false;
+                                    targets.scene.cleared = None;
                                 }
                                 _ if blit => {}
                                 (p, size, depth) => {
@@ -2152,9 +2306,15 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                         .scene
                                         .drawn
                                         .is_none_or(|t| t.2.perspective.is_none());
-                                    if let (Some(scene), Some(s), true, true) =
-                                        (p, size, depth, unknown_first)
+                                    if let (Some(scene), Some(s), true, true, false) =
+                                        (p, size, depth, unknown_first, overlay)
                                     {
+                                        if targets.scene.cleared.is_some() {
+                                            // The scene again after its depth
+                                            // was cleared: its own depth now.
+                                            targets.scene.copied = false;
+                                            targets.scene.cleared = None;
+                                        }
                                         targets.scene.drawn = Some((a, s, scene));
                                     }
                                 }

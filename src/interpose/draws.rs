@@ -52,6 +52,20 @@ pub fn around<R: Returned>(call: Call, draw: impl Fn() -> R) -> R {
     draw()
 }
 
+/// Before a clear by a hand-written replacement (glClear,
+/// glClearBuffer*, glClearNamedFramebuffer*): [`notice`], and what
+/// automatic stereo does before a clear ([`crate::auto::runtime::before_clear`]:
+/// the window's depth put back where a draw with the depth test off left
+/// another layer attached, the scene's depth kept before it is cleared).
+pub fn notice_clear(call: Call) {
+    notice(call.family);
+    if WATCH.with(Cell::get) & AUTO != 0 {
+        if let Some(cur) = current() {
+            crate::auto::runtime::before_clear(&cur, &call);
+        }
+    }
+}
+
 /// Before a draw of `family` by a hand-written replacement (glClear,
 /// glClearBuffer*, the blits): a size check asked for by
 /// [`check_size_at_next_draw`].

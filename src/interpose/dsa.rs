@@ -231,7 +231,11 @@ pub unsafe fn clear_buffer<T: ClearValue>(
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
-    super::draws::notice(crate::auto::entry_points::Family::Clear);
+    super::draws::notice_clear(super::draws::Call {
+        family: crate::auto::entry_points::Family::Clear,
+        name: T::CLEAR,
+        args: &[u64::from(buffer), drawbuffer as u64],
+    });
     let r = loaded()?;
     let real = need(T::clear(fns()), T::CLEAR)?;
     if value.is_null() {
@@ -282,7 +286,11 @@ pub unsafe fn clear_named_framebuffer<T: ClearValue>(
     drawbuffer: i32,
     value: *const T,
 ) -> Result<()> {
-    super::draws::notice(crate::auto::entry_points::Family::Clear);
+    super::draws::notice_clear(super::draws::Call {
+        family: crate::auto::entry_points::Family::Clear,
+        name: T::CLEAR_NAMED,
+        args: &[u64::from(framebuffer), u64::from(buffer), drawbuffer as u64],
+    });
     let r = loaded()?;
     let real = need(T::clear_named(fns()), T::CLEAR_NAMED)?;
     if value.is_null() {
@@ -318,7 +326,11 @@ pub fn clear_named_framebufferfi(
     depth: f32,
     stencil: i32,
 ) -> Result<()> {
-    super::draws::notice(crate::auto::entry_points::Family::Clear);
+    super::draws::notice_clear(super::draws::Call {
+        family: crate::auto::entry_points::Family::Clear,
+        name: "glClearNamedFramebufferfi",
+        args: &[u64::from(framebuffer), u64::from(buffer), drawbuffer as u64],
+    });
     loaded()?;
     let real = need(fns().clear_named_fi, "glClearNamedFramebufferfi")?;
     let fbo = if framebuffer == 0 {

@@ -1295,7 +1295,11 @@ pub fn clear_color(color: ClearColor, fixed_oes: bool) -> Result<()> {
 /// clear the program masks nothing of stays the driver's fast full clear
 /// rather than a masked one (llvmpipe draws a quad for that).
 pub fn clear(mask: u32) -> Result<()> {
-    super::draws::notice(crate::auto::entry_points::Family::Clear);
+    super::draws::notice_clear(super::draws::Call {
+        family: crate::auto::entry_points::Family::Clear,
+        name: "glClear",
+        args: &[u64::from(mask)],
+    });
     let r = loaded()?;
     let gl = &r.gl;
     let cur = match current() {
