@@ -1903,11 +1903,11 @@ fn clears_depth(call: &Call) -> Option<Option<u32>> {
 /// the hand-written replacements of the preload layer or through
 /// [`around`]): the window's depth is put back where a draw with the
 /// depth test off left the depth array's second layer attached
-/// ([`restore_depth`]: the clear is the program's depth's); and under
+/// (`restore_depth`: the clear is the program's depth's); and under
 /// `--auto=depth`, a clear of the depth of the window's eyes or of the
 /// scene's render target after the frame's scene, with depth writes on
 /// (a clear honours the mask), first copies the scene's depth aside, as a
-/// draw that would overwrite it does ([`keep_scene_depth`]), so that the
+/// draw that would overwrite it does (`keep_scene_depth`), so that the
 /// eyes are made from the scene and not from what is drawn after the
 /// clear (VTK's and ParaView's orientation axes in a corner renderer, a
 /// gizmo drawn over fresh depth). Not while a display list is compiled
