@@ -96,6 +96,7 @@ impl DepthRows {
     /// # Safety
     /// The memory lives and GL has finished writing it (the contract of
     /// [`LayeredEyes::left_depth`]); `y` < height.
+    #[inline(always)]
     pub unsafe fn read_row(&self, y: usize, out: &mut [f32]) {
         // SAFETY: contract.
         unsafe { self.each(y, out, |_, d| d) }
@@ -141,6 +142,7 @@ impl DepthRows {
     ///
     /// # Safety
     /// As [`DepthRows::read_row`].
+    #[inline(always)]
     pub unsafe fn nearer_row(&self, y: usize, out: &mut [f32]) {
         // SAFETY: contract.
         unsafe { self.each(y, out, f32::min) }
@@ -1340,6 +1342,98 @@ mod tests {
             // SAFETY: as above.
             unsafe { b.nearer_row(y, &mut out) };
             assert_eq!(out, merged, "row {y} merged");
+        }
+    }
+    /// The depth rows at every vector level the processor has (as the
+    /// present runs them, inside `with_simd`) give the scalar reference's
+    /// floats bit for bit: rows 1 to 300 words wide and some up to 8192,
+    /// rows padded apart by any number of words, words of every value,
+    /// every kind of word, merged into rows holding anything (NaN too).
+    #[test]
+    fn depth_rows_at_every_vector_level_are_the_scalar_references() {
+        use crate::output::kernels::{Simd, with_simd};
+        let mut rng = crate::output::fits::Rng(0x5EED_DE97);
+        // One word at a time, by the formula of each kind.
+        let reference = |bits: DepthBits, word: u32| -> f32 {
+            let scale = 1.0 / DEPTH_MAX as f32;
+            match bits {
+                DepthBits::Low => (word & DEPTH_MAX) as i32 as f32 * scale,
+                DepthBits::High => (word >> 8) as i32 as f32 * scale,
+                DepthBits::Short => f32::from(word as u16) * (1.0 / f32::from(u16::MAX)),
+            }
+        };
+        let widths = (1..=300).chain([511, 1024, 1920, 4099, 8192]);
+        for width in widths {
+            for bits in [DepthBits::Low, DepthBits::High, DepthBits::Short] {
+                let bytes: usize = if bits == DepthBits::Short { 2 } else { 4 };
+                let pad = (rng.next() % 3) as usize;
+                let stride_words = (width * bytes).div_ceil(4) + pad;
+                let height = 2;
+                let words: Vec<u32> = (0..stride_words * height)
+                    .map(|_| match rng.next() % 5 {
+                        0 => 0,
+                        1 => u32::MAX,
+                        _ => rng.next() as u32,
+                    })
+                    .collect();
+                let rows = DepthRows {
+                    first: words.as_ptr().cast(),
+                    stride: stride_words * 4,
+                    width,
+                    height,
+                    bits,
+                };
+                let start: Vec<f32> = (0..width)
+                    .map(|_| match rng.next() % 6 {
+                        0 => f32::NAN,
+                        1 => f32::INFINITY,
+                        2 => -0.0,
+                        _ => (rng.next() >> 40) as f32 / (1u64 << 24) as f32,
+                    })
+                    .collect();
+                for y in 0..height {
+                    let word = |x: usize| -> u32 {
+                        // SAFETY: inside `words` (x < width, row y).
+                        unsafe {
+                            let at = rows.first.add(y * rows.stride + x * bytes);
+                            if bytes == 2 {
+                                u32::from(at.cast::<u16>().read())
+                            } else {
+                                at.cast::<u32>().read()
+                            }
+                        }
+                    };
+                    let read: Vec<u32> = (0..width)
+                        .map(|x| reference(bits, word(x)).to_bits())
+                        .collect();
+                    let merged: Vec<u32> = (0..width)
+                        .map(|x| start[x].min(reference(bits, word(x))).to_bits())
+                        .collect();
+                    for level in Simd::ALL.into_iter().filter(|&s| s <= Simd::detected()) {
+                        let mut out = vec![7.0f32; width];
+                        // SAFETY: the words outlive the reads; y < height.
+                        with_simd(
+                            level,
+                            #[inline(always)]
+                            |_| unsafe { rows.read_row(y, &mut out) },
+                        );
+                        let got: Vec<u32> = out.iter().map(|v| v.to_bits()).collect();
+                        assert_eq!(got, read, "{bits:?} width {width} row {y} at {level:?}");
+                        let mut out = start.clone();
+                        // SAFETY: as above.
+                        with_simd(
+                            level,
+                            #[inline(always)]
+                            |_| unsafe { rows.nearer_row(y, &mut out) },
+                        );
+                        let got: Vec<u32> = out.iter().map(|v| v.to_bits()).collect();
+                        assert_eq!(
+                            got, merged,
+                            "{bits:?} width {width} row {y} merged at {level:?}"
+                        );
+                    }
+                }
+            }
         }
     }
 }

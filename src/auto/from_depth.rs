@@ -204,18 +204,26 @@ impl Pending {
             ((None, None), false) => read(),
             ((memory, beside), overlays) => {
                 row.resize(w, 0.0);
-                match memory {
-                    // SAFETY: contract; y < the depth's height (rule_of).
-                    Some(rows) => unsafe { rows.read_row(y, row) },
-                    None => row.copy_from_slice(read()),
-                }
-                if let Some(b) = beside {
-                    // SAFETY: as above (rule_of: the window's size).
-                    unsafe { b.nearer_row(y, row) };
-                }
-                if overlays {
-                    reproject::mark_overlays(colour, scene, row);
-                }
+                // At the frame's vector level: the conversions of the
+                // depth words, the merge and the marks compiled for it.
+                crate::output::kernels::with_simd(
+                    job.simd,
+                    #[inline(always)]
+                    |_| {
+                        match memory {
+                            // SAFETY: contract; y < the depth's height (rule_of).
+                            Some(rows) => unsafe { rows.read_row(y, row) },
+                            None => row.copy_from_slice(read()),
+                        }
+                        if let Some(b) = beside {
+                            // SAFETY: as above (rule_of: the window's size).
+                            unsafe { b.nearer_row(y, row) };
+                        }
+                        if overlays {
+                            reproject::mark_overlays(colour, scene, row);
+                        }
+                    },
+                );
                 row
             }
         }

@@ -143,6 +143,49 @@ fn every_level_writes_the_references_words_at_every_length() {
     }
 }
 
+/// The overlay marks at every vector level (the present compiles them
+/// inside `with_simd`) are the per-pixel rule's: NaN where the colour
+/// differs from the scene's, the depth as it was elsewhere, bit for bit.
+#[test]
+fn overlay_marks_at_every_level_are_the_per_pixel_rules_at_every_length() {
+    use crate::output::kernels::with_simd;
+    let mut rng = Rng(0x0E71_A7E5);
+    for n in lengths(&mut rng) {
+        let scene: Vec<u32> = (0..n).map(|_| rng.next() as u32).collect();
+        let colour: Vec<u32> = scene
+            .iter()
+            .map(|&s| {
+                if rng.below(3) == 0 {
+                    s ^ (1 << rng.below(32))
+                } else {
+                    s
+                }
+            })
+            .collect();
+        let depth = depths(&mut rng, n, 1.0);
+        let want: Vec<u32> = (0..n)
+            .map(|i| {
+                if colour[i] != scene[i] {
+                    f32::NAN
+                } else {
+                    depth[i]
+                }
+                .to_bits()
+            })
+            .collect();
+        for simd in levels() {
+            let mut got = depth.clone();
+            with_simd(
+                simd,
+                #[inline(always)]
+                |_| mark_overlays(&colour, &scene, &mut got),
+            );
+            let got: Vec<u32> = got.iter().map(|d| d.to_bits()).collect();
+            assert_eq!(got, want, "{simd:?}, {n} pixels");
+        }
+    }
+}
+
 #[test]
 fn a_row_of_one_pixel_is_that_pixel_in_both_eyes() {
     for simd in levels() {

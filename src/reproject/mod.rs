@@ -406,6 +406,7 @@ pub(crate) fn row_in_place(
 /// Marks the pixels of a row where `colour` differs from `scene` (the
 /// row as the scene left it, before flat draws over it) as overlays: a
 /// depth of NaN, at the screen in both eyes.
+#[inline(always)]
 pub fn mark_overlays(colour: &[u32], scene: &[u32], depth: &mut [f32]) {
     for ((c, s), d) in colour.iter().zip(scene).zip(depth) {
         if c != s {
