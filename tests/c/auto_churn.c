@@ -2,11 +2,13 @@
  * Context churn under automatic stereo (glstereo-run --auto or
  * --auto=depth): a mono program makes a window and a GL context, draws
  * three frames (a backdrop from a vertex array with the depth test off, a
- * triangle in front of it with the test on, a swap), destroys both, forty
+ * triangle in front of it with the test on, the depth cleared and a small
+ * triangle in a corner viewport, a swap), destroys both, forty
  * times on one display connection, and prints "sample N rss_kb memfd fds"
  * after contexts 10 and 40. Each automatic-stereo context's eyes, and
  * under --auto=depth the depth its draws with the test off write beside
- * them, must go with it: the samples stay flat.
+ * them and the copy of the scene's depth kept at the clear, must go with
+ * it: the samples stay flat.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <GL/gl.h>
@@ -91,6 +93,16 @@ int main(void)
             glVertex3f(1, -1, -4);
             glVertex3f(0, 1, -4);
             glEnd();
+            /* The depth cleared and a gizmo drawn in a corner viewport (the
+             * scene's depth is copied aside before the clear). */
+            glClear(GL_DEPTH_BUFFER_BIT);
+            glViewport(0, 0, 64, 48);
+            glBegin(GL_TRIANGLES);
+            glVertex3f(-1, -1, -3);
+            glVertex3f(1, -1, -3);
+            glVertex3f(0, 1, -3);
+            glEnd();
+            glViewport(0, 0, 320, 240);
             glXSwapBuffers(first.display, w);
         }
         glXMakeCurrent(first.display, None, NULL);
