@@ -1008,11 +1008,9 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
     let Some(t) = tables() else {
         return draw();
     };
-    if matches!(
-        call.family,
-        Family::Clear | Family::Read | Family::Framebuffer
-    ) {
-        // They may use the window's depth, or change what is attached.
+    if matches!(call.family, Family::Read | Family::Framebuffer) {
+        // They may use the window's depth, or change what is attached
+        // (clears: before_clear).
         // SAFETY: the program's context is current on this thread.
         cur.with_auto(|st, _| unsafe { restore_depth(&t.gl, st) });
     }
@@ -1048,6 +1046,7 @@ pub fn around<R: Returned>(cur: &impl Host, call: Call, draw: impl Fn() -> R) ->
         // SAFETY: as above.
         Family::Read => unsafe { read_call(t, cur, call, draw) },
         Family::Clear => {
+            not_geometry_only(cur, call.family);
             before_clear(cur, &call);
             draw()
         }
@@ -1918,7 +1917,6 @@ pub fn before_clear(cur: &impl Host, call: &Call) {
     };
     // SAFETY: the program's context is current on this thread.
     cur.with_auto(|st, _| unsafe { restore_depth(&t.gl, st) });
-    not_geometry_only(cur, call.family);
     let Some(named) = clears_depth(call) else {
         return;
     };
