@@ -23,6 +23,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::output::MakeEyes;
+use crate::output::helper::Alone;
 use crate::output::kernels::Simd;
 use crate::reproject::{self, RowScratch, Rule};
 use crate::stereo::buffers::ColorBuffer;
@@ -104,6 +105,9 @@ pub unsafe fn make(
     Ok((pending.made(), Some(pending)))
 }
 
+/// A band's kernel buffers and row of depths ([`Pending`]).
+type Band = Mutex<(RowScratch, Vec<f32>)>;
+
 /// A frame's eyes to make from its colour and depth ([`make`]): row by
 /// row as a composite reads them (its [`MakeEyes`]), or all at once where
 /// they are ([`MakeEyes::in_place`]). Give its buffers back with
@@ -115,7 +119,9 @@ pub struct Pending {
     /// The depths read back, rows bottom first (with [`Depths::Read`]).
     depth: Vec<f32>,
     /// Each band's kernel buffers and row of depths: one thread each.
-    bands: [Mutex<(RowScratch, Vec<f32>)>; 2],
+    /// (Each alone on its cache lines: the kernel writes its vectors'
+    /// lengths at every row.)
+    bands: [Alone<Band>; 2],
     /// Made in place already.
     done: AtomicBool,
 }
@@ -165,7 +171,7 @@ impl Pending {
             job,
             eyes,
             depth: std::mem::take(&mut scratch.depth),
-            bands: [Mutex::new(a), Mutex::new(b)],
+            bands: [Alone(Mutex::new(a)), Alone(Mutex::new(b))],
             done: AtomicBool::new(false),
         }
     }
@@ -183,7 +189,7 @@ impl Pending {
         scratch.depth = self.depth;
         scratch.rows = self
             .bands
-            .map(|b| b.into_inner().unwrap_or_else(|e| e.into_inner()));
+            .map(|b| b.0.into_inner().unwrap_or_else(|e| e.into_inner()));
     }
 
     /// The depths of row `y` (GL's order) of a frame made by `job`, in

@@ -238,3 +238,24 @@ mod tests {
         );
     }
 }
+
+/// A value alone on its cache lines (two of x86's 64-byte lines, which
+/// its prefetcher fetches in pairs): what each of the two threads of a
+/// frame writes for itself, so that one thread's writes never take the
+/// other's line away (false sharing).
+#[derive(Debug, Default)]
+#[repr(align(128))]
+pub(crate) struct Alone<T>(pub T);
+
+impl<T> std::ops::Deref for Alone<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        &self.0
+    }
+}
+
+impl<T> std::ops::DerefMut for Alone<T> {
+    fn deref_mut(&mut self) -> &mut T {
+        &mut self.0
+    }
+}
