@@ -210,3 +210,42 @@ fn a_row_of_one_pixel_is_that_pixel_in_both_eyes() {
         }
     }
 }
+
+/// The run starts of a chunk ([`changes`]) at every vector level are the
+/// scalar loop's, for chunks of few and many distinct codes (the kinds'
+/// codes among them) and every code before them.
+#[test]
+fn run_starts_at_every_level_are_the_scalar_loops() {
+    let mut rng = Rng(0x5EED_C0DE);
+    let pool = [
+        0,
+        1,
+        -1,
+        7,
+        CODE_BACKGROUND,
+        CODE_OVERLAY,
+        i32::MAX,
+        -1_000_000,
+    ];
+    for case in 0..20_000 {
+        let distinct = 1 + case % 8;
+        let mut code = [0i32; N];
+        for k in &mut code {
+            *k = pool[rng.below(distinct)];
+        }
+        let before = pool[rng.below(pool.len())];
+        let scalar = changes(Simd::Scalar, &code, before);
+        let mut last = before;
+        for (i, &k) in code.iter().enumerate() {
+            assert_eq!(scalar >> i & 1 == 1, k != last, "{code:?} after {before}");
+            last = k;
+        }
+        for simd in levels() {
+            assert_eq!(
+                changes(simd, &code, before),
+                scalar,
+                "{simd:?}: {code:?} after {before}"
+            );
+        }
+    }
+}

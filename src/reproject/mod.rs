@@ -278,8 +278,8 @@ pub(crate) fn row(
     with_simd(
         simd,
         #[inline(always)]
-        |_| {
-            let reach = runs_of(rule, columns, depth, &mut scratch.runs);
+        |simd| {
+            let reach = runs_of(simd, rule, columns, depth, &mut scratch.runs);
             // Nothing moves (a row of nothing drawn, overlays and geometry
             // at the screen): every pixel lands where it is, on its own.
             if reach == 0 {
@@ -456,10 +456,13 @@ fn first<T: Copy>(s: &[T], hit: impl Fn(T) -> bool) -> Option<usize> {
 /// The runs of equal code ([`Rule::code`]) among the columns [`x0`,
 /// `x1`) into `runs`; gives back the reach: the largest shift of a run of
 /// geometry, either way (0: nothing moves). The codes are made [`N`] at
-/// a time in vector registers, and a chunk that continues the current
-/// run is passed over whole.
+/// a time in vector registers, with a bit for each pixel whose code is
+/// not its left neighbour's ([`changes`]): a chunk that continues the
+/// current run is passed over whole, and in one that does not only the
+/// starts of runs are visited.
 #[inline(always)]
 fn runs_of(
+    simd: Simd,
     rule: &Rule,
     (x0, x1): (usize, usize),
     depth: &[f32],
@@ -484,21 +487,15 @@ fn runs_of(
     for c in &mut chunks {
         let c: &[f32; N] = c.try_into().expect("N");
         let mut code = [0i32; N];
-        // A bit for each pixel not of the current run: compared in vector
-        // registers, as the codes are made.
-        let mut differ = 0u32;
         for i in 0..N {
             code[i] = rule.code(c[i]).0;
-            differ |= u32::from(code[i] != current) << i;
         }
-        if differ != 0 {
-            let first = differ.trailing_zeros() as usize;
-            for (i, &k) in code.iter().enumerate().skip(first) {
-                if k != current {
-                    end(start, base + i, current, runs);
-                    (start, current) = (base + i, k);
-                }
-            }
+        let mut starts = changes(simd, &code, current);
+        while starts != 0 {
+            let i = starts.trailing_zeros() as usize;
+            end(start, base + i, current, runs);
+            (start, current) = (base + i, code[i]);
+            starts &= starts - 1;
         }
         base += N;
     }
@@ -511,6 +508,72 @@ fn runs_of(
     }
     end(start, d.len(), current, runs);
     reach
+}
+
+/// Bit i set where `code[i]` differs from the code before it (`before`
+/// for `code[0]`): where runs start in a chunk. The definition is the
+/// loop at [`Simd::Scalar`]; the vector levels compare the chunk with
+/// itself moved one lane in registers (a compare at an offset in memory
+/// would reload the chunk just stored, which the processor cannot
+/// forward from the store).
+#[inline(always)]
+fn changes(simd: Simd, code: &[i32; N], before: i32) -> u32 {
+    #[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+    if simd == Simd::Avx512 {
+        // SAFETY: `simd` says the processor has AVX-512 (with_simd).
+        return unsafe { changes_avx512(code, before) };
+    }
+    #[cfg(target_arch = "x86_64")]
+    if simd >= Simd::Avx2 {
+        // SAFETY: `simd` says the processor has AVX2 (with_simd).
+        return unsafe { changes_avx2(code, before) };
+    }
+    let _ = simd;
+    let mut bits = 0u32;
+    let mut last = before;
+    for (i, &k) in code.iter().enumerate() {
+        bits |= u32::from(k != last) << i;
+        last = k;
+    }
+    bits
+}
+
+#[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+#[allow(clippy::incompatible_msrv)] // Only compiled with Rust ≥ 1.89 (build.rs).
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn changes_avx512(code: &[i32; N], before: i32) -> u32 {
+    use std::arch::x86_64::*;
+    // SAFETY: 16 words of a 16-word array.
+    let v = unsafe { _mm512_loadu_si512(code.as_ptr().cast()) };
+    // [before, code[0], …, code[14]].
+    let moved = _mm512_alignr_epi32(v, _mm512_set1_epi32(before), 15);
+    u32::from(_mm512_cmpneq_epi32_mask(v, moved))
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn changes_avx2(code: &[i32; N], before: i32) -> u32 {
+    use std::arch::x86_64::*;
+    // SAFETY: two halves of 8 words of a 16-word array.
+    let (lo, hi) = unsafe {
+        (
+            _mm256_loadu_si256(code.as_ptr().cast()),
+            _mm256_loadu_si256(code.as_ptr().add(8).cast()),
+        )
+    };
+    // Each half moved up one lane, its first lane the word before it.
+    let up = _mm256_setr_epi32(7, 0, 1, 2, 3, 4, 5, 6);
+    let moved = |v: __m256i, first: __m256i| {
+        _mm256_blend_epi32::<1>(_mm256_permutevar8x32_epi32(v, up), first)
+    };
+    let lo_moved = moved(lo, _mm256_set1_epi32(before));
+    let hi_moved = moved(hi, _mm256_permutevar8x32_epi32(lo, up));
+    let same = |a: __m256i, b: __m256i| {
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b))) as u32
+    };
+    !(same(lo, lo_moved) | same(hi, hi_moved) << 8) & 0xFFFF
 }
 
 /// A row to land ([`row`]): the rule, the scene's columns, the frame's
