@@ -377,6 +377,51 @@ pub(crate) unsafe fn sample_taps(
     }
 }
 
+/// Each pair of words of `row` averaged into one of `out` (a composite
+/// half as wide as its eye: `side-by-side-half`, `over-under-half`'s
+/// columns): byte by byte, halves rounded up, alpha 255 — the
+/// reference's `average2`, which is what `vpavgb` computes. 16 words of
+/// `out` a step from 32 of `row`: the even and the odd words picked by
+/// two permutes, averaged by one instruction. `out` is at most half as
+/// long as `row`. (Bit operations on words: the hardware's prefetching
+/// keeps up, [`super::kernels::AHEAD`].)
+///
+/// # Safety
+/// The processor has AVX-512 F and BW.
+#[target_feature(enable = "avx512f,avx512bw")]
+#[inline]
+pub(crate) unsafe fn halve_row(row: &[u32], out: &mut [u32], px: impl Fn(u32) -> u32) {
+    let n = out.len().min(row.len() / 2);
+    let map = VectorPx::of(&px);
+    let even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    let odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
+    let alpha = _mm512_set1_epi32(ALPHA as i32);
+    let mut x = 0;
+    while x < n {
+        let m = N.min(n - x);
+        // SAFETY: the masks cover the 2·m ≤ row.len() − 2·x words of
+        // this step (masked-off words are not read).
+        let (a, b) = unsafe {
+            let at = row[2 * x..].as_ptr();
+            (
+                _mm512_maskz_loadu_epi32(lanes(2 * m), at.cast()),
+                _mm512_maskz_loadu_epi32(lanes((2 * m).saturating_sub(N)), at.add(N).cast()),
+            )
+        };
+        let avg = _mm512_avg_epu8(
+            _mm512_permutex2var_epi32(a, even, b),
+            _mm512_permutex2var_epi32(a, odd, b),
+        );
+        put(
+            _mm512_or_si512(avg, alpha),
+            map.as_ref(),
+            &mut out[x..x + m],
+            &px,
+        );
+        x += N;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

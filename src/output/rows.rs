@@ -857,6 +857,12 @@ impl Frame {
             return;
         }
         if k == 0.0 && 2 * p.width == w && one_row {
+            #[cfg(all(target_arch = "x86_64", glstereo_avx512))]
+            if simd.avx512() {
+                // SAFETY: `simd` says the processor has AVX-512 (with_simd).
+                unsafe { super::avx512::halve_row(r0, out, px) };
+                return;
+            }
             for (o, pair) in out.iter_mut().zip(r0.chunks_exact(2)) {
                 *o = px(average2(pair[0], pair[1]) | ALPHA);
             }
