@@ -49,7 +49,9 @@ pub(crate) enum Stage {
     /// XShmPutImage and its flush.
     Put,
     /// Both eyes made from the frame's colour and depth (`--auto=depth`):
-    /// the depth read and the kernel.
+    /// the depth read and the kernel, where they are made apart from the
+    /// composite (a composite that reads them row by row makes them
+    /// inside [`Stage::Compose`]).
     FromDepth,
 }
 

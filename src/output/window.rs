@@ -610,7 +610,7 @@ impl RowPaths {
             }) {
                 return true;
             }
-            m.in_place();
+            profile::span(Stage::FromDepth, || m.in_place());
         }
         let all = 0..target.size.1;
         profile::span(Stage::Compose, || {
