@@ -400,12 +400,16 @@ pub(crate) unsafe fn halve_row(row: &[u32], out: &mut [u32], px: impl Fn(u32) ->
     while x < n {
         let m = N.min(n - x);
         // SAFETY: the masks cover the 2·m ≤ row.len() − 2·x words of
-        // this step (masked-off words are not read).
+        // this step (masked-off words are not read; the second load's
+        // address may lie past the row when its mask is empty).
         let (a, b) = unsafe {
             let at = row[2 * x..].as_ptr();
             (
                 _mm512_maskz_loadu_epi32(lanes(2 * m), at.cast()),
-                _mm512_maskz_loadu_epi32(lanes((2 * m).saturating_sub(N)), at.add(N).cast()),
+                _mm512_maskz_loadu_epi32(
+                    lanes((2 * m).saturating_sub(N)),
+                    at.wrapping_add(N).cast(),
+                ),
             )
         };
         let avg = _mm512_avg_epu8(

@@ -182,6 +182,27 @@ pub(crate) fn turn() -> std::sync::MutexGuard<'static, ()> {
     TURNS.lock().unwrap_or_else(|e| e.into_inner())
 }
 
+/// A value alone on its cache lines (two of x86's 64-byte lines, which
+/// its prefetcher fetches in pairs): what each of the two threads of a
+/// frame writes for itself, so that one thread's writes never take the
+/// other's line away (false sharing).
+#[derive(Debug, Default)]
+#[repr(align(128))]
+pub(crate) struct Alone<T>(pub T);
+
+impl<T> std::ops::Deref for Alone<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        &self.0
+    }
+}
+
+impl<T> std::ops::DerefMut for Alone<T> {
+    fn deref_mut(&mut self) -> &mut T {
+        &mut self.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -236,26 +257,5 @@ mod tests {
             mask_all,
             "the helper thread must start with every signal blocked"
         );
-    }
-}
-
-/// A value alone on its cache lines (two of x86's 64-byte lines, which
-/// its prefetcher fetches in pairs): what each of the two threads of a
-/// frame writes for itself, so that one thread's writes never take the
-/// other's line away (false sharing).
-#[derive(Debug, Default)]
-#[repr(align(128))]
-pub(crate) struct Alone<T>(pub T);
-
-impl<T> std::ops::Deref for Alone<T> {
-    type Target = T;
-    fn deref(&self) -> &T {
-        &self.0
-    }
-}
-
-impl<T> std::ops::DerefMut for Alone<T> {
-    fn deref_mut(&mut self) -> &mut T {
-        &mut self.0
     }
 }
