@@ -702,8 +702,9 @@ fn depth_off_in(x: &Xvfb, exe: &Path, mode: &str) {
 /// viewport (VTK's orientation axes): under `--auto=depth` the scene
 /// keeps its depth (copied before the clear) and its parallax, as
 /// `--auto` draws it, in the window and in a render target blitted into
-/// it (as VTK 9 draws), and in the window the gizmo stays at the screen
-/// (before: the gizmo was taken for the scene and the frame was flat).
+/// it (as VTK 9 draws), and the gizmo stays at the screen in both (before:
+/// the gizmo was taken for the scene and the frame was flat; drawn into
+/// a render target, it moved with the scene behind it).
 #[test]
 fn a_depth_clear_in_the_frame_clears_the_programs_depth_and_keeps_the_scenes_eyes() {
     let _one = common::clients::one_renderer_at_a_time();
@@ -745,15 +746,22 @@ fn a_depth_clear_in_the_frame_clears_the_programs_depth_and_keeps_the_scenes_eye
                     && truth.iter().zip(made).all(|(t, m)| (t - m).abs() <= 1),
                 "{how} {what}: the red quad moved {made:?} under --auto=depth, {truth:?} under --auto"
             );
-            // The gizmo (white, bottom right) at the screen in both eyes;
-            // drawn into a render target, it is in both eyes and moves
-            // with the scene behind it (README).
+            // The gizmo (white, bottom right) at the screen in both eyes,
+            // drawn into the window or into a render target blitted into it
+            // (before: there, it moved with the scene behind it).
             let y = H - 25;
             let [l, r] = &eyes[1];
             let (a, b) = (run_of(l, y, [255, 255, 255]), run_of(r, y, [255, 255, 255]));
             assert!(
-                a.is_some() && b.is_some() && (what == "target" || a == b),
+                a.is_some() && a == b,
                 "{how} {what}: the gizmo at {a:?} in the left eye, {b:?} in the right"
+            );
+            // Its label (cyan, flat) too.
+            let y = H - 6;
+            let (a, b) = (run_of(l, y, [0, 255, 255]), run_of(r, y, [0, 255, 255]));
+            assert!(
+                a.is_some() && a == b,
+                "{how} {what}: the label at {a:?} in the left eye, {b:?} in the right"
             );
         }
     }

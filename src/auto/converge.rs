@@ -115,6 +115,11 @@ pub struct Frame {
     /// whose colour then is in the right eye's layer
     /// ([`crate::auto::from_depth`]).
     pub overlays: bool,
+    /// `--auto=depth`: draws that are not the scene's came into the
+    /// scene's render target after it; layer 1 of this colour array
+    /// holds the target's colour from before them
+    /// ([`crate::auto::render_targets::SceneTarget::colour_kept`]).
+    pub target_overlays: Option<u32>,
     /// `--auto=depth`: a perspective draw of the frame wrote depth (the
     /// depth test on, depth writes on). Where none did, the depth holds no
     /// scene (what it holds is a clear, or undefined), and no eye can be
@@ -804,6 +809,7 @@ mod tests {
             left_shift: -0.2,
             converges: true,
             overlays: false,
+            target_overlays: None,
             depth_written: true,
             depth_beside: false,
         };

@@ -1159,6 +1159,60 @@ impl Attachments {
         true
     }
 
+    /// Layer `layer` of the colour array `array` (a render target's, of
+    /// this share group) as RGBA8 words, `w` × `h` from its corner, rows
+    /// bottom first, read through `fbo` as [`Self::read_left_depth`]
+    /// reads (its colour attachment 0 is left empty). Into `out`.
+    ///
+    /// # Safety
+    /// As [`Self::read_left_depth`]; the array is at least `w` × `h` and
+    /// has the layer.
+    pub unsafe fn read_colour_layer(
+        &self,
+        gl: &Gl,
+        fbo: u32,
+        (array, layer): (u32, i32),
+        (w, h): (i32, i32),
+        out: &mut Vec<u32>,
+    ) {
+        out.clear();
+        out.resize(w.max(0) as usize * h.max(0) as usize, 0);
+        if array == 0 || w <= 0 || h <= 0 {
+            return;
+        }
+        // SAFETY: contract; `out` holds w × h words.
+        unsafe {
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+            (self.api.framebuffer_texture_layer)(
+                GL_READ_FRAMEBUFFER,
+                GL_COLOR_ATTACHMENT0,
+                array,
+                0,
+                layer,
+            );
+            gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+            gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+            gl.ReadPixels(
+                0,
+                0,
+                w,
+                h,
+                GL_RGBA,
+                GL_UNSIGNED_BYTE,
+                out.as_mut_ptr().cast(),
+            );
+            (self.api.framebuffer_texture_layer)(
+                GL_READ_FRAMEBUFFER,
+                GL_COLOR_ATTACHMENT0,
+                0,
+                0,
+                0,
+            );
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        }
+    }
+
     /// Whether there is a depth array (what automatic convergence reads).
     pub fn has_depth(&self) -> bool {
         self.depth != 0

@@ -91,7 +91,10 @@ pub unsafe fn make(
     }
     let plan = match frame.filter(|_| live::auto_on()) {
         // SAFETY: contract.
-        Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth, switch_in)? },
+        Some(f) => unsafe {
+            let buffers = (&mut scratch.depth, &mut scratch.eyes);
+            rule_of(gl, fb, f, (w, h), buffers, switch_in)?
+        },
         None => None,
     };
     // SAFETY: contract: GL has finished with the eyes, and these are the
@@ -409,7 +412,10 @@ unsafe fn make_through_gl(
     }
     let plan = match frame.filter(|_| live::auto_on()) {
         // SAFETY: contract.
-        Some(f) => unsafe { rule_of(gl, fb, f, (w, h), &mut scratch.depth, &mut || Ok(()))? },
+        Some(f) => unsafe {
+            let buffers = (&mut scratch.depth, &mut scratch.eyes);
+            rule_of(gl, fb, f, (w, h), buffers, &mut || Ok(()))?
+        },
         None => None,
     };
     let overlays = plan.as_ref().is_some_and(|m| m.window) && frame.is_some_and(|f| f.overlays);
@@ -487,8 +493,9 @@ unsafe fn write_texture(gl: &Gl, texture: u32, (w, h): (u32, u32), pixels: &[u32
 
 /// The rule of `frame`'s scene, its viewport and whether it is the
 /// window's, with the scene's depth read into `depth` (`w` × `h` window
-/// depths, rows bottom first); None where the frame's depth cannot be
-/// mapped to a shift.
+/// depths, rows bottom first), marked where overlays were drawn into its
+/// render target (`colour`: buffers to read the target's colour into);
+/// None where the frame's depth cannot be mapped to a shift.
 ///
 /// # Safety
 /// As [`make`].
@@ -497,7 +504,7 @@ unsafe fn rule_of(
     fb: &EmulatedFramebuffer,
     frame: &Frame,
     (w, h): (u32, u32),
-    depth: &mut Vec<f32>,
+    (depth, colour): (&mut Vec<f32>, &mut [Vec<u32>; 2]),
     switch_in: &mut dyn FnMut() -> crate::Result<()>,
 ) -> crate::Result<Option<Plan>> {
     let Some(eyes) = fb.layered() else {
@@ -579,7 +586,27 @@ unsafe fn rule_of(
     // SAFETY: contract; the rectangle is the whole of the eyes.
     let read =
         unsafe { source.read_left_depth(gl, fb.read_fbo(), (0, 0, w as i32, h as i32), depth) };
-    Ok((read && depth.len() >= w as usize * h as usize).then(|| plan(Depths::Read(beside))))
+    let read = read && depth.len() >= w as usize * h as usize;
+    if let Some(array) = frame
+        .target_overlays
+        .filter(|_| read && in_window.is_none())
+    {
+        // Overlays drawn into the scene's target: the pixels they changed
+        // stay at the screen, as the window's (the target is the window's
+        // size, its pixels where the window shows them).
+        let [now, before] = colour;
+        let size = (w as i32, h as i32);
+        // SAFETY: contract; the array is the target's, of the window's size.
+        unsafe {
+            source.read_colour_layer(gl, fb.read_fbo(), (array, 0), size, now);
+            source.read_colour_layer(gl, fb.read_fbo(), (array, 1), size, before);
+        }
+        reproject::mark_overlays(now, before, depth);
+        crate::report::tell(
+            "--auto=depth: overlays drawn into the scene's render target stay at the screen",
+        );
+    }
+    Ok(read.then(|| plan(Depths::Read(beside))))
 }
 
 /// How a frame's eyes are made ([`rule_of`]).

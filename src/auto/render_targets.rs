@@ -1496,6 +1496,13 @@ pub struct SceneTarget {
     /// this viewport), copied first: a perspective draw into it in
     /// another viewport is an overlay, not the scene.
     pub cleared: Option<(i32, i32, i32, i32)>,
+    /// `--auto=depth`: a draw that is not the scene's (a flat one, or a
+    /// perspective one in another viewport after a depth clear: an
+    /// orientation gizmo, its labels) came into the target after the
+    /// scene; this colour array's right-eye layer holds the scene's
+    /// colour from before it ([`copy_left_colour`]), so that the present
+    /// can tell the pixels such draws changed.
+    pub colour_kept: Option<u32>,
 }
 
 /// A copy of an eye's depth, kept by automatic convergence: a later

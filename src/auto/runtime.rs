@@ -1864,19 +1864,20 @@ unsafe fn keep_scene_colour(
     f: &AutoFns,
     api: render_targets::ContextApi,
     layered: &Attachments,
-) -> bool {
+) -> Option<u32> {
     const GL_DRAW_BUFFER0: u32 = 0x8825;
     const GL_COLOR_ATTACHMENT0: u32 = 0x8CE0;
     if !live::from_depth() {
-        return false;
+        return None;
     }
     // SAFETY: contract.
     unsafe {
         let buffer = integer(f, GL_DRAW_BUFFER0) as u32;
-        let Some(i) = buffer.checked_sub(GL_COLOR_ATTACHMENT0).filter(|&i| i < 8) else {
-            return false;
-        };
-        render_targets::copy_left_colour(api, layered.colour_at(i as usize))
+        let i = buffer
+            .checked_sub(GL_COLOR_ATTACHMENT0)
+            .filter(|&i| i < 8)?;
+        let array = layered.colour_at(i as usize);
+        render_targets::copy_left_colour(api, array).then_some(array)
     }
 }
 
@@ -2068,10 +2069,12 @@ pub unsafe fn frame_geometry(
         .window_drawn
         .take()
         .map(|scene| (scene, copied.then_some(st.depth_copy.texture)));
+    let mut target_overlays = None;
     let target = render_targets::with_group(group, |targets| {
         let s = &mut targets.scene;
         let copied = std::mem::take(&mut s.copied);
         s.cleared = None;
+        target_overlays = s.colour_kept.take();
         s.drawn.take().map(|(a, size, scene)| {
             let a = if copied {
                 a.with_depth_copy(s.copy.texture)
@@ -2108,6 +2111,7 @@ pub unsafe fn frame_geometry(
             left_shift: crate::math::Eye::Left.sign() * st.settings().effective_separation(),
             converges,
             overlays,
+            target_overlays,
             depth_written,
             depth_beside,
         })
@@ -2218,7 +2222,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                             && known(&st.window_drawn)
                             && !st.colour_kept
                         {
-                            st.colour_kept = keep_scene_colour(f, api, &layered);
+                            st.colour_kept = keep_scene_colour(f, api, &layered).is_some();
                         }
                         keep_scene_depth(
                             f,
@@ -2283,6 +2287,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                     targets.scene.drawn = Some((a, s, scene));
                                     targets.scene.copied = false;
                                     targets.scene.cleared = None;
+                                    targets.scene.colour_kept = None;
                                 }
                                 _ if blit => {}
                                 (p, size, depth) => {
@@ -2297,6 +2302,17 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                                 a.depth(),
                                                 (&mut scene.copy, &mut scene.copied),
                                             );
+                                            // A flat draw, or a gizmo after
+                                            // a depth clear: its pixels are
+                                            // told at the present by the
+                                            // scene's colour kept before it,
+                                            // as in the window.
+                                            if (p.is_none() || overlay)
+                                                && s.perspective.is_some()
+                                                && scene.colour_kept.is_none()
+                                            {
+                                                scene.colour_kept = keep_scene_colour(f, api, &a);
+                                            }
                                         }
                                     }
                                     // Unknown projections where no known one came.
@@ -2313,6 +2329,7 @@ fn drawing(t: &Tables, cur: &impl Host, call: Call, draw: &mut dyn FnMut()) {
                                             targets.scene.copied = false;
                                             targets.scene.cleared = None;
                                         }
+                                        targets.scene.colour_kept = None;
                                         targets.scene.drawn = Some((a, s, scene));
                                     }
                                 }

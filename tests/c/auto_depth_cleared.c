@@ -19,7 +19,9 @@
  *   gizmo      the scene (a yellow wall at w 8, a red quad at w 2), the
  *              depth cleared, then a white quad in perspective in a
  *              50x50 viewport in the bottom-right corner (an orientation
- *              gizmo, as VTK's corner renderer draws its axes)
+ *              gizmo, as VTK's corner renderer draws its axes) and its
+ *              label, a flat cyan square in the corner's bottom left
+ *              (x 2-10, y 2-10 of it), drawn with the depth test off
  *   scissored  the same with the clear scissored to the gizmo's corner
  *   target     scissored, drawn into a framebuffer object of the window's
  *              size (colour texture, depth renderbuffer) and blitted into
@@ -157,6 +159,14 @@ int main(int argc, char **argv)
         perspective(W - 50, 0, 50, 50, 1.0);
         glColor3f(1, 1, 1);
         quad(-0.5f, -0.5f, 0.5f, 0.5f, -3);
+        /* Its label: flat (w = 1), the depth test off. */
+        glMatrixMode(GL_PROJECTION);
+        glLoadIdentity();
+        glOrtho(0, 50, 0, 50, -1, 1);
+        glMatrixMode(GL_MODELVIEW);
+        glDisable(GL_DEPTH_TEST);
+        glColor3f(0, 1, 1);
+        quad(2, 2, 10, 10, 0);
         if (target) {
             ((Bind)proc("glBindFramebuffer"))(0x8CA9, 0);
             ((Bind)proc("glBindFramebuffer"))(0x8CA8, fbo);
