@@ -732,6 +732,37 @@ fn a_programs_framebuffers_in_another_share_group_are_its_own_to_delete_under_au
     assert_eq!(ours, mesa, "under --auto (stderr: {stderr})");
 }
 
+/// tests/c/egl_close.c: an EGL program closes its X display while its
+/// context is current on one of its windows, then clears and swaps on
+/// (Mesa keeps the surface; the swap succeeds) and exits without
+/// eglTerminate. The layer puts an EGL window's frames to the X server
+/// through that display (MIT-SHM): its XCloseDisplay frees the images
+/// and ends that, so the program gets Mesa's every answer under both
+/// kinds of automatic stereo (before: the swap after the close crashed in
+/// the layer's XSync of the freed display).
+#[test]
+fn an_egl_program_that_closes_its_x_display_while_current_swaps_on_as_under_mesa() {
+    let _one = one_renderer_at_a_time();
+    let x = Xvfb::start(320, 240);
+    let exe = build_once("egl_close", |out| {
+        common::preload::compile_plain(
+            &common::root().join("tests/c/egl_close.c"),
+            out,
+            &["-lEGL", "-lGLESv2", "-lX11"],
+        )
+    });
+    let display = Some(x.display.as_str());
+    let (mesa, _) = run_to_end(&exe, None, &[], display);
+    assert!(
+        mesa.ends_with("swap-display-closed 1 0x3000\ndone\n"),
+        "{mesa}"
+    );
+    for auto in ["--auto", "--auto=depth"] {
+        let (ours, stderr) = run_to_end(&exe, Some(auto), &[], display);
+        assert_eq!(ours, mesa, "under {auto} (stderr: {stderr})");
+    }
+}
+
 /// A program on an EGL display with no windows (Mesa's surfaceless
 /// platform, an EGL device: where `vglrun -d egl` renders a program's GLX
 /// frames) has nothing to show eyes in: under either automatic mode it

@@ -587,17 +587,32 @@ impl StereoContext {
         if self.is_closed() {
             return;
         }
+        self.release_images_on(self.x_display(), connection);
+    }
+
+    /// Frees the MIT-SHM images of its drawables, made on the X display
+    /// `x` (None: it is gone; only this process's side is freed).
+    pub(crate) fn release_images_on(&self, x: Option<usize>, connection: Connection) {
         let Ok(r) = real() else {
             return;
+        };
+        let (dpy, connection) = match x {
+            Some(x) => (x as *mut xlib::Display, connection),
+            None => (std::ptr::null_mut(), Connection::Lost),
         };
         let mut st = self.lock();
         for drawn in st.fbs.values_mut() {
             // SAFETY: made on this display, in the state the caller says.
-            unsafe {
-                drawn
-                    .image
-                    .release(&r.xlib, self.display as *mut xlib::Display, connection)
-            };
+            unsafe { drawn.image.release(&r.xlib, dpy, connection) };
+        }
+    }
+
+    /// The X display its frames are put to with MIT-SHM: a GLX context's
+    /// own, an EGL display's X display where the program opened it.
+    fn x_display(&self) -> Option<usize> {
+        match self.wsi {
+            Wsi::Glx => Some(self.display),
+            Wsi::Egl => super::egl::x_display(self.display),
         }
     }
 
@@ -975,13 +990,16 @@ impl StereoContext {
     /// # Safety
     /// The layer's context is current on this thread.
     unsafe fn free_shared_side(&self, r: &Real, gone: Vec<(u64, Drawn)>) {
-        let dpy = self.display as *mut xlib::Display;
+        let (dpy, connection) = match self.x_display() {
+            Some(x) => (x as *mut xlib::Display, Connection::Open),
+            None => (std::ptr::null_mut(), Connection::Lost),
+        };
         for (_, mut d) in gone {
             // SAFETY: the layer's context (which made them) is current;
             // the program's finished its rendering into them.
             unsafe {
                 d.fb.release(&r.gl);
-                d.image.release(&r.xlib, dpy, Connection::Open);
+                d.image.release(&r.xlib, dpy, connection);
             }
         }
     }
@@ -1253,6 +1271,18 @@ impl StereoContext {
         shown
     }
 
+    /// Whether a frame of this context's windows may go to the X server
+    /// from memory (MIT-SHM) instead of through the real swap: a GLX
+    /// window, or an EGL surface's X window where the program opened the
+    /// display ([`Wsi::x_drawable`]); not where the swap is another
+    /// layer's, which must see every frame.
+    fn puts_pixels(&self, r: &Real) -> bool {
+        match self.wsi {
+            Wsi::Glx => !r.swap_layered,
+            Wsi::Egl => !super::egl::swap_layered(),
+        }
+    }
+
     /// Makes the layer's context current on `drawable` unless `ours` says
     /// it is already.
     fn switch_in(&self, r: &Real, drawable: u64, ours: &mut bool) -> Result<()> {
@@ -1317,15 +1347,18 @@ impl StereoContext {
                 "frames are presented through the eglSwapBuffers of a layer below glstereo",
             );
         }
-        // GLX windows only: an EGL surface's frame goes through the real
-        // eglSwapBuffers (Wayland has no X server to put it to).
+        // An EGL surface on X whose display the program opened goes the
+        // same way (its real eglSwapBuffers is then not called: Mesa's
+        // software EGL would send the frame again, without MIT-SHM);
+        // other EGL surfaces (Wayland, EGL's own X connection) through
+        // the real eglSwapBuffers.
         let capturing = capture::sink();
         // A capture reads the eyes where they are: made there first.
         if let (Some(m), Some(_)) = (made, &capturing) {
             m.in_place();
         }
         let shown = match x_window {
-            Some(x) if self.shape.double_buffered && !r.swap_layered && self.wsi == Wsi::Glx => {
+            Some(x) if self.shape.double_buffered && self.puts_pixels(r) => {
                 // SAFETY: the program finished the eyes (flip_and_show).
                 let in_place = match capturing {
                     None if !*ours => unsafe { compositor.in_place_plan(&job) },

@@ -239,6 +239,9 @@ struct DisplayInfo {
     platform: Platform,
     /// The native display (`Display*`, `wl_display*`…), 0 for the default.
     native: usize,
+    /// The program closed the native X display (XCloseDisplay): the
+    /// layer no longer uses it.
+    x_closed: bool,
 }
 
 /// What the layer knows of a window surface.
@@ -262,24 +265,42 @@ fn with_state<T>(f: impl FnOnce(&mut State) -> T) -> T {
 }
 
 /// The X display and window behind surface `surface` of EGL display
-/// `display`, for the live keys: None on other platforms, or where the
-/// program let EGL open its own X connection.
+/// `display`, for the live keys and MIT-SHM: None on other platforms,
+/// where the program let EGL open its own X connection, or after it
+/// closed its own.
 pub fn x_window(display: usize, surface: u64) -> Option<(usize, u64)> {
     with_state(|s| {
         let d = s.displays.get(&display)?;
         let w = s.surfaces.get(&(display, surface as usize))?;
-        (d.platform == Platform::X11 && d.native != 0 && w.x_window != 0)
+        (d.platform == Platform::X11 && d.native != 0 && !d.x_closed && w.x_window != 0)
             .then_some((d.native, w.x_window))
     })
 }
 
-/// The `Display*` behind an X11 EGL display the program opened itself.
+/// The `Display*` behind an X11 EGL display the program opened itself
+/// (and has not closed).
 pub fn x_display(display: usize) -> Option<usize> {
     with_state(|s| {
         s.displays
             .get(&display)
-            .filter(|d| d.platform == Platform::X11 && d.native != 0)
+            .filter(|d| d.platform == Platform::X11 && d.native != 0 && !d.x_closed)
             .map(|d| d.native)
+    })
+}
+
+/// XCloseDisplay of `x`, a display the program opened: the EGL displays
+/// on it, which from now on the layer never uses it for (their frames go
+/// through the real eglSwapBuffers).
+pub fn x_display_closed(x: usize) -> Vec<usize> {
+    with_state(|s| {
+        let mut on = Vec::new();
+        for (&display, d) in &mut s.displays {
+            if d.platform == Platform::X11 && d.native == x && !d.x_closed {
+                d.x_closed = true;
+                on.push(display);
+            }
+        }
+        on
     })
 }
 
@@ -332,6 +353,7 @@ fn remember_display(display: Handle, platform: Platform, native: *mut c_void) {
                 DisplayInfo {
                     platform,
                     native: native as usize,
+                    x_closed: false,
                 },
             )
         });
@@ -650,6 +672,9 @@ unsafe fn adopt(e: &Egl, dpy: Handle, config: Handle, ctx: Handle, api: EglEnum)
     registry::with(|reg| reg.add_context(ctx as usize, sc));
     if let Some(x) = x_display(dpy as usize) {
         super::controls::arm(&r.xlib, x as *mut x11_dl::xlib::Display);
+        // Frames go to its windows with MIT-SHM: its XCloseDisplay must
+        // free their images first, and end that.
+        super::glx::watch(r, x as *mut x11_dl::xlib::Display);
     }
 }
 

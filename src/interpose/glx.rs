@@ -29,6 +29,7 @@ use super::real::{Real, loaded};
 use super::registry;
 use super::settings;
 use crate::backend::glx::trap_x_errors;
+use crate::backend::xshm::Connection;
 use crate::config::glx::{
     GLX_ALPHA_SIZE, GLX_DEPTH_SIZE, GLX_DOUBLEBUFFER, GLX_STENCIL_SIZE, GLX_STEREO,
 };
@@ -80,7 +81,7 @@ fn required<T>(p: *const T, what: &'static str) -> Result<()> {
 /// is recorded for a display. The hook is an Xlib extension's close_display
 /// procedure (as libGL's own GLX uses), run by XCloseDisplay while the
 /// connection is still open.
-fn watch(r: &Real, dpy: *mut Display) {
+pub(super) fn watch(r: &Real, dpy: *mut Display) {
     if !registry::with(|reg| reg.watch(dpy as usize)) {
         return;
     }
@@ -118,6 +119,13 @@ unsafe extern "C" fn display_closed(dpy: *mut Display, _codes: *mut XExtCodes) -
             super::context::forget_current();
         }
         drop(gone);
+        // EGL displays on this connection: their contexts' MIT-SHM images
+        // are freed while it is open, and none is made on it again.
+        for egl in super::egl::x_display_closed(dpy as usize) {
+            for sc in registry::with(|reg| reg.contexts_of(egl)) {
+                sc.release_images_on(Some(dpy as usize), Connection::Closing);
+            }
+        }
     });
     0
 }
