@@ -22,10 +22,12 @@
 //!   ([`StereoContext::bind`]); a context made current with no surface
 //!   (EGL_KHR_surfaceless_context) draws into its own framebuffer objects.
 //! - eglSwapBuffers and eglSwapBuffersWithDamage(KHR/EXT) present the
-//!   eyes composed in the output format into the program's own surface,
-//!   from the layer's context, with the real eglSwapBuffers (the damage
-//!   rectangles are the program's frame's; the composite is new
-//!   everywhere). eglSwapInterval is the program's: EGL keeps it on the
+//!   eyes composed in the output format: on a software renderer, into an
+//!   X11 window of a display the program opened, from memory with
+//!   MIT-SHM as a GLX window's (the real swap is not called); else into
+//!   the program's own surface, from the layer's context, with the real
+//!   eglSwapBuffers (the damage rectangles are the program's frame's; the
+//!   composite is new everywhere). eglSwapInterval is the program's: EGL keeps it on the
 //!   surface, which the layer's swap uses.
 //! - eglDestroySurface frees the surface's buffers in every context that
 //!   has them; eglDestroyContext of a current context waits for its
