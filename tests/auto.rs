@@ -704,7 +704,9 @@ fn depth_off_in(x: &Xvfb, exe: &Path, mode: &str) {
 /// `--auto` draws it, in the window and in a render target blitted into
 /// it (as VTK 9 draws), and the gizmo stays at the screen in both (before:
 /// the gizmo was taken for the scene and the frame was flat; drawn into
-/// a render target, it moved with the scene behind it).
+/// a render target, it moved with the scene behind it). A flat pass over
+/// the whole render target after the scene is no overlay: the frame keeps
+/// its parallax.
 #[test]
 fn a_depth_clear_in_the_frame_clears_the_programs_depth_and_keeps_the_scenes_eyes() {
     let _one = common::clients::one_renderer_at_a_time();
@@ -726,15 +728,22 @@ fn a_depth_clear_in_the_frame_clears_the_programs_depth_and_keeps_the_scenes_eye
             let (_, ours) = auto_capture_in(&x, (auto, CONVERGENCE), &exe, &[how, "beside"], &dir);
             assert_eq!(ours, plain, "{how} under {auto}, then without the layer");
         }
-        for what in ["gizmo", "scissored", "target"] {
+        for what in ["gizmo", "scissored", "target", "pass"] {
             let eyes = ["--auto", "--auto=depth"].map(|auto| {
                 let dir = common::scratch(&format!("auto-depth-cleared-{how}-{what}{auto}"));
                 auto_capture_in(&x, (auto, CONVERGENCE), &exe, &[how, what], &dir).0
             });
             // The red quad (w 2) in the middle row: its edges move by
-            // s·(1 − C/w)·W = −14 pixels under --auto.
+            // s·(1 − C/w)·W = −14 pixels under --auto. (The pass adds 32
+            // of blue to every pixel: it is no overlay, and the frame
+            // keeps its depth.)
+            let red = if what == "pass" {
+                [255, 0, 32]
+            } else {
+                [255, 0, 0]
+            };
             let shift = |[l, r]: &[Image; 2]| {
-                let (a, b) = (run_of(l, H / 2, [255, 0, 0]), run_of(r, H / 2, [255, 0, 0]));
+                let (a, b) = (run_of(l, H / 2, red), run_of(r, H / 2, red));
                 let (Some(a), Some(b)) = (a, b) else {
                     panic!("{how} {what}: the red quad is not in both eyes");
                 };
@@ -746,6 +755,9 @@ fn a_depth_clear_in_the_frame_clears_the_programs_depth_and_keeps_the_scenes_eye
                     && truth.iter().zip(made).all(|(t, m)| (t - m).abs() <= 1),
                 "{how} {what}: the red quad moved {made:?} under --auto=depth, {truth:?} under --auto"
             );
+            if what == "pass" {
+                continue;
+            }
             // The gizmo (white, bottom right) at the screen in both eyes,
             // drawn into the window or into a render target blitted into it
             // (before: there, it moved with the scene behind it).

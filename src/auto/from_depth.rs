@@ -601,10 +601,25 @@ unsafe fn rule_of(
             source.read_colour_layer(gl, fb.read_fbo(), (array, 0), size, now);
             source.read_colour_layer(gl, fb.read_fbo(), (array, 1), size, before);
         }
-        reproject::mark_overlays(now, before, depth);
-        crate::report::tell(
-            "--auto=depth: overlays drawn into the scene's render target stay at the screen",
-        );
+        // A pass over most of the target (a fog, an occlusion term
+        // blended over the scene) is the scene's, not an overlay: it
+        // moves with the scene as before.
+        let changed = now
+            .iter()
+            .zip(before.iter())
+            .filter(|(a, b)| a != b)
+            .count();
+        if changed <= now.len() / 2 {
+            reproject::mark_overlays(now, before, depth);
+            crate::report::tell(
+                "--auto=depth: overlays drawn into the scene's render target stay at the screen",
+            );
+        } else {
+            crate::report::tell(
+                "--auto=depth: draws after the scene changed most of its render target (a pass \
+                 over the scene, not overlays): they move with the scene",
+            );
+        }
     }
     Ok(read.then(|| plan(Depths::Read(beside))))
 }

@@ -26,6 +26,9 @@
  *   target     scissored, drawn into a framebuffer object of the window's
  *              size (colour texture, depth renderbuffer) and blitted into
  *              the window, as VTK 9 draws its renderers
+ *   pass       the scene drawn into that framebuffer object, then a flat
+ *              pass over all of it (blue 32 added by blending; no depth
+ *              cleared), blitted into the window
  *
  * One 200x150 frame, swapped; the eyes are the captures.
  */
@@ -103,14 +106,15 @@ int main(int argc, char **argv)
 {
     if (argc != 3) {
         fprintf(stderr,
-                "usage: auto_depth_cleared clear|clearbuffer|named beside|gizmo|scissored|target\n");
+                "usage: auto_depth_cleared clear|clearbuffer|named beside|gizmo|scissored|target|pass\n");
         return 2;
     }
     how = argv[1];
     const char *what = argv[2];
     int attributes[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, GLX_DEPTH_SIZE, 24, None};
     struct x_window x = open_x_window(attributes, W, H);
-    int target = strcmp(what, "target") == 0;
+    int pass = strcmp(what, "pass") == 0;
+    int target = strcmp(what, "target") == 0 || pass;
     GLuint fbo = 0;
     if (target) {
         GLuint texture = 0, depth = 0;
@@ -150,6 +154,19 @@ int main(int argc, char **argv)
         quad(-8, -6, 8, 6, -8);
         glColor3f(1, 0, 0);
         quad(-1.2f, -0.5f, -0.2f, 0.5f, -2);
+    }
+    if (pass) {
+        /* A flat pass over the whole scene, blended onto it. */
+        glMatrixMode(GL_PROJECTION);
+        glLoadIdentity();
+        glMatrixMode(GL_MODELVIEW);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glColor3f(0, 0, 32.0f / 255.0f);
+        quad(-1, -1, 1, 1, 0);
+        glDisable(GL_BLEND);
+    } else if (strcmp(what, "beside") != 0) {
         if (strcmp(what, "gizmo") != 0) {
             glEnable(GL_SCISSOR_TEST);
             glScissor(W - 50, 0, 50, 50);
@@ -167,13 +184,13 @@ int main(int argc, char **argv)
         glDisable(GL_DEPTH_TEST);
         glColor3f(0, 1, 1);
         quad(2, 2, 10, 10, 0);
-        if (target) {
-            ((Bind)proc("glBindFramebuffer"))(0x8CA9, 0);
-            ((Bind)proc("glBindFramebuffer"))(0x8CA8, fbo);
-            ((Blit)proc("glBlitFramebuffer"))(0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT,
-                                              GL_NEAREST);
-            ((Bind)proc("glBindFramebuffer"))(0x8D40, 0);
-        }
+    }
+    if (target) {
+        ((Bind)proc("glBindFramebuffer"))(0x8CA9, 0);
+        ((Bind)proc("glBindFramebuffer"))(0x8CA8, fbo);
+        ((Blit)proc("glBlitFramebuffer"))(0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT,
+                                          GL_NEAREST);
+        ((Bind)proc("glBindFramebuffer"))(0x8D40, 0);
     }
     printf("error 0x%x\n", glGetError());
     glXSwapBuffers(x.display, x.window);
