@@ -1117,46 +1117,58 @@ impl Attachments {
         // The buffer keeps its capacity from one measurement to the next.
         out.clear();
         out.resize(w as usize * h as usize, 0.0);
+        let attach = || {
+            // SAFETY: contract (the framebuffer bound for reading).
+            unsafe {
+                if self.depth_2d {
+                    (self.api.framebuffer_texture)(
+                        GL_READ_FRAMEBUFFER,
+                        self.depth_attachment,
+                        self.depth,
+                        0,
+                    );
+                } else {
+                    (self.api.framebuffer_texture_layer)(
+                        GL_READ_FRAMEBUFFER,
+                        self.depth_attachment,
+                        self.depth,
+                        0,
+                        0,
+                    );
+                }
+            }
+        };
+        let read = (GL_DEPTH_COMPONENT, GL_FLOAT, out.as_mut_ptr().cast());
         // SAFETY: contract; `out` holds w × h floats at alignment 4.
+        unsafe { self.read_attached(gl, (fbo, self.depth_attachment), attach, (x, y, w, h), read) };
+        true
+    }
+
+    /// Reads `(x, y, w, h)` of what `attach` attaches at `attachment` of
+    /// `fbo` (bound for reading when it is called) as `format` and `kind`
+    /// into `out`, then leaves the attachment empty and
+    /// GL_READ_FRAMEBUFFER at 0.
+    ///
+    /// # Safety
+    /// As [`Self::read_left_depth`]; `out` holds the rectangle's pixels.
+    unsafe fn read_attached(
+        &self,
+        gl: &Gl,
+        (fbo, attachment): (u32, u32),
+        attach: impl FnOnce(),
+        (x, y, w, h): (i32, i32, i32, i32),
+        (format, kind, out): (u32, u32, *mut std::ffi::c_void),
+    ) {
+        // SAFETY: contract.
         unsafe {
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-            if self.depth_2d {
-                (self.api.framebuffer_texture)(
-                    GL_READ_FRAMEBUFFER,
-                    self.depth_attachment,
-                    self.depth,
-                    0,
-                );
-            } else {
-                (self.api.framebuffer_texture_layer)(
-                    GL_READ_FRAMEBUFFER,
-                    self.depth_attachment,
-                    self.depth,
-                    0,
-                    0,
-                );
-            }
+            attach();
             gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
             gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-            gl.ReadPixels(
-                x,
-                y,
-                w,
-                h,
-                GL_DEPTH_COMPONENT,
-                GL_FLOAT,
-                out.as_mut_ptr().cast(),
-            );
-            (self.api.framebuffer_texture_layer)(
-                GL_READ_FRAMEBUFFER,
-                self.depth_attachment,
-                0,
-                0,
-                0,
-            );
+            gl.ReadPixels(x, y, w, h, format, kind, out);
+            (self.api.framebuffer_texture_layer)(GL_READ_FRAMEBUFFER, attachment, 0, 0, 0);
             gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         }
-        true
     }
 
     /// Layer `layer` of the colour array `array` (a render target's, of
@@ -1180,37 +1192,22 @@ impl Attachments {
         if array == 0 || w <= 0 || h <= 0 {
             return;
         }
+        let attach = || {
+            // SAFETY: contract (the framebuffer bound for reading).
+            unsafe {
+                (self.api.framebuffer_texture_layer)(
+                    GL_READ_FRAMEBUFFER,
+                    GL_COLOR_ATTACHMENT0,
+                    array,
+                    0,
+                    layer,
+                );
+                gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+            }
+        };
+        let read = (GL_RGBA, GL_UNSIGNED_BYTE, out.as_mut_ptr().cast());
         // SAFETY: contract; `out` holds w × h words.
-        unsafe {
-            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-            (self.api.framebuffer_texture_layer)(
-                GL_READ_FRAMEBUFFER,
-                GL_COLOR_ATTACHMENT0,
-                array,
-                0,
-                layer,
-            );
-            gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-            gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-            gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-            gl.ReadPixels(
-                0,
-                0,
-                w,
-                h,
-                GL_RGBA,
-                GL_UNSIGNED_BYTE,
-                out.as_mut_ptr().cast(),
-            );
-            (self.api.framebuffer_texture_layer)(
-                GL_READ_FRAMEBUFFER,
-                GL_COLOR_ATTACHMENT0,
-                0,
-                0,
-                0,
-            );
-            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-        }
+        unsafe { self.read_attached(gl, (fbo, GL_COLOR_ATTACHMENT0), attach, (0, 0, w, h), read) };
     }
 
     /// Whether there is a depth array (what automatic convergence reads).
